@@ -1,0 +1,34 @@
+#include "client/flag_checks.h"
+
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+
+namespace membrane::client {
+namespace {
+
+absl::Status OutOfRange(absl::string_view flag, absl::string_view value, absl::string_view lo,
+                        absl::string_view hi, absl::string_view note) {
+  std::string message = absl::StrCat(flag, " ", value, " is out of range [", lo, ", ", hi, "]");
+  if (!note.empty()) absl::StrAppend(&message, " (", note, ")");
+  return absl::InvalidArgumentError(message);
+}
+
+}  // namespace
+
+absl::Status CheckIntRange(absl::string_view flag, int64_t value, int64_t lo, int64_t hi,
+                        absl::string_view note) {
+  if (value >= lo && value <= hi) return absl::OkStatus();
+  return OutOfRange(flag, absl::StrCat(value), absl::StrCat(lo), absl::StrCat(hi), note);
+}
+
+absl::Status CheckRealRange(absl::string_view flag, double value, double lo, double hi,
+                        absl::string_view note) {
+  // Written so that NaN fails: every comparison with NaN is false.
+  if (std::isfinite(value) && value >= lo && value <= hi) return absl::OkStatus();
+  return OutOfRange(flag, absl::StrFormat("%g", value), absl::StrFormat("%g", lo),
+                    absl::StrFormat("%g", hi), note);
+}
+
+}  // namespace membrane::client

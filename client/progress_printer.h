@@ -1,0 +1,48 @@
+// Live progress of a reconstruction on stderr. On a terminal each stage (and each plate
+// generation of the shrink) rewrites one status line in place; otherwise (logs, pipes, tests)
+// every update is a plain line, so a log shows the whole history.
+#ifndef MEMBRANE_CLIENT_PROGRESS_PRINTER_H_
+#define MEMBRANE_CLIENT_PROGRESS_PRINTER_H_
+
+#include <cstdio>
+
+#include "absl/strings/string_view.h"
+
+namespace membrane::client {
+
+class ProgressPrinter {
+ public:
+  enum class Mode {
+    kQuiet,  // print nothing
+    kLines,  // one plain line per Update and per Finish
+    kLive,   // rewrite one terminal line; Finish ends it with a newline
+  };
+
+  // Prints to `out` (not owned; must outlive the printer) in `mode`.
+  ProgressPrinter(std::FILE* out, Mode mode);
+  // Ends a pending live line, so that whatever is printed next starts on a fresh line.
+  ~ProgressPrinter();
+
+  ProgressPrinter(const ProgressPrinter&) = delete;
+  ProgressPrinter& operator=(const ProgressPrinter&) = delete;
+
+  // The mode for stderr: kQuiet when `quiet`, kLive when stderr is a terminal, else kLines.
+  static Mode StderrMode(bool quiet);
+
+  // Shows `text` as the state of the running stage: live, replaces the current line; as
+  // lines, prints it.
+  void Update(absl::string_view text);
+  // Shows `text` as the outcome of a finished stage and moves to a new line.
+  void Finish(absl::string_view text);
+
+ private:
+  void EndLiveLine();
+
+  std::FILE* out_;
+  Mode mode_;
+  bool live_line_open_ = false;
+};
+
+}  // namespace membrane::client
+
+#endif  // MEMBRANE_CLIENT_PROGRESS_PRINTER_H_

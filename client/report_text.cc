@@ -1,0 +1,32 @@
+#include "client/report_text.h"
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
+
+namespace membrane::client {
+
+std::string GenerationTable(const std::vector<GenerationStats>& generations) {
+  std::string table =
+      "plate size | soft voxels | started contractions | backtrackings | seconds\n";
+  for (const GenerationStats& g : generations) {
+    absl::StrAppendFormat(&table, "%10d | %11d | %20d | %13d | %7.3f\n", g.plate_size,
+                          g.soft_voxels, g.started_contractions, g.backtrackings, g.seconds);
+  }
+  return table;
+}
+
+std::string SummaryLine(const ReconstructionReport& r) {
+  const MeshReport& m = r.mesh;
+  const StageSeconds& s = r.seconds;
+  return absl::StrFormat(
+      "grid %s, %d points, %d hard voxels, density ratio %.3g; mesh %d shell%s, genus [%s], "
+      "%s, %s; seconds: decode %.3f voxelize %.3f shrink %.3f relax %.3f surface %.3f "
+      "check %.3f encode %.3f total %.3f\n",
+      absl::StrJoin(r.grid, "x"), r.points, r.hard_voxels, r.density_ratio, m.shells,
+      m.shells == 1 ? "" : "s", absl::StrJoin(m.genus, ", "), m.closed ? "closed" : "NOT closed",
+      m.manifold ? "manifold" : "NOT manifold", s.decode, s.voxelize, s.shrink, s.relax,
+      s.surface, s.check, s.encode, s.total);
+}
+
+}  // namespace membrane::client

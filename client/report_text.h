@@ -1,0 +1,28 @@
+// The human-readable report printed on stdout after a reconstruction: the paper's table
+// (Tables 1 to 4) and a summary line.
+#ifndef MEMBRANE_CLIENT_REPORT_TEXT_H_
+#define MEMBRANE_CLIENT_REPORT_TEXT_H_
+
+#include <string>
+#include <vector>
+
+#include "client/reconstruction_report.h"
+#include "core/engine/membrane_shrinker.h"
+
+namespace membrane::client {
+
+// One header row and one row per generation, columns right-aligned:
+//   plate size | soft voxels | started contractions | backtrackings | seconds
+// Each line ends with '\n'.
+std::string GenerationTable(const std::vector<GenerationStats>& generations);
+
+// One line (ending with '\n'): grid, points, hard voxels, density ratio, mesh shells and
+// genus, closed/manifold, then seconds per stage, e.g.
+//   "grid 164x104x82, 35910 points, 19144 hard voxels, density ratio 0.87; mesh 1 shell,
+//    genus [0], closed, manifold; seconds: decode 0.01 voxelize 0.02 ... total 1.2"
+// (one line in reality; wrapped here).
+std::string SummaryLine(const ReconstructionReport& report);
+
+}  // namespace membrane::client
+
+#endif  // MEMBRANE_CLIENT_REPORT_TEXT_H_

@@ -1,0 +1,28 @@
+#include "client/surface_builder.h"
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "core/mesh/cuberille.h"
+
+namespace membrane::client {
+
+absl::StatusOr<SurfaceKind> ParseSurfaceKind(absl::string_view name) {
+  if (name == "smooth") return SurfaceKind::kSmooth;
+  if (name == "cuberille") return SurfaceKind::kCuberille;
+  return absl::InvalidArgumentError(
+      absl::StrCat("--surface '", name, "' is not one of: smooth, cuberille"));
+}
+
+const char* SurfaceKindName(SurfaceKind kind) {
+  return kind == SurfaceKind::kSmooth ? "smooth" : "cuberille";
+}
+
+absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
+                                          SurfaceKind kind, const CancelToken* cancel) {
+  (void)cloud;
+  (void)cancel;
+  if (kind == SurfaceKind::kCuberille) return Cuberille(membrane);
+  return absl::UnimplementedError("surface 'smooth' is not available in this build");
+}
+
+}  // namespace membrane::client

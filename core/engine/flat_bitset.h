@@ -1,0 +1,56 @@
+// A bitset over the flat voxel index, with the run operations of fast-shrink.md section 1:
+// a move by one voxel along an axis is a shift of the whole bitset by that axis' stride, so
+// 2-D and 3-D erosions and dilations become word operations whatever the axis.
+#ifndef MEMBRANE_CORE_ENGINE_FLAT_BITSET_H_
+#define MEMBRANE_CORE_ENGINE_FLAT_BITSET_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace membrane {
+
+class FlatBitset {
+ public:
+  FlatBitset() = default;
+  explicit FlatBitset(int64_t bits) : bits_(bits), words_(static_cast<size_t>((bits + 63) / 64), 0) {}
+
+  int64_t bits() const { return bits_; }
+  size_t word_count() const { return words_.size(); }
+  uint64_t* words() { return words_.data(); }
+  const uint64_t* words() const { return words_.data(); }
+
+  bool test(int64_t i) const { return (words_[static_cast<size_t>(i >> 6)] >> (i & 63)) & 1; }
+  void set(int64_t i) { words_[static_cast<size_t>(i >> 6)] |= 1ull << (i & 63); }
+  void clear_all();
+  bool any() const;
+
+  // this[i] &= other[i] (resp. |=, = a & b); sizes must match.
+  void And(const FlatBitset& other);
+  void Or(const FlatBitset& other);
+  void AndNot(const FlatBitset& other);
+
+  // this[i] &= this[i + k] for k >= 0 (bits past the end read as 0).
+  void AndShiftedDown(int64_t k);
+  // this[i] |= this[i - k] for k >= 0 (bits before the start read as 0).
+  void OrShiftedUp(int64_t k);
+  // this[i] = other[i - k] (k may be negative: this[i] = other[i + |k|]).
+  void AssignShifted(const FlatBitset& other, int64_t k);
+
+  // Erosion by a run of n along stride s, anchored at the lowest cell:
+  // this[i] = AND_{j<n} this[i + j s]. ceil(log2 n) + 1 passes.
+  void ErodeRun(int n, int64_t stride);
+  // Dilation by a run of n along stride s: this[i] = OR_{j<n} this[i - j s].
+  void DilateRun(int n, int64_t stride);
+
+ private:
+  // The 64 bits starting at bit position `pos` (may be negative or past the end: zeros).
+  uint64_t WordAt(int64_t pos) const;
+
+  int64_t bits_ = 0;
+  std::vector<uint64_t> words_;
+};
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_FLAT_BITSET_H_

@@ -1,0 +1,79 @@
+#include "core/engine/incursion_test.h"
+
+#include "core/engine/local_topology.h"
+
+namespace membrane {
+namespace {
+
+// 6-flood inside a box of 3 x 3 x len voxels (len <= 7) held in a uint64 mask:
+// bit t * 9 + i * 3 + j, t along the tested axis, (i, j) across it.
+uint64_t FloodBox(uint64_t seed, uint64_t allowed, int len) {
+  uint64_t not_j2 = 0, not_j0 = 0, not_i2 = 0, not_i0 = 0;
+  for (int b = 0; b < 9 * len; ++b) {
+    const int j = b % 3, i = (b / 3) % 3;
+    if (j != 2) not_j2 |= 1ull << b;
+    if (j != 0) not_j0 |= 1ull << b;
+    if (i != 2) not_i2 |= 1ull << b;
+    if (i != 0) not_i0 |= 1ull << b;
+  }
+  uint64_t reach = seed & allowed;
+  for (;;) {
+    uint64_t next = reach | ((reach & not_j2) << 1) | ((reach & not_j0) >> 1) |
+                    ((reach & not_i2) << 3) | ((reach & not_i0) >> 3) | (reach << 9) |
+                    (reach >> 9);
+    next &= allowed;
+    if (next == reach) return reach;
+    reach = next;
+  }
+}
+
+}  // namespace
+
+bool PaperIncursion(const VoxelGrid& grid, int64_t index) {
+  const auto st = grid.strides();
+  const VoxelState* s = grid.states().data() + index;
+  uint32_t outside = 0;
+  bool computed = false;
+  for (int d = 0; d < 3; ++d) {
+    const VoxelState a = s[-st[d]], b = s[st[d]];
+    if (!IsOutside(a) || !IsOutside(b) || GenerationLabel(a) == GenerationLabel(b)) continue;
+    if (!computed) {
+      outside = OutsideMask(grid, index) & ~kCentreBit;
+      computed = true;
+    }
+    const int off[3] = {d == 0, d == 1, d == 2};
+    const uint32_t bit_a = 1u << NeighbourBit(-off[0], -off[1], -off[2]);
+    const uint32_t bit_b = 1u << NeighbourBit(off[0], off[1], off[2]);
+    if ((Flood6(bit_a, outside) & bit_b) == 0) return true;
+  }
+  return false;
+}
+
+bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run) {
+  const auto st = grid.strides();
+  const VoxelState* s = grid.states().data();
+  for (int d = 0; d < 3; ++d) {
+    const int64_t sd = st[d];
+    int lo = 0, hi = 0;
+    while (hi - lo + 1 < max_run && IsHardOrFrozen(s[index + (hi + 1) * sd])) ++hi;
+    while (hi - lo + 1 < max_run && IsHardOrFrozen(s[index + (lo - 1) * sd])) --lo;
+    if (hi == lo) continue;
+    const VoxelState a = s[index + (lo - 1) * sd], b = s[index + (hi + 1) * sd];
+    if (!IsOutside(a) || !IsOutside(b) || GenerationLabel(a) == GenerationLabel(b)) continue;
+    // Outside voxels of the box A..B along d, -1..1 across it.
+    const int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
+    const int len = hi - lo + 3;
+    uint64_t outside = 0;
+    for (int t = 0; t < len; ++t)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const int64_t at = index + (lo - 1 + t) * sd + (i - 1) * st[d1] + (j - 1) * st[d2];
+          if (IsOutside(s[at])) outside |= 1ull << (t * 9 + i * 3 + j);
+        }
+    const uint64_t bit_a = 1ull << 4, bit_b = 1ull << ((len - 1) * 9 + 4);
+    if ((FloodBox(bit_a, outside, len) & bit_b) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace membrane

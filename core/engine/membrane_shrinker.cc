@@ -1,0 +1,123 @@
+#include "core/engine/membrane_shrinker.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_format.h"
+#include "core/engine/contraction.h"
+#include "core/engine/place_finder.h"
+#include "core/engine/silhouette.h"
+
+namespace membrane {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+int64_t CountBoundarySoft(const VoxelGrid& grid) {
+  const auto& s = grid.states();
+  return std::count(s.begin(), s.end(), kBoundarySoft);
+}
+
+absl::Status CancelledIn(const GenerationStats& g) {
+  return absl::CancelledError(absl::StrFormat(
+      "reconstruction cancelled in generation %d (plate size %d)", g.generation, g.plate_size));
+}
+
+// One generation: snapshots of every fitting plate, then a chain from each candidate, until a
+// pass changes nothing (then no plate fits anywhere: every plate that fits now but did not at
+// the last snapshot contains a voxel that a chain of the pass changed).
+absl::Status RunGeneration(VoxelGrid& grid, PlaceFinder& finder, ChainRunner& runner,
+                           const ChainOptions& chain, const CancelToken* cancel,
+                           GenerationStats& stats) {
+  ChainCounters counters;
+  for (;;) {
+    if (cancel != nullptr && cancel->cancelled()) return CancelledIn(stats);
+    const std::vector<int64_t> candidates = finder.Snapshot(chain.plate_size);
+    ++stats.passes;
+    bool changed = false;
+    for (int64_t index : candidates) {
+      if (grid.at(index) != kBoundarySoft) continue;
+      const std::optional<Plate> plate = finder.PlaceFor(index);
+      if (!plate) continue;
+      const ChainOutcome outcome = runner.Run(*plate, chain, cancel, counters);
+      if (outcome == ChainOutcome::kCancelled) return CancelledIn(stats);
+      if (outcome == ChainOutcome::kSkipped) continue;
+      ++stats.started_contractions;
+      if (outcome == ChainOutcome::kBacktracked) ++stats.backtrackings;
+      changed = true;
+    }
+    if (!changed) break;
+  }
+  stats.contractions = counters.contractions;
+  stats.undone_contractions = counters.undone_contractions;
+  stats.guard_refusals = counters.guard_refusals;
+  stats.depth_refusals = counters.depth_refusals;
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
+  if (o.initial_plate < 0 || o.initial_plate > 100000) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "initial_plate %d is out of range [0, 100000] (0 = from the grid)", o.initial_plate));
+  }
+  if (o.depth_bound < 0 || o.depth_bound > 1000000) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "depth_bound %d is out of range [0, 1000000] (0 = unbounded)", o.depth_bound));
+  }
+  if (o.thick_wall_run < 1 || o.thick_wall_run > 5) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("thick_wall_run %d is out of range [1, 5]", o.thick_wall_run));
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions& options,
+                                            const GenerationCallback& on_generation,
+                                            const CancelToken* cancel) {
+  if (absl::Status s = ValidateShrinkOptions(options); !s.ok()) return s;
+  const Clock::time_point start = Clock::now();
+  ShrinkResult result;
+  std::array<int, 3> data_dims;
+  for (int d = 0; d < 3; ++d) data_dims[d] = grid.dim(d) - 2 * VoxelGrid::kPadding;
+  if (options.silhouette_preshrink) result.preshrink_outside_voxels = SilhouettePreshrink(grid);
+
+  const std::vector<int> sizes = PlateSizes(data_dims, options.schedule, options.initial_plate);
+  const std::vector<int> labels = GenerationLabels(static_cast<int>(sizes.size()));
+  PlaceFinder finder(grid);
+  ChainRunner runner(grid);
+  for (size_t g = 0; g < sizes.size(); ++g) {
+    const Clock::time_point t0 = Clock::now();
+    GenerationStats stats;
+    stats.generation = static_cast<int>(g) + 1;
+    stats.plate_size = sizes[g];
+    stats.soft_voxels = CountBoundarySoft(grid);
+    ChainOptions chain;
+    chain.plate_size = sizes[g];
+    chain.generation_label = labels[g];
+    chain.depth_bound = options.depth_bound;
+    chain.thick_wall_run = options.thick_wall_run;
+    chain.topology_guard = options.topology_guard;
+    if (absl::Status s = RunGeneration(grid, finder, runner, chain, cancel, stats); !s.ok()) {
+      return s;
+    }
+    stats.seconds = SecondsSince(t0);
+    result.generations.push_back(stats);
+    if (on_generation) on_generation(stats);
+  }
+  if (options.connect_inside_hard) {
+    absl::StatusOr<PostProcessStats> post = ConnectInsideHardVoxels(grid, cancel);
+    if (!post.ok()) return post.status();
+    result.post_process = *post;
+  }
+  result.seconds = SecondsSince(start);
+  return result;
+}
+
+}  // namespace membrane

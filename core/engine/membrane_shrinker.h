@@ -1,0 +1,68 @@
+// The discrete membrane shrinking (paper sections 4.3 and 7): generations of recursive
+// contractions with plates of decreasing size, from the initial membrane on the exterior faces
+// to the final discrete membrane set (DMS).
+#ifndef MEMBRANE_CORE_ENGINE_MEMBRANE_SHRINKER_H_
+#define MEMBRANE_CORE_ENGINE_MEMBRANE_SHRINKER_H_
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/engine/cancel_token.h"
+#include "core/engine/plate_schedule.h"
+#include "core/engine/post_process.h"
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+struct ShrinkOptions {
+  PlateSchedule schedule = PlateSchedule::kHalving;
+  int initial_plate = 0;            // 0: from the grid (Algorithm 1)
+  int depth_bound = 3;              // algorithm-notes 14; 0 = unbounded (the paper)
+  int thick_wall_run = 3;           // algorithm-notes 15; 1 = the paper's test only
+  bool topology_guard = true;       // algorithm-notes 12
+  bool silhouette_preshrink = false;  // algorithm-notes 3 (Fig. 21b); off by default
+  bool connect_inside_hard = true;  // section 7 post-process
+};
+
+// One row of the paper's Tables 1 to 4 (algorithm-notes 11), plus our own counters.
+struct GenerationStats {
+  int generation = 0;                // 1-based
+  int plate_size = 0;
+  int64_t soft_voxels = 0;           // non-frozen soft boundary voxels before the generation
+  int64_t started_contractions = 0;  // chains started
+  int64_t backtrackings = 0;         // chains undone
+  int64_t contractions = 0;          // CONTRACTION operations, undone ones included
+  int64_t undone_contractions = 0;
+  int64_t guard_refusals = 0;        // backtracks caused by the topology guard
+  int64_t depth_refusals = 0;        // backtracks caused by the n = 1 depth bound
+  int passes = 0;                    // place-finding snapshots
+  double seconds = 0.0;
+};
+
+struct ShrinkResult {
+  std::vector<GenerationStats> generations;
+  int64_t preshrink_outside_voxels = 0;
+  PostProcessStats post_process;
+  double seconds = 0.0;
+};
+
+// Called after every generation, on the shrinking thread.
+using GenerationCallback = std::function<void(const GenerationStats&)>;
+
+// Validates options: InvalidArgument naming the field and its allowed range.
+absl::Status ValidateShrinkOptions(const ShrinkOptions& options);
+
+// Shrinks the initial membrane of `grid` (as built by Voxelize) into the final DMS.
+// After success the membrane invariants hold (CheckMembraneInvariants) and `grid` holds the
+// final DMS. `on_generation` may be empty; `cancel` may be null. Cancelled when `cancel`
+// fires (within milliseconds; `grid` is then a valid but unfinished DMS); InvalidArgument for
+// bad options.
+absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions& options,
+                                            const GenerationCallback& on_generation,
+                                            const CancelToken* cancel);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_MEMBRANE_SHRINKER_H_

@@ -1,0 +1,92 @@
+#include "core/engine/place_finder.h"
+
+#include <algorithm>
+#include <bit>
+
+namespace membrane {
+
+PlaceFinder::PlaceFinder(const VoxelGrid& grid) : grid_(grid), interior_(grid.size()) {
+  const auto& d = grid.dims();
+  for (int z = 1; z + 1 < d[2]; ++z)
+    for (int y = 1; y + 1 < d[1]; ++y)
+      for (int x = 1; x + 1 < d[0]; ++x) interior_.set(grid.Index(x, y, z));
+  for (int o = 0; o < 6; ++o) {
+    anchors_[o] = FlatBitset(grid.size());
+    anchor_rows_[o] = FlatBitset(grid.size());
+  }
+}
+
+std::vector<int64_t> PlaceFinder::Snapshot(int n) {
+  n_ = n;
+  const int64_t nv = grid_.size();
+  const auto st = grid_.strides();
+  FlatBitset out(nv), bs(nv);
+  {
+    // Build the two planes 64 voxels at a time.
+    const VoxelState* s = grid_.states().data();
+    uint64_t* ow = out.words();
+    uint64_t* bw = bs.words();
+    for (int64_t w = 0; w < static_cast<int64_t>(out.word_count()); ++w) {
+      const int64_t begin = w * 64, end = std::min<int64_t>(begin + 64, nv);
+      uint64_t o = 0, b = 0;
+      for (int64_t i = begin; i < end; ++i) {
+        o |= static_cast<uint64_t>(IsOutside(s[i])) << (i - begin);
+        b |= static_cast<uint64_t>(IsBoundarySoft(s[i])) << (i - begin);
+      }
+      ow[w] = o;
+      bw[w] = b;
+    }
+  }
+  FlatBitset free_cells = out;  // outside or boundary soft, off the border
+  free_cells.Or(bs);
+  free_cells.And(interior_);
+
+  FlatBitset candidates(nv), ok(nv), covered(nv);
+  for (int o = 0; o < 6; ++o) {
+    const Orientation& orient = kOrientations[o];
+    // ok[i] = free[i] & out[i - sign * stride_a]: the back side is outside.
+    ok.AssignShifted(out, orient.sign * st[orient.axis]);
+    ok.And(free_cells);
+    FlatBitset& e = anchors_[o];
+    e = ok;
+    e.ErodeRun(n, st[orient.u_axis()]);
+    e.ErodeRun(n, st[orient.v_axis()]);
+    FlatBitset& dc = anchor_rows_[o];
+    dc = e;
+    dc.DilateRun(n, st[orient.v_axis()]);
+    covered = dc;
+    covered.DilateRun(n, st[orient.u_axis()]);
+    covered.And(bs);
+    candidates.Or(covered);
+  }
+  std::vector<int64_t> result;
+  const uint64_t* cw = candidates.words();
+  for (int64_t w = 0; w < static_cast<int64_t>(candidates.word_count()); ++w) {
+    uint64_t bits = cw[w];
+    while (bits != 0) {
+      const int b = std::countr_zero(bits);
+      bits &= bits - 1;
+      result.push_back(w * 64 + b);
+    }
+  }
+  return result;
+}
+
+std::optional<Plate> PlaceFinder::PlaceFor(int64_t index) const {
+  const Coord c = grid_.CoordOf(index);
+  for (int o = 0; o < 6; ++o) {
+    const Orientation& orient = kOrientations[o];
+    const int k = c[orient.axis], u = c[orient.u_axis()], v = c[orient.v_axis()];
+    for (int u0 = std::max(u - n_ + 1, 0); u0 <= u; ++u0) {
+      if (!anchor_rows_[o].test(grid_.Index(PlateCell(orient, k, u0, v)))) continue;
+      for (int v0 = std::max(v - n_ + 1, 0); v0 <= v; ++v0) {
+        if (anchors_[o].test(grid_.Index(PlateCell(orient, k, u0, v0)))) {
+          return Plate{o, k, u0, v0};
+        }
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace membrane

@@ -1,0 +1,47 @@
+// FindContractionPlace (paper section 4.3) as a snapshot of every fitting plate
+// (fast-shrink.md section 2; algorithm-notes problem C).
+//
+// A snapshot takes O(NV / 64 * log n) word operations for all six orientations; after it,
+// the plate through a candidate voxel is found with O(n) bit tests instead of the O(n^2)
+// per-candidate search of the paper's list scan.
+#ifndef MEMBRANE_CORE_ENGINE_PLACE_FINDER_H_
+#define MEMBRANE_CORE_ENGINE_PLACE_FINDER_H_
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/engine/flat_bitset.h"
+#include "core/engine/plate.h"
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+class PlaceFinder {
+ public:
+  // Keeps a reference to `grid`, which must outlive the finder.
+  explicit PlaceFinder(const VoxelGrid& grid);
+
+  // Takes a snapshot for plate size n >= 1 of the current grid: every plate whose cells are
+  // all outside or boundary soft (not frozen), that lies off the array border, and whose back
+  // side is all outside. Returns the candidates: boundary soft voxels covered by such a plate,
+  // in increasing voxel index.
+  std::vector<int64_t> Snapshot(int n);
+
+  // The plate the paper's list scan would take for candidate voxel `index` at the snapshot:
+  // first orientation in kOrientations order, then smallest u0, then smallest v0. nullopt
+  // when no fitting plate covers the voxel in the snapshot.
+  std::optional<Plate> PlaceFor(int64_t index) const;
+
+ private:
+  const VoxelGrid& grid_;
+  int n_ = 0;
+  FlatBitset interior_;                  // not on the array border
+  std::array<FlatBitset, 6> anchors_;    // E_o: lowest corner of each fitting plate
+  std::array<FlatBitset, 6> anchor_rows_;  // DC_o: E_o dilated along v by n
+};
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_PLACE_FINDER_H_

@@ -1,0 +1,179 @@
+#include "core/engine/post_process.h"
+
+#include <algorithm>
+#include <bit>
+#include <deque>
+#include <vector>
+
+#include "absl/container/flat_hash_map.h"
+#include "absl/status/status.h"
+#include "core/engine/local_topology.h"
+
+namespace membrane {
+namespace {
+
+// Bounds one search: the interior of a hollowed model can be large, and an inside hard voxel
+// far from the membrane is better left (and counted) than found by a scan of the whole solid.
+constexpr size_t kMaxVisited = 200000;
+
+bool HasOutsideFaceNeighbour(const VoxelState* s, int64_t i, const std::array<int64_t, 3>& st) {
+  for (int d = 0; d < 3; ++d)
+    if (IsOutside(s[i - st[d]]) || IsOutside(s[i + st[d]])) return true;
+  return false;
+}
+
+// Makes voxel i outside and restores the invariants around it.
+void Carve(VoxelGrid& grid, int64_t i) {
+  const auto st = grid.strides();
+  VoxelState* s = grid.mutable_states().data();
+  s[i] = OutsideState(0);
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        VoxelState& n = s[i + dx * st[0] + dy * st[1] + dz * st[2]];
+        if (IsInside(n)) n |= kBoundaryBit;
+        const bool face = (dx != 0) + (dy != 0) + (dz != 0) == 1;
+        if (face && n == kBoundarySoft) n = kBoundaryFrozen;
+      }
+}
+
+}  // namespace
+
+absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
+                                                         const CancelToken* cancel,
+                                                         int max_path) {
+  PostProcessStats stats;
+  const auto st = grid.strides();
+  const int64_t nv = grid.size();
+  std::vector<int64_t> targets;
+  for (int64_t i = 0; i < nv; ++i)
+    if (IsInside(grid.at(i)) && IsHard(grid.at(i))) targets.push_back(i);
+  stats.inside_hard_before = static_cast<int64_t>(targets.size());
+
+  const int64_t steps[6] = {-st[0], st[0], -st[1], st[1], -st[2], st[2]};
+  for (int64_t target : targets) {
+    if (cancel != nullptr && cancel->cancelled()) {
+      return absl::CancelledError("reconstruction cancelled while connecting inside hard voxels");
+    }
+    if (!IsInside(grid.at(target))) continue;  // an earlier path reached it
+    const VoxelState* s = grid.states().data();
+    // Breadth-first search through soft non-outside voxels; parent links give the path.
+    absl::flat_hash_map<int64_t, int64_t> parent;
+    std::deque<std::pair<int64_t, int>> queue;
+    parent[target] = -1;
+    queue.emplace_back(target, 0);
+    int64_t exit = -1;
+    while (!queue.empty() && exit < 0 && parent.size() < kMaxVisited) {
+      const auto [i, depth] = queue.front();
+      queue.pop_front();
+      if (depth >= max_path) continue;
+      for (int64_t step : steps) {
+        const int64_t j = i + step;
+        if (IsOutside(s[j]) || IsHard(s[j]) || parent.contains(j)) continue;
+        parent[j] = i;
+        if (HasOutsideFaceNeighbour(s, j, st)) {
+          exit = j;
+          break;
+        }
+        queue.emplace_back(j, depth + 1);
+      }
+    }
+    if (exit < 0) continue;
+    // Carve from the outside end inwards while each voxel is simple.
+    for (int64_t i = exit; i != target; i = parent[i]) {
+      const uint32_t object = NeighbourhoodMask(grid, i, [](VoxelState v) { return !IsOutside(v); });
+      if (!IsSimple(object)) break;
+      Carve(grid, i);
+      ++stats.carved_voxels;
+    }
+  }
+  for (int64_t i = 0; i < nv; ++i)
+    if (IsInside(grid.at(i)) && IsHard(grid.at(i))) ++stats.inside_hard_after;
+  stats.bridge_voxels = BridgeMembraneContacts(grid);
+  return stats;
+}
+
+namespace {
+
+// Tries to join the boundary voxel `centre` to the boundary voxel at `offset` (an edge or
+// corner neighbour) by a face path that steps one axis at a time in the order `order`.
+bool TryBridgePath(VoxelGrid& grid, int64_t centre, const int offset[3], const int order[3]) {
+  const auto st = grid.strides();
+  VoxelState* s = grid.mutable_states().data();
+  int64_t path[2];
+  int steps = 0;
+  int64_t at = centre;
+  int taken = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int a = order[k];
+    if (offset[a] == 0) continue;
+    at += offset[a] * st[a];
+    if (++taken < (offset[0] != 0) + (offset[1] != 0) + (offset[2] != 0)) path[steps++] = at;
+  }
+  VoxelState before[2];
+  for (int k = 0; k < steps; ++k) {
+    const int64_t v = path[k];
+    before[k] = s[v];
+    if (IsBoundary(s[v])) continue;
+    if (IsInside(s[v])) {
+      s[v] |= kBoundaryBit;
+      continue;
+    }
+    const uint32_t object = NeighbourhoodMask(grid, v, [](VoxelState x) { return !IsOutside(x); });
+    if (grid.OnArrayBorder(grid.CoordOf(v)) || !IsSimple(object)) {
+      for (int j = k - 1; j >= 0; --j) s[path[j]] = before[j];
+      return false;
+    }
+    s[v] = kBoundaryFrozen;
+  }
+  return true;
+}
+
+}  // namespace
+
+int64_t BridgeMembraneContacts(VoxelGrid& grid) {
+  static constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                                        {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  const auto st = grid.strides();
+  const auto& d = grid.dims();
+  int64_t added = 0;
+  auto count_boundary = [&]() {
+    return std::count_if(grid.states().begin(), grid.states().end(),
+                         [](VoxelState v) { return IsBoundary(v); });
+  };
+  const int64_t before = count_boundary();
+  for (int pass = 0; pass < 3; ++pass) {
+    bool changed = false;
+    for (int z = 1; z + 1 < d[2]; ++z)
+      for (int y = 1; y + 1 < d[1]; ++y)
+        for (int x = 1; x + 1 < d[0]; ++x) {
+          const int64_t i = grid.Index(x, y, z);
+          if (!IsBoundary(grid.at(i))) continue;
+          for (;;) {
+            const uint32_t boundary =
+                NeighbourhoodMask(grid, i, [](VoxelState v) { return IsBoundary(v); });
+            const uint32_t missing = boundary & ~Flood6(kCentreBit, boundary);
+            if (missing == 0) break;
+            bool bridged = false;
+            for (uint32_t m = missing; m != 0 && !bridged; m &= m - 1) {
+              const int b = std::countr_zero(m);
+              const int offset[3] = {b % 3 - 1, (b / 3) % 3 - 1, b / 9 - 1};
+              for (const auto& order : kOrders) {
+                if (TryBridgePath(grid, i, offset, order)) {
+                  bridged = true;
+                  break;
+                }
+              }
+            }
+            if (!bridged) break;
+            changed = true;
+          }
+        }
+    if (!changed) break;
+  }
+  added = count_boundary() - before;
+  (void)st;
+  return added;
+}
+
+}  // namespace membrane

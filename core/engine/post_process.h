@@ -1,0 +1,41 @@
+// Post-process of paper section 7: hard voxels left inside the final membrane are connected to
+// it, so that their points lie within d = sqrt(3) l of the membrane's outer surface.
+#ifndef MEMBRANE_CORE_ENGINE_POST_PROCESS_H_
+#define MEMBRANE_CORE_ENGINE_POST_PROCESS_H_
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "core/engine/cancel_token.h"
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+struct PostProcessStats {
+  int64_t inside_hard_before = 0;
+  int64_t inside_hard_after = 0;
+  int64_t carved_voxels = 0;  // soft voxels made outside to reach them
+  int64_t bridge_voxels = 0;  // voxels added by BridgeMembraneContacts
+};
+
+// For every INSIDE hard voxel, finds the shortest 6-path of soft non-outside voxels from it to
+// a voxel with an outside face neighbour (within `max_path` steps) and carves the path from the
+// outside end inwards, each voxel only if it is (26,6)-simple, so shells and genus never change
+// (a dent, not a tunnel). The hard voxel becomes BOUNDARY; inside voxels 26-adjacent to a carved
+// voxel become BOUNDARY, and soft ones 6-adjacent to it FROZEN, so the membrane invariants
+// (Property 3 included) still hold. Cancelled when `cancel` fires.
+absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
+                                                         const CancelToken* cancel,
+                                                         int max_path = 64);
+
+// Makes the membrane of each shell 6-connected (section 4.1: a DM is face-connected). The
+// (26,6) shrink may leave two boundary voxels touching only along an edge or at a corner (a
+// hard voxel of a sparse region whose last soft face neighbour a plate removed). Each such
+// contact gets a face-connected path of one or two voxels inside the 3x3x3 block: an inside
+// voxel becomes BOUNDARY, an outside one FROZEN BOUNDARY only when (26,6)-simple, so neither
+// the shells nor the genus change. Returns the number of voxels changed.
+int64_t BridgeMembraneContacts(VoxelGrid& grid);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_POST_PROCESS_H_

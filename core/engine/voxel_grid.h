@@ -1,0 +1,95 @@
+// A regular voxel grid holding one VoxelState per voxel (paper section 4.1).
+//
+// The grid includes `kPadding` layers of outside voxels on every side (algorithm-notes 1), so
+// every plate's back, lateral and front sides lie inside the array. Voxel (x, y, z) covers the
+// model-space box origin + [x, x+1) * voxel_size (and likewise for y, z).
+#ifndef MEMBRANE_CORE_ENGINE_VOXEL_GRID_H_
+#define MEMBRANE_CORE_ENGINE_VOXEL_GRID_H_
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/engine/voxel_state.h"
+
+namespace membrane {
+
+// Integer voxel coordinates.
+struct Coord {
+  int x = 0, y = 0, z = 0;
+  int& operator[](int axis) { return axis == 0 ? x : axis == 1 ? y : z; }
+  int operator[](int axis) const { return axis == 0 ? x : axis == 1 ? y : z; }
+  friend bool operator==(const Coord&, const Coord&) = default;
+};
+
+class VoxelGrid {
+ public:
+  static constexpr int kPadding = 2;
+
+  VoxelGrid() = default;
+  // A grid of dims[0] x dims[1] x dims[2] voxels (padding included), all set to `fill`.
+  // The caller has checked the voxel budget (see Voxelize()).
+  VoxelGrid(std::array<int, 3> dims, std::array<double, 3> origin, double voxel_size,
+            VoxelState fill = kInsideSoft)
+      : dims_(dims), origin_(origin), voxel_size_(voxel_size),
+        states_(static_cast<size_t>(dims[0]) * dims[1] * dims[2], fill) {}
+
+  // Size in voxels along x, y, z, padding included.
+  const std::array<int, 3>& dims() const { return dims_; }
+  int dim(int axis) const { return dims_[axis]; }
+  int64_t size() const { return static_cast<int64_t>(states_.size()); }
+  // Model-space position of the corner of voxel (0, 0, 0).
+  const std::array<double, 3>& origin() const { return origin_; }
+  // Edge length l of a voxel, in model units.
+  double voxel_size() const { return voxel_size_; }
+
+  // Flat index stride per axis: index = x + nx * (y + ny * z).
+  std::array<int64_t, 3> strides() const {
+    return {1, dims_[0], static_cast<int64_t>(dims_[0]) * dims_[1]};
+  }
+  int64_t Index(int x, int y, int z) const {
+    return x + static_cast<int64_t>(dims_[0]) * (y + static_cast<int64_t>(dims_[1]) * z);
+  }
+  int64_t Index(const Coord& c) const { return Index(c.x, c.y, c.z); }
+  Coord CoordOf(int64_t index) const {
+    Coord c;
+    c.x = static_cast<int>(index % dims_[0]);
+    index /= dims_[0];
+    c.y = static_cast<int>(index % dims_[1]);
+    c.z = static_cast<int>(index / dims_[1]);
+    return c;
+  }
+  bool Contains(const Coord& c) const {
+    return c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < dims_[0] && c.y < dims_[1] && c.z < dims_[2];
+  }
+  // True for voxels on the outermost layer of the array (no full 26-neighbourhood).
+  bool OnArrayBorder(const Coord& c) const {
+    return c.x == 0 || c.y == 0 || c.z == 0 || c.x == dims_[0] - 1 || c.y == dims_[1] - 1 ||
+           c.z == dims_[2] - 1;
+  }
+
+  VoxelState at(int64_t index) const { return states_[static_cast<size_t>(index)]; }
+  VoxelState at(const Coord& c) const { return at(Index(c)); }
+  void set(int64_t index, VoxelState s) { states_[static_cast<size_t>(index)] = s; }
+  void set(const Coord& c, VoxelState s) { set(Index(c), s); }
+
+  // Model-space centre of a voxel.
+  std::array<double, 3> Center(const Coord& c) const {
+    return {origin_[0] + (c.x + 0.5) * voxel_size_, origin_[1] + (c.y + 0.5) * voxel_size_,
+            origin_[2] + (c.z + 0.5) * voxel_size_};
+  }
+
+  const std::vector<VoxelState>& states() const { return states_; }
+  std::vector<VoxelState>& mutable_states() { return states_; }
+
+ private:
+  std::array<int, 3> dims_{0, 0, 0};
+  std::array<double, 3> origin_{0, 0, 0};
+  double voxel_size_ = 1.0;
+  std::vector<VoxelState> states_;
+};
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_VOXEL_GRID_H_

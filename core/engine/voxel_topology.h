@@ -1,0 +1,33 @@
+// Topology of a DMS computed on the voxel complex, not on a mesh: the solid is the union of
+// the closed unit cubes of the non-outside voxels (26-connected; the outside is 6-connected).
+#ifndef MEMBRANE_CORE_ENGINE_VOXEL_TOPOLOGY_H_
+#define MEMBRANE_CORE_ENGINE_VOXEL_TOPOLOGY_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+struct VoxelTopology {
+  int shells = 0;                 // 26-components of non-outside voxels
+  std::vector<int> genus;         // per shell, in order of the shell's lowest voxel index
+  std::vector<int64_t> voxels;    // non-outside voxels per shell
+  int cavities = 0;               // outside regions not 6-connected to the array border
+};
+
+// Shells and genus of the solid of `grid`. Each shell's genus is 1 - chi, chi the Euler
+// characteristic of its closed-cube complex (V - E + F - C, counted per lattice vertex with a
+// 2x2x2 table), which is exact for a solid without cavities; `cavities` reports any (the
+// shrink never makes one: every outside voxel has an outside face neighbour of an older or
+// equal generation). The array border layer must be outside.
+VoxelTopology ComputeVoxelTopology(const VoxelGrid& grid);
+
+// Labels the 26-components of non-outside voxels: label[i] = shell index (0-based, ordered by
+// lowest voxel index) or -1 for outside voxels. Returns the number of components.
+int LabelShells(const VoxelGrid& grid, std::vector<int32_t>& label);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_VOXEL_TOPOLOGY_H_

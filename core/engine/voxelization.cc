@@ -1,0 +1,145 @@
+#include "core/engine/voxelization.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_format.h"
+
+namespace membrane {
+
+double EstimateVoxelSize(const Box3d& bounds, int64_t points) {
+  const auto e = bounds.Extent();
+  const double area2 = 2.0 * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
+  return std::sqrt(area2 / static_cast<double>(std::max<int64_t>(points, 1)));
+}
+
+absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points) {
+  if (points.empty()) return absl::InvalidArgumentError("the point cloud has no points");
+  int64_t non_finite = 0;
+  Box3d box;
+  bool first = true;
+  for (const Point3f& p : points) {
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+      ++non_finite;
+      continue;
+    }
+    for (int d = 0; d < 3; ++d) {
+      if (first || p[d] < box.min[d]) box.min[d] = p[d];
+      if (first || p[d] > box.max[d]) box.max[d] = p[d];
+    }
+    first = false;
+  }
+  if (non_finite > 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "%d of %d points have NaN or infinite coordinates", non_finite, points.size()));
+  }
+  const auto e = box.Extent();
+  if (e[0] == 0 && e[1] == 0 && e[2] == 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "all %d points are equal (%g, %g, %g): a point bounds no solid", points.size(),
+        box.min[0], box.min[1], box.min[2]));
+  }
+  // Coplanar: the covariance matrix is singular. Compare its determinant with the cube of its
+  // mean eigenvalue, so the test does not depend on the model's scale.
+  double mean[3] = {0, 0, 0};
+  for (const Point3f& p : points)
+    for (int d = 0; d < 3; ++d) mean[d] += p[d];
+  for (double& m : mean) m /= static_cast<double>(points.size());
+  double c[3][3] = {};
+  for (const Point3f& p : points) {
+    const double q[3] = {p[0] - mean[0], p[1] - mean[1], p[2] - mean[2]};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) c[i][j] += q[i] * q[j];
+  }
+  const double det = c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) -
+                     c[0][1] * (c[1][0] * c[2][2] - c[1][2] * c[2][0]) +
+                     c[0][2] * (c[1][0] * c[2][1] - c[1][1] * c[2][0]);
+  const double mean_eig = (c[0][0] + c[1][1] + c[2][2]) / 3.0;
+  if (det <= 1e-9 * mean_eig * mean_eig * mean_eig) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "the %d points are coplanar (or collinear): a plane bounds no solid", points.size()));
+  }
+  return box;
+}
+
+absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
+                                      const VoxelizeOptions& options) {
+  absl::StatusOr<Box3d> bounds = CheckedBounds(points);
+  if (!bounds.ok()) return bounds.status();
+  if (options.voxel_budget <= 0) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("voxel budget %d must be positive", options.voxel_budget));
+  }
+  double l = options.voxel_size;
+  if (l == 0.0) l = EstimateVoxelSize(*bounds, static_cast<int64_t>(points.size()));
+  if (!std::isfinite(l) || l <= 0.0) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("voxel size %g must be finite and positive", l));
+  }
+  const auto extent = bounds->Extent();
+  // Sizes in double first: a tiny voxel must give a clear status, not an integer overflow.
+  double cells[3];
+  double total = 1.0;
+  for (int d = 0; d < 3; ++d) {
+    cells[d] = std::floor(extent[d] / l) + 1.0 + 2.0 * VoxelGrid::kPadding;
+    total *= cells[d];
+  }
+  if (total > static_cast<double>(options.voxel_budget) || cells[0] > 1e9 || cells[1] > 1e9 ||
+      cells[2] > 1e9) {
+    return absl::ResourceExhaustedError(absl::StrFormat(
+        "voxel size %g gives a %.0fx%.0fx%.0f grid (%.3g voxels), over the voxel budget of %.3g",
+        l, cells[0], cells[1], cells[2], total, static_cast<double>(options.voxel_budget)));
+  }
+
+  Voxelization v;
+  v.bounds = *bounds;
+  v.points = static_cast<int64_t>(points.size());
+  std::array<int, 3> dims;
+  for (int d = 0; d < 3; ++d) {
+    dims[d] = static_cast<int>(cells[d]);
+    v.data_dims[d] = dims[d] - 2 * VoxelGrid::kPadding;
+  }
+  const std::array<double, 3> origin = {bounds->min[0] - VoxelGrid::kPadding * l,
+                                        bounds->min[1] - VoxelGrid::kPadding * l,
+                                        bounds->min[2] - VoxelGrid::kPadding * l};
+  v.grid = VoxelGrid(dims, origin, l, OutsideState(0));
+
+  // Initial membrane: the data region is INSIDE, its outer layer BOUNDARY.
+  const int p = VoxelGrid::kPadding;
+  for (int z = p; z < dims[2] - p; ++z)
+    for (int y = p; y < dims[1] - p; ++y)
+      for (int x = p; x < dims[0] - p; ++x) {
+        const bool outer = x == p || y == p || z == p || x == dims[0] - p - 1 ||
+                           y == dims[1] - p - 1 || z == dims[2] - p - 1;
+        v.grid.set(v.grid.Index(x, y, z), outer ? kBoundarySoft : kInsideSoft);
+      }
+
+  // Voxel of each point, sorted, so that runs give the points per voxel without a per-voxel
+  // counter array.
+  std::vector<int64_t> cell_of(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    int c[3];
+    for (int d = 0; d < 3; ++d) {
+      const double f = std::floor((points[i][d] - bounds->min[d]) / l);
+      c[d] = std::clamp(static_cast<int>(f), 0, v.data_dims[d] - 1) + p;
+    }
+    cell_of[i] = v.grid.Index(c[0], c[1], c[2]);
+  }
+  std::sort(cell_of.begin(), cell_of.end());
+  for (size_t i = 0; i < cell_of.size();) {
+    size_t j = i;
+    while (j < cell_of.size() && cell_of[j] == cell_of[i]) ++j;
+    (j - i == 1 ? v.voxels_with_one_point : v.voxels_with_more_points)++;
+    const VoxelState s = v.grid.at(cell_of[i]);
+    v.grid.set(cell_of[i], IsBoundary(s) ? kBoundaryHard : kInsideHard);
+    i = j;
+  }
+  v.hard_voxels = v.voxels_with_one_point + v.voxels_with_more_points;
+  v.density_ratio = v.voxels_with_one_point > 0
+                        ? static_cast<double>(v.voxels_with_more_points) / v.voxels_with_one_point
+                        : 0.0;
+  return v;
+}
+
+}  // namespace membrane

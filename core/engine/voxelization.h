@@ -1,0 +1,61 @@
+// Voxelization of a point cloud (paper section 4.3, formula (1); algorithm-notes 1).
+#ifndef MEMBRANE_CORE_ENGINE_VOXELIZATION_H_
+#define MEMBRANE_CORE_ENGINE_VOXELIZATION_H_
+
+#include <array>
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "absl/types/span.h"
+#include "core/engine/voxel_grid.h"
+#include "core/geometry/point_cloud.h"
+
+namespace membrane {
+
+inline constexpr int64_t kDefaultVoxelBudget = 400'000'000;
+
+struct VoxelizeOptions {
+  // Voxel edge length l in model units; 0 estimates it with the paper's formula (1).
+  double voxel_size = 0.0;
+  // Largest grid (voxels, padding included) that may be allocated.
+  int64_t voxel_budget = kDefaultVoxelBudget;
+};
+
+struct Voxelization {
+  // The grid: padding and data region, every voxel INSIDE except the data region's outer layer
+  // (BOUNDARY: the paper's initial membrane on the exterior faces) and the padding (OUTSIDE,
+  // generation 0). Voxels holding at least one point are HARD.
+  VoxelGrid grid;
+  Box3d bounds;                     // bounding box of the points, model units
+  std::array<int, 3> data_dims{};   // voxels per axis covering the points (no padding)
+  int64_t points = 0;
+  int64_t hard_voxels = 0;
+  int64_t voxels_with_one_point = 0;
+  int64_t voxels_with_more_points = 0;
+  // Voxels with >= 2 points / voxels with 1 point (section 4.3): a high value suggests a
+  // smaller voxel. 0 when no voxel has exactly one point.
+  double density_ratio = 0.0;
+};
+
+// The paper's formula (1): l = sqrt(2 (lx ly + ly lz + lz lx) / n_points), for the bounding
+// box `bounds` of `points` points.
+double EstimateVoxelSize(const Box3d& bounds, int64_t points);
+
+// Bounding box of `points`. InvalidArgument when there are no points, when some coordinates
+// are NaN or infinite (with their count), when all points are equal, or when they are
+// coplanar (a plane bounds no solid).
+absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points);
+
+// Builds the voxel grid and the initial membrane for `points`. Each axis gets
+// n_d = floor(L_d / l) + 1 voxels (so the largest coordinate falls inside the grid) plus
+// VoxelGrid::kPadding outside layers on every side. Point p lies in voxel
+// floor((p - bounds.min) / l) + kPadding.
+// Errors: InvalidArgument for degenerate points (see CheckedBounds) or a voxel size that is
+// not finite and positive; ResourceExhausted, naming the grid and the budget, when the grid
+// would exceed options.voxel_budget. Nothing is allocated before the budget check.
+absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
+                                      const VoxelizeOptions& options);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_VOXELIZATION_H_

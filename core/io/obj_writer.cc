@@ -1,0 +1,36 @@
+#include "core/io/obj_writer.h"
+
+#include "absl/strings/str_cat.h"
+#include "core/io/ascii_format.h"
+
+namespace membrane {
+namespace {
+
+void AppendVertexLines(const std::vector<Point3f>& vertices, std::string* out) {
+  for (const Point3f& p : vertices) {
+    out->append("v ");
+    AppendPointText(p, out);
+    out->push_back('\n');
+  }
+}
+
+}  // namespace
+
+std::string EncodeObjPointCloud(const PointCloud& cloud) {
+  std::string out = "# written by membrane\n";
+  AppendVertexLines(cloud.points, &out);
+  return out;
+}
+
+std::string EncodeObjMesh(const TriangleMesh& mesh) {
+  std::string out = "# written by membrane\n";
+  AppendVertexLines(mesh.vertices, &out);
+  for (const std::array<int32_t, 3>& face : mesh.faces) {
+    // OBJ indices are 1-based; int64 so the largest int32 index cannot overflow.
+    absl::StrAppend(&out, "f ", int64_t{face[0]} + 1, " ", int64_t{face[1]} + 1, " ",
+                    int64_t{face[2]} + 1, "\n");
+  }
+  return out;
+}
+
+}  // namespace membrane

@@ -1,0 +1,49 @@
+// Reading and writing point clouds in every supported format, chosen by extension or by the
+// caller (for uploads held in memory).
+#ifndef MEMBRANE_CORE_IO_POINT_CLOUD_IO_H_
+#define MEMBRANE_CORE_IO_POINT_CLOUD_IO_H_
+
+#include <string>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "core/geometry/point_cloud.h"
+#include "core/io/draco_codec.h"
+#include "core/io/file_format.h"
+
+namespace membrane {
+
+// The point cloud in the file at `path`, its format chosen by the extension
+// (case-insensitive): .ply, .obj, .xyz/.txt/.pts, .pcd, .drc (a Draco mesh gives its
+// vertices). NotFound naming the path when it does not exist; otherwise as
+// ReadPointCloudFromBuffer with `path` as the source.
+absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path);
+
+// The point cloud in `data`, read as `format`. `source` names the input in messages. A cloud
+// of zero points is OK when the file is well formed. Errors:
+//   InvalidArgument "<source>: ..." for empty input, a format that cannot hold point clouds
+//     (kStl), malformed, truncated or lying input (with the byte offset where it went wrong),
+//     and "<source>: 12 points have NaN or infinite coordinates";
+//   Unimplemented for PCD binary_compressed.
+// Never allocates more than a small multiple of data.size(). Draco input is decoded in-process
+// (see draco_codec.h about crafted input).
+absl::StatusOr<PointCloud> ReadPointCloudFromBuffer(absl::string_view data, FileFormat format,
+                                                    absl::string_view source = "<buffer>");
+
+// The bytes of `cloud` in `format`: binary little-endian PLY, XYZ text, OBJ "v" lines, or
+// Draco with `draco` options. InvalidArgument for non-finite coordinates, a format that
+// cannot be written (PCD, STL), invalid Draco options, or an empty cloud for Draco; Internal
+// when the Draco encoder fails.
+absl::StatusOr<std::string> WritePointCloudToBuffer(const PointCloud& cloud, FileFormat format,
+                                                    const DracoOptions& draco = {});
+
+// Writes `cloud` to `path` in the format of its extension (.ply, .xyz, .obj, .drc).
+// InvalidArgument listing the supported extensions for any other; otherwise the errors of
+// WritePointCloudToBuffer and WriteFileBytes.
+absl::Status WritePointCloud(const PointCloud& cloud, const std::string& path,
+                             const DracoOptions& draco = {});
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_IO_POINT_CLOUD_IO_H_

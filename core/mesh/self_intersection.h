@@ -1,0 +1,25 @@
+// Self-intersection search over a whole mesh: a uniform-grid broad phase and the predicates of
+// triangle_intersection.h. Used by the mesh check (count) and by the last step of the point
+// fitting (membrane-quality.md recipe 3 step 6: re-check every triangle after rounding).
+#ifndef MEMBRANE_CORE_MESH_SELF_INTERSECTION_H_
+#define MEMBRANE_CORE_MESH_SELF_INTERSECTION_H_
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "core/geometry/triangle_mesh.h"
+
+namespace membrane {
+
+// All pairs (i, j), i < j, of faces of `mesh` that intersect in the sense of
+// MeshTrianglesIntersect (any contact between faces without a common vertex; only non-trivial
+// overlaps between faces that share a vertex or an edge). Faces with an index out of range are
+// skipped. Sorted by (i, j). Each pair is reported once.
+// Cost: O(F) cells and entries; the cell size follows the mean face size, and the cell count is
+// bounded by a few times F, so huge faces cost more entries, never quadratic memory.
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_MESH_SELF_INTERSECTION_H_

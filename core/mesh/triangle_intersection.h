@@ -1,0 +1,46 @@
+// Exact-enough intersection predicates for closed triangles in 3-D, used by the mesh check
+// (self-intersection count) and by the point fitting (no move may make the surface cross
+// itself; membrane-quality.md recipe 3 steps 5-6).
+//
+// All tests run in double on coordinates that are usually float32 values. Signs come from
+// orientation determinants (no epsilons, no divisions), so touching counts as intersecting and
+// axis-aligned coplanar configurations (cuberille) are decided exactly. Degenerate (zero-area)
+// triangles never intersect anything here; the mesh check counts them separately.
+#ifndef MEMBRANE_CORE_MESH_TRIANGLE_INTERSECTION_H_
+#define MEMBRANE_CORE_MESH_TRIANGLE_INTERSECTION_H_
+
+#include <array>
+#include <cstdint>
+
+#include "core/mesh/vec3.h"
+
+namespace membrane {
+
+using Triangle3d = std::array<Vec3d, 3>;
+
+// Orientation of d against the plane of (a, b, c): positive on the side (b-a)x(c-a) points to,
+// zero when coplanar (up to double rounding).
+double Orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
+
+// True when the closed segment [p, q] and the closed triangle `t` share a point.
+// A degenerate triangle gives false.
+bool SegmentIntersectsTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d& t);
+
+// True when two closed triangles share a point (touching included). Degenerate triangles give
+// false. Meant for triangles with no vertex in common.
+bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b);
+
+// The mesh-aware test used by CheckMesh and the fitting. `ia`, `ib` are the vertex indices of
+// the two faces, `a`, `b` their positions.
+//   - no shared index: TrianglesIntersect;
+//   - one shared vertex: true only for a NON-TRIVIAL overlap, i.e. a common point other than
+//     the shared vertex (one face's opposite edge meets the other face);
+//   - a shared edge: true only when the faces are coplanar and folded onto each other (apexes
+//     on the same side of the edge);
+//   - three shared indices (a duplicated face): true.
+bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a,
+                            const std::array<int32_t, 3>& ib, const Triangle3d& b);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_MESH_TRIANGLE_INTERSECTION_H_

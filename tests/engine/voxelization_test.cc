@@ -1,0 +1,112 @@
+#include "core/engine/voxelization.h"
+
+#include <cmath>
+#include <limits>
+
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+
+namespace membrane {
+namespace {
+
+using ::testing::HasSubstr;
+
+PointCloud Cube8() {
+  PointCloud c;
+  for (int i = 0; i < 8; ++i) c.points.push_back({float(i & 1), float((i >> 1) & 1), float(i >> 2)});
+  return c;
+}
+
+TEST(Voxelization, FormulaOneMatchesThePaper) {
+  Box3d box;
+  box.max = {2, 3, 4};
+  // l = sqrt(2 (6 + 12 + 8) / 52) = 1.
+  EXPECT_DOUBLE_EQ(EstimateVoxelSize(box, 52), 1.0);
+}
+
+TEST(Voxelization, GridHasPaddingAndInitialMembraneOnExteriorFaces) {
+  VoxelizeOptions o;
+  o.voxel_size = 0.25;
+  auto v = Voxelize(Cube8().points, o);
+  ASSERT_TRUE(v.ok()) << v.status();
+  EXPECT_EQ(v->data_dims, (std::array<int, 3>{5, 5, 5}));
+  EXPECT_EQ(v->grid.dims(), (std::array<int, 3>{9, 9, 9}));
+  EXPECT_TRUE(IsOutside(v->grid.at(Coord{1, 4, 4})));
+  EXPECT_EQ(GenerationLabel(v->grid.at(Coord{1, 4, 4})), 0);
+  EXPECT_TRUE(IsBoundary(v->grid.at(Coord{2, 4, 4})));
+  EXPECT_TRUE(IsInside(v->grid.at(Coord{4, 4, 4})));
+  // The eight corners hold points: boundary hard voxels.
+  EXPECT_EQ(v->grid.at(Coord{2, 2, 2}), kBoundaryHard);
+  EXPECT_EQ(v->grid.at(Coord{6, 6, 6}), kBoundaryHard);
+  EXPECT_EQ(v->hard_voxels, 8);
+}
+
+TEST(Voxelization, DensityRatioCountsVoxelsWithSeveralPoints) {
+  PointCloud c = Cube8();
+  c.points.push_back({0.01f, 0.01f, 0.01f});  // a second point in the first corner voxel
+  VoxelizeOptions o;
+  o.voxel_size = 0.25;
+  auto v = Voxelize(c.points, o);
+  ASSERT_TRUE(v.ok());
+  EXPECT_EQ(v->voxels_with_more_points, 1);
+  EXPECT_EQ(v->voxels_with_one_point, 7);
+  EXPECT_DOUBLE_EQ(v->density_ratio, 1.0 / 7.0);
+}
+
+TEST(Voxelization, GridOverBudgetIsResourceExhaustedNamingGridAndBudget) {
+  VoxelizeOptions o;
+  o.voxel_size = 0.0001;
+  auto v = Voxelize(Cube8().points, o);
+  ASSERT_EQ(v.status().code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_THAT(v.status().message(), HasSubstr("10005x10005x10005"));
+  EXPECT_THAT(v.status().message(), HasSubstr("voxel budget of 4e+08"));
+}
+
+TEST(Voxelization, NoPointsIsInvalidArgument) {
+  auto v = Voxelize({}, {});
+  ASSERT_EQ(v.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(v.status().message(), HasSubstr("no points"));
+}
+
+TEST(Voxelization, OnePointIsInvalidArgument) {
+  std::vector<Point3f> p = {{1, 2, 3}};
+  auto v = Voxelize(p, {});
+  ASSERT_EQ(v.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(v.status().message(), HasSubstr("equal"));
+}
+
+TEST(Voxelization, AllPointsEqualIsInvalidArgument) {
+  std::vector<Point3f> p(100, Point3f{1, 2, 3});
+  auto v = Voxelize(p, {});
+  ASSERT_EQ(v.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(v.status().message(), HasSubstr("all 100 points are equal"));
+}
+
+TEST(Voxelization, CoplanarPointsAreInvalidArgument) {
+  std::vector<Point3f> p;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) p.push_back({float(i), float(j), float(i + j)});  // a tilted plane
+  auto v = Voxelize(p, {});
+  ASSERT_EQ(v.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(v.status().message(), HasSubstr("coplanar"));
+}
+
+TEST(Voxelization, NanAndInfiniteCoordinatesAreCounted) {
+  PointCloud c = Cube8();
+  c.points.push_back({std::numeric_limits<float>::quiet_NaN(), 0, 0});
+  c.points.push_back({0, std::numeric_limits<float>::infinity(), 0});
+  auto v = Voxelize(c.points, {});
+  ASSERT_EQ(v.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(v.status().message(), HasSubstr("2 of 10 points have NaN or infinite"));
+}
+
+TEST(Voxelization, NonPositiveVoxelSizeIsInvalidArgument) {
+  VoxelizeOptions o;
+  o.voxel_size = -1;
+  auto v = Voxelize(Cube8().points, o);
+  ASSERT_EQ(v.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(v.status().message(), HasSubstr("voxel size -1"));
+}
+
+}  // namespace
+}  // namespace membrane

@@ -1,0 +1,169 @@
+#include "core/mesh/mesh_check.h"
+
+#include <chrono>
+#include <iostream>
+
+#include "gtest/gtest.h"
+#include "tests/mesh/mesh_builders.h"
+
+namespace membrane {
+namespace {
+
+using testing::Concat;
+using testing::CubeMesh;
+using testing::TorusMesh;
+
+TEST(MeshCheck, AcceptsClosedOutwardCube) {
+  const MeshReport r = CheckMesh(CubeMesh());
+  EXPECT_EQ(r.vertices, 8);
+  EXPECT_EQ(r.faces, 12);
+  EXPECT_TRUE(r.closed);
+  EXPECT_TRUE(r.manifold);
+  EXPECT_TRUE(r.oriented);
+  EXPECT_TRUE(r.positive_volume);
+  EXPECT_NEAR(r.volume, 1.0, 1e-6);
+  EXPECT_EQ(r.self_intersections, 0);
+  EXPECT_EQ(r.degenerate_faces, 0);
+  EXPECT_EQ(r.shells, 1);
+  EXPECT_EQ(r.genus, std::vector<int>{0});
+}
+
+TEST(MeshCheck, DetectsOpenEdge) {
+  TriangleMesh m = CubeMesh();
+  m.faces.pop_back();
+  const MeshReport r = CheckMesh(m);
+  EXPECT_FALSE(r.closed);
+  EXPECT_EQ(r.boundary_edges, 3);
+  EXPECT_TRUE(r.manifold);
+  EXPECT_EQ(r.genus, std::vector<int>{-1});
+}
+
+TEST(MeshCheck, DetectsFlippedFace) {
+  TriangleMesh m = CubeMesh();
+  std::swap(m.faces[3][1], m.faces[3][2]);
+  const MeshReport r = CheckMesh(m);
+  EXPECT_TRUE(r.closed);
+  EXPECT_FALSE(r.oriented);
+  EXPECT_EQ(r.misoriented_edges, 3);
+}
+
+TEST(MeshCheck, DetectsInwardNormals) {
+  TriangleMesh m = CubeMesh();
+  for (auto& f : m.faces) std::swap(f[1], f[2]);
+  const MeshReport r = CheckMesh(m);
+  EXPECT_TRUE(r.oriented);
+  EXPECT_FALSE(r.positive_volume);
+  EXPECT_NEAR(r.volume, -1.0, 1e-6);
+}
+
+TEST(MeshCheck, DetectsSelfIntersection) {
+  const MeshReport r = CheckMesh(Concat(CubeMesh(), CubeMesh({0.5f, 0.5f, 0.5f})));
+  EXPECT_TRUE(r.closed);
+  EXPECT_EQ(r.shells, 2);
+  EXPECT_GT(r.self_intersections, 0);
+}
+
+TEST(MeshCheck, CountsTouchingShellsAsIntersecting) {
+  // Two cubes sharing a face plane but no vertex ids: touching is a self-intersection.
+  const MeshReport r = CheckMesh(Concat(CubeMesh(), CubeMesh({1, 0, 0})));
+  EXPECT_GT(r.self_intersections, 0);
+}
+
+TEST(MeshCheck, SeparateShellsDoNotIntersect) {
+  const MeshReport r = CheckMesh(Concat(CubeMesh(), CubeMesh({1.5f, 0, 0})));
+  EXPECT_EQ(r.self_intersections, 0);
+  EXPECT_EQ(r.shells, 2);
+  EXPECT_EQ(r.genus, (std::vector<int>{0, 0}));
+}
+
+TEST(MeshCheck, DetectsNonManifoldEdge) {
+  TriangleMesh m = CubeMesh();
+  // A fin on edge (0, 1).
+  m.vertices.push_back({0.5f, -1, -1});
+  m.faces.push_back({0, 1, 8});
+  const MeshReport r = CheckMesh(m);
+  EXPECT_FALSE(r.edge_manifold);
+  EXPECT_EQ(r.nonmanifold_edges, 1);
+  EXPECT_FALSE(r.closed);
+}
+
+TEST(MeshCheck, DetectsNonManifoldVertex) {
+  // Two cubes glued at one shared vertex id (7 of the first = 0 of the second).
+  TriangleMesh a = CubeMesh();
+  TriangleMesh b = CubeMesh({1, 1, 1});
+  TriangleMesh m = Concat(a, b);
+  for (auto& f : m.faces)
+    for (auto& v : f)
+      if (v == 8) v = 7;
+  const MeshReport r = CheckMesh(m);
+  EXPECT_TRUE(r.closed);
+  EXPECT_TRUE(r.edge_manifold);
+  EXPECT_FALSE(r.vertex_manifold);
+  EXPECT_EQ(r.nonmanifold_vertices, 1);
+  EXPECT_EQ(r.unreferenced_vertices, 1);
+}
+
+TEST(MeshCheck, CountsGenusOfTorus) {
+  const MeshReport r = CheckMesh(TorusMesh(24, 12, 3, 1));
+  EXPECT_TRUE(r.closed);
+  EXPECT_TRUE(r.manifold);
+  EXPECT_TRUE(r.oriented);
+  EXPECT_TRUE(r.positive_volume);
+  EXPECT_EQ(r.self_intersections, 0);
+  EXPECT_EQ(r.genus, std::vector<int>{1});
+}
+
+TEST(MeshCheck, CountsDegenerateFaces) {
+  TriangleMesh m = CubeMesh();
+  m.faces.push_back({0, 0, 1});
+  m.vertices.push_back({2, 0, 0});
+  m.faces.push_back({0, 1, 8});  // collinear
+  EXPECT_EQ(CheckMesh(m).degenerate_faces, 2);
+}
+
+TEST(MeshCheck, SkipsFacesWithInvalidIndices) {
+  TriangleMesh m = CubeMesh();
+  m.faces.push_back({0, 1, 99});
+  m.faces.push_back({-1, 1, 2});
+  const MeshReport r = CheckMesh(m);
+  EXPECT_EQ(r.invalid_faces, 2);
+  EXPECT_TRUE(r.closed);
+}
+
+TEST(MeshCheck, DetectsFoldedAdjacentFaces) {
+  // Two coplanar faces sharing an edge and lying on the same side of it.
+  TriangleMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5f, 0.5f, 0}};
+  m.faces = {{0, 1, 2}, {1, 0, 3}};
+  EXPECT_EQ(CheckMesh(m).self_intersections, 1);
+}
+
+TEST(MeshCheck, DetectsPokeThroughAtSharedVertex) {
+  TriangleMesh m;
+  m.vertices = {{0, 0, 0}, {2, -1, 0}, {2, 1, 0}, {1, 0, -1}, {1, 0, 1}};
+  m.faces = {{0, 1, 2}, {0, 3, 4}};  // share vertex 0; the second pierces the first
+  EXPECT_EQ(CheckMesh(m).self_intersections, 1);
+}
+
+TEST(MeshCheck, JsonUsesSnakeCaseKeys) {
+  const std::string json = MeshReportToJson(CheckMesh(CubeMesh()));
+  for (const char* key : {"\"closed\": true", "\"manifold\": true", "\"oriented\": true",
+                          "\"shells\": 1", "\"genus\": [0]", "\"self_intersections\": 0",
+                          "\"positive_volume\": true"})
+    EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
+}
+
+TEST(MeshCheck, ChecksAMillionFacesInAboutASecond) {
+  const TriangleMesh m = TorusMesh(1000, 500, 3, 1);
+  ASSERT_EQ(m.faces.size(), 1000000u);
+  const auto start = std::chrono::steady_clock::now();
+  const MeshReport r = CheckMesh(m);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "CheckMesh on 1M faces: " << s << " s\n";
+  EXPECT_TRUE(r.closed && r.manifold && r.oriented);
+  EXPECT_EQ(r.self_intersections, 0);
+  EXPECT_LT(s, 5.0);  // generous: the machine is shared
+}
+
+}  // namespace
+}  // namespace membrane

@@ -37,7 +37,9 @@ absl::Status RunGeneration(VoxelGrid& grid, PlaceFinder& finder, ChainRunner& ru
   ChainCounters counters;
   for (;;) {
     if (cancel != nullptr && cancel->cancelled()) return CancelledIn(stats);
-    const std::vector<int64_t> candidates = finder.Snapshot(chain.plate_size);
+    const std::optional<std::vector<int64_t>> snapshot = finder.Snapshot(chain.plate_size, cancel);
+    if (!snapshot) return CancelledIn(stats);
+    const std::vector<int64_t>& candidates = *snapshot;
     ++stats.passes;
     bool changed = false;
     for (int64_t index : candidates) {
@@ -104,6 +106,7 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     chain.depth_bound = options.depth_bound;
     chain.thick_wall_run = options.thick_wall_run;
     chain.topology_guard = options.topology_guard;
+    chain.guard_tunnel_min_plate = options.guard_tunnel_min_plate;
     if (absl::Status s = RunGeneration(grid, finder, runner, chain, cancel, stats); !s.ok()) {
       return s;
     }

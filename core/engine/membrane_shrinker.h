@@ -22,6 +22,7 @@ struct ShrinkOptions {
   int depth_bound = 3;              // algorithm-notes 14; 0 = unbounded (the paper)
   int thick_wall_run = 3;           // algorithm-notes 15; 1 = the paper's test only
   bool topology_guard = true;       // algorithm-notes 12
+  int guard_tunnel_min_plate = 5;   // notes 12: tunnels away from hard voxels from this n
   bool silhouette_preshrink = false;  // algorithm-notes 3 (Fig. 21b); off by default
   bool connect_inside_hard = true;  // section 7 post-process
 };

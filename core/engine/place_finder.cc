@@ -16,7 +16,8 @@ PlaceFinder::PlaceFinder(const VoxelGrid& grid) : grid_(grid), interior_(grid.si
   }
 }
 
-std::vector<int64_t> PlaceFinder::Snapshot(int n) {
+std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelToken* cancel) {
+  auto cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
   n_ = n;
   const int64_t nv = grid_.size();
   const auto st = grid_.strides();
@@ -27,6 +28,7 @@ std::vector<int64_t> PlaceFinder::Snapshot(int n) {
     uint64_t* ow = out.words();
     uint64_t* bw = bs.words();
     for (int64_t w = 0; w < static_cast<int64_t>(out.word_count()); ++w) {
+      if ((w & 0xffff) == 0 && cancelled()) return std::nullopt;
       const int64_t begin = w * 64, end = std::min<int64_t>(begin + 64, nv);
       uint64_t o = 0, b = 0;
       for (int64_t i = begin; i < end; ++i) {
@@ -43,6 +45,7 @@ std::vector<int64_t> PlaceFinder::Snapshot(int n) {
 
   FlatBitset candidates(nv), ok(nv), covered(nv);
   for (int o = 0; o < 6; ++o) {
+    if (cancelled()) return std::nullopt;
     const Orientation& orient = kOrientations[o];
     // ok[i] = free[i] & out[i - sign * stride_a]: the back side is outside.
     ok.AssignShifted(out, orient.sign * st[orient.axis]);

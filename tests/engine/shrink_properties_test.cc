@@ -1,0 +1,225 @@
+// The paper's Properties 1 to 8 (section 4.4-4.5), the statistics and the cancellation of the
+// shrink, each as a named test on clouds the tests generate.
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "core/engine/membrane_invariants.h"
+#include "core/engine/membrane_shrinker.h"
+#include "core/engine/voxelization.h"
+#include "core/synth/cube_pinholes.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "tests/engine/shrink_fixture.h"
+
+namespace membrane {
+namespace {
+
+using testing::ShrinkCloud;
+using testing::SynthCloud;
+using ::testing::HasSubstr;
+
+constexpr int64_t kPoints = 30000;
+
+TEST(ShrinkProperties, Property1TerminatesOnRandomNoise) {
+  // No surface at all: points scattered through a box. The shrink must still finish.
+  PointCloud cloud;
+  uint64_t x = 12345;
+  for (int i = 0; i < 5000; ++i) {
+    Point3f p;
+    for (float& c : p) {
+      x = x * 6364136223846793005ull + 1442695040888963407ull;
+      c = static_cast<float>((x >> 40) % 10000) / 10000.0f;
+    }
+    cloud.points.push_back(p);
+  }
+  auto run = ShrinkCloud(cloud, 1.0);
+  ASSERT_TRUE(run.ok()) << run.status();
+  EXPECT_TRUE(run->invariants.ok()) << run->invariants;
+}
+
+TEST(ShrinkProperties, Property2ResultIsADiscreteMembraneSet) {
+  auto run = ShrinkCloud(SynthCloud("torus", kPoints), 1.0);
+  ASSERT_TRUE(run.ok());
+  InvariantOptions o;
+  o.require_property3 = false;  // Properties 2 and 4 only: separation and connectivity
+  EXPECT_TRUE(CheckMembraneInvariants(run->voxels.grid, o).ok());
+}
+
+TEST(ShrinkProperties, Property3ExposedBoundaryVoxelsAreHardOrFrozen) {
+  auto run = ShrinkCloud(SynthCloud("capped-sphere", kPoints), 1.0);
+  ASSERT_TRUE(run.ok());
+  const VoxelGrid& g = run->voxels.grid;
+  const auto st = g.strides();
+  int64_t exposed = 0, soft_exposed = 0;
+  for (int64_t i = 0; i < g.size(); ++i) {
+    if (!IsBoundary(g.at(i))) continue;
+    bool face_out = false;
+    for (int a = 0; a < 3; ++a) face_out = face_out || IsOutside(g.at(i - st[a])) || IsOutside(g.at(i + st[a]));
+    if (!face_out) continue;
+    ++exposed;
+    if (g.at(i) == kBoundarySoft) ++soft_exposed;
+  }
+  EXPECT_GT(exposed, 1000);
+  EXPECT_EQ(soft_exposed, 0);
+}
+
+TEST(ShrinkProperties, Property4OutsideVoxelsAreNeverHard) {
+  auto run = ShrinkCloud(SynthCloud("sphere", kPoints, 30.0), 1.0);
+  ASSERT_TRUE(run.ok());
+  int64_t hard = 0;
+  for (VoxelState s : run->voxels.grid.states()) {
+    EXPECT_FALSE(IsOutside(s) && HardnessOf(s) != Hardness::kSoft);
+    hard += IsHard(s);
+  }
+  EXPECT_EQ(hard, run->voxels.hard_voxels);
+}
+
+// Properties 5 and 6 are unit tests of the incursion test (incursion_test_test.cc); here the
+// consequence: a dense sphere is shrunk with no backtracking before the small plates.
+TEST(ShrinkProperties, Properties5And6DenseSurfaceCausesNoEarlyBacktracking) {
+  auto run = ShrinkCloud(SynthCloud("sphere", 60000), 1.0);
+  ASSERT_TRUE(run.ok());
+  for (const GenerationStats& g : run->result.generations) {
+    if (g.plate_size >= 8) {
+      EXPECT_EQ(g.backtrackings, 0) << "plate " << g.plate_size;
+    }
+  }
+}
+
+TEST(ShrinkProperties, Property7MitosisSplitsTwoSpheres) {
+  auto run = ShrinkCloud(SynthCloud("two-spheres", 60000), 1.25);
+  ASSERT_TRUE(run.ok());
+  EXPECT_EQ(run->topology.shells, 2) << run->Describe();
+}
+
+TEST(ShrinkProperties, Property8GenusIncreasesThroughTheTorusHole) {
+  auto run = ShrinkCloud(SynthCloud("torus", kPoints), 1.0);
+  ASSERT_TRUE(run.ok());
+  EXPECT_EQ(run->topology.genus, std::vector<int>{1}) << run->Describe();
+}
+
+TEST(ShrinkProperties, Property8HoleSmallerThanThePlateOpensNoHandle) {
+  SynthOptions o;
+  o.shape = "cube-pinholes";
+  o.points = 20000;
+  auto grid = CubePinholesGridFor(o);
+  auto cloud = SynthesizeCubePinholes(o);
+  ASSERT_TRUE(cloud.ok());
+  auto run = ShrinkCloud(*cloud, 1.0, {}, grid->voxel_size);
+  ASSERT_TRUE(run.ok());
+  EXPECT_EQ(run->topology.genus, std::vector<int>{0}) << run->Describe();
+}
+
+TEST(ShrinkStatistics, OneRowPerGenerationWithThePaperColumns) {
+  std::vector<GenerationStats> seen;
+  PointCloud cloud = SynthCloud("sphere", kPoints);
+  auto voxels = Voxelize(cloud.points, {});
+  ASSERT_TRUE(voxels.ok());
+  auto result = ShrinkMembrane(voxels->grid, {}, [&](const GenerationStats& g) { seen.push_back(g); },
+                               nullptr);
+  ASSERT_TRUE(result.ok());
+  ASSERT_EQ(seen.size(), result->generations.size());
+  const int largest = *std::max_element(voxels->data_dims.begin(), voxels->data_dims.end());
+  EXPECT_EQ(seen.front().plate_size, (largest + 1) / 2);  // Algorithm 1
+  EXPECT_EQ(seen.back().plate_size, 1);
+  for (size_t i = 1; i < seen.size(); ++i) {
+    EXPECT_EQ(seen[i].plate_size, (seen[i - 1].plate_size + 1) / 2);
+    EXPECT_EQ(seen[i].generation, seen[i - 1].generation + 1);
+  }
+  EXPECT_GT(seen.front().soft_voxels, 0);
+  int64_t started = 0;
+  for (const auto& g : seen) {
+    EXPECT_LE(g.backtrackings, g.started_contractions);
+    EXPECT_GE(g.seconds, 0.0);
+    started += g.started_contractions;
+  }
+  EXPECT_GT(started, 0);
+}
+
+TEST(ShrinkSchedules, LinearScheduleAndInitialPlateAlsoWork) {
+  ShrinkOptions o;
+  o.schedule = PlateSchedule::kLinear;
+  o.initial_plate = 12;
+  auto run = ShrinkCloud(SynthCloud("torus", kPoints), 1.5, o);
+  ASSERT_TRUE(run.ok());
+  ASSERT_EQ(run->result.generations.size(), 12u);
+  EXPECT_EQ(run->result.generations.front().plate_size, 12);
+  EXPECT_TRUE(run->invariants.ok()) << run->Describe();
+  EXPECT_EQ(run->topology.genus, std::vector<int>{1}) << run->Describe();
+}
+
+TEST(ShrinkSchedules, PlateSizesFollowAlgorithmOne) {
+  EXPECT_EQ(PlateSizes({164, 104, 82}, PlateSchedule::kHalving, 0),
+            (std::vector<int>{82, 41, 21, 11, 6, 3, 2, 1}));
+  EXPECT_EQ(PlateSizes({164, 104, 82}, PlateSchedule::kHalving, 41),
+            (std::vector<int>{41, 21, 11, 6, 3, 2, 1}));
+  EXPECT_EQ(PlateSizes({5, 3, 2}, PlateSchedule::kLinear, 0), (std::vector<int>{5, 4, 3, 2, 1}));
+}
+
+TEST(ShrinkSchedules, MoreThan127GenerationsKeepTheLastLabelsDistinct) {
+  const std::vector<int> labels = GenerationLabels(300);
+  EXPECT_EQ(labels.front(), 1);
+  EXPECT_EQ(labels.back(), 127);
+  EXPECT_EQ(labels[298], 126);
+}
+
+TEST(ShrinkOptionsValidation, OutOfRangeOptionsNameTheField) {
+  ShrinkOptions o;
+  o.initial_plate = -3;
+  EXPECT_THAT(ValidateShrinkOptions(o).message(), HasSubstr("initial_plate -3"));
+  o = {};
+  o.thick_wall_run = 9;
+  EXPECT_THAT(ValidateShrinkOptions(o).message(), HasSubstr("thick_wall_run 9 is out of range [1, 5]"));
+}
+
+TEST(ShrinkPostProcess, InsideHardVoxelsAreConnectedToTheMembrane) {
+  // A hard voxel floating inside a sphere's shell: after the post-process it is on the membrane.
+  PointCloud cloud = SynthCloud("sphere", kPoints);
+  for (int i = 0; i < 5; ++i) cloud.points.push_back({0.5f + 0.01f * i, 0.0f, 0.0f});
+  auto run = ShrinkCloud(cloud, 1.0);
+  ASSERT_TRUE(run.ok());
+  EXPECT_GT(run->result.post_process.inside_hard_before, 0);
+  EXPECT_LT(run->result.post_process.inside_hard_after, run->result.post_process.inside_hard_before);
+  EXPECT_TRUE(run->invariants.ok()) << run->Describe();
+  EXPECT_EQ(run->topology.genus, std::vector<int>{0});
+}
+
+TEST(ShrinkPreshrink, SilhouettePreshrinkGivesAValidMembrane) {
+  ShrinkOptions o;
+  o.silhouette_preshrink = true;
+  auto run = ShrinkCloud(SynthCloud("sphere", kPoints), 1.5, o);
+  ASSERT_TRUE(run.ok());
+  EXPECT_GT(run->result.preshrink_outside_voxels, 0);
+  EXPECT_TRUE(run->invariants.ok()) << run->Describe();
+  EXPECT_EQ(run->topology.shells, 1);
+}
+
+TEST(ShrinkCancellation, CancelReturnsWithin100Milliseconds) {
+  PointCloud cloud = SynthCloud("two-spheres", 200000);
+  auto voxels = Voxelize(cloud.points, {});
+  ASSERT_TRUE(voxels.ok());
+  CancelToken cancel;
+  std::atomic<bool> started{false};
+  std::chrono::steady_clock::time_point cancelled_at;
+  std::thread canceller([&] {
+    while (!started.load()) std::this_thread::yield();
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    cancelled_at = std::chrono::steady_clock::now();
+    cancel.Cancel();
+  });
+  started = true;
+  auto result = ShrinkMembrane(voxels->grid, {}, {}, &cancel);
+  const auto returned_at = std::chrono::steady_clock::now();
+  canceller.join();
+  ASSERT_EQ(result.status().code(), absl::StatusCode::kCancelled);
+  EXPECT_THAT(result.status().message(), HasSubstr("cancelled in generation"));
+  // A bound on latency, not a speed measurement: generous for a loaded 2-core machine.
+  EXPECT_LT(std::chrono::duration<double>(returned_at - cancelled_at).count(), 0.1);
+  InvariantOptions io;
+  io.require_property3 = false;
+  EXPECT_TRUE(CheckMembraneInvariants(voxels->grid, io).ok());
+}
+
+}  // namespace
+}  // namespace membrane

@@ -16,6 +16,7 @@
 #include "absl/container/flat_hash_set.h"
 #include "core/engine/cancel_token.h"
 #include "core/engine/plate.h"
+#include "core/engine/topology_guard.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {
@@ -31,6 +32,11 @@ struct ChainOptions {
 };
 
 // kSkipped: the start plate no longer fits (nothing changed).
+// The guard's part of the chain options.
+inline GuardOptions GuardOptionsOf(const ChainOptions& o) {
+  return GuardOptions{o.plate_size, o.guard_tunnel_min_plate, o.min_shell_voxels};
+}
+
 enum class ChainOutcome { kCommitted, kBacktracked, kCancelled, kSkipped };
 
 // Counters a chain adds to.
@@ -76,10 +82,6 @@ class ChainRunner {
   // CONTRACTION of `cells`: each non-outside cell becomes outside (after the topology guard),
   // then the incursion test runs around the cleared cells. False on incursion or refusal.
   bool Contract(int o, int layer, const Region& cells);
-  bool GuardAllows(int64_t index) const;
-  // True when removing the voxel would leave one of its local components as a 26-component
-  // of at most options_.min_shell_voxels voxels.
-  bool CutsOffSmallComponent(int64_t index, uint32_t outside) const;
   void UndoAll();
   void Freeze(const Plate& plate);
   void CommitConversions();

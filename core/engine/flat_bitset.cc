@@ -56,9 +56,103 @@ void FlatBitset::OrShiftedUp(int64_t k) {
   }
 }
 
+namespace {
+
+// Applies dst[w] = op(dst[w], the 64 bits of src starting at bit w * 64 - k) to every word,
+// with the word offset and bit shift computed once (bits outside src read as 0).
+template <typename Op>
+void CombineShifted(uint64_t* dst, const uint64_t* src, int64_t words, int64_t k, Op op) {
+  const int64_t off = -k;
+  const int64_t q = off >= 0 ? off / 64 : -((-off + 63) / 64);
+  const int r = static_cast<int>(off - q * 64);
+  auto get = [&](int64_t w) {
+    const int64_t a = w + q;
+    const uint64_t x = (a >= 0 && a < words) ? src[a] : 0;
+    if (r == 0) return x;
+    const uint64_t y = (a + 1 >= 0 && a + 1 < words) ? src[a + 1] : 0;
+    return (x >> r) | (y << (64 - r));
+  };
+  // Words whose sources a = w + q and a + 1 both lie in [0, words) need no checks.
+  const int64_t first = std::clamp<int64_t>(-q, 0, words);
+  const int64_t last = std::clamp<int64_t>(words - q - 1, first, words);
+  int64_t w = 0;
+  for (; w < first; ++w) dst[w] = op(dst[w], get(w));
+  if (r == 0) {
+    for (; w < last; ++w) dst[w] = op(dst[w], src[w + q]);
+  } else {
+    for (; w < last; ++w) dst[w] = op(dst[w], (src[w + q] >> r) | (src[w + q + 1] << (64 - r)));
+  }
+  for (; w < words; ++w) dst[w] = op(dst[w], get(w));
+}
+
+}  // namespace
+
 void FlatBitset::AssignShifted(const FlatBitset& other, int64_t k) {
-  for (size_t w = 0; w < words_.size(); ++w)
-    words_[w] = other.WordAt(static_cast<int64_t>(w) * 64 - k);
+  CombineShifted(words_.data(), other.words_.data(), static_cast<int64_t>(words_.size()), k,
+                 [](uint64_t, uint64_t b) { return b; });
+}
+
+void FlatBitset::OrShifted(const FlatBitset& other, int64_t k) {
+  CombineShifted(words_.data(), other.words_.data(), static_cast<int64_t>(words_.size()), k,
+                 [](uint64_t a, uint64_t b) { return a | b; });
+}
+
+void FlatBitset::AndShifted(const FlatBitset& other, int64_t k) {
+  CombineShifted(words_.data(), other.words_.data(), static_cast<int64_t>(words_.size()), k,
+                 [](uint64_t a, uint64_t b) { return a & b; });
+}
+
+void FlatBitset::SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_len) {
+  const int64_t n = static_cast<int64_t>(words_.size());
+  const int64_t mag = step < 0 ? -step : step;
+  if (mag >= 64) {
+    // Every source bit of word w lies in an earlier word in the order of the step, which is
+    // already final: one pass.
+    const int64_t q = mag / 64;
+    const int r = static_cast<int>(mag % 64);
+    const uint64_t* run_w = run.words_.data();
+    uint64_t* w = words_.data();
+    if (step > 0) {
+      for (int64_t k = q; k < n; ++k) {
+        // Bits k*64 - mag ... : words k - q - 1 (high part) and k - q.
+        const uint64_t hi = w[k - q];
+        const uint64_t lo = k - q - 1 >= 0 ? w[k - q - 1] : 0;
+        const uint64_t src = r == 0 ? hi : (hi << r) | (lo >> (64 - r));
+        w[k] |= run_w[k] & src;
+      }
+    } else {
+      for (int64_t k = n - 1 - q; k >= 0; --k) {
+        const uint64_t lo = w[k + q];
+        const uint64_t hi = k + q + 1 < n ? w[k + q + 1] : 0;
+        const uint64_t src = r == 0 ? lo : (lo >> r) | (hi << (64 - r));
+        w[k] |= run_w[k] & src;
+      }
+    }
+    return;
+  }
+  // Kogge-Stone: `prefix` is the AND of `run` over the last len cells.
+  FlatBitset prefix = run, tmp(bits_);
+  for (int64_t len = 1; len < max_len; len *= 2) {
+    tmp.AssignShifted(*this, len * step);
+    tmp.And(prefix);
+    Or(tmp);
+    tmp.AssignShifted(prefix, len * step);
+    prefix.And(tmp);
+  }
+}
+
+void FlatBitset::Dilate26(const int64_t strides[3]) {
+  for (int a = 0; a < 3; ++a) {
+    const FlatBitset before = *this;
+    OrShifted(before, strides[a]);
+    OrShifted(before, -strides[a]);
+  }
+}
+
+int64_t FlatBitset::Count() const {
+  int64_t n = 0;
+  for (uint64_t w : words_) n += __builtin_popcountll(w);
+  return n;
 }
 
 void FlatBitset::ErodeRun(int n, int64_t stride) {

@@ -34,8 +34,30 @@ class FlatBitset {
   void AndShiftedDown(int64_t k);
   // this[i] |= this[i - k] for k >= 0 (bits before the start read as 0).
   void OrShiftedUp(int64_t k);
-  // this[i] = other[i - k] (k may be negative: this[i] = other[i + |k|]).
+  // this[i] = other[i - k] (k may be negative: this[i] = other[i + |k|]); likewise |= and &=.
   void AssignShifted(const FlatBitset& other, int64_t k);
+  void OrShifted(const FlatBitset& other, int64_t k);
+  void AndShifted(const FlatBitset& other, int64_t k);
+  // Seeded runs: this[i] |= run[i] & this[i - step] applied in the order of the step, so a
+  // set bit spreads along `step` (positive or negative) while `run` stays set. `this` must be a
+  // subset of `run`. One pass when |step| >= 64; doubling (log2 of `max_len` passes) otherwise.
+  void SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_len);
+  // Dilation by the 3x3x3 box: this[i] |= this[j] for every j 26-adjacent to i, given the
+  // three axis strides. Needs a border of zeros one voxel wide to avoid wrapping.
+  void Dilate26(const int64_t strides[3]);
+  // Number of set bits.
+  int64_t Count() const;
+  // Calls f(i) for every set bit i, in increasing order.
+  template <typename F>
+  void ForEach(F f) const {
+    for (size_t w = 0; w < words_.size(); ++w) {
+      uint64_t bits = words_[w];
+      while (bits != 0) {
+        f(static_cast<int64_t>(w) * 64 + __builtin_ctzll(bits));
+        bits &= bits - 1;
+      }
+    }
+  }
 
   // Erosion by a run of n along stride s, anchored at the lowest cell:
   // this[i] = AND_{j<n} this[i + j s]. ceil(log2 n) + 1 passes.

@@ -5,6 +5,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
+#include "core/engine/closed_form_generation.h"
 #include "core/engine/contraction.h"
 #include "core/engine/place_finder.h"
 #include "core/engine/silhouette.h"
@@ -21,6 +22,11 @@ double SecondsSince(Clock::time_point t) {
 int64_t CountBoundarySoft(const VoxelGrid& grid) {
   const auto& s = grid.states();
   return std::count(s.begin(), s.end(), kBoundarySoft);
+}
+
+int64_t CountOutside(const VoxelGrid& grid) {
+  const auto& s = grid.states();
+  return std::count_if(s.begin(), s.end(), [](VoxelState v) { return IsOutside(v); });
 }
 
 absl::Status CancelledIn(const GenerationStats& g) {
@@ -73,6 +79,14 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "depth_bound %d is out of range [0, 1000000] (0 = unbounded)", o.depth_bound));
   }
+  if (o.closed_form_min_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "closed_form_min_plate %d must be >= 0 (0 = never)", o.closed_form_min_plate));
+  }
+  if (o.guard_tunnel_min_plate < 1) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "guard_tunnel_min_plate %d must be >= 1", o.guard_tunnel_min_plate));
+  }
   if (o.thick_wall_run < 1 || o.thick_wall_run > 5) {
     return absl::InvalidArgumentError(
         absl::StrFormat("thick_wall_run %d is out of range [1, 5]", o.thick_wall_run));
@@ -107,9 +121,22 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     chain.thick_wall_run = options.thick_wall_run;
     chain.topology_guard = options.topology_guard;
     chain.guard_tunnel_min_plate = options.guard_tunnel_min_plate;
-    if (absl::Status s = RunGeneration(grid, finder, runner, chain, cancel, stats); !s.ok()) {
-      return s;
+    const int64_t outside_before = CountOutside(grid);
+    bool done = false;
+    // The closed form needs the chains' tunnel rule to be the same everywhere (n >= the guard's
+    // tunnel size): then only tunnels next to hard voxels are refused, and it checks those.
+    if (options.closed_form_min_plate > 0 && sizes[g] >= options.closed_form_min_plate &&
+        sizes[g] >= options.guard_tunnel_min_plate) {
+      absl::StatusOr<ClosedFormOutcome> closed = RunClosedFormGeneration(grid, chain, cancel);
+      if (!closed.ok()) return CancelledIn(stats);
+      done = stats.closed_form = closed->applied;
     }
+    if (!done) {
+      if (absl::Status s = RunGeneration(grid, finder, runner, chain, cancel, stats); !s.ok()) {
+        return s;
+      }
+    }
+    stats.new_outside = CountOutside(grid) - outside_before;
     stats.seconds = SecondsSince(t0);
     result.generations.push_back(stats);
     if (on_generation) on_generation(stats);

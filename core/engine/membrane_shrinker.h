@@ -23,6 +23,7 @@ struct ShrinkOptions {
   int thick_wall_run = 3;           // algorithm-notes 15; 1 = the paper's test only
   bool topology_guard = true;       // algorithm-notes 12
   int guard_tunnel_min_plate = 5;   // notes 12: tunnels away from hard voxels from this n
+  int closed_form_min_plate = 8;    // generations with n >= this try the closed form; 0 = never
   bool silhouette_preshrink = false;  // algorithm-notes 3 (Fig. 21b); off by default
   bool connect_inside_hard = true;  // section 7 post-process
 };
@@ -39,6 +40,8 @@ struct GenerationStats {
   int64_t guard_refusals = 0;        // backtracks caused by the topology guard
   int64_t depth_refusals = 0;        // backtracks caused by the n = 1 depth bound
   int passes = 0;                    // place-finding snapshots
+  bool closed_form = false;          // computed as a fixed point, without chains
+  int64_t new_outside = 0;           // voxels the generation turned outside
   double seconds = 0.0;
 };
 

@@ -25,12 +25,11 @@ constexpr Expected kModels[] = {
     {"spot", 1, 0},           {"teapot", 1, -1},
 };
 
-// Runs still wrong at 1x (open problem A: spurious handles through data holes and sparse
-// regions of the scans; see docs/engine-decisions.md). Skipped by name so that every other run
-// is asserted and a regression shows; the genus found is printed.
+// Runs still wrong at 1x (open problem A: spurious handles through data holes of the scan; see
+// docs/engine-decisions.md). Skipped by name so that every other run is asserted and a
+// regression shows; the genus found is printed.
 bool KnownOpen(const std::string& model, const std::string& kind) {
-  return model == "stanford-bunny" || (model == "rocker-arm" && kind == "scan") ||
-         (model == "spot" && kind == "scan");
+  return model == "spot" && kind == "scan";
 }
 
 class RealScanTest : public ::testing::TestWithParam<std::tuple<Expected, std::string>> {};

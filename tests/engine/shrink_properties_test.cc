@@ -223,3 +223,39 @@ TEST(ShrinkCancellation, CancelReturnsWithin100Milliseconds) {
 
 }  // namespace
 }  // namespace membrane
+
+namespace membrane {
+namespace {
+
+// fast-shrink.md section 4: without incursions or guard refusals in the big-plate generations
+// (a densely sampled sphere has none, see Properties5And6...), the closed form gives exactly
+// the voxels the chains give.
+TEST(ClosedFormGeneration, GivesTheSameMembraneAsTheChains) {
+  const PointCloud cloud = testing::SynthCloud("sphere", 60000);
+  ShrinkOptions chains_only;
+  chains_only.closed_form_min_plate = 0;
+  auto closed = testing::ShrinkCloud(cloud, 1.0);
+  auto chains = testing::ShrinkCloud(cloud, 1.0, chains_only);
+  ASSERT_TRUE(closed.ok() && chains.ok());
+  int closed_generations = 0;
+  for (const GenerationStats& g : closed->result.generations) closed_generations += g.closed_form;
+  EXPECT_GT(closed_generations, 2);
+  EXPECT_TRUE(closed->voxels.grid.states() == chains->voxels.grid.states());
+}
+
+TEST(ClosedFormGeneration, TurnsTheSameVoxelsOutsidePerGeneration) {
+  const PointCloud cloud = testing::SynthCloud("torus", 60000);
+  ShrinkOptions chains_only;
+  chains_only.closed_form_min_plate = 0;
+  auto closed = testing::ShrinkCloud(cloud, 1.0);
+  auto chains = testing::ShrinkCloud(cloud, 1.0, chains_only);
+  ASSERT_TRUE(closed.ok() && chains.ok());
+  for (size_t g = 0; g < closed->result.generations.size(); ++g) {
+    const GenerationStats& a = closed->result.generations[g];
+    if (!a.closed_form) break;  // after the first chain generation the runs may part ways
+    EXPECT_EQ(a.new_outside, chains->result.generations[g].new_outside) << "plate " << a.plate_size;
+  }
+}
+
+}  // namespace
+}  // namespace membrane

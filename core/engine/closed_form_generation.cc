@@ -1,0 +1,153 @@
+#include "core/engine/closed_form_generation.h"
+
+#include <algorithm>
+
+#include "absl/status/status.h"
+#include "core/engine/flat_bitset.h"
+#include "core/engine/incursion_test.h"
+#include "core/engine/plate.h"
+#include "core/engine/topology_guard.h"
+
+namespace membrane {
+namespace {
+
+bool Cancelled(const CancelToken* cancel) { return cancel != nullptr && cancel->cancelled(); }
+
+// Bit-planes of one state predicate, 64 voxels at a time.
+template <typename Pred>
+FlatBitset Plane(const VoxelGrid& grid, Pred pred) {
+  FlatBitset plane(grid.size());
+  const VoxelState* s = grid.states().data();
+  uint64_t* w = plane.words();
+  const int64_t nv = grid.size();
+  for (int64_t k = 0; k < static_cast<int64_t>(plane.word_count()); ++k) {
+    const int64_t begin = k * 64, end = std::min<int64_t>(begin + 64, nv);
+    uint64_t bits = 0;
+    for (int64_t i = begin; i < end; ++i) bits |= static_cast<uint64_t>(pred(s[i])) << (i - begin);
+    w[k] = bits;
+  }
+  return plane;
+}
+
+FlatBitset InteriorPlane(const VoxelGrid& grid) {
+  // Rows of ones from x = 1 to nx - 2, set a word at a time.
+  FlatBitset plane(grid.size());
+  const auto& d = grid.dims();
+  for (int z = 1; z + 1 < d[2]; ++z)
+    for (int y = 1; y + 1 < d[1]; ++y) {
+      int64_t i = grid.Index(1, y, z);
+      const int64_t end = grid.Index(d[0] - 1, y, z);
+      uint64_t* w = plane.words();
+      while (i < end && (i & 63) != 0) plane.set(i++);
+      for (; i + 64 <= end; i += 64) w[i >> 6] = ~0ull;
+      while (i < end) plane.set(i++);
+    }
+  return plane;
+}
+
+}  // namespace
+
+absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
+                                                          const ChainOptions& options,
+                                                          const CancelToken* cancel) {
+  const int n = options.plate_size;
+  const auto st = grid.strides();
+  const int64_t strides[3] = {st[0], st[1], st[2]};
+  ClosedFormOutcome outcome;
+
+  const FlatBitset interior = InteriorPlane(grid);
+  if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+  const FlatBitset out0 = Plane(grid, [](VoxelState s) { return IsOutside(s); });
+  if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+  // FREE: cells a plate may cover: no hard or frozen voxel, off the array border. Inside
+  // and boundary only prune no-op plates (fast-shrink.md section 4), so both count.
+  FlatBitset free_cells = Plane(grid, [](VoxelState s) { return !IsHardOrFrozen(s); });
+  free_cells.And(interior);
+
+  FlatBitset out = out0;
+  FlatBitset squares[6];  // anchors of all-free n x n squares, per orientation
+  for (int o = 0; o < 6; ++o) {
+    if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+    const Orientation& orient = kOrientations[o];
+    squares[o] = free_cells;
+    squares[o].ErodeRun(n, st[orient.u_axis()]);
+    squares[o].ErodeRun(n, st[orient.v_axis()]);
+  }
+  FlatBitset back(grid.size()), reach(grid.size()), tmp(grid.size());
+  for (bool changed = true; changed && outcome.rounds < 64;) {
+    changed = false;
+    ++outcome.rounds;
+    for (int o = 0; o < 6; ++o) {
+      if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+      const Orientation& orient = kOrientations[o];
+      const int64_t sa = st[orient.axis], su = st[orient.u_axis()], sv = st[orient.v_axis()];
+      // Plates whose back square (one layer behind, against the front) is all outside.
+      back = out;
+      back.ErodeRun(n, su);
+      if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+      back.ErodeRun(n, sv);
+      reach = squares[o];
+      reach.AndShifted(back, orient.sign * sa);
+      // Dig straight on: a plate whose back plate was contracted fits if its square is free.
+      reach.SpreadAlong(squares[o], orient.sign * sa, grid.dim(orient.axis));
+      if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+      // Cells covered by the plates reached.
+      reach.DilateRun(n, sv);
+      reach.DilateRun(n, su);
+      tmp = reach;
+      tmp.AndNot(out);
+      if (tmp.any()) {
+        out.Or(reach);
+        changed = true;
+      }
+    }
+  }
+
+  // Apply: new outside voxels, and their inside 26-neighbours become boundary.
+  FlatBitset fresh = out;
+  fresh.AndNot(out0);
+  outcome.new_outside = fresh.Count();
+  if (outcome.new_outside == 0) {
+    outcome.applied = true;
+    return outcome;
+  }
+  FlatBitset was_boundary_soft = Plane(grid, [](VoxelState s) { return s == kBoundarySoft; });
+  FlatBitset adjacent = fresh;
+  adjacent.Dilate26(strides);
+  adjacent.AndNot(out);
+  VoxelState* s = grid.mutable_states().data();
+  const VoxelState label = OutsideState(options.generation_label);
+  fresh.ForEach([&](int64_t i) { s[i] = label; });
+  FlatBitset converted(grid.size());
+  adjacent.ForEach([&](int64_t i) {
+    if (IsInside(s[i])) {
+      s[i] |= kBoundaryBit;
+      converted.set(i);
+    }
+  });
+
+  // Checks: the incursion test where the neighbourhood changed, and the guard on the new
+  // outside voxels next to hard ones, each as if it were the last removal.
+  adjacent.ForEach([&](int64_t i) {
+    if (IsHardOrFrozen(s[i]) && IncursionAt(grid, i, options.thick_wall_run)) ++outcome.incursions;
+  });
+  if (outcome.incursions == 0 && options.topology_guard) {
+    FlatBitset near_hard = Plane(grid, [](VoxelState v) { return IsHard(v); });
+    near_hard.Dilate26(strides);
+    near_hard.And(fresh);
+    const GuardOptions guard = GuardOptionsOf(options);
+    near_hard.ForEach([&](int64_t i) {
+      if (!GuardAllowsRemoval(grid, i, guard)) ++outcome.guard_refusals;
+    });
+  }
+  if (outcome.incursions == 0 && outcome.guard_refusals == 0) {
+    outcome.applied = true;
+    return outcome;
+  }
+  // Rejected: restore, and let the chains run this generation.
+  fresh.ForEach([&](int64_t i) { s[i] = was_boundary_soft.test(i) ? kBoundarySoft : kInsideSoft; });
+  converted.ForEach([&](int64_t i) { s[i] &= static_cast<VoxelState>(~kBoundaryBit); });
+  return outcome;
+}
+
+}  // namespace membrane

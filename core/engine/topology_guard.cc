@@ -1,0 +1,76 @@
+#include "core/engine/topology_guard.h"
+
+#include <algorithm>
+#include <bit>
+#include <vector>
+
+#include "core/engine/local_topology.h"
+
+namespace membrane {
+namespace {
+
+// True when removing the voxel would leave one of its local components as a 26-component of at
+// most `min_shell_voxels` voxels: each is grown through the grid (without the voxel itself)
+// until it is known to be larger.
+bool CutsOffSmallComponent(const VoxelGrid& grid, int64_t index, uint32_t outside,
+                           int min_shell_voxels) {
+  // Each local 26-component of the remaining non-outside neighbours, grown through the grid
+  // (without the voxel itself) until it is known to be larger than the limit.
+  const auto st = grid.strides();
+  const VoxelState* s = grid.states().data();
+  uint32_t rest = ~outside & kAll27 & ~kCentreBit;
+  std::vector<int64_t> seen, stack;
+  while (rest != 0) {
+    const uint32_t seed = rest & (~rest + 1);
+    rest &= ~Flood26(seed, rest);
+    const int b = std::countr_zero(seed);
+    const int64_t start = index + (b % 3 - 1) * st[0] + ((b / 3) % 3 - 1) * st[1] + (b / 9 - 1) * st[2];
+    seen.assign(1, start);
+    stack.assign(1, start);
+    while (!stack.empty() && static_cast<int>(seen.size()) <= min_shell_voxels) {
+      const int64_t v = stack.back();
+      stack.pop_back();
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int64_t w = v + dx * st[0] + dy * st[1] + dz * st[2];
+            if (w == index || IsOutside(s[w]) ||
+                std::find(seen.begin(), seen.end(), w) != seen.end()) continue;
+            seen.push_back(w);
+            stack.push_back(w);
+          }
+    }
+    if (static_cast<int>(seen.size()) <= min_shell_voxels) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options) {
+  const auto st = grid.strides();
+  const VoxelState* s = grid.states().data() + index;
+  uint32_t outside = 0, hard = 0;
+  int bit = 0;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx, ++bit) {
+        const VoxelState n = s[dx * st[0] + dy * st[1] + dz * st[2]];
+        if (IsOutside(n)) outside |= 1u << bit;
+        if (IsHard(n)) hard |= 1u << bit;
+      }
+  outside &= ~kCentreBit;
+  hard &= ~kCentreBit;
+  // One outside neighbour, across a face: removing the voxel only dents the membrane.
+  if (std::has_single_bit(outside) && (outside & FaceNeighboursMask()) != 0) return true;
+  if (CountT6(outside) == 1) {
+    // Simple, or a local split (mitosis). A split that cuts off a few voxels is not mitosis
+    // but a stray hard voxel of a sparse region left as a shell of its own.
+    return CountT26(~outside & kAll27 & ~kCentreBit) == 1 ||
+           !CutsOffSmallComponent(grid, index, outside, options.min_shell_voxels);
+  }
+  // It would open a tunnel: only a big plate, away from the data, may do that (Property 8).
+  return options.plate_size >= options.tunnel_min_plate && hard == 0;
+}
+
+}  // namespace membrane

@@ -1,0 +1,28 @@
+// The topology guard on contraction (algorithm-notes 12, with the small-split rule of
+// docs/engine-decisions.md): may a soft voxel be turned outside without a spurious change of
+// topology?
+#ifndef MEMBRANE_CORE_ENGINE_TOPOLOGY_GUARD_H_
+#define MEMBRANE_CORE_ENGINE_TOPOLOGY_GUARD_H_
+
+#include <cstdint>
+
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+struct GuardOptions {
+  int plate_size = 1;          // n of the current generation
+  int tunnel_min_plate = 5;    // tunnels away from hard voxels are allowed from this n
+  int min_shell_voxels = 32;   // a split may not cut off a component this small
+};
+
+// Classifies the non-outside voxel at `index` in its 3x3x3 neighbourhood as if it were removed
+// (T6 of the outside, T26 of the rest): true when it is simple; or a local split whose every
+// part is a 26-component of more than options.min_shell_voxels voxels (mitosis); or a tunnel
+// opened by a plate of at least options.tunnel_min_plate with no HARD voxel (frozen ones do not
+// count) among its 26 neighbours. `index` must not lie on the array border.
+bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_TOPOLOGY_GUARD_H_

@@ -129,7 +129,9 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   // Checks: the incursion test where the neighbourhood changed, and the guard on the new
   // outside voxels next to hard ones, each as if it were the last removal.
   adjacent.ForEach([&](int64_t i) {
-    if (IsHardOrFrozen(s[i]) && IncursionAt(grid, i, options.thick_wall_run)) ++outcome.incursions;
+    if (!IsHardOrFrozen(s[i])) return;
+    ++outcome.checks;
+    if (IncursionAt(grid, i, options.thick_wall_run)) ++outcome.incursions;
   });
   if (outcome.incursions == 0 && options.topology_guard) {
     FlatBitset near_hard = Plane(grid, [](VoxelState v) { return IsHard(v); });
@@ -137,6 +139,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     near_hard.And(fresh);
     const GuardOptions guard = GuardOptionsOf(options);
     near_hard.ForEach([&](int64_t i) {
+      ++outcome.checks;
       if (!GuardAllowsRemoval(grid, i, guard)) ++outcome.guard_refusals;
     });
   }

@@ -24,6 +24,7 @@ struct ClosedFormOutcome {
   int64_t incursions = 0;      // hard or frozen voxels where the incursion test fired
   int64_t guard_refusals = 0;  // new outside voxels the topology guard refused
   int rounds = 0;              // rounds of the six orientation sweeps
+  int64_t checks = 0;          // incursion and guard tests run on the result
 };
 
 // Runs generation `options` (plate size, label, guard and incursion settings) in closed form

@@ -130,6 +130,8 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
       absl::StatusOr<ClosedFormOutcome> closed = RunClosedFormGeneration(grid, chain, cancel);
       if (!closed.ok()) return CancelledIn(stats);
       done = stats.closed_form = closed->applied;
+      stats.closed_form_rounds = closed->rounds;
+      stats.closed_form_checks = closed->checks;
     }
     if (!done) {
       if (absl::Status s = RunGeneration(grid, finder, runner, chain, cancel, stats); !s.ok()) {

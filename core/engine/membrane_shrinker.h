@@ -41,6 +41,8 @@ struct GenerationStats {
   int64_t depth_refusals = 0;        // backtracks caused by the n = 1 depth bound
   int passes = 0;                    // place-finding snapshots
   bool closed_form = false;          // computed as a fixed point, without chains
+  int closed_form_rounds = 0;        // rounds of its six sweeps (also when it was rejected)
+  int64_t closed_form_checks = 0;    // incursion and guard tests after it
   int64_t new_outside = 0;           // voxels the generation turned outside
   double seconds = 0.0;
 };

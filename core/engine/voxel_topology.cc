@@ -114,29 +114,35 @@ VoxelTopology ComputeVoxelTopology(const VoxelGrid& grid) {
       }
   for (int64_t c : chi8) topo.genus.push_back(static_cast<int>(1 - c / 8));
 
-  // Cavities: outside voxels that a 6-flood from the array border does not reach.
+  // Cavities: outside voxels that a 6-flood from the array border does not reach. Border
+  // voxels are marked reached and never expanded, so every expanded voxel has all six face
+  // neighbours inside the array.
   std::vector<uint8_t> reached(static_cast<size_t>(grid.size()), 0);
   std::vector<int64_t> stack;
-  for (int64_t i = 0; i < grid.size(); ++i) {
-    if (!grid.OnArrayBorder(grid.CoordOf(i)) || !IsOutside(s[i])) continue;
-    reached[static_cast<size_t>(i)] = 1;
-    stack.push_back(i);
-  }
+  for (int z = 0; z < d[2]; ++z)
+    for (int y = 0; y < d[1]; ++y)
+      for (int x = 0; x < d[0]; ++x) {
+        const int64_t i = grid.Index(x, y, z);
+        const bool border = x == 0 || y == 0 || z == 0 || x == d[0] - 1 || y == d[1] - 1 || z == d[2] - 1;
+        const bool next_to_border = x == 1 || y == 1 || z == 1 || x == d[0] - 2 || y == d[1] - 2 || z == d[2] - 2;
+        if (border) {
+          reached[static_cast<size_t>(i)] = 1;
+        } else if (next_to_border && IsOutside(s[i])) {
+          reached[static_cast<size_t>(i)] = 1;
+          stack.push_back(i);
+        }
+      }
+  const int64_t steps[6] = {-st[0], st[0], -st[1], st[1], -st[2], st[2]};
   auto flood = [&]() {
     while (!stack.empty()) {
       const int64_t v = stack.back();
       stack.pop_back();
-      const Coord c = grid.CoordOf(v);
-      for (int a = 0; a < 3; ++a)
-        for (int sg = -1; sg <= 1; sg += 2) {
-          Coord n = c;
-          n[a] += sg;
-          if (!grid.Contains(n)) continue;
-          const int64_t w = grid.Index(n);
-          if (reached[static_cast<size_t>(w)] || !IsOutside(s[w])) continue;
-          reached[static_cast<size_t>(w)] = 1;
-          stack.push_back(w);
-        }
+      for (int64_t step : steps) {
+        const int64_t w = v + step;
+        if (reached[static_cast<size_t>(w)] || !IsOutside(s[w])) continue;
+        reached[static_cast<size_t>(w)] = 1;
+        stack.push_back(w);
+      }
     }
   };
   flood();

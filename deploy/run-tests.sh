@@ -19,3 +19,9 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMEMBRANE_S
 cmake --build build-asan -j "$JOBS"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$JOBS" --timeout 1800
+
+echo "== libFuzzer smoke of the point cloud readers (clang, ASan/UBSan)"
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DMEMBRANE_FUZZ=ON -DMEMBRANE_BENCH=OFF -DMEMBRANE_TEST_DIRS="io" >/dev/null
+cmake --build build-fuzz -j "$JOBS" --target fuzz_io_ply fuzz_io_obj fuzz_io_xyz fuzz_io_pcd fuzz_io_drc
+ctest --test-dir build-fuzz -R '^fuzz_io_' --output-on-failure -j "$JOBS"

@@ -8,7 +8,8 @@ namespace membrane {
 void AppendShortestFloat(float value, std::string* out) {
   // 32 bytes hold any float in the shortest form ("-1.1754944e-38" is 14).
   std::array<char, 32> buffer;
-  const std::to_chars_result result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  const std::to_chars_result result =
+      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
   out->append(buffer.data(), result.ptr);
 }
 

@@ -63,8 +63,8 @@ std::optional<double> ParseDouble(absl::string_view token) {
     // from underflow.
     const bool negative = token[0] == '-';
     const size_t e = token.find_first_of("eE");
-    const bool underflow = e != absl::string_view::npos && e + 1 < token.size() &&
-                           token[e + 1] == '-';
+    const bool underflow =
+        e != absl::string_view::npos && e + 1 < token.size() && token[e + 1] == '-';
     if (underflow) return negative ? -0.0 : 0.0;
     const double inf = std::numeric_limits<double>::infinity();
     return negative ? -inf : inf;

@@ -57,13 +57,13 @@ std::optional<ScalarType> ScalarTypeFromPlyName(absl::string_view name) {
     ScalarType type;
   };
   static constexpr Entry kNames[] = {
-      {"char", ScalarType::kInt8},     {"int8", ScalarType::kInt8},
-      {"uchar", ScalarType::kUint8},   {"uint8", ScalarType::kUint8},
-      {"short", ScalarType::kInt16},   {"int16", ScalarType::kInt16},
-      {"ushort", ScalarType::kUint16}, {"uint16", ScalarType::kUint16},
-      {"int", ScalarType::kInt32},     {"int32", ScalarType::kInt32},
-      {"uint", ScalarType::kUint32},   {"uint32", ScalarType::kUint32},
-      {"float", ScalarType::kFloat32}, {"float32", ScalarType::kFloat32},
+      {"char", ScalarType::kInt8},      {"int8", ScalarType::kInt8},
+      {"uchar", ScalarType::kUint8},    {"uint8", ScalarType::kUint8},
+      {"short", ScalarType::kInt16},    {"int16", ScalarType::kInt16},
+      {"ushort", ScalarType::kUint16},  {"uint16", ScalarType::kUint16},
+      {"int", ScalarType::kInt32},      {"int32", ScalarType::kInt32},
+      {"uint", ScalarType::kUint32},    {"uint32", ScalarType::kUint32},
+      {"float", ScalarType::kFloat32},  {"float32", ScalarType::kFloat32},
       {"double", ScalarType::kFloat64}, {"float64", ScalarType::kFloat64},
   };
   for (const Entry& entry : kNames) {

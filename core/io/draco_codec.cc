@@ -25,6 +25,15 @@ constexpr int kMaxQuantizationBits = 30;
 constexpr int kMaxCompressionLevel = 10;
 constexpr absl::string_view kSource = "Draco data";
 
+// Draco 1.5.5 trusts the int32 point count at the start of a point cloud and allocates and
+// loops over that many points before reading any of them: a 20-byte input can ask for 2^31.
+// Scans compress to a few points per byte; only massively duplicated points (measured: 1M
+// copies of one point, 58 bytes) compress far beyond this, and those are useless anyway.
+constexpr uint64_t kMaxDracoPointsPerByte = 1024;
+constexpr size_t kDracoHeaderBytes = 11;  // "DRACO", 2 version bytes, type, method, flags
+constexpr size_t kDracoFlagsOffset = 9;   // uint16, little endian
+constexpr uint16_t kDracoMetadataFlag = 0x8000;
+
 static_assert(sizeof(Point3f) == 3 * sizeof(float), "positions are copied to Draco in bulk");
 
 absl::Status EncoderError(const draco::Status& status) {
@@ -70,17 +79,18 @@ double QuantizationErrorBound(const std::vector<Point3f>& positions, int bits) {
 }
 
 absl::Status CheckEncodable(const std::vector<Point3f>& positions, const DracoOptions& options,
-                            absl::string_view what) {
+                            bool is_mesh) {
+  const absl::string_view what = is_mesh ? "mesh" : "point cloud";
   absl::Status status = ValidateDracoOptions(options);
   if (!status.ok()) return status;
   if (positions.empty()) {
     return absl::InvalidArgumentError(absl::StrCat("cannot Draco-encode an empty ", what));
   }
   if (positions.size() > static_cast<size_t>(std::numeric_limits<int32_t>::max())) {
-    return absl::InvalidArgumentError(absl::StrCat("too many points for Draco: ", positions.size()));
+    return absl::InvalidArgumentError(
+        absl::StrCat("too many points for Draco: ", positions.size()));
   }
-  return CheckFinitePoints(positions, absl::StrCat("cannot Draco-encode the ", what),
-                           what == "mesh");
+  return CheckFinitePoints(positions, absl::StrCat("cannot Draco-encode the ", what), is_mesh);
 }
 
 void Configure(const DracoOptions& options, draco::Encoder* encoder) {
@@ -92,9 +102,28 @@ void Configure(const DracoOptions& options, draco::Encoder* encoder) {
   }
 }
 
-absl::StatusOr<DracoEncoding> Finish(draco::EncoderBuffer& buffer,
-                                     const std::vector<Point3f>& positions,
-                                     const DracoOptions& options) {
+// InvalidArgument when the point count in the header of a Draco point cloud is impossible
+// for the size of `bytes` (see kMaxDracoPointsPerByte). A count behind metadata cannot be
+// located without decoding the metadata; those inputs are left to Draco's own checks.
+absl::Status CheckDracoPointCount(absl::string_view bytes) {
+  if (bytes.size() < kDracoHeaderBytes + sizeof(int32_t)) return absl::OkStatus();
+  const auto flags = static_cast<uint16_t>(DecodeScalar(
+      bytes.data() + kDracoFlagsOffset, ScalarType::kUint16, ByteOrder::kLittleEndian));
+  if ((flags & kDracoMetadataFlag) != 0) return absl::OkStatus();
+  const auto count = static_cast<int64_t>(
+      DecodeScalar(bytes.data() + kDracoHeaderBytes, ScalarType::kInt32, ByteOrder::kLittleEndian));
+  if (count > 0 && static_cast<uint64_t>(count) > kMaxDracoPointsPerByte * bytes.size()) {
+    return absl::InvalidArgumentError(absl::StrCat("the Draco header declares ", count,
+                                                   " points, more than ", kMaxDracoPointsPerByte,
+                                                   " per byte of its ", bytes.size(),
+                                                   " bytes: the data is corrupt (or its points are "
+                                                   "massively duplicated)"));
+  }
+  return absl::OkStatus();
+}
+
+DracoEncoding Finish(const draco::EncoderBuffer& buffer, const std::vector<Point3f>& positions,
+                     const DracoOptions& options) {
   DracoEncoding encoding;
   encoding.bytes.assign(buffer.data(), buffer.size());
   encoding.max_position_error =
@@ -113,12 +142,25 @@ absl::StatusOr<const draco::PointAttribute*> CheckedPositions(const draco::Point
     return absl::InvalidArgumentError(absl::StrCat(
         "Draco positions have ", int{position->num_components()}, " components, not 3"));
   }
+  switch (position->data_type()) {
+    case draco::DT_FLOAT32:
+    case draco::DT_FLOAT64:
+    case draco::DT_INT8:
+    case draco::DT_UINT8:
+    case draco::DT_INT16:
+    case draco::DT_UINT16:
+    case draco::DT_INT32:
+    case draco::DT_UINT32: break;
+    default:
+      // Notably DT_BOOL: Draco would load arbitrary bytes as bool, which is undefined.
+      return absl::InvalidArgumentError("Draco positions have an unsupported data type");
+  }
   const int64_t value_bytes = 3 * draco::DataTypeLength(position->data_type());
   const size_t count = position->size();
   if (value_bytes == 0 || position->buffer() == nullptr ||
-      (count > 0 && position->byte_offset() + position->byte_stride() * int64_t(count - 1) +
-                            value_bytes >
-                        static_cast<int64_t>(position->buffer()->data_size()))) {
+      (count > 0 &&
+       position->byte_offset() + position->byte_stride() * int64_t(count - 1) + value_bytes >
+           static_cast<int64_t>(position->buffer()->data_size()))) {
     return absl::InvalidArgumentError("the Draco position attribute is inconsistent");
   }
   return position;
@@ -161,21 +203,21 @@ absl::StatusOr<std::vector<Point3f>> AllPositionValues(const draco::PointAttribu
 absl::Status ValidateDracoOptions(const DracoOptions& options) {
   const int bits = options.position_quantization_bits;
   if (bits < 0 || bits > kMaxQuantizationBits) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("position_quantization_bits is ", bits, "; it must be 0 (lossless) or 1..",
-                     kMaxQuantizationBits));
+    return absl::InvalidArgumentError(absl::StrCat("position_quantization_bits is ", bits,
+                                                   "; it must be 0 (lossless) or 1..",
+                                                   kMaxQuantizationBits));
   }
   const int level = options.compression_level;
   if (level < 0 || level > kMaxCompressionLevel) {
-    return absl::InvalidArgumentError(absl::StrCat("compression_level is ", level,
-                                                   "; it must be in 0..", kMaxCompressionLevel));
+    return absl::InvalidArgumentError(
+        absl::StrCat("compression_level is ", level, "; it must be in 0..", kMaxCompressionLevel));
   }
   return absl::OkStatus();
 }
 
 absl::StatusOr<DracoEncoding> EncodeDracoPointCloud(const PointCloud& cloud,
                                                     const DracoOptions& options) {
-  absl::Status status = CheckEncodable(cloud.points, options, "point cloud");
+  absl::Status status = CheckEncodable(cloud.points, options, /*is_mesh=*/false);
   if (!status.ok()) return status;
   draco::PointCloud pc;
   SetPositions(cloud.points, &pc);
@@ -189,7 +231,7 @@ absl::StatusOr<DracoEncoding> EncodeDracoPointCloud(const PointCloud& cloud,
 
 absl::StatusOr<DracoEncoding> EncodeDracoMesh(const TriangleMesh& mesh,
                                               const DracoOptions& options) {
-  absl::Status status = CheckEncodable(mesh.vertices, options, "mesh");
+  absl::Status status = CheckEncodable(mesh.vertices, options, /*is_mesh=*/true);
   if (!status.ok()) return status;
   if (mesh.faces.empty()) {
     return absl::InvalidArgumentError("cannot Draco-encode a mesh without faces");
@@ -232,7 +274,12 @@ absl::StatusOr<DecodedDracoCloud> DecodeDracoPointCloud(absl::string_view bytes,
   absl::StatusOr<DracoGeometry> geometry = DracoGeometryOf(bytes);
   if (!geometry.ok()) return geometry.status();
   if (*geometry == DracoGeometry::kMesh && policy == DracoMeshPolicy::kRejectMesh) {
-    return absl::InvalidArgumentError("the Draco data holds a mesh where a point cloud is required");
+    return absl::InvalidArgumentError(
+        "the Draco data holds a mesh where a point cloud is required");
+  }
+  if (*geometry == DracoGeometry::kPointCloud) {
+    absl::Status count = CheckDracoPointCount(bytes);
+    if (!count.ok()) return count;
   }
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());

@@ -70,8 +70,10 @@ struct DecodedDracoCloud {
 
 // The positions in Draco `bytes`: one point per Draco point for a point cloud, one per
 // distinct vertex position for a mesh (faces dropped). InvalidArgument when the bytes are
-// not valid Draco data, hold no 3-component position attribute, hold non-finite positions, or
-// hold a mesh under kRejectMesh. See the file comment on crafted input.
+// not valid Draco data, hold no 3-component numeric position attribute, hold non-finite
+// positions, or hold a mesh under kRejectMesh; also when a point cloud's header declares more
+// than 1024 points per input byte (checked before Draco allocates for them; real scans
+// compress to a few points per byte). See the file comment on crafted input.
 absl::StatusOr<DecodedDracoCloud> DecodeDracoPointCloud(
     absl::string_view bytes, DracoMeshPolicy policy = DracoMeshPolicy::kAcceptMeshVertices);
 

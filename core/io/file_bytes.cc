@@ -17,8 +17,8 @@ struct FileCloser {
 using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
 absl::Status ErrnoError(absl::string_view action, const std::string& path, int error) {
-  return absl::InternalError(absl::StrCat("cannot ", action, " '", path, "': ",
-                                          std::strerror(error)));
+  return absl::InternalError(
+      absl::StrCat("cannot ", action, " '", path, "': ", std::strerror(error)));
 }
 
 }  // namespace

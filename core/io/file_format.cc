@@ -92,10 +92,11 @@ absl::StatusOr<FileFormat> FormatFromPath(absl::string_view path, FileUse use) {
   }
   std::vector<std::string> listed;
   for (FileFormat format : supported) listed.push_back(FormatExtensions(format));
-  return absl::InvalidArgumentError(absl::StrCat(
-      "'", path, "': ",
-      extension.empty() ? "no file extension" : absl::StrCat("unsupported extension '", extension, "'"),
-      "; ", UseDescription(use), " ", absl::StrJoin(listed, ", ")));
+  return absl::InvalidArgumentError(
+      absl::StrCat("'", path, "': ",
+                   extension.empty() ? "no file extension"
+                                     : absl::StrCat("unsupported extension '", extension, "'"),
+                   "; ", UseDescription(use), " ", absl::StrJoin(listed, ", ")));
 }
 
 }  // namespace membrane

@@ -15,8 +15,8 @@ absl::Status CheckFinitePoints(absl::Span<const Point3f> points, absl::string_vi
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) ++bad;
   }
   if (bad == 0) return absl::OkStatus();
-  const absl::string_view noun =
-      is_mesh ? (bad == 1 ? "vertex has" : "vertices have") : (bad == 1 ? "point has" : "points have");
+  const absl::string_view noun = is_mesh ? (bad == 1 ? "vertex has" : "vertices have")
+                                         : (bad == 1 ? "point has" : "points have");
   return absl::InvalidArgumentError(
       absl::StrCat(source, ": ", bad, " ", noun, " NaN or infinite coordinates"));
 }

@@ -48,8 +48,8 @@ absl::StatusOr<TriangleMesh> ParseObj(absl::string_view data, absl::string_view 
         if (!tokens.Next(&token)) return error("a \"v\" line needs three coordinates");
         const std::optional<double> value = ParseDouble(token);
         if (!value) {
-          return error(absl::StrCat("'", absl::CHexEscape(token.substr(0, 32)),
-                                    "' is not a number"));
+          return error(
+              absl::StrCat("'", absl::CHexEscape(token.substr(0, 32)), "' is not a number"));
         }
         coordinate = NarrowToFloat(*value);
       }
@@ -60,8 +60,8 @@ absl::StatusOr<TriangleMesh> ParseObj(absl::string_view data, absl::string_view 
       while (tokens.Next(&token)) {
         const std::optional<int32_t> index = ResolveReference(token, mesh.vertices.size());
         if (!index) {
-          return error(absl::StrCat("bad vertex reference '",
-                                    absl::CHexEscape(token.substr(0, 32)), "'"));
+          return error(
+              absl::StrCat("bad vertex reference '", absl::CHexEscape(token.substr(0, 32)), "'"));
         }
         polygon.push_back(*index);
       }

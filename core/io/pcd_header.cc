@@ -122,8 +122,8 @@ absl::StatusOr<PcdHeader> ParsePcdHeader(absl::string_view data, absl::string_vi
     const uint64_t w = *width, h = *height;
     if (h != 0 && w > UINT64_MAX / h) return header_error("WIDTH x HEIGHT overflows");
     if (points && *points != w * h) {
-      return header_error(absl::StrCat("POINTS ", *points, " disagrees with WIDTH x HEIGHT = ",
-                                       w * h));
+      return header_error(
+          absl::StrCat("POINTS ", *points, " disagrees with WIDTH x HEIGHT = ", w * h));
     }
     if (!points) points = w * h;
   }

@@ -77,8 +77,8 @@ absl::StatusOr<PointCloud> ReadBinary(absl::string_view data, const PcdHeader& h
       const AxisSlot& slot = layout.axes[axis];
       // PCL writes binary data in host order, which is little endian on every platform PCL
       // is used on.
-      cloud.points[i][axis] = NarrowToFloat(
-          DecodeScalar(row + slot.byte_offset, slot.type, ByteOrder::kLittleEndian));
+      cloud.points[i][axis] =
+          NarrowToFloat(DecodeScalar(row + slot.byte_offset, slot.type, ByteOrder::kLittleEndian));
     }
   }
   return cloud;
@@ -90,10 +90,10 @@ absl::StatusOr<PointCloud> ReadAscii(absl::string_view data, const PcdHeader& he
   // Each value takes a character and a separator: check before reserving.
   if (layout.values_per_row > (remaining + 1) / 2 ||
       header.points > (remaining + 1) / (2 * layout.values_per_row)) {
-    return ParseError(source, header.body_offset,
-                      absl::StrCat("POINTS declares ", header.points, " points of ",
-                                   layout.values_per_row, " values, but only ", remaining,
-                                   " bytes follow the header"));
+    return ParseError(
+        source, header.body_offset,
+        absl::StrCat("POINTS declares ", header.points, " points of ", layout.values_per_row,
+                     " values, but only ", remaining, " bytes follow the header"));
   }
   PointCloud cloud;
   cloud.points.reserve(header.points);
@@ -118,17 +118,17 @@ absl::StatusOr<PointCloud> ReadAscii(absl::string_view data, const PcdHeader& he
         if (layout.axes[axis].value_index != index) continue;
         const std::optional<double> value = ParseDouble(token);
         if (!value) {
-          return error(tokens.token_offset(),
-                       absl::StrCat("'", absl::CHexEscape(token.substr(0, 32)),
-                                    "' is not a number"));
+          return error(
+              tokens.token_offset(),
+              absl::StrCat("'", absl::CHexEscape(token.substr(0, 32)), "' is not a number"));
         }
         point[axis] = NarrowToFloat(*value);
       }
       ++index;
     }
     if (index != layout.values_per_row) {
-      return error(lines.line_offset(), absl::StrCat("expected ", layout.values_per_row,
-                                                     " values, found ", index));
+      return error(lines.line_offset(),
+                   absl::StrCat("expected ", layout.values_per_row, " values, found ", index));
     }
     cloud.points.push_back(point);
   }
@@ -146,9 +146,10 @@ absl::StatusOr<PointCloud> ReadPcdPointCloud(absl::string_view data, absl::strin
   absl::StatusOr<PcdHeader> header = ParsePcdHeader(data, source);
   if (!header.ok()) return header.status();
   if (header->encoding == PcdEncoding::kBinaryCompressed) {
-    return absl::UnimplementedError(absl::StrCat(
-        source, ": PCD DATA binary_compressed is not supported; save it as binary or ascii "
-                "(e.g. with pcl_convert_pcd_ascii_binary)"));
+    return absl::UnimplementedError(
+        absl::StrCat(source,
+                     ": PCD DATA binary_compressed is not supported; save it as binary or ascii "
+                     "(e.g. with pcl_convert_pcd_ascii_binary)"));
   }
   absl::StatusOr<PointLayout> layout = LayoutOf(*header, source);
   if (!layout.ok()) return layout.status();

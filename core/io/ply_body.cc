@@ -1,7 +1,9 @@
 #include "core/io/ply_body.h"
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -41,8 +43,8 @@ absl::StatusOr<ElementPlan> PlanVertex(const PlyElement& element, absl::string_v
   for (int axis = 0; axis < 3; ++axis) {
     std::optional<size_t> index = FindPlyProperty(element, names[axis]);
     if (!index || element.properties[*index].list_count_type) {
-      return absl::InvalidArgumentError(absl::StrCat(
-          source, ": the vertex element has no scalar property '", names[axis], "'"));
+      return absl::InvalidArgumentError(
+          absl::StrCat(source, ": the vertex element has no scalar property '", names[axis], "'"));
     }
     *slots[axis] = *index;
   }
@@ -76,10 +78,9 @@ absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
   if (!in.MayHoldRows(element.count, row_bytes)) {
     const uint64_t whole_rows = in.remaining() / row_bytes;
     return ParseError(source, start + whole_rows * row_bytes,
-                      absl::StrCat("the data ends inside ", element.name, " ", whole_rows,
-                                   " of ", element.count, " (rows of ", row_bytes,
-                                   " bytes from byte ", start, "; only ", in.remaining(),
-                                   " bytes remain)"));
+                      absl::StrCat("the data ends inside ", element.name, " ", whole_rows, " of ",
+                                   element.count, " (rows of ", row_bytes, " bytes from byte ",
+                                   start, "; only ", in.remaining(), " bytes remain)"));
   }
   const char* rows = in.Take(element.count * row_bytes);
   if (plan.role != ElementPlan::Role::kVertex) return absl::OkStatus();
@@ -88,6 +89,21 @@ absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
   const PlyProperty& pz = element.properties[plan.z];
   const ByteOrder order = in.order();
   out->vertices.resize(element.count);
+  const bool native_floats =
+      px.type == ScalarType::kFloat32 && py.type == ScalarType::kFloat32 &&
+      pz.type == ScalarType::kFloat32 &&
+      (order == ByteOrder::kLittleEndian) == (std::endian::native == std::endian::little);
+  if (native_floats) {
+    // The common scan layout: copy the floats as they are, no per-value conversion.
+    for (uint64_t r = 0; r < element.count; ++r) {
+      const char* row = rows + r * row_bytes;
+      Point3f& p = out->vertices[r];
+      std::memcpy(&p[0], row + offsets[plan.x], sizeof(float));
+      std::memcpy(&p[1], row + offsets[plan.y], sizeof(float));
+      std::memcpy(&p[2], row + offsets[plan.z], sizeof(float));
+    }
+    return absl::OkStatus();
+  }
   for (uint64_t r = 0; r < element.count; ++r) {
     const char* row = rows + r * row_bytes;
     out->vertices[r] = {NarrowToFloat(DecodeScalar(row + offsets[plan.x], px.type, order)),
@@ -110,9 +126,9 @@ absl::Status ReadPolygon(uint64_t length, const PlyProperty& property, uint64_t 
     }
     if (!(value >= 0) || value != std::floor(value) || value >= static_cast<double>(vertex_count) ||
         value > std::numeric_limits<int32_t>::max()) {
-      return ParseError(source, in.offset(),
-                        absl::StrCat(where, ": vertex index ", value, " is not in [0, ",
-                                     vertex_count, ")"));
+      return ParseError(
+          source, in.offset(),
+          absl::StrCat(where, ": vertex index ", value, " is not in [0, ", vertex_count, ")"));
     }
     polygon->push_back(static_cast<int32_t>(value));
   }
@@ -123,9 +139,8 @@ absl::Status ReadPolygon(uint64_t length, const PlyProperty& property, uint64_t 
 }
 
 template <typename Source>
-absl::Status ReadElement(const PlyElement& element, const ElementPlan& plan,
-                         uint64_t vertex_count, absl::string_view source, Source& in,
-                         TriangleMesh* out) {
+absl::Status ReadElement(const PlyElement& element, const ElementPlan& plan, uint64_t vertex_count,
+                         absl::string_view source, Source& in, TriangleMesh* out) {
   // Rows without properties take no bytes: there is nothing to read, however many there are.
   if (element.properties.empty()) return absl::OkStatus();
   if constexpr (std::is_same_v<Source, PlyBinarySource>) {
@@ -151,8 +166,7 @@ absl::Status ReadElement(const PlyElement& element, const ElementPlan& plan,
                             property.name, "'");
       };
       const auto failure = [&] {
-        return ParseError(source, in.failure_offset(),
-                          absl::StrCat(where(), ": ", in.problem()));
+        return ParseError(source, in.failure_offset(), absl::StrCat(where(), ": ", in.problem()));
       };
       if (!property.list_count_type) {
         if (!in.Read(property.type, &row[p])) return failure();
@@ -163,10 +177,12 @@ absl::Status ReadElement(const PlyElement& element, const ElementPlan& plan,
       if (!(length_value >= 0) || length_value != std::floor(length_value) ||
           length_value > kMaxListLength ||
           !in.MayHold(static_cast<uint64_t>(length_value), property.type)) {
+        const std::string length_text = length_value >= 0 && length_value <= kMaxListLength
+                                            ? absl::StrCat(static_cast<uint64_t>(length_value))
+                                            : absl::StrCat(length_value);
         return ParseError(source, in.offset(),
-                          absl::StrCat(where(), ": list length ", length_value,
-                                       " is impossible with ", in.remaining(),
-                                       " bytes remaining"));
+                          absl::StrCat(where(), ": list length ", length_text,
+                                       " is impossible with ", in.remaining(), " bytes remaining"));
       }
       const uint64_t length = static_cast<uint64_t>(length_value);
       if (plan.role == ElementPlan::Role::kFace && p == plan.indices) {
@@ -192,7 +208,8 @@ absl::StatusOr<TriangleMesh> ReadElements(const PlyHeader& header,
                                           Source& in) {
   TriangleMesh mesh;
   for (size_t e = 0; e < header.elements.size(); ++e) {
-    absl::Status status = ReadElement(header.elements[e], plans[e], vertex_count, source, in, &mesh);
+    absl::Status status =
+        ReadElement(header.elements[e], plans[e], vertex_count, source, in, &mesh);
     if (!status.ok()) return status;
   }
   return mesh;

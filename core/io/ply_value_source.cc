@@ -94,8 +94,8 @@ bool PlyAsciiSource::MayHoldRows(uint64_t rows, size_t min_row_bytes) const {
 std::string PlyAsciiSource::problem() const {
   if (bad_token_.empty()) return "the data ends";
   constexpr size_t kShown = 32;
-  return absl::StrCat("'", absl::CHexEscape(bad_token_.substr(0, kShown)), bad_token_.size() > kShown ? "..." : "",
-                      "' is not a number");
+  return absl::StrCat("'", absl::CHexEscape(bad_token_.substr(0, kShown)),
+                      bad_token_.size() > kShown ? "..." : "", "' is not a number");
 }
 
 }  // namespace membrane

@@ -64,10 +64,16 @@ class PlyAsciiSource {
   // integer types are not checked for range or integrality here; the caller does that where
   // it matters (list lengths, vertex indices).
   bool Read(ScalarType type, double* value);
+  // Skips `count` tokens without parsing them; false when fewer remain.
   bool Skip(uint64_t count, ScalarType type);
+  // Whether `count` more tokens could still follow: each takes a character and a separator.
   bool MayHold(uint64_t count, ScalarType type) const;
+  // Two bytes per property: a one-character token and its separator.
   size_t MinRowBytes(const PlyElement& element) const;
+  // Whether `rows` rows of at least `min_row_bytes` each could still follow.
   bool MayHoldRows(uint64_t rows, size_t min_row_bytes) const;
+  // Why, and at which offset, the last Read or Skip failed: the end of the data, or the
+  // (escaped, shortened) token that is not a number.
   std::string problem() const;
   size_t failure_offset() const { return failure_offset_; }
 

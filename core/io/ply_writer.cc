@@ -13,7 +13,8 @@ void AppendHeader(size_t vertex_count, const size_t* face_count, std::string* ou
                   "ply\n"
                   "format binary_little_endian 1.0\n"
                   "comment written by membrane\n"
-                  "element vertex ", vertex_count, "\n",
+                  "element vertex ",
+                  vertex_count, "\n",
                   "property float x\n"
                   "property float y\n"
                   "property float z\n");

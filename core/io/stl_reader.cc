@@ -34,7 +34,8 @@ class VertexWelder {
       const float value = p[axis] + 0.0f;
       std::memcpy(&key[axis], &value, sizeof(float));
     }
-    const auto [it, inserted] = index_.try_emplace(key, static_cast<int32_t>(mesh_->vertices.size()));
+    const auto [it, inserted] =
+        index_.try_emplace(key, static_cast<int32_t>(mesh_->vertices.size()));
     if (inserted) mesh_->vertices.push_back(p);
     return it->second;
   }
@@ -50,7 +51,8 @@ TriangleMesh ReadBinary(absl::string_view data, uint64_t triangles) {
   mesh.faces.reserve(triangles);
   VertexWelder welder(&mesh);
   for (uint64_t t = 0; t < triangles; ++t) {
-    const char* corner = data.data() + kBinaryPreambleBytes + t * kBinaryTriangleBytes + kNormalBytes;
+    const char* corner =
+        data.data() + kBinaryPreambleBytes + t * kBinaryTriangleBytes + kNormalBytes;
     std::array<int32_t, 3> face;
     for (int c = 0; c < 3; ++c, corner += 12) {
       Point3f p;
@@ -104,8 +106,7 @@ absl::StatusOr<TriangleMesh> ReadAscii(absl::string_view data, absl::string_view
 }  // namespace
 
 absl::StatusOr<TriangleMesh> ReadStlMesh(absl::string_view data, absl::string_view source) {
-  const bool looks_ascii =
-      absl::StartsWith(absl::StripLeadingAsciiWhitespace(data), "solid");
+  const bool looks_ascii = absl::StartsWith(absl::StripLeadingAsciiWhitespace(data), "solid");
   if (data.size() >= kBinaryPreambleBytes) {
     const uint64_t triangles = static_cast<uint64_t>(DecodeScalar(
         data.data() + kBinaryHeaderBytes, ScalarType::kUint32, ByteOrder::kLittleEndian));
@@ -116,10 +117,10 @@ absl::StatusOr<TriangleMesh> ReadStlMesh(absl::string_view data, absl::string_vi
     }
     if (!looks_ascii) {
       const uint64_t whole = (data.size() - kBinaryPreambleBytes) / kBinaryTriangleBytes;
-      return ParseError(source, kBinaryPreambleBytes + whole * kBinaryTriangleBytes,
-                        absl::StrCat("the data ends inside triangle ", whole, " of ", triangles,
-                                     " (binary STL needs ", needed, " bytes, the file has ",
-                                     data.size(), ")"));
+      return ParseError(
+          source, kBinaryPreambleBytes + whole * kBinaryTriangleBytes,
+          absl::StrCat("the data ends inside triangle ", whole, " of ", triangles,
+                       " (binary STL needs ", needed, " bytes, the file has ", data.size(), ")"));
     }
   }
   if (looks_ascii) return ReadAscii(data, source);

@@ -3,7 +3,6 @@
 #include <cstdint>
 #include <optional>
 
-#include "absl/status/status.h"
 #include "absl/strings/ascii.h"
 #include "absl/strings/escaping.h"
 #include "absl/strings/match.h"
@@ -55,18 +54,18 @@ absl::StatusOr<PointCloud> ReadXyzPointCloud(absl::string_view data, absl::strin
       }
       const std::optional<double> value = ParseDouble(token);
       if (!value) {
-        return LineError(source, lines.line_number(), tokens.token_offset(),
-                         absl::StrCat("'", absl::CHexEscape(token.substr(0, 32)),
-                                      "' is not a number"));
+        return LineError(
+            source, lines.line_number(), tokens.token_offset(),
+            absl::StrCat("'", absl::CHexEscape(token.substr(0, 32)), "' is not a number"));
       }
       coordinate = NarrowToFloat(*value);
     }
     cloud.points.push_back(point);
   }
   if (declared_count && *declared_count != cloud.points.size()) {
-    return absl::InvalidArgumentError(absl::StrCat(source, ": the count line declares ",
-                                                   *declared_count, " points but the file holds ",
-                                                   cloud.points.size()));
+    return ParseError(source, data.size(),
+                      absl::StrCat("the data ends after ", cloud.points.size(),
+                                   " points but the count line declares ", *declared_count));
   }
   return cloud;
 }

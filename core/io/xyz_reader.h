@@ -12,8 +12,8 @@ namespace membrane {
 // separated by whitespace, commas or semicolons; blank lines and lines starting with "#" or
 // "//" are ignored. The first data line may be a single integer point count (as .pts files
 // have); if present, the number of points must equal it. InvalidArgument naming `source`, the
-// line and byte offset for a line without three leading numbers, or naming `source` for a
-// count that does not match. Coordinates are not yet checked for finiteness.
+// line and byte offset for a line without three leading numbers, or naming `source` and the
+// end offset for a count that does not match. Coordinates are not yet checked for finiteness.
 absl::StatusOr<PointCloud> ReadXyzPointCloud(absl::string_view data, absl::string_view source);
 
 }  // namespace membrane

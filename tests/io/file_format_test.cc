@@ -24,7 +24,8 @@ TEST(FileFormat, EachUseSupportsItsOwnFormats) {
   EXPECT_FALSE(FormatFromPath("c.pcd", FileUse::kWritePointCloud).ok());
   const absl::Status status = FormatFromPath("c.pcd", FileUse::kWritePointCloud).status();
   EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(status.message(), HasSubstr("point clouds can be written to .ply, .xyz, .txt, .pts, .obj, .drc"));
+  EXPECT_THAT(status.ToString(),
+              HasSubstr("point clouds can be written to .ply, .xyz, .txt, .pts, .obj, .drc"));
 }
 
 }  // namespace

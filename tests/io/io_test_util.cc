@@ -29,9 +29,9 @@ std::string Bytes(T value, bool big_endian) {
 
 std::string ScratchDir() {
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
-                              absl::StrCat("membrane_io_", info->test_suite_name(), "_",
-                                           info->name());
+  std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) /
+      absl::StrCat("membrane_io_", info->test_suite_name(), "_", info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();

@@ -56,21 +56,21 @@ TEST(ObjReader, FaceIndexZeroIsRejectedWithLineNumber) {
   const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n";
   absl::StatusOr<TriangleMesh> mesh = ReadMeshFromBuffer(obj, FileFormat::kObj, "zero.obj");
   EXPECT_EQ(mesh.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(mesh.status().message(), HasSubstr("zero.obj: line 4"));
+  EXPECT_THAT(mesh.status().ToString(), HasSubstr("zero.obj: line 4"));
 }
 
 TEST(ObjReader, FaceIndexBeyondTheVerticesIsRejected) {
   const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n";
   absl::StatusOr<TriangleMesh> mesh = ReadMeshFromBuffer(obj, FileFormat::kObj, "far.obj");
   EXPECT_EQ(mesh.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(mesh.status().message(), HasSubstr("refers to vertex 3"));
+  EXPECT_THAT(mesh.status().ToString(), HasSubstr("refers to vertex 3"));
 }
 
 TEST(ObjReader, VLineWithTwoCoordinatesNamesLineAndByte) {
   const std::string obj = "v 0 0 0\nv 1 2\n";
   absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(obj, FileFormat::kObj, "short.obj");
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(cloud.status().message(), HasSubstr("short.obj: line 2 (byte 13)"));
+  EXPECT_THAT(cloud.status().ToString(), HasSubstr("short.obj: line 2 (byte 13)"));
 }
 
 }  // namespace

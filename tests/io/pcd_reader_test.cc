@@ -56,8 +56,7 @@ TEST(PcdReader, BinaryWithDoubleCoordinatesAndPaddingFields) {
 }
 
 TEST(PcdReader, BinaryFloatWithoutCountLineDefaultsToOne) {
-  std::string pcd =
-      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nHEIGHT 1\nDATA binary\n";
+  std::string pcd = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nHEIGHT 1\nDATA binary\n";
   pcd += LittleEndianFloat(1) + LittleEndianFloat(2) + LittleEndianFloat(3);
   absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(pcd, FileFormat::kPcd);
   ASSERT_TRUE(cloud.ok()) << cloud.status();
@@ -70,33 +69,35 @@ TEST(PcdReader, BinaryCompressedIsUnimplemented) {
       "DATA binary_compressed\n\x08\0\0\0\x0c\0\0\0";
   absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(pcd, FileFormat::kPcd, "c.pcd");
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kUnimplemented);
-  EXPECT_THAT(cloud.status().message(), HasSubstr("binary_compressed"));
+  EXPECT_THAT(cloud.status().ToString(), HasSubstr("binary_compressed"));
 }
 
 TEST(PcdReader, IntegerCoordinatesAreRejected) {
-  const std::string pcd =
-      "FIELDS x y z\nSIZE 4 4 4\nTYPE I I I\nPOINTS 1\nDATA ascii\n1 2 3\n";
+  const std::string pcd = "FIELDS x y z\nSIZE 4 4 4\nTYPE I I I\nPOINTS 1\nDATA ascii\n1 2 3\n";
   absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(pcd, FileFormat::kPcd, "i.pcd");
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(cloud.status().message(), HasSubstr("'x' must be TYPE F"));
+  EXPECT_THAT(cloud.status().ToString(), HasSubstr("'x' must be TYPE F"));
 }
 
 TEST(PcdReader, TruncatedBinaryNamesByteOffset) {
   std::string pcd = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 3\nDATA binary\n";
   const size_t body = pcd.size();
-  for (int i = 0; i < 3; ++i) pcd += LittleEndianFloat(1) + LittleEndianFloat(2) + LittleEndianFloat(3);
+  for (int i = 0; i < 3; ++i)
+    pcd += LittleEndianFloat(1) + LittleEndianFloat(2) + LittleEndianFloat(3);
   pcd.resize(pcd.size() - 5);  // point 2 loses its last bytes
   absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(pcd, FileFormat::kPcd, "t.pcd");
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(cloud.status().message(),
-              HasSubstr("t.pcd: at byte " + std::to_string(body + 24) + ": the data ends inside point 2 of 3"));
+  EXPECT_THAT(cloud.status().ToString(), HasSubstr("t.pcd: at byte " + std::to_string(body + 24) +
+                                                   ": the data ends inside point 2 of 3"));
 }
 
 TEST(PcdReader, AsciiWithFewerLinesThanPointsIsInvalidArgument) {
-  const std::string pcd = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 3\nDATA ascii\n1 2 3\n4 5 6\n";
+  const std::string pcd =
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 3\nDATA ascii\n1.000 2.000 3.000\n4.000 5.000 "
+      "6.000\n";
   absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(pcd, FileFormat::kPcd, "a.pcd");
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(cloud.status().message(), HasSubstr("after 2 of 3 points"));
+  EXPECT_THAT(cloud.status().ToString(), HasSubstr("after 2 of 3 points"));
 }
 
 TEST(PcdReader, PointsDisagreeingWithWidthTimesHeightIsInvalidArgument) {
@@ -104,7 +105,7 @@ TEST(PcdReader, PointsDisagreeingWithWidthTimesHeightIsInvalidArgument) {
       "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nHEIGHT 2\nPOINTS 3\nDATA ascii\n";
   absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(pcd, FileFormat::kPcd);
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(cloud.status().message(), HasSubstr("disagrees"));
+  EXPECT_THAT(cloud.status().ToString(), HasSubstr("disagrees"));
 }
 
 }  // namespace

@@ -1,35 +1,32 @@
-// The real scans and reference meshes in ../shared/data: they read, and fast. Skipped when
+// The real scans and reference meshes in ../shared/data: they read whole. Skipped when
 // the directory is absent (CI).
+#include "tests/support/shared_data.h"
+
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <string>
 
 #include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
 #include "gtest/gtest.h"
-#include "tests/support/shared_data.h"
 
 namespace membrane {
 namespace {
 
-TEST(SharedDataReading, TeapotScanBinaryPlyReadsInMilliseconds) {
+// Reading speed is measured in tests/bench (no timed unit tests on shared machines); here,
+// that every scan cloud reads whole.
+TEST(SharedDataReading, EveryScanCloudReadsWithAllItsPoints) {
   MEMBRANE_REQUIRE_SHARED_DATA(data_dir);
-  const std::string path = data_dir + "/clouds/teapot-scan.ply";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
-  double best_ms = 1e9;
-  for (int run = 0; run < 3; ++run) {
-    const auto start = std::chrono::steady_clock::now();
-    absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
-    const auto stop = std::chrono::steady_clock::now();
+  int clouds = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(data_dir + "/clouds")) {
+    if (entry.path().extension() != ".ply") continue;
+    ++clouds;
+    absl::StatusOr<PointCloud> cloud = ReadPointCloud(entry.path().string());
     ASSERT_TRUE(cloud.ok()) << cloud.status();
-    ASSERT_EQ(cloud->points.size(), 150000u);
-    best_ms = std::min(best_ms, std::chrono::duration<double, std::milli>(stop - start).count());
+    const bool scan = entry.path().stem().string().ends_with("-scan");
+    EXPECT_EQ(cloud->points.size(), scan ? 150000u : 100000u) << entry.path();
   }
-  RecordProperty("best_read_ms", std::to_string(best_ms));
-  // Bulk decoding takes a few ms; a per-byte stream reader would take tens. The bound is loose
-  // because the machine is shared, and still catches a per-byte regression.
-  EXPECT_LT(best_ms, 100.0) << "reading 150k points took " << best_ms << " ms";
+  EXPECT_GE(clouds, 1);
 }
 
 TEST(SharedDataReading, EveryReferenceModelReadsAsAMeshWithValidFaces) {

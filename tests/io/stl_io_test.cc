@@ -55,14 +55,15 @@ TEST(StlIo, TruncatedBinaryNamesByteOffset) {
   bytes->resize(84 + 50 * 3 + 20);
   absl::StatusOr<TriangleMesh> mesh = ReadMeshFromBuffer(*bytes, FileFormat::kStl, "cut.stl");
   EXPECT_EQ(mesh.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(mesh.status().message(), HasSubstr("cut.stl: at byte 234: the data ends inside triangle 3 of 8"));
+  EXPECT_THAT(mesh.status().ToString(),
+              HasSubstr("cut.stl: at byte 234: the data ends inside triangle 3 of 8"));
 }
 
 TEST(StlIo, AsciiWithoutEndsolidIsInvalidArgument) {
   const std::string stl = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n";
   absl::StatusOr<TriangleMesh> mesh = ReadMeshFromBuffer(stl, FileFormat::kStl, "open.stl");
   EXPECT_EQ(mesh.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(mesh.status().message(), HasSubstr("endsolid"));
+  EXPECT_THAT(mesh.status().ToString(), HasSubstr("endsolid"));
 }
 
 }  // namespace

@@ -26,8 +26,7 @@ TEST(XyzReader, ExtraColumnsAndCommentsAreIgnored) {
 }
 
 TEST(XyzReader, CommaAndSemicolonSeparatedColumnsAreAccepted) {
-  absl::StatusOr<PointCloud> cloud =
-      ReadPointCloudFromBuffer("1,2,3\n4;5;6;7\n", FileFormat::kXyz);
+  absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer("1,2,3\n4;5;6;7\n", FileFormat::kXyz);
   ASSERT_TRUE(cloud.ok()) << cloud.status();
   EXPECT_THAT(cloud->points, ElementsAre(Point3f{1, 2, 3}, Point3f{4, 5, 6}));
 }
@@ -43,21 +42,24 @@ TEST(XyzReader, PtsCountLineThatDisagreesIsInvalidArgument) {
   absl::StatusOr<PointCloud> cloud =
       ReadPointCloudFromBuffer("3\n1 2 3\n4 5 6\n", FileFormat::kXyz, "short.pts");
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(cloud.status().message(), HasSubstr("short.pts: the count line declares 3"));
+  EXPECT_THAT(
+      cloud.status().ToString(),
+      HasSubstr(
+          "short.pts: at byte 14: the data ends after 2 points but the count line declares 3"));
 }
 
 TEST(XyzReader, LineWithTwoNumbersNamesLineAndByte) {
   absl::StatusOr<PointCloud> cloud =
       ReadPointCloudFromBuffer("1 2 3\n4 5\n", FileFormat::kXyz, "two.xyz");
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(cloud.status().message(), HasSubstr("two.xyz: line 2 (byte 9)"));
+  EXPECT_THAT(cloud.status().ToString(), HasSubstr("two.xyz: line 2 (byte 9)"));
 }
 
 TEST(XyzReader, NonNumericTokenIsNamed) {
   absl::StatusOr<PointCloud> cloud =
       ReadPointCloudFromBuffer("1 2 3\n4 five 6\n", FileFormat::kXyz, "word.xyz");
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(cloud.status().message(), HasSubstr("'five' is not a number"));
+  EXPECT_THAT(cloud.status().ToString(), HasSubstr("'five' is not a number"));
 }
 
 }  // namespace

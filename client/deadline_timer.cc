@@ -5,7 +5,8 @@
 namespace membrane::client {
 
 DeadlineTimer::DeadlineTimer(double seconds, CancelToken* token) {
-  if (seconds > 0) thread_ = std::thread([this, seconds, token] { WaitThenCancel(seconds, token); });
+  if (seconds > 0)
+    thread_ = std::thread([this, seconds, token] { WaitThenCancel(seconds, token); });
 }
 
 DeadlineTimer::~DeadlineTimer() {

@@ -4,8 +4,7 @@ namespace membrane::client {
 
 ExitCode ExitCodeFor(const absl::Status& status) {
   switch (status.code()) {
-    case absl::StatusCode::kOk:
-      return kExitSuccess;
+    case absl::StatusCode::kOk: return kExitSuccess;
     // Local runs have no server, so ResourceExhausted can only be the input's own fault
     // (a grid over the voxel budget), not a busy server.
     case absl::StatusCode::kInvalidArgument:
@@ -14,13 +13,10 @@ ExitCode ExitCodeFor(const absl::Status& status) {
     case absl::StatusCode::kResourceExhausted:
     case absl::StatusCode::kPermissionDenied:
     case absl::StatusCode::kUnimplemented:
-    case absl::StatusCode::kDataLoss:
-      return kExitInvalidInput;
+    case absl::StatusCode::kDataLoss: return kExitInvalidInput;
     case absl::StatusCode::kDeadlineExceeded:
-    case absl::StatusCode::kUnavailable:
-      return kExitUnavailable;
-    default:
-      return kExitJobFailed;
+    case absl::StatusCode::kUnavailable: return kExitUnavailable;
+    default: return kExitJobFailed;
   }
 }
 

@@ -1,6 +1,8 @@
 #include "client/flag_checks.h"
 
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
@@ -18,17 +20,26 @@ absl::Status OutOfRange(absl::string_view flag, absl::string_view value, absl::s
 }  // namespace
 
 absl::Status CheckIntRange(absl::string_view flag, int64_t value, int64_t lo, int64_t hi,
-                        absl::string_view note) {
+                           absl::string_view note) {
   if (value >= lo && value <= hi) return absl::OkStatus();
   return OutOfRange(flag, absl::StrCat(value), absl::StrCat(lo), absl::StrCat(hi), note);
 }
 
 absl::Status CheckRealRange(absl::string_view flag, double value, double lo, double hi,
-                        absl::string_view note) {
+                            absl::string_view note) {
   // Written so that NaN fails: every comparison with NaN is false.
   if (std::isfinite(value) && value >= lo && value <= hi) return absl::OkStatus();
   return OutOfRange(flag, absl::StrFormat("%g", value), absl::StrFormat("%g", lo),
                     absl::StrFormat("%g", hi), note);
+}
+
+absl::Status CheckOutputDirectory(absl::string_view flag, const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (parent.empty()) return absl::OkStatus();
+  std::error_code error;  // a directory we cannot even stat counts as missing
+  if (std::filesystem::is_directory(parent, error)) return absl::OkStatus();
+  return absl::InvalidArgumentError(absl::StrCat(flag, ": cannot write '", path, "': directory '",
+                                                 parent.string(), "' does not exist"));
 }
 
 }  // namespace membrane::client

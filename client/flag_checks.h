@@ -4,6 +4,7 @@
 #define MEMBRANE_CLIENT_FLAG_CHECKS_H_
 
 #include <cstdint>
+#include <string>
 
 #include "absl/status/status.h"
 #include "absl/strings/string_view.h"
@@ -13,11 +14,16 @@ namespace membrane::client {
 // OK when lo <= value <= hi; otherwise InvalidArgument
 // "--initial-plate -3 is out of range [0, 100000]" followed by " (<note>)" when `note` is set.
 absl::Status CheckIntRange(absl::string_view flag, int64_t value, int64_t lo, int64_t hi,
-                        absl::string_view note = "");
+                           absl::string_view note = "");
 
 // As above for real values; NaN and infinities are out of every range.
 absl::Status CheckRealRange(absl::string_view flag, double value, double lo, double hi,
-                        absl::string_view note = "");
+                            absl::string_view note = "");
+
+// OK when the directory that would hold `path` exists (the current directory for a bare
+// name); otherwise InvalidArgument "-o: cannot write 'a/b.ply': directory 'a' does not
+// exist". Lets a long job fail at once rather than after its work, when the write fails.
+absl::Status CheckOutputDirectory(absl::string_view flag, const std::string& path);
 
 }  // namespace membrane::client
 

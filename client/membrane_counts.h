@@ -13,7 +13,7 @@ struct MembraneCounts {
   // BOUNDARY voxels by hardness: the membrane itself.
   int64_t hard_voxels = 0;
   int64_t frozen_voxels = 0;
-  int64_t soft_voxels = 0;  // neither hard nor frozen: 0 for a finished DMS (Property 3)
+  int64_t soft_voxels = 0;  // neither: none touches an outside face (Property 3)
   // INSIDE voxels by hardness.
   int64_t inside_hard_voxels = 0;  // points the post-process could not reach
   int64_t inside_soft_voxels = 0;

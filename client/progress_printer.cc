@@ -1,5 +1,6 @@
 #include "client/progress_printer.h"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 namespace membrane::client {
@@ -11,7 +12,10 @@ constexpr char kRewriteLine[] = "\r\033[K";
 
 }  // namespace
 
-ProgressPrinter::ProgressPrinter(std::FILE* out, Mode mode) : out_(out), mode_(mode) {}
+ProgressPrinter::ProgressPrinter(std::FILE* out, Mode mode) : out_(out), mode_(mode) {
+  struct winsize size {};
+  if (mode_ == Mode::kLive && ioctl(fileno(out_), TIOCGWINSZ, &size) == 0) columns_ = size.ws_col;
+}
 
 ProgressPrinter::~ProgressPrinter() { EndLiveLine(); }
 
@@ -20,24 +24,34 @@ ProgressPrinter::Mode ProgressPrinter::StderrMode(bool quiet) {
   return isatty(STDERR_FILENO) ? Mode::kLive : Mode::kLines;
 }
 
-void ProgressPrinter::Update(absl::string_view text) {
+void ProgressPrinter::Begin(absl::string_view text) {
+  if (mode_ == Mode::kLive) Update(text);
+}
+
+void ProgressPrinter::Update(absl::string_view text) { Print(text, /*fit_width=*/true); }
+
+void ProgressPrinter::Finish(absl::string_view text) {
+  // In full: the line stays on screen, so wrapping does no harm.
+  Print(text, /*fit_width=*/false);
+  EndLiveLine();
+}
+
+void ProgressPrinter::Print(absl::string_view text, bool fit_width) {
   switch (mode_) {
-    case Mode::kQuiet:
-      return;
+    case Mode::kQuiet: return;
     case Mode::kLines:
       std::fprintf(out_, "%.*s\n", static_cast<int>(text.size()), text.data());
       break;
     case Mode::kLive:
+      // One column short: writing the last column makes some terminals wrap at once.
+      if (fit_width && columns_ > 1 && text.size() >= static_cast<size_t>(columns_)) {
+        text = text.substr(0, static_cast<size_t>(columns_ - 1));
+      }
       std::fprintf(out_, "%s%.*s", kRewriteLine, static_cast<int>(text.size()), text.data());
       live_line_open_ = true;
       break;
   }
   std::fflush(out_);
-}
-
-void ProgressPrinter::Finish(absl::string_view text) {
-  Update(text);
-  EndLiveLine();
 }
 
 void ProgressPrinter::EndLiveLine() {

@@ -18,7 +18,8 @@ class ProgressPrinter {
     kLive,   // rewrite one terminal line; Finish ends it with a newline
   };
 
-  // Prints to `out` (not owned; must outlive the printer) in `mode`.
+  // Prints to `out` (not owned; must outlive the printer) in `mode`. In kLive mode, Update
+  // lines are cut to the terminal's width: a wrapped line could not be rewritten in place.
   ProgressPrinter(std::FILE* out, Mode mode);
   // Ends a pending live line, so that whatever is printed next starts on a fresh line.
   ~ProgressPrinter();
@@ -29,17 +30,23 @@ class ProgressPrinter {
   // The mode for stderr: kQuiet when `quiet`, kLive when stderr is a terminal, else kLines.
   static Mode StderrMode(bool quiet);
 
-  // Shows `text` as the state of the running stage: live, replaces the current line; as
-  // lines, prints it.
+  // Announces a stage that is starting: live, replaces the current line; as lines, prints
+  // nothing (the Finish line says it all).
+  void Begin(absl::string_view text);
+  // Shows `text` as the state of the running stage: live, replaces the current line (cut to
+  // the terminal width); as lines, prints it.
   void Update(absl::string_view text);
   // Shows `text` as the outcome of a finished stage and moves to a new line.
   void Finish(absl::string_view text);
 
  private:
+  // Writes `text` as the mode wants it; `fit_width` cuts a live line to the terminal width.
+  void Print(absl::string_view text, bool fit_width);
   void EndLiveLine();
 
   std::FILE* out_;
   Mode mode_;
+  int columns_ = 0;  // terminal width in kLive mode when known, else 0 (no limit)
   bool live_line_open_ = false;
 };
 

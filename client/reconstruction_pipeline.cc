@@ -6,6 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
+#include "client/io_errors.h"
 #include "client/membrane_counts.h"
 #include "client/peak_memory.h"
 #include "client/stopwatch.h"
@@ -13,6 +14,7 @@
 #include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
 #include "core/mesh/mesh_check.h"
+#include "core/mesh/relaxation.h"
 
 namespace membrane::client {
 namespace {
@@ -22,23 +24,16 @@ absl::Status StopIfCancelled(const CancelToken& cancel, absl::string_view finish
   return absl::CancelledError(absl::StrCat("reconstruction cancelled after ", finished_stage));
 }
 
-// A file that exists but cannot be read or written (permissions, a missing directory) is the
-// user's input to fix, not a failed job: the io library reports it as Internal.
-absl::Status InternalAsInvalidArgument(const absl::Status& status) {
-  if (status.code() != absl::StatusCode::kInternal) return status;
-  return absl::InvalidArgumentError(status.message());
-}
-
 absl::StatusOr<PointCloud> Decode(const ReconstructionParams& params, ReconstructionReport& report,
                                   ProgressPrinter& progress) {
   const Stopwatch watch;
-  progress.Update(absl::StrCat("decode: reading ", params.input));
+  progress.Begin(absl::StrCat("decode: reading ", params.input));
   absl::StatusOr<PointCloud> cloud = ReadPointCloud(params.input);
-  if (!cloud.ok()) return InternalAsInvalidArgument(cloud.status());
+  if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
   report.points = static_cast<int64_t>(cloud->points.size());
   report.seconds.decode = watch.Seconds();
-  progress.Finish(absl::StrFormat("decode: %d points in %.3f s", report.points,
-                                  report.seconds.decode));
+  progress.Finish(
+      absl::StrFormat("decode: %d points in %.3f s", report.points, report.seconds.decode));
   return cloud;
 }
 
@@ -46,7 +41,7 @@ absl::StatusOr<Voxelization> VoxelizeCloud(const ReconstructionParams& params,
                                            const PointCloud& cloud, ReconstructionReport& report,
                                            ProgressPrinter& progress) {
   const Stopwatch watch;
-  progress.Update("voxelize: ...");
+  progress.Begin("voxelize: ...");
   absl::StatusOr<Voxelization> v = Voxelize(cloud.points, params.voxelize);
   if (!v.ok()) {
     const absl::Status& s = v.status();
@@ -65,25 +60,25 @@ absl::StatusOr<Voxelization> VoxelizeCloud(const ReconstructionParams& params,
   report.seconds.voxelize = watch.Seconds();
   progress.Finish(absl::StrFormat(
       "voxelize: grid %s (voxel size %.6g), %d hard voxels, density ratio %.3g in %.3f s",
-      absl::StrJoin(report.grid, "x"), report.voxel_size, report.hard_voxels,
-      report.density_ratio, report.seconds.voxelize));
+      absl::StrJoin(report.grid, "x"), report.voxel_size, report.hard_voxels, report.density_ratio,
+      report.seconds.voxelize));
   return v;
 }
 
-absl::Status Shrink(const ReconstructionParams& params, const CancelToken& cancel,
-                    VoxelGrid& grid, ReconstructionReport& report, ProgressPrinter& progress) {
+absl::Status Shrink(const ReconstructionParams& params, const CancelToken& cancel, VoxelGrid& grid,
+                    ReconstructionReport& report, ProgressPrinter& progress) {
   const Stopwatch watch;
   // The shrinker computes the same schedule; asking for it here gives the "3/9" of the
   // progress line without a hook in the engine.
-  const size_t total = PlateSizes(report.data_grid, params.shrink.schedule,
-                                  params.shrink.initial_plate).size();
-  progress.Update(absl::StrFormat("shrink: generation 1/%d ...", total));
+  const size_t total =
+      PlateSizes(report.data_grid, params.shrink.schedule, params.shrink.initial_plate).size();
+  progress.Begin(absl::StrFormat("shrink: generation 1/%d ...", total));
   const GenerationCallback on_generation = [&](const GenerationStats& g) {
     progress.Update(absl::StrFormat(
         "shrink: generation %d/%d, plate size %d: %d soft voxels, %d started contractions, "
         "%d backtrackings, %.3f s",
-        g.generation, total, g.plate_size, g.soft_voxels, g.started_contractions,
-        g.backtrackings, g.seconds));
+        g.generation, total, g.plate_size, g.soft_voxels, g.started_contractions, g.backtrackings,
+        g.seconds));
   };
   absl::StatusOr<ShrinkResult> result = ShrinkMembrane(grid, params.shrink, on_generation, &cancel);
   if (!result.ok()) return result.status();
@@ -98,11 +93,26 @@ absl::Status Shrink(const ReconstructionParams& params, const CancelToken& cance
   return absl::OkStatus();
 }
 
+absl::Status RelaxMembrane(const CancelToken& cancel, VoxelGrid& grid, ReconstructionReport& report,
+                           ProgressPrinter& progress) {
+  const Stopwatch watch;
+  progress.Begin("relax: ...");
+  absl::StatusOr<RelaxationStats> stats = Relax(grid, [&cancel] { return cancel.cancelled(); });
+  if (!stats.ok()) return stats.status();
+  report.relaxed = true;
+  report.relaxation = *stats;
+  report.seconds.relax = watch.Seconds();
+  progress.Finish(absl::StrFormat(
+      "relax: %d dents filled, %d bumps shaved, %d steps refused to keep the topology in %.3f s",
+      stats->phase1_moves, stats->phase2_moves, stats->not_simple, report.seconds.relax));
+  return absl::OkStatus();
+}
+
 absl::StatusOr<TriangleMesh> Surface(const ReconstructionParams& params, const CancelToken& cancel,
                                      const VoxelGrid& grid, const PointCloud& cloud,
                                      ReconstructionReport& report, ProgressPrinter& progress) {
   const Stopwatch watch;
-  progress.Update(absl::StrCat("surface: ", report.surface, " ..."));
+  progress.Begin(absl::StrCat("surface: ", report.surface, " ..."));
   absl::StatusOr<TriangleMesh> mesh = BuildSurface(grid, cloud, params.surface, &cancel);
   if (!mesh.ok()) return mesh.status();
   report.seconds.surface = watch.Seconds();
@@ -114,23 +124,23 @@ absl::StatusOr<TriangleMesh> Surface(const ReconstructionParams& params, const C
 
 void Check(const TriangleMesh& mesh, ReconstructionReport& report, ProgressPrinter& progress) {
   const Stopwatch watch;
-  progress.Update("check: ...");
+  progress.Begin("check: ...");
   report.mesh = CheckMesh(mesh);
   report.seconds.check = watch.Seconds();
   const MeshReport& m = report.mesh;
-  progress.Finish(absl::StrFormat(
-      "check: %s, %s, %s, %d shell(s), genus [%s], %d self-intersections in %.3f s",
-      m.closed ? "closed" : "NOT closed", m.manifold ? "manifold" : "NOT manifold",
-      m.oriented ? "oriented" : "NOT oriented", m.shells, absl::StrJoin(m.genus, ", "),
-      m.self_intersections, report.seconds.check));
+  progress.Finish(
+      absl::StrFormat("check: %s, %s, %s, %d shell(s), genus [%s], %d self-intersections in %.3f s",
+                      m.closed ? "closed" : "NOT closed", m.manifold ? "manifold" : "NOT manifold",
+                      m.oriented ? "oriented" : "NOT oriented", m.shells,
+                      absl::StrJoin(m.genus, ", "), m.self_intersections, report.seconds.check));
 }
 
 absl::Status Encode(const ReconstructionParams& params, const TriangleMesh& mesh,
                     ReconstructionReport& report, ProgressPrinter& progress) {
   const Stopwatch watch;
-  progress.Update(absl::StrCat("encode: writing ", params.output));
+  progress.Begin(absl::StrCat("encode: writing ", params.output));
   if (absl::Status s = WriteMesh(mesh, params.output, params.draco); !s.ok()) {
-    return InternalAsInvalidArgument(s);
+    return FileErrorAsInvalidInput(s);
   }
   report.seconds.encode = watch.Seconds();
   progress.Finish(absl::StrFormat("encode: %s in %.3f s", params.output, report.seconds.encode));
@@ -159,6 +169,10 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionParam
   if (absl::Status s = Shrink(params, cancel, grid, report, progress); !s.ok()) return s;
   report.membrane = CountMembrane(grid);
   if (absl::Status s = StopIfCancelled(cancel, "shrink"); !s.ok()) return s;
+
+  if (params.relax) {
+    if (absl::Status s = RelaxMembrane(cancel, grid, report, progress); !s.ok()) return s;
+  }
 
   absl::StatusOr<TriangleMesh> mesh = Surface(params, cancel, grid, *cloud, report, progress);
   if (!mesh.ok()) return mesh.status();

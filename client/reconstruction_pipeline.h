@@ -31,10 +31,11 @@ struct ReconstructionParams {
 // is written even when the mesh check finds the surface not closed or not manifold (the
 // caller decides what that means).
 // Errors: the reader's status (InvalidArgument / NotFound / Unimplemented, message naming the
-// file) for unreadable input; the core's InvalidArgument for degenerate clouds and its
-// ResourceExhausted for a grid over the voxel budget (both then name the flag to change);
-// Cancelled when `cancel` fires, checked within the shrink and between stages; InvalidArgument
-// naming the output path when it cannot be written.
+// file) for unreadable input; InvalidArgument naming the file for a degenerate cloud (no
+// points, all equal, coplanar); ResourceExhausted for a grid over the voxel budget, naming
+// --voxel-size and --voxel-budget; Cancelled when `cancel` fires (polled within the shrink,
+// the relaxation and the smooth surface, and between stages); InvalidArgument naming the
+// output path when it cannot be written.
 absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionParams& params,
                                                        const CancelToken& cancel,
                                                        ProgressPrinter& progress);

@@ -12,37 +12,39 @@
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/post_process.h"
 #include "core/mesh/mesh_check.h"
+#include "core/mesh/relaxation.h"
 
 namespace membrane::client {
 
 // Wall-clock seconds per stage. `total` spans all stages, the statistics writing excepted.
 struct StageSeconds {
-  double decode = 0;     // reading and parsing the input file
+  double decode = 0;  // reading and parsing the input file
   double voxelize = 0;
-  double shrink = 0;     // all generations and the section 7 post-process
-  double relax = 0;      // 0 with --no-relax
+  double shrink = 0;  // all generations and the section 7 post-process
+  double relax = 0;   // 0 with --no-relax
   double surface = 0;
-  double check = 0;      // CheckMesh of the surface
-  double encode = 0;     // encoding and writing the output file
+  double check = 0;   // CheckMesh of the surface
+  double encode = 0;  // encoding and writing the output file
   double total = 0;
 };
 
 struct ReconstructionReport {
   int64_t points = 0;
-  double voxel_size = 0;            // model units
-  std::array<int, 3> grid{};        // voxels per axis, VoxelGrid::kPadding layers included
-  std::array<int, 3> data_grid{};   // voxels per axis covering the points (no padding)
-  int64_t hard_voxels = 0;          // voxels holding points
-  double density_ratio = 0;         // Voxelization::density_ratio
-  std::string schedule;             // "halving" or "linear"
-  std::string surface;              // "smooth" or "cuberille"
-  bool relaxed = false;
+  double voxel_size = 0;                     // model units
+  std::array<int, 3> grid{};                 // voxels per axis, VoxelGrid::kPadding layers included
+  std::array<int, 3> data_grid{};            // voxels per axis covering the points (no padding)
+  int64_t hard_voxels = 0;                   // voxels holding points
+  double density_ratio = 0;                  // Voxelization::density_ratio
+  std::string schedule;                      // "halving" or "linear"
+  std::string surface;                       // "smooth" or "cuberille"
+  bool relaxed = false;                      // false with --no-relax
   std::vector<GenerationStats> generations;  // one per plate size, the last has plate size 1
   PostProcessStats post_process;
-  MembraneCounts membrane;          // the final DMS, before relaxation
-  MeshReport mesh;                  // CheckMesh of the written surface
+  MembraneCounts membrane;     // the final DMS, before relaxation
+  RelaxationStats relaxation;  // all 0 with --no-relax
+  MeshReport mesh;             // CheckMesh of the written surface
   StageSeconds seconds;
-  int64_t peak_rss_bytes = 0;       // getrusage ru_maxrss, in bytes
+  int64_t peak_rss_bytes = 0;  // getrusage ru_maxrss, in bytes
 };
 
 }  // namespace membrane::client

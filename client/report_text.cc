@@ -7,8 +7,7 @@
 namespace membrane::client {
 
 std::string GenerationTable(const std::vector<GenerationStats>& generations) {
-  std::string table =
-      "plate size | soft voxels | started contractions | backtrackings | seconds\n";
+  std::string table = "plate size | soft voxels | started contractions | backtrackings | seconds\n";
   for (const GenerationStats& g : generations) {
     absl::StrAppendFormat(&table, "%10d | %11d | %20d | %13d | %7.3f\n", g.plate_size,
                           g.soft_voxels, g.started_contractions, g.backtrackings, g.seconds);
@@ -25,8 +24,8 @@ std::string SummaryLine(const ReconstructionReport& r) {
       "check %.3f encode %.3f total %.3f\n",
       absl::StrJoin(r.grid, "x"), r.points, r.hard_voxels, r.density_ratio, m.shells,
       m.shells == 1 ? "" : "s", absl::StrJoin(m.genus, ", "), m.closed ? "closed" : "NOT closed",
-      m.manifold ? "manifold" : "NOT manifold", s.decode, s.voxelize, s.shrink, s.relax,
-      s.surface, s.check, s.encode, s.total);
+      m.manifold ? "manifold" : "NOT manifold", s.decode, s.voxelize, s.shrink, s.relax, s.surface,
+      s.check, s.encode, s.total);
 }
 
 }  // namespace membrane::client

@@ -21,6 +21,7 @@ namespace membrane::client {
 // Extra keys: data_grid (grid without padding), schedule, surface, relaxed; per generation
 // generation, contractions, undone_contractions, guard_refusals, depth_refusals, passes;
 // post_process {inside_hard_before, inside_hard_after, carved_voxels, bridge_voxels};
+// relaxation {phase1_moves, phase1_added, phase2_moves, phase2_uncovered, not_simple};
 // membrane.inside_frozen_voxels and membrane.genus; mesh.self_intersections and
 // mesh.positive_volume; seconds.check. Non-finite reals are written as null.
 std::string StatsJson(const ReconstructionReport& report);

@@ -2,7 +2,9 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/mesh/cancel_fn.h"
 #include "core/mesh/cuberille.h"
+#include "core/mesh/smooth_surface.h"
 
 namespace membrane::client {
 
@@ -19,10 +21,9 @@ const char* SurfaceKindName(SurfaceKind kind) {
 
 absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const CancelToken* cancel) {
-  (void)cloud;
-  (void)cancel;
   if (kind == SurfaceKind::kCuberille) return Cuberille(membrane);
-  return absl::UnimplementedError("surface 'smooth' is not available in this build");
+  const CancelFn cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
+  return SmoothSurface(membrane, cloud.points, SmoothSurfaceOptions{}, nullptr, cancelled);
 }
 
 }  // namespace membrane::client

@@ -24,8 +24,9 @@ absl::StatusOr<SurfaceKind> ParseSurfaceKind(absl::string_view name);
 const char* SurfaceKindName(SurfaceKind kind);
 
 // The closed, manifold, outward surface of `membrane` (a final DMS, its outer layer outside),
-// vertices in model units; `cloud` is what a fitted surface is fitted to. Unimplemented when
-// this build lacks the surface; Cancelled when `cancel` (may be null) fires.
+// vertices in model units; `cloud` is what the smooth surface is fitted to (SmoothSurface of
+// core/mesh with its default options; Cuberille ignores it). Cancelled when `cancel` (may be
+// null) fires during the smooth surface.
 absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const CancelToken* cancel);
 

@@ -1,0 +1,116 @@
+#include "client/convert_command.h"
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "CLI/CLI.hpp"
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/str_cat.h"
+#include "client/io_errors.h"
+#include "core/io/draco_codec.h"
+#include "core/io/file_bytes.h"
+#include "core/io/file_format.h"
+#include "core/io/mesh_io.h"
+#include "core/io/point_cloud_io.h"
+
+namespace membrane::client {
+namespace {
+
+struct ConvertFlags {
+  std::string input;
+  std::string output;
+};
+
+// The format of `path` for reading (writing) anything: a point cloud or a mesh.
+absl::StatusOr<FileFormat> AnyFormat(const std::string& path, FileUse cloud_use, FileUse mesh_use) {
+  absl::StatusOr<FileFormat> format = FormatFromPath(path, cloud_use);
+  if (format.ok()) return format;
+  absl::StatusOr<FileFormat> mesh_format = FormatFromPath(path, mesh_use);
+  if (mesh_format.ok()) return mesh_format;
+  return format.status();
+}
+
+// True when a file of `format` holding `bytes` is to be read as a mesh. PLY, OBJ, STL and
+// Draco can hold meshes; a Draco file says in its header which it holds.
+absl::StatusOr<bool> HoldsMesh(FileFormat format, const std::string& bytes,
+                               const std::string& path) {
+  switch (format) {
+    case FileFormat::kXyz:
+    case FileFormat::kPcd: return false;
+    case FileFormat::kDrc: {
+      absl::StatusOr<DracoGeometry> geometry = DracoGeometryOf(bytes);
+      if (!geometry.ok()) {
+        return absl::InvalidArgumentError(absl::StrCat(path, ": ", geometry.status().message()));
+      }
+      return *geometry == DracoGeometry::kMesh;
+    }
+    default: return true;
+  }
+}
+
+// The contents of `path` as a mesh; a file without faces gives a mesh without faces.
+absl::StatusOr<TriangleMesh> ReadGeometry(const std::string& path, FileFormat format) {
+  absl::StatusOr<std::string> bytes = ReadFileBytes(path);
+  if (!bytes.ok()) return FileErrorAsInvalidInput(bytes.status());
+  absl::StatusOr<bool> holds_mesh = HoldsMesh(format, *bytes, path);
+  if (!holds_mesh.ok()) return holds_mesh.status();
+  if (*holds_mesh) return ReadMeshFromBuffer(*bytes, format, path);
+  absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(*bytes, format, path);
+  if (!cloud.ok()) return cloud.status();
+  TriangleMesh points_only;
+  points_only.vertices = std::move(cloud->points);
+  return points_only;
+}
+
+absl::Status RunConvert(const ConvertFlags& flags) {
+  // Both extensions are checked before any reading.
+  absl::StatusOr<FileFormat> in_format =
+      AnyFormat(flags.input, FileUse::kReadPointCloud, FileUse::kReadMesh);
+  if (!in_format.ok()) return in_format.status();
+  absl::StatusOr<FileFormat> out_format =
+      AnyFormat(flags.output, FileUse::kWritePointCloud, FileUse::kWriteMesh);
+  if (!out_format.ok()) return out_format.status();
+
+  absl::StatusOr<TriangleMesh> geometry = ReadGeometry(flags.input, *in_format);
+  if (!geometry.ok()) return geometry.status();
+  const bool keep_faces =
+      !geometry->faces.empty() && FormatFromPath(flags.output, FileUse::kWriteMesh).ok();
+  if (keep_faces) {
+    if (absl::Status s = WriteMesh(*geometry, flags.output); !s.ok()) {
+      return FileErrorAsInvalidInput(s);
+    }
+    std::printf("wrote a mesh of %zu vertices and %zu faces to %s\n", geometry->vertices.size(),
+                geometry->faces.size(), flags.output.c_str());
+    return absl::OkStatus();
+  }
+  if (!FormatFromPath(flags.output, FileUse::kWritePointCloud).ok()) {
+    return absl::InvalidArgumentError(absl::StrCat(flags.input, " has no faces, and ",
+                                                   FormatName(*out_format), " holds only meshes"));
+  }
+  PointCloud cloud;
+  cloud.points = std::move(geometry->vertices);
+  if (absl::Status s = WritePointCloud(cloud, flags.output); !s.ok()) {
+    return FileErrorAsInvalidInput(s);
+  }
+  std::printf("wrote %zu points to %s\n", cloud.points.size(), flags.output.c_str());
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+Command AddConvertCommand(CLI::App& parent) {
+  CLI::App* app = parent.add_subcommand(
+      "convert", "convert a point cloud or a mesh between formats (chosen by extension)");
+  auto flags = std::make_shared<ConvertFlags>();
+  app->add_option("INPUT", flags->input,
+                  "point cloud or mesh: .ply .obj .xyz .txt .pts .pcd .stl .drc")
+      ->required();
+  app->add_option("OUTPUT", flags->output, "point cloud or mesh: .ply .obj .xyz .stl .drc")
+      ->required();
+  return Command{app, [flags] { return RunConvert(*flags); }};
+}
+
+}  // namespace membrane::client

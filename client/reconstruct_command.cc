@@ -1,0 +1,192 @@
+#include "client/reconstruct_command.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "CLI/CLI.hpp"
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "client/deadline_timer.h"
+#include "client/flag_checks.h"
+#include "client/io_errors.h"
+#include "client/progress_printer.h"
+#include "client/reconstruction_pipeline.h"
+#include "client/report_text.h"
+#include "client/stats_json.h"
+#include "core/engine/plate_schedule.h"
+#include "core/io/file_bytes.h"
+#include "core/io/file_format.h"
+
+namespace membrane::client {
+namespace {
+
+constexpr int64_t kMaxInitialPlate = 100000;  // ValidateShrinkOptions' bound
+constexpr int64_t kMaxVoxelBudget = 1'000'000'000'000;
+constexpr double kMaxTimeoutSeconds = 1e6;
+
+// The values as parsed, before validation: wide types, so that an out-of-range value reaches
+// our range check (and its message) instead of failing conversion.
+struct ReconstructFlags {
+  std::string input;
+  std::string output;
+  bool local = false;
+  std::string server = "127.0.0.1:50051";
+  std::string token_file;
+  std::string tls_ca;
+  double voxel_size = 0;
+  int64_t initial_plate = 0;
+  std::string schedule = "halving";
+  std::string surface = "smooth";
+  bool no_relax = false;
+  int64_t quantization = 11;
+  int64_t compression_level = 7;
+  int64_t voxel_budget = kDefaultVoxelBudget;
+  std::string stats_json;
+  double timeout = 0;
+  bool quiet = false;
+};
+
+void DefineFlags(CLI::App& app, ReconstructFlags& f) {
+  app.add_option("INPUT", f.input, "point cloud: .ply .obj .xyz .txt .pts .pcd .drc")->required();
+  app.add_option("-o,--output", f.output, "mesh to write: .ply .obj .stl .drc")->required();
+  CLI::Option* local = app.add_flag("--local", f.local, "run the reconstruction in this process");
+  CLI::Option* server = app.add_option(
+      "--server", f.server, "HOST:PORT of a membrane server (not supported in this build yet)");
+  local->excludes(server);
+  app.add_option("--token-file", f.token_file, "bearer token for --server (not used yet)");
+  app.add_option("--tls-ca", f.tls_ca, "CA certificate for --server (not used yet)");
+  app.add_option("--voxel-size", f.voxel_size,
+                 "voxel edge in model units; 0 = the paper's formula (1)")
+      ->capture_default_str();
+  app.add_option("--initial-plate", f.initial_plate,
+                 "first plate size in voxels, [0, 100000]; 0 = from the grid")
+      ->capture_default_str();
+  app.add_option("--schedule", f.schedule, "plate sizes: halving or linear")->capture_default_str();
+  app.add_option("--surface", f.surface, "smooth (fitted to the points) or cuberille (voxel faces)")
+      ->capture_default_str();
+  app.add_flag("--no-relax", f.no_relax, "skip the membrane relaxation (paper section 5)");
+  app.add_option("--quantization", f.quantization,
+                 "Draco position bits for .drc output, [0, 30]; 0 = lossless")
+      ->capture_default_str();
+  app.add_option("--compression-level", f.compression_level,
+                 "Draco compression level for .drc output, [0, 10]")
+      ->capture_default_str();
+  app.add_option("--voxel-budget", f.voxel_budget,
+                 "largest voxel grid to allocate (padding included), 1 byte per voxel")
+      ->capture_default_str();
+  app.add_option("--stats-json", f.stats_json, "write the statistics JSON to this file");
+  app.add_option("--timeout", f.timeout, "give up after this many seconds (exit 4); 0 = never")
+      ->capture_default_str();
+  app.add_flag("-q,--quiet", f.quiet, "no progress lines on stderr");
+}
+
+// The values whose check needs no parsing, in the order of --help; the first failure wins.
+absl::Status CheckFlagValues(const ReconstructFlags& f) {
+  const absl::Status checks[] = {
+      // Unknown extensions and missing directories fail here, before minutes of work.
+      FormatFromPath(f.input, FileUse::kReadPointCloud).status(),
+      FormatFromPath(f.output, FileUse::kWriteMesh).status(),
+      CheckOutputDirectory("-o", f.output),
+      std::isfinite(f.voxel_size) && f.voxel_size >= 0
+          ? absl::OkStatus()
+          : absl::InvalidArgumentError(absl::StrFormat(
+                "--voxel-size %g must be positive (model units), or 0 for the paper's "
+                "formula (1)",
+                f.voxel_size)),
+      CheckIntRange("--initial-plate", f.initial_plate, 0, kMaxInitialPlate),
+      CheckIntRange("--quantization", f.quantization, 0, 30, "0 = lossless"),
+      CheckIntRange("--compression-level", f.compression_level, 0, 10),
+      CheckIntRange("--voxel-budget", f.voxel_budget, 1, kMaxVoxelBudget),
+      f.stats_json.empty() ? absl::OkStatus() : CheckOutputDirectory("--stats-json", f.stats_json),
+      CheckRealRange("--timeout", f.timeout, 0, kMaxTimeoutSeconds, "seconds; 0 = no limit"),
+  };
+  for (const absl::Status& s : checks) {
+    if (!s.ok()) return s;
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) {
+  if (absl::Status s = CheckFlagValues(f); !s.ok()) return s;
+  absl::StatusOr<PlateSchedule> schedule = ParsePlateSchedule(f.schedule);
+  if (!schedule.ok()) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("--schedule '", f.schedule, "' is not one of: halving, linear"));
+  }
+  absl::StatusOr<SurfaceKind> surface = ParseSurfaceKind(f.surface);
+  if (!surface.ok()) return surface.status();
+  ReconstructionParams p;
+  p.input = f.input;
+  p.output = f.output;
+  p.voxelize.voxel_size = f.voxel_size;
+  p.voxelize.voxel_budget = f.voxel_budget;
+  p.shrink.initial_plate = static_cast<int>(f.initial_plate);
+  p.shrink.schedule = *schedule;
+  p.relax = !f.no_relax;
+  p.surface = *surface;
+  p.draco.position_quantization_bits = static_cast<int>(f.quantization);
+  p.draco.compression_level = static_cast<int>(f.compression_level);
+  return p;
+}
+
+// What the user must hear when the mesh breaks its promise (closed, manifold, oriented).
+absl::Status SurfaceCheckStatus(const MeshReport& m, const std::string& output) {
+  std::string failed;
+  if (!m.closed) absl::StrAppend(&failed, failed.empty() ? "" : ", ", "not closed");
+  if (!m.manifold) absl::StrAppend(&failed, failed.empty() ? "" : ", ", "not manifold");
+  if (!m.oriented) absl::StrAppend(&failed, failed.empty() ? "" : ", ", "not oriented");
+  if (failed.empty()) return absl::OkStatus();
+  return absl::InternalError(
+      absl::StrCat("the surface is ", failed, " (written to ", output, " all the same)"));
+}
+
+absl::Status RunReconstruct(const ReconstructFlags& flags) {
+  if (!flags.local) {
+    return absl::UnavailableError("no server support in this build yet; use --local");
+  }
+  absl::StatusOr<ReconstructionParams> params = ParamsFromFlags(flags);
+  if (!params.ok()) return params.status();
+
+  CancelToken cancel;
+  absl::StatusOr<ReconstructionReport> report;
+  bool timed_out = false;
+  {
+    // The printer ends its live line before any error line is printed by main.
+    ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
+    DeadlineTimer timer(flags.timeout, &cancel);
+    report = RunReconstruction(*params, cancel, progress);
+    timed_out = timer.expired();
+  }
+  if (!report.ok()) {
+    if (timed_out) {
+      return absl::DeadlineExceededError(absl::StrFormat("timed out after %g s", flags.timeout));
+    }
+    return report.status();
+  }
+  std::fputs(GenerationTable(report->generations).c_str(), stdout);
+  std::fputs(SummaryLine(*report).c_str(), stdout);
+  std::fflush(stdout);
+  if (!flags.stats_json.empty()) {
+    absl::Status s = WriteFileBytes(flags.stats_json, StatsJson(*report));
+    if (!s.ok()) return FileErrorAsInvalidInput(s);
+  }
+  return SurfaceCheckStatus(report->mesh, flags.output);
+}
+
+}  // namespace
+
+Command AddReconstructCommand(CLI::App& parent) {
+  CLI::App* app =
+      parent.add_subcommand("reconstruct", "reconstruct a closed triangle mesh from a point cloud");
+  // Shared with the action: CLI11 writes the parsed values into it.
+  auto flags = std::make_shared<ReconstructFlags>();
+  DefineFlags(*app, *flags);
+  return Command{app, [flags] { return RunReconstruct(*flags); }};
+}
+
+}  // namespace membrane::client

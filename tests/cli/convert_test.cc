@@ -1,0 +1,74 @@
+// `membrane convert INPUT OUTPUT` between point cloud and mesh formats.
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "tests/cli/cli_runner.h"
+#include "tests/cli/scratch_dir.h"
+
+namespace membrane::testing {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+class ConvertTest : public ::testing::Test {
+ protected:
+  CliResult Run(const std::vector<std::string>& args) { return RunMembrane(args, dir_.path()); }
+  ScratchDir dir_;
+};
+
+TEST_F(ConvertTest, PlyToXyzToPlyKeepsEveryPoint) {
+  const std::string ply = dir_.File("cloud.ply");
+  ASSERT_EQ(Run({"synth", "two-spheres", "-o", ply, "--points", "1234"}).exit_code, 0);
+  const std::string xyz = dir_.File("cloud.xyz");
+  const CliResult to_xyz = Run({"convert", ply, xyz});
+  ASSERT_EQ(to_xyz.exit_code, 0) << to_xyz.err;
+  EXPECT_THAT(to_xyz.out, HasSubstr("1234 points"));
+  std::ifstream in(xyz);
+  int lines = 0;
+  for (std::string line; std::getline(in, line);) lines += line.empty() ? 0 : 1;
+  EXPECT_EQ(lines, 1234);
+  const CliResult back = Run({"convert", xyz, dir_.File("back.ply")});
+  ASSERT_EQ(back.exit_code, 0) << back.err;
+  EXPECT_THAT(back.out, HasSubstr("1234 points"));
+}
+
+TEST_F(ConvertTest, MeshToMeshFormatKeepsFaces) {
+  const std::string obj = dir_.File("tetra.obj");
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                        "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string stl = dir_.File("tetra.stl");
+  const CliResult r = Run({"convert", obj, stl});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("4 vertices and 4 faces"));
+  const CliResult check = Run({"check", stl});
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+}
+
+TEST_F(ConvertTest, MeshToPointFormatWritesItsVertices) {
+  const std::string obj = dir_.File("tetra.obj");
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const CliResult r = Run({"convert", obj, dir_.File("tetra.xyz")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("4 points"));
+}
+
+TEST_F(ConvertTest, PointCloudToStlIsInvalidInput) {
+  const std::string xyz = dir_.File("cloud.xyz");
+  std::ofstream(xyz) << "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const CliResult r = Run({"convert", xyz, dir_.File("cloud.stl")});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("no faces")));
+}
+
+TEST_F(ConvertTest, UnknownOutputExtensionFailsBeforeReading) {
+  const CliResult r = Run({"convert", dir_.File("absent.ply"), dir_.File("out.vtk")});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("out.vtk")));
+}
+
+}  // namespace
+}  // namespace membrane::testing

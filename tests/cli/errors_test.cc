@@ -1,0 +1,131 @@
+// Every failure prints exactly one "membrane: ..." line and exits with the status of
+// design/contracts.md: 2 usage, 3 invalid input, 4 unavailable or timed out.
+#include <fstream>
+#include <string>
+
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "tests/cli/cli_runner.h"
+#include "tests/cli/scratch_dir.h"
+
+namespace membrane::testing {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using ::testing::SizeIs;
+
+class ErrorsTest : public ::testing::Test {
+ protected:
+  CliResult Run(const std::vector<std::string>& args) { return RunMembrane(args, dir_.path()); }
+
+  // A small valid cloud, for the tests whose error is in the flags rather than the input.
+  std::string SphereCloud(int points = 2000) {
+    const std::string path = dir_.File("sphere.ply");
+    const CliResult r = Run({"synth", "sphere", "-o", path, "--points", std::to_string(points)});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return path;
+  }
+
+  ScratchDir dir_;
+};
+
+TEST_F(ErrorsTest, UnknownSubcommandIsAUsageError) {
+  const CliResult r = Run({"frobnicate", "x.ply"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("frobnicate")));
+}
+
+TEST_F(ErrorsTest, UnknownFlagIsAUsageError) {
+  const CliResult r = Run({"check", "a.ply", "--frobnicate"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("--frobnicate")));
+}
+
+TEST_F(ErrorsTest, HelpExitsZero) {
+  const CliResult r = Run({"reconstruct", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.out, HasSubstr("--initial-plate"));
+}
+
+TEST_F(ErrorsTest, MissingInputFileIsInvalidInput) {
+  const CliResult r =
+      Run({"reconstruct", dir_.File("absent.ply"), "-o", dir_.File("out.ply"), "--local"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(r.err, ::testing::StartsWith("membrane: "));
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("absent.ply")));
+}
+
+TEST_F(ErrorsTest, UnknownInputExtensionIsInvalidInput) {
+  const std::string path = dir_.File("cloud.abc");
+  std::ofstream(path) << "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const CliResult r = Run({"reconstruct", path, "-o", dir_.File("out.ply"), "--local"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("cloud.abc")));
+}
+
+TEST_F(ErrorsTest, UnknownOutputExtensionIsInvalidInput) {
+  const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.xyz"), "--local"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("out.xyz")));
+}
+
+TEST_F(ErrorsTest, NaNCoordinatesAreInvalidInputInOneLine) {
+  const std::string path = dir_.File("nan.xyz");
+  std::ofstream(path) << "0 0 0\n1 0 0\nnan 1 0\n0 0 1\n1 1 1\n";
+  const CliResult r = Run({"reconstruct", path, "-o", dir_.File("out.ply"), "--local"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("NaN")));
+  // Decoding fails first, so no progress line precedes the error.
+  EXPECT_THAT(r.err, ::testing::StartsWith("membrane: "));
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+}
+
+TEST_F(ErrorsTest, NegativeInitialPlateNamesTheFlagAndItsRange) {
+  const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"), "--local",
+                           "--initial-plate", "-1"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(AllOf(HasSubstr("--initial-plate"), HasSubstr("-1"),
+                                                   HasSubstr("[0, 100000]"))));
+}
+
+TEST_F(ErrorsTest, NonNumericValueIsInvalidInput) {
+  const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"), "--local",
+                           "--voxel-size", "small"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("--voxel-size")));
+}
+
+TEST_F(ErrorsTest, TinyVoxelSizeExceedsTheVoxelBudget) {
+  const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"), "--local",
+                           "--voxel-size", "1e-6"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("voxel budget")));
+  EXPECT_THAT(r.err, ::testing::EndsWith("\n"));
+  EXPECT_THAT(ErrorLines(r.err).back(), HasSubstr("--voxel-size"));
+}
+
+TEST_F(ErrorsTest, QuietLeavesOnlyTheErrorLine) {
+  const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"), "--local",
+                           "--quiet", "--voxel-size", "1e-6"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(r.err, ::testing::StartsWith("membrane: "));
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+}
+
+TEST_F(ErrorsTest, WithoutLocalTheServerIsUnavailable) {
+  const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply")});
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("--local")));
+}
+
+TEST_F(ErrorsTest, TimeoutOnABigCloudExitsFour) {
+  const std::string cloud = SphereCloud(300000);
+  const CliResult r =
+      Run({"reconstruct", cloud, "-o", dir_.File("out.ply"), "--local", "--timeout", "0.01"});
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("timed out after 0.01 s")));
+}
+
+}  // namespace
+}  // namespace membrane::testing

@@ -1,0 +1,91 @@
+// `membrane synth` then `membrane reconstruct --local` then `membrane check --json`: the whole
+// pipeline gives a closed mesh with the shape's topology.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "tests/cli/cli_runner.h"
+#include "tests/cli/json_value.h"
+#include "tests/cli/scratch_dir.h"
+
+namespace membrane::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+class ReconstructTest : public ::testing::Test {
+ protected:
+  CliResult Run(const std::vector<std::string>& args) { return RunMembrane(args, dir_.path()); }
+
+  // Synthesizes `shape`, reconstructs it into `mesh_name` and returns `check --json` of it.
+  JsonValue ReconstructAndCheck(const std::string& shape, int points,
+                                const std::string& mesh_name) {
+    const std::string cloud = dir_.File(shape + ".ply");
+    const CliResult synth = Run({"synth", shape, "-o", cloud, "--points", std::to_string(points)});
+    EXPECT_EQ(synth.exit_code, 0) << synth.err;
+    const std::string mesh = dir_.File(mesh_name);
+    const CliResult reconstruct = Run({"reconstruct", cloud, "-o", mesh, "--local"});
+    EXPECT_EQ(reconstruct.exit_code, 0) << reconstruct.err;
+    EXPECT_TRUE(std::filesystem::exists(mesh));
+    // The paper's table and the summary line go to stdout.
+    EXPECT_THAT(reconstruct.out, HasSubstr("plate size | soft voxels | started contractions"));
+    EXPECT_THAT(reconstruct.out, HasSubstr("hard voxels"));
+    // Not a terminal: progress comes as plain lines, one per generation, never rewritten.
+    EXPECT_THAT(reconstruct.err, HasSubstr(", plate size 1: "));
+    EXPECT_EQ(reconstruct.err.find('\r'), std::string::npos);
+    const CliResult check = Run({"check", mesh, "--json"});
+    EXPECT_EQ(check.exit_code, 0) << check.err;
+    std::optional<JsonValue> report = ParseJson(check.out);
+    EXPECT_TRUE(report.has_value()) << check.out;
+    return report.value_or(JsonValue{});
+  }
+
+  static std::vector<int> Genus(const JsonValue& report) {
+    std::vector<int> genus;
+    if (const JsonValue* g = report.Find("genus")) {
+      for (const JsonValue& v : g->array) genus.push_back(static_cast<int>(v.number));
+    }
+    return genus;
+  }
+
+  static bool Flag(const JsonValue& report, const std::string& key) {
+    const JsonValue* v = report.Find(key);
+    return v != nullptr && v->type == JsonValue::Type::kBool && v->boolean;
+  }
+
+  ScratchDir dir_;
+};
+
+TEST_F(ReconstructTest, SphereGivesOneClosedGenusZeroShell) {
+  const JsonValue report = ReconstructAndCheck("sphere", 20000, "sphere_mesh.ply");
+  EXPECT_TRUE(Flag(report, "closed"));
+  EXPECT_TRUE(Flag(report, "manifold"));
+  EXPECT_TRUE(Flag(report, "oriented"));
+  ASSERT_NE(report.Find("shells"), nullptr);
+  EXPECT_EQ(report.Find("shells")->number, 1);
+  EXPECT_EQ(Genus(report), std::vector<int>{0});
+}
+
+TEST_F(ReconstructTest, TorusGivesGenusOne) {
+  const JsonValue report = ReconstructAndCheck("torus", 20000, "torus_mesh.obj");
+  EXPECT_TRUE(Flag(report, "closed"));
+  EXPECT_TRUE(Flag(report, "manifold"));
+  EXPECT_EQ(Genus(report), std::vector<int>{1});
+}
+
+TEST_F(ReconstructTest, CuberilleSurfaceToDracoIsClosed) {
+  const std::string cloud = dir_.File("sphere.xyz");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "5000"}).exit_code, 0);
+  const std::string mesh = dir_.File("sphere.drc");
+  const CliResult r = Run({"reconstruct", cloud, "-o", mesh, "--local", "--surface", "cuberille",
+                           "--no-relax", "--schedule", "linear", "--quantization", "16"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CliResult check = Run({"check", mesh});
+  EXPECT_EQ(check.exit_code, 0) << check.err;
+  EXPECT_THAT(check.out, HasSubstr("closed: yes"));
+}
+
+}  // namespace
+}  // namespace membrane::testing

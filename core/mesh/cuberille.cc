@@ -47,6 +47,7 @@ class CuberilleBuilder {
   TriangleMesh Build(const VoxelGrid& grid) {
     std::vector<int32_t> polygon;
     for (const auto& quad : b_.quads) {
+      const std::array<Coord, 4> corner = QuadCornerCoords(quad);
       polygon.clear();
       int apex = -1;
       bool plain = true;
@@ -55,8 +56,8 @@ class CuberilleBuilder {
         const auto& fv = b_.fan_vertices[v];
         if (IsCornerContact(fv.config)) {
           plain = false;
-          polygon.push_back(Chamfer(v, quad.corner_coords[k], quad.corner_coords[(k + 3) % 4]));
-          polygon.push_back(Chamfer(v, quad.corner_coords[k], quad.corner_coords[(k + 1) % 4]));
+          polygon.push_back(Chamfer(v, corner[k], corner[(k + 3) % 4]));
+          polygon.push_back(Chamfer(v, corner[k], corner[(k + 1) % 4]));
         } else {
           polygon.push_back(v);
         }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 
 #include "core/mesh/triangle_intersection.h"
@@ -25,18 +26,38 @@ bool ValidFace(const std::array<int32_t, 3>& f, int64_t nv) {
   return true;
 }
 
-using CellCoord = std::array<int32_t, 3>;
+Box FaceBox(const TriangleMesh& mesh, int32_t f) {
+  Box b;
+  b.lo = b.hi = mesh.vertices[mesh.faces[f][0]];
+  for (int k = 1; k < 3; ++k) {
+    const Point3f& p = mesh.vertices[mesh.faces[f][k]];
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = std::min(b.lo[a], p[a]);
+      b.hi[a] = std::max(b.hi[a], p[a]);
+    }
+  }
+  return b;
+}
 
-// A spatial hash of cells of side `cell` over the faces' boxes: each (face, cell touched by its
-// box) entry goes to bucket hash(cell) mod B, stored as compressed rows. Only occupied cells
-// cost memory, so a thin surface in a big box is as cheap as a compact one.
-class FaceHash {
+// The faces taking part in a search, with everything indexed by position in `face`.
+struct Participants {
+  std::vector<int32_t> face;
+  std::vector<Box> box;
+  std::vector<char> dirty;  // empty: every pair counts
+};
+
+using CellCoord = std::array<int64_t, 3>;
+
+// A uniform grid of cells of side about one face, stored sparsely: one (cell key, position)
+// entry per cell a face's box touches, packed in a uint64 and radix-sorted. Memory follows the
+// number of entries, not the box volume, and walking the sorted entries visits neighbouring
+// cells one after the other, which keeps the faces' data in cache.
+class SortedFaceCells {
  public:
-  FaceHash(const std::vector<Box>& boxes, const std::vector<int32_t>& faces) {
-    Box all = boxes[faces[0]];
+  explicit SortedFaceCells(const std::vector<Box>& boxes) {
+    Box all = boxes[0];
     double extent_sum = 0;
-    for (int32_t f : faces) {
-      const Box& b = boxes[f];
+    for (const Box& b : boxes) {
       double e = 0;
       for (int k = 0; k < 3; ++k) {
         all.lo[k] = std::min(all.lo[k], b.lo[k]);
@@ -51,129 +72,213 @@ class FaceHash {
       diag = std::max(diag, static_cast<double>(all.hi[k]) - all.lo[k]);
     }
     // Cells about the size of a face; coarser when the entry count would not stay linear in
-    // the face count (a few huge faces), and never more than 2^20 per axis.
-    cell_ = std::max({extent_sum / faces.size(), diag / (1 << 20), 1e-30});
-    const double max_entries = 16.0 * faces.size() + 64;
+    // the face count (a few huge faces) or the cell key and the position would not fit in 64
+    // bits together.
+    pos_bits_ = std::bit_width(static_cast<uint64_t>(boxes.size()));
+    cell_ = std::max({extent_sum / boxes.size(), diag / ((1 << 20) - 2), 1e-30});
+    const double max_entries = 16.0 * boxes.size() + 64;
+    double entries = 0;
     for (;;) {
-      double entries = 0;
-      for (int32_t f : faces) {
+      for (int k = 0; k < 3; ++k) dims_[k] = Cell(all.hi[k], k) + 1;
+      if (std::bit_width(static_cast<uint64_t>(dims_[0] * dims_[1] * dims_[2])) + pos_bits_ > 64) {
+        cell_ *= 2;
+        continue;
+      }
+      entries = 0;
+      for (const Box& b : boxes) {
         double n = 1;
-        for (int k = 0; k < 3; ++k) n *= Cell(boxes[f].hi[k], k) - Cell(boxes[f].lo[k], k) + 1;
+        for (int k = 0; k < 3; ++k) n *= Cell(b.hi[k], k) - Cell(b.lo[k], k) + 1;
         entries += n;
         if (entries > max_entries) break;
       }
-      if (entries <= max_entries) {
-        num_entries_ = static_cast<int64_t>(entries);
-        break;
-      }
+      if (entries <= max_entries) break;
       cell_ *= 1.5;
     }
-    num_buckets_ = static_cast<uint64_t>(num_entries_) + 1;
-    start_.assign(num_buckets_ + 1, 0);
-    ForEachEntry(boxes, faces, [&](int32_t, const CellCoord& c) { ++start_[Bucket(c) + 1]; });
-    for (uint64_t b = 0; b < num_buckets_; ++b) start_[b + 1] += start_[b];
-    face_.resize(num_entries_);
-    cell_of_.resize(num_entries_);
-    std::vector<int64_t> fill(start_.begin(), start_.end() - 1);
-    ForEachEntry(boxes, faces, [&](int32_t f, const CellCoord& c) {
-      const int64_t e = fill[Bucket(c)]++;
-      face_[e] = f;
-      cell_of_[e] = c;
-    });
+    entries_.reserve(static_cast<size_t>(entries));
+    for (size_t p = 0; p < boxes.size(); ++p) {
+      const CellCoord lo = CellOf(boxes[p].lo), hi = CellOf(boxes[p].hi);
+      for (int64_t z = lo[2]; z <= hi[2]; ++z)
+        for (int64_t y = lo[1]; y <= hi[1]; ++y)
+          for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+            const uint64_t key = static_cast<uint64_t>(x + dims_[0] * (y + dims_[1] * z));
+            entries_.push_back(key << pos_bits_ | static_cast<uint64_t>(p));
+          }
+    }
+    RadixSort(static_cast<uint64_t>(dims_[0] * dims_[1] * dims_[2]));
   }
 
-  int32_t Cell(float v, int axis) const {
-    return static_cast<int32_t>(std::floor((v - lo_[axis]) / cell_));
+  int64_t Cell(float v, int axis) const {
+    return static_cast<int64_t>(std::floor((v - lo_[axis]) / cell_));
   }
-  uint64_t num_buckets() const { return num_buckets_; }
-  int64_t begin(uint64_t b) const { return start_[b]; }
-  int64_t end(uint64_t b) const { return start_[b + 1]; }
-  int32_t face(int64_t e) const { return face_[e]; }
-  const CellCoord& cell(int64_t e) const { return cell_of_[e]; }
+  CellCoord CellOf(const std::array<float, 3>& p) const {
+    return {Cell(p[0], 0), Cell(p[1], 1), Cell(p[2], 2)};
+  }
+  CellCoord Decode(uint64_t key) const {
+    const int64_t k = static_cast<int64_t>(key);
+    return {k % dims_[0], (k / dims_[0]) % dims_[1], k / (dims_[0] * dims_[1])};
+  }
+  size_t size() const { return entries_.size(); }
+  uint64_t key(size_t e) const { return entries_[e] >> pos_bits_; }
+  int32_t position(size_t e) const {
+    return static_cast<int32_t>(entries_[e] & ((uint64_t{1} << pos_bits_) - 1));
+  }
 
  private:
-  uint64_t Bucket(const CellCoord& c) const {
-    const uint64_t h = static_cast<uint64_t>(static_cast<uint32_t>(c[0])) * 73856093u ^
-                       static_cast<uint64_t>(static_cast<uint32_t>(c[1])) * 19349663u ^
-                       static_cast<uint64_t>(static_cast<uint32_t>(c[2])) * 83492791u;
-    return h % num_buckets_;
-  }
-  template <typename Fn>
-  void ForEachEntry(const std::vector<Box>& boxes, const std::vector<int32_t>& faces, Fn fn) const {
-    for (int32_t f : faces) {
-      const Box& b = boxes[f];
-      const CellCoord lo{Cell(b.lo[0], 0), Cell(b.lo[1], 1), Cell(b.lo[2], 2)};
-      const CellCoord hi{Cell(b.hi[0], 0), Cell(b.hi[1], 1), Cell(b.hi[2], 2)};
-      for (int32_t z = lo[2]; z <= hi[2]; ++z)
-        for (int32_t y = lo[1]; y <= hi[1]; ++y)
-          for (int32_t x = lo[0]; x <= hi[0]; ++x) fn(f, CellCoord{x, y, z});
+  // LSD radix sort of the packed entries by their key bits, 11 bits per pass. Stable, and the
+  // entries were made in position order, so a cell lists its faces by increasing position.
+  void RadixSort(uint64_t key_limit) {
+    constexpr int kBits = 11;
+    constexpr uint64_t kMask = (1 << kBits) - 1;
+    const int passes = (std::bit_width(key_limit) + kBits - 1) / kBits;
+    std::vector<uint64_t> other(entries_.size());
+    std::vector<size_t> count(kMask + 2);
+    for (int pass = 0; pass < passes; ++pass) {
+      const int shift = pos_bits_ + pass * kBits;
+      std::fill(count.begin(), count.end(), 0);
+      for (uint64_t e : entries_) ++count[((e >> shift) & kMask) + 1];
+      for (size_t d = 0; d <= kMask; ++d) count[d + 1] += count[d];
+      for (uint64_t e : entries_) other[count[(e >> shift) & kMask]++] = e;
+      entries_.swap(other);
     }
   }
 
   std::array<double, 3> lo_{0, 0, 0};
   double cell_ = 1;
-  int64_t num_entries_ = 0;
-  uint64_t num_buckets_ = 1;
-  std::vector<int64_t> start_;
-  std::vector<int32_t> face_;
-  std::vector<CellCoord> cell_of_;
+  std::array<int64_t, 3> dims_{1, 1, 1};
+  int pos_bits_ = 1;
+  std::vector<uint64_t> entries_;
 };
+
+std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
+                                                     const Participants& p) {
+  std::vector<std::pair<int32_t, int32_t>> pairs;
+  if (p.face.empty()) return pairs;
+  const SortedFaceCells cells(p.box);
+  const size_t n = p.face.size();
+  // Lowest cell of each box: the lowest cell of two boxes' overlap is the per-axis maximum of
+  // theirs, so each pair is tested once, in that cell. Normals are computed once per face:
+  // each face meets a dozen neighbours.
+  auto triangle = [&](int32_t i) {
+    const auto& idx = mesh.faces[p.face[i]];
+    return Triangle3d{ToVec3d(mesh.vertices[idx[0]]), ToVec3d(mesh.vertices[idx[1]]),
+                      ToVec3d(mesh.vertices[idx[2]])};
+  };
+  std::vector<std::array<int32_t, 3>> low(n);
+  std::vector<Vec3d> normal(n);
+  for (size_t i = 0; i < n; ++i) {
+    const CellCoord c = cells.CellOf(p.box[i].lo);
+    low[i] = {static_cast<int32_t>(c[0]), static_cast<int32_t>(c[1]), static_cast<int32_t>(c[2])};
+    const Triangle3d t = triangle(static_cast<int32_t>(i));
+    normal[i] = TriangleNormal(t[0], t[1], t[2]);
+  }
+  const bool all = p.dirty.empty();
+  for (size_t begin = 0; begin < cells.size();) {
+    size_t end = begin + 1;
+    while (end < cells.size() && cells.key(end) == cells.key(begin)) ++end;
+    const CellCoord c = cells.Decode(cells.key(begin));
+    for (size_t e = begin; e < end; ++e) {
+      const int32_t i = cells.position(e);
+      const auto& li = low[i];
+      const bool dirty_i = all || p.dirty[i];
+      for (size_t f = e + 1; f < end; ++f) {
+        const int32_t j = cells.position(f);
+        if (!dirty_i && !p.dirty[j]) continue;
+        const auto& lj = low[j];
+        if (std::max(li[0], lj[0]) != c[0] || std::max(li[1], lj[1]) != c[1] ||
+            std::max(li[2], lj[2]) != c[2])
+          continue;
+        if (!Overlap(p.box[i], p.box[j])) continue;
+        const int32_t fi = p.face[i], fj = p.face[j];
+        if (MeshTrianglesIntersect(mesh.faces[fi], triangle(i), normal[i], mesh.faces[fj],
+                                   triangle(j), normal[j]))
+          pairs.emplace_back(std::min(fi, fj), std::max(fi, fj));
+      }
+    }
+    begin = end;
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
 
 }  // namespace
 
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
-  std::vector<Box> boxes(nf);
-  std::vector<int32_t> faces;
-  faces.reserve(nf);
+  Participants p;
+  p.face.reserve(nf);
+  p.box.reserve(nf);
   for (int32_t f = 0; f < nf; ++f) {
     if (!ValidFace(mesh.faces[f], nv)) continue;
-    Box b;
-    b.lo = b.hi = mesh.vertices[mesh.faces[f][0]];
-    for (int k = 1; k < 3; ++k) {
-      const Point3f& p = mesh.vertices[mesh.faces[f][k]];
-      for (int a = 0; a < 3; ++a) {
-        b.lo[a] = std::min(b.lo[a], p[a]);
-        b.hi[a] = std::max(b.hi[a], p[a]);
-      }
-    }
-    boxes[f] = b;
-    faces.push_back(f);
+    p.face.push_back(f);
+    p.box.push_back(FaceBox(mesh, f));
   }
-  std::vector<std::pair<int32_t, int32_t>> pairs;
-  if (faces.empty()) return pairs;
-  const FaceHash hash(boxes, faces);
-  // Lowest cell of each face's box: the lowest cell of two boxes' overlap is the per-axis
-  // maximum of theirs, so each pair is tested once, in that cell.
-  std::vector<CellCoord> low_cell(nf);
-  for (int32_t f : faces)
-    for (int k = 0; k < 3; ++k) low_cell[f][k] = hash.Cell(boxes[f].lo[k], k);
-  auto triangle = [&](int32_t f) {
-    const auto& idx = mesh.faces[f];
-    return Triangle3d{ToVec3d(mesh.vertices[idx[0]]), ToVec3d(mesh.vertices[idx[1]]),
-                      ToVec3d(mesh.vertices[idx[2]])};
+  return SearchPairs(mesh, p);
+}
+
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const TriangleMesh& mesh,
+                                                                   const std::vector<char>& dirty) {
+  const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
+  const int32_t nf = static_cast<int32_t>(mesh.faces.size());
+  // Boxes of the dirty faces, and the coarse cells they touch (cells twice the largest dirty
+  // extent: a face overlapping a dirty box touches one of that box's cells).
+  Participants p;
+  double extent = 0;
+  for (int32_t f = 0; f < nf; ++f) {
+    if (!dirty[f] || !ValidFace(mesh.faces[f], nv)) continue;
+    p.face.push_back(f);
+    p.box.push_back(FaceBox(mesh, f));
+    for (int k = 0; k < 3; ++k)
+      extent = std::max(extent, double(p.box.back().hi[k]) - p.box.back().lo[k]);
+  }
+  if (p.face.empty()) return {};
+  p.dirty.assign(p.face.size(), 1);
+  // Mark them in a dense bitmap over the dirty faces' bounding box, coarsened until it stays
+  // small: the clean faces are then tested with a few bit reads each.
+  Box region = p.box[0];
+  for (const Box& b : p.box)
+    for (int k = 0; k < 3; ++k) {
+      region.lo[k] = std::min(region.lo[k], b.lo[k]);
+      region.hi[k] = std::max(region.hi[k], b.hi[k]);
+    }
+  double coarse = std::max(2 * extent, 1e-30);
+  std::array<int64_t, 3> dims;
+  for (;;) {
+    for (int k = 0; k < 3; ++k)
+      dims[k] = static_cast<int64_t>(std::floor((region.hi[k] - region.lo[k]) / coarse)) + 1;
+    if (dims[0] * dims[1] * dims[2] <= (int64_t{1} << 24)) break;
+    coarse *= 2;
+  }
+  auto cell = [&](float v, int k) {
+    return static_cast<int64_t>(std::floor((v - region.lo[k]) / coarse));
   };
-  for (uint64_t b = 0; b < hash.num_buckets(); ++b) {
-    for (int64_t i = hash.begin(b); i < hash.end(b); ++i) {
-      const int32_t fi = hash.face(i);
-      const CellCoord& c = hash.cell(i);
-      const CellCoord& li = low_cell[fi];
-      for (int64_t j = i + 1; j < hash.end(b); ++j) {
-        if (hash.cell(j) != c) continue;  // another cell in the same bucket
-        const int32_t fj = hash.face(j);
-        const CellCoord& lj = low_cell[fj];
-        if (std::max(li[0], lj[0]) != c[0] || std::max(li[1], lj[1]) != c[1] ||
-            std::max(li[2], lj[2]) != c[2])
-          continue;
-        if (!Overlap(boxes[fi], boxes[fj])) continue;
-        if (MeshTrianglesIntersect(mesh.faces[fi], triangle(fi), mesh.faces[fj], triangle(fj)))
-          pairs.emplace_back(std::min(fi, fj), std::max(fi, fj));
-      }
+  std::vector<bool> marked(static_cast<size_t>(dims[0] * dims[1] * dims[2]), false);
+  for (const Box& b : p.box)
+    for (int64_t z = cell(b.lo[2], 2); z <= cell(b.hi[2], 2); ++z)
+      for (int64_t y = cell(b.lo[1], 1); y <= cell(b.hi[1], 1); ++y)
+        for (int64_t x = cell(b.lo[0], 0); x <= cell(b.hi[0], 0); ++x)
+          marked[x + dims[0] * (y + dims[1] * z)] = true;
+  // The clean faces whose box touches a marked cell.
+  for (int32_t f = 0; f < nf; ++f) {
+    if (dirty[f] || !ValidFace(mesh.faces[f], nv)) continue;
+    const Box b = FaceBox(mesh, f);
+    if (!Overlap(b, region)) continue;
+    std::array<int64_t, 3> lo, hi;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::max<int64_t>(cell(b.lo[k], k), 0);
+      hi[k] = std::min<int64_t>(cell(b.hi[k], k), dims[k] - 1);
     }
+    bool near = false;
+    for (int64_t z = lo[2]; z <= hi[2] && !near; ++z)
+      for (int64_t y = lo[1]; y <= hi[1] && !near; ++y)
+        for (int64_t x = lo[0]; x <= hi[0] && !near; ++x)
+          near = marked[x + dims[0] * (y + dims[1] * z)];
+    if (!near) continue;
+    p.face.push_back(f);
+    p.box.push_back(b);
+    p.dirty.push_back(0);
   }
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
+  return SearchPairs(mesh, p);
 }
 
 }  // namespace membrane

@@ -20,6 +20,12 @@ namespace membrane {
 // bounded by a few times F, so huge faces cost more entries, never quadratic memory.
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh);
 
+// The same, restricted to pairs with at least one face marked in `dirty` (one flag per face):
+// after moving a few vertices, the pairs that may have changed. Costs a linear scan of the
+// faces plus the pair search around the dirty ones.
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const TriangleMesh& mesh,
+                                                                   const std::vector<char>& dirty);
+
 }  // namespace membrane
 
 #endif  // MEMBRANE_CORE_MESH_SELF_INTERSECTION_H_

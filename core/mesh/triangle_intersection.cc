@@ -106,14 +106,14 @@ bool SegmentIntersectsTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d&
   return SegmentTriangleWithOrientations(p, q, Dot(n, p - t[0]), Dot(n, q - t[0]), t, n);
 }
 
-bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b) {
-  const Vec3d nb = TriangleNormal(b[0], b[1], b[2]);
-  if (IsZero(nb)) return false;
+namespace {
+
+bool TrianglesIntersectWithNormals(const Triangle3d& a, const Vec3d& na, const Triangle3d& b,
+                                   const Vec3d& nb) {
+  if (IsZero(nb) || IsZero(na)) return false;
   double da[3];
   for (int i = 0; i < 3; ++i) da[i] = Dot(nb, a[i] - b[0]);
   if ((da[0] > 0 && da[1] > 0 && da[2] > 0) || (da[0] < 0 && da[1] < 0 && da[2] < 0)) return false;
-  const Vec3d na = TriangleNormal(a[0], a[1], a[2]);
-  if (IsZero(na)) return false;
   double db[3];
   for (int i = 0; i < 3; ++i) db[i] = Dot(na, b[i] - a[0]);
   if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0)) return false;
@@ -128,20 +128,32 @@ bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b) {
   return false;
 }
 
+}  // namespace
+
+bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b) {
+  return TrianglesIntersectWithNormals(a, TriangleNormal(a[0], a[1], a[2]), b,
+                                       TriangleNormal(b[0], b[1], b[2]));
+}
+
 bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a,
                             const std::array<int32_t, 3>& ib, const Triangle3d& b) {
+  return MeshTrianglesIntersect(ia, a, TriangleNormal(a[0], a[1], a[2]), ib, b,
+                                TriangleNormal(b[0], b[1], b[2]));
+}
+
+bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a, const Vec3d& na,
+                            const std::array<int32_t, 3>& ib, const Triangle3d& b, const Vec3d& nb) {
   int shared = 0, sa = -1, sb = -1;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       if (ia[i] == ib[j]) { ++shared; sa = i; sb = j; }
-  if (shared == 0) return TrianglesIntersect(a, b);
+  if (shared == 0) return TrianglesIntersectWithNormals(a, na, b, nb);
   if (shared == 3) return true;
+  if (IsZero(na) || IsZero(nb)) return false;
   if (shared == 1) {
     // Non-coplanar faces through a common vertex meet along one ray from it; they overlap
     // beyond the vertex iff the shorter chord ends on the other face, i.e. iff an opposite
     // edge meets the other face. The same holds for coplanar sectors.
-    const Vec3d na = TriangleNormal(a[0], a[1], a[2]), nb = TriangleNormal(b[0], b[1], b[2]);
-    if (IsZero(na) || IsZero(nb)) return false;
     // Fast exit, the common case on a smooth surface: b's other two vertices strictly on one
     // side of a's plane, so b meets that plane only at the shared vertex (or vice versa).
     const Vec3d& v = a[sa];
@@ -152,18 +164,16 @@ bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& 
     return SegmentIntersectsTriangle(a[(sa + 1) % 3], a[(sa + 2) % 3], b) ||
            SegmentIntersectsTriangle(b[(sb + 1) % 3], b[(sb + 2) % 3], a);
   }
-  // Shared edge: find the apexes.
+  // Shared edge: the faces overlap only when coplanar and folded (apexes on one side).
   int apex_a = 0, apex_b = 0;
   for (int i = 0; i < 3; ++i) {
     if (ia[i] != ib[0] && ia[i] != ib[1] && ia[i] != ib[2]) apex_a = i;
     if (ib[i] != ia[0] && ib[i] != ia[1] && ib[i] != ia[2]) apex_b = i;
   }
+  if (Dot(na, b[apex_b] - a[apex_a]) != 0) return false;
   const Vec3d& u = a[(apex_a + 1) % 3];
   const Vec3d& w = a[(apex_a + 2) % 3];
-  const Vec3d na = Cross(w - u, a[apex_a] - u), nb = Cross(w - u, b[apex_b] - u);
-  if (IsZero(na) || IsZero(nb)) return false;
-  if (Orient3d(u, w, a[apex_a], b[apex_b]) != 0) return false;
-  return Dot(na, nb) > 0;
+  return Dot(Cross(w - u, a[apex_a] - u), Cross(w - u, b[apex_b] - u)) > 0;
 }
 
 }  // namespace membrane

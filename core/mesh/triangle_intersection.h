@@ -41,6 +41,11 @@ bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b);
 bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a,
                             const std::array<int32_t, 3>& ib, const Triangle3d& b);
 
+// The same with the faces' normals given (TriangleNormal of a and b): a search that tests
+// each face against its dozen neighbours computes them once.
+bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a, const Vec3d& na,
+                            const std::array<int32_t, 3>& ib, const Triangle3d& b, const Vec3d& nb);
+
 }  // namespace membrane
 
 #endif  // MEMBRANE_CORE_MESH_TRIANGLE_INTERSECTION_H_

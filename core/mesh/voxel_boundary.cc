@@ -147,12 +147,31 @@ const std::array<CornerFacts, 256>& Table() {
   return table;
 }
 
+// Counter-clockwise seen from the outside: (u, v) order for +a, reversed for -a, since
+// u x v = +a.
+constexpr int kPositiveOffsets[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+constexpr int kNegativeOffsets[4][2] = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+
 struct CornerEntry {
   int32_t base = 0;
   uint8_t config = 0;
 };
 
 }  // namespace
+
+std::array<Coord, 4> QuadCornerCoords(const VoxelBoundary::Quad& quad) {
+  const int a = quad.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  const auto& offsets = quad.positive ? kPositiveOffsets : kNegativeOffsets;
+  std::array<Coord, 4> corners;
+  for (int k = 0; k < 4; ++k) {
+    Coord c = quad.solid;
+    c[a] += quad.positive ? 1 : 0;
+    c[u] += offsets[k][0];
+    c[v] += offsets[k][1];
+    corners[k] = c;
+  }
+  return corners;
+}
 
 int NumFans(int config) { return Table()[config].num_fans; }
 bool IsCornerContact(int config) {
@@ -181,7 +200,8 @@ VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
     }
     return config;
   };
-  auto corner_entry = [&](const Coord& c) -> const CornerEntry& {
+  // By value: flat_hash_map moves its entries when it grows.
+  auto corner_entry = [&](const Coord& c) -> CornerEntry {
     auto [it, inserted] = corners.try_emplace(grid.Index(c));
     if (inserted) {
       const int config = corner_config(c);
@@ -210,20 +230,12 @@ VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
             quad.axis = static_cast<int8_t>(a);
             quad.positive = positive != 0;
             const int u = (a + 1) % 3, v = (a + 2) % 3;
-            // Counter-clockwise seen from the outside: (u, v) order for +a, reversed for -a,
-            // since u x v = +a.
-            static constexpr int kPos[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-            static constexpr int kNeg[4][2] = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
-            const auto& offsets = positive ? kPos : kNeg;
-            std::array<const CornerEntry*, 4> entries;
+            const std::array<Coord, 4> corner_coords = QuadCornerCoords(quad);
+            std::array<CornerEntry, 4> entries;
             for (int k = 0; k < 4; ++k) {
-              Coord c = s;
-              c[a] += positive;
-              c[u] += offsets[k][0];
-              c[v] += offsets[k][1];
-              quad.corner_coords[k] = c;
-              const CornerEntry& e = corner_entry(c);
-              entries[k] = &e;
+              const Coord& c = corner_coords[k];
+              const CornerEntry e = corner_entry(c);
+              entries[k] = e;
               std::array<int, 3> bits{};
               bits[u] = s[u] - c[u] + 1;
               bits[v] = s[v] - c[v] + 1;
@@ -233,13 +245,13 @@ VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
             outside[a] += positive ? 1 : -1;
             for (int k = 0; k < 4; ++k) {
               const int k1 = (k + 1) % 4;
-              const Coord& c0 = quad.corner_coords[k];
-              const Coord& c1 = quad.corner_coords[k1];
+              const Coord& c0 = corner_coords[k];
+              const Coord& c1 = corner_coords[k1];
               const int w = c0[u] != c1[u] ? u : v;
               const int up = c1[w] > c0[w] ? 1 : 0;
               const int h0 = 2 * w + up, h1 = 2 * w + (1 - up);
-              const CornerFacts& f0 = table[entries[k]->config];
-              const CornerFacts& f1 = table[entries[k1]->config];
+              const CornerFacts& f0 = table[entries[k].config];
+              const CornerFacts& f1 = table[entries[k1].config];
               if (!((f0.ambiguous_one_fan >> h0) & 1) || !((f1.ambiguous_one_fan >> h1) & 1))
                 continue;
               const Coord& lower = up ? c0 : c1;

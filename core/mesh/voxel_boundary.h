@@ -55,8 +55,6 @@ struct VoxelBoundary {
     std::array<int32_t, 4> corners{};
     // Vertex id inserted on the edge corners[k] -> corners[k+1], or -1.
     std::array<int32_t, 4> midpoints{-1, -1, -1, -1};
-    // Lattice corner coordinates matching `corners`.
-    std::array<Coord, 4> corner_coords{};
   };
 
   // Vertex ids: [0, fan_vertices.size()) are fan vertices, then midpoints in order.
@@ -78,6 +76,9 @@ struct VoxelBoundary {
 // outward; its shells and genus are those of the (26,6) solid wherever `corner_contacts` is 0.
 // Cost: O(voxels) scan plus O(quads) hash look-ups.
 VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid);
+
+// The lattice corners of `quad`, in the order of quad.corners.
+std::array<Coord, 4> QuadCornerCoords(const VoxelBoundary::Quad& quad);
 
 // Facts about a corner config, from a 256-entry table.
 int NumFans(int config);

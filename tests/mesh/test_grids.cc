@@ -194,6 +194,9 @@ VoxelGrid SampledSphereGrid(int n, double voxel_size, std::array<double, 3> cent
     const double dx = m[0] - centre[0], dy = m[1] - centre[1], dz = m[2] - centre[2];
     return dx * dx + dy * dy + dz * dz <= radius * radius;
   });
+  // An outside voxel boxed in by point voxels and the ball would be a cavity.
+  FillCavities(g);
+  ClassifyMembrane(g);
   return g;
 }
 

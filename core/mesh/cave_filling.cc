@@ -1,0 +1,145 @@
+#include "core/mesh/cave_filling.h"
+
+#include <vector>
+
+#include "core/engine/local_topology.h"
+
+namespace membrane {
+namespace {
+
+// mask := for each voxel, the AND (erode) or OR (dilate) of the mask over its 3x3x3 box, as
+// three 1-D passes; voxels beyond the array read as `beyond`. Inner loops run along x over
+// whole rows, so they vectorize.
+// `tmp` is scratch of the mask's size.
+void BoxFilter(const VoxelGrid& grid, std::vector<char>& mask, std::vector<char>& tmp, bool erode,
+               char beyond) {
+  const int nx = grid.dim(0), ny = grid.dim(1), nz = grid.dim(2);
+  const int64_t sy = nx, sz = int64_t{nx} * ny;
+  auto combine = [erode](char a, char b, char c) -> char { return erode ? (a & b & c) : (a | b | c); };
+  // Along x.
+  for (int64_t row = 0; row < int64_t{ny} * nz; ++row) {
+    const char* m = mask.data() + row * nx;
+    char* t = tmp.data() + row * nx;
+    for (int x = 0; x < nx; ++x)
+      t[x] = combine(x > 0 ? m[x - 1] : beyond, m[x], x + 1 < nx ? m[x + 1] : beyond);
+  }
+  mask.swap(tmp);
+  // Along y, then z: whole rows at a time.
+  std::vector<char> beyond_row(nx, beyond);
+  for (int axis = 1; axis < 3; ++axis) {
+    const int n = axis == 1 ? ny : nz;
+    const int64_t step = axis == 1 ? sy : sz;
+    for (int z = 0; z < nz; ++z)
+      for (int y = 0; y < ny; ++y) {
+        const int64_t i = y * sy + z * sz;
+        const int c = axis == 1 ? y : z;
+        const char* lo = c > 0 ? mask.data() + i - step : beyond_row.data();
+        const char* mid = mask.data() + i;
+        const char* hi = c + 1 < n ? mask.data() + i + step : beyond_row.data();
+        char* t = tmp.data() + i;
+        for (int x = 0; x < nx; ++x) t[x] = combine(lo[x], mid[x], hi[x]);
+      }
+    mask.swap(tmp);
+  }
+}
+
+// reached := the voxels of `deep` 6-connected to a deep voxel on the array border.
+std::vector<char> FloodFromBorder(const VoxelGrid& grid, const std::vector<char>& deep) {
+  const int n[3] = {grid.dim(0), grid.dim(1), grid.dim(2)};
+  const int64_t step[3] = {1, n[0], int64_t{n[0]} * n[1]};
+  std::vector<char> reached(deep.size(), 0);
+  std::vector<int64_t> stack;
+  // The border voxels are marked but never expanded (their neighbours may not exist). Every
+  // voxel one layer in is interior; those touching a deep border voxel seed the flood, and
+  // every voxel the flood reaches from them is interior or already marked.
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x) {
+        const int c[3] = {x, y, z};
+        int on_border = 0, on_layer1 = 0;
+        for (int a = 0; a < 3; ++a) {
+          on_border |= c[a] == 0 || c[a] == n[a] - 1;
+          on_layer1 |= c[a] == 1 || c[a] == n[a] - 2;
+        }
+        if (!on_border && !on_layer1) {
+          x = n[0] - 3;  // jump to the far layer-1 voxel of this row
+          continue;
+        }
+        const int64_t i = grid.Index(x, y, z);
+        if (on_border) {
+          if (deep[i]) reached[i] = 1;
+          continue;
+        }
+        if (!deep[i]) continue;
+        for (int a = 0; a < 3; ++a)
+          if ((c[a] == 1 && deep[i - step[a]]) || (c[a] == n[a] - 2 && deep[i + step[a]])) {
+            reached[i] = 1;
+            stack.push_back(i);
+            break;
+          }
+      }
+  // Scanline flood: each popped seed is extended into its whole run along x, and each run
+  // seeds the rows next to it; memory is read row by row instead of voxel by voxel.
+  while (!stack.empty()) {
+    const int64_t seed = stack.back();
+    stack.pop_back();
+    int64_t lo = seed, hi = seed;
+    while (deep[lo - 1] && !reached[lo - 1]) reached[--lo] = 1;
+    while (deep[hi + 1] && !reached[hi + 1]) reached[++hi] = 1;
+    for (int a = 1; a < 3; ++a)
+      for (int64_t offset : {-step[a], step[a]}) {
+        bool in_run = false;
+        for (int64_t i = lo + offset; i <= hi + offset; ++i) {
+          const bool open = deep[i] && !reached[i];
+          if (open && !in_run) {
+            reached[i] = 1;
+            stack.push_back(i);
+          }
+          in_run = open;
+        }
+      }
+  }
+  return reached;
+}
+
+}  // namespace
+
+int64_t FillCaves(VoxelGrid& grid) {
+  const int64_t n = grid.size();
+  const VoxelState* s = grid.states().data();
+  std::vector<char> deep(n);
+  for (int64_t i = 0; i < n; ++i) deep[i] = IsOutside(s[i]) ? 1 : 0;
+  std::vector<char> scratch(n);
+  BoxFilter(grid, deep, scratch, /*erode=*/true, /*beyond=*/1);
+  std::vector<char> near_exterior = FloodFromBorder(grid, deep);
+  BoxFilter(grid, near_exterior, scratch, /*erode=*/false, /*beyond=*/0);
+
+  std::vector<int64_t> caves;
+  const auto& d = grid.dims();
+  for (int z = 1; z < d[2] - 1; ++z)
+    for (int y = 1; y < d[1] - 1; ++y) {
+      const int64_t row = grid.Index(0, y, z);
+      for (int x = 1; x < d[0] - 1; ++x)
+        if (IsOutside(s[row + x]) && !near_exterior[row + x]) caves.push_back(row + x);
+    }
+
+  auto solid = [](VoxelState v) { return !IsOutside(v); };
+  int64_t filled = 0;
+  for (bool progress = true; progress && !caves.empty();) {
+    progress = false;
+    size_t kept = 0;
+    for (int64_t i : caves) {
+      if (IsSimple(NeighbourhoodMask(grid, i, solid))) {
+        grid.set(i, kBoundarySoft);
+        ++filled;
+        progress = true;
+      } else {
+        caves[kept++] = i;
+      }
+    }
+    caves.resize(kept);
+  }
+  return filled;
+}
+
+}  // namespace membrane

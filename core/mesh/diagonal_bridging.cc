@@ -1,0 +1,77 @@
+#include "core/mesh/diagonal_bridging.h"
+
+#include <algorithm>
+#include <array>
+
+#include "core/engine/local_topology.h"
+
+namespace membrane {
+namespace {
+
+bool Solid(VoxelState s) { return !IsOutside(s); }
+
+// Calls fn(others) for every corner-only contact, where `others` are the indices of the 6
+// other voxels of its 2x2x2 block in increasing order. Each contact is seen once, from its
+// voxel with the lower z (the partner is at dz = +1).
+template <typename Fn>
+int64_t ForEachCornerContact(const VoxelGrid& grid, Fn fn) {
+  const auto st = grid.strides();
+  const auto& d = grid.dims();
+  int64_t contacts = 0;
+  for (int z = 1; z < d[2] - 1; ++z)
+    for (int y = 1; y < d[1] - 1; ++y)
+      for (int x = 1; x < d[0] - 1; ++x) {
+        const int64_t i = grid.Index(x, y, z);
+        if (!Solid(grid.at(i))) continue;
+        // The voxel's face neighbours toward its partner (+z, and one side along x and y) are
+        // outside in a contact: most voxels are ruled out by three loads.
+        if (Solid(grid.at(i + st[2])) || (Solid(grid.at(i - st[0])) && Solid(grid.at(i + st[0]))) ||
+            (Solid(grid.at(i - st[1])) && Solid(grid.at(i + st[1]))))
+          continue;
+        for (int sy = -1; sy <= 1; sy += 2)
+          for (int sx = -1; sx <= 1; sx += 2) {
+            const std::array<int64_t, 3> step = {sx * st[0], sy * st[1], st[2]};
+            if (!Solid(grid.at(i + step[0] + step[1] + step[2]))) continue;
+            std::array<int64_t, 6> others{};
+            bool contact = true;
+            for (int o = 1; o < 7; ++o) {
+              const int64_t j = i + ((o & 1) ? step[0] : 0) + ((o & 2) ? step[1] : 0) +
+                                ((o & 4) ? step[2] : 0);
+              others[o - 1] = j;
+              if (Solid(grid.at(j))) contact = false;
+            }
+            if (!contact) continue;
+            ++contacts;
+            std::sort(others.begin(), others.end());
+            fn(others);
+          }
+      }
+  return contacts;
+}
+
+}  // namespace
+
+BridgingResult BridgeDiagonalContacts(VoxelGrid& grid, int max_scans) {
+  BridgingResult result;
+  for (int scan = 0; scan < max_scans; ++scan) {
+    const int64_t before = result.added;
+    const int64_t contacts = ForEachCornerContact(grid, [&](const std::array<int64_t, 6>& others) {
+      for (int64_t j : others) {
+        // An earlier bridge in this scan may already have joined this contact.
+        if (Solid(grid.at(j))) return;
+      }
+      for (int64_t j : others) {
+        if (grid.OnArrayBorder(grid.CoordOf(j))) continue;
+        if (!IsSimple(NeighbourhoodMask(grid, j, Solid))) continue;
+        grid.set(j, kBoundarySoft);
+        ++result.added;
+        return;
+      }
+    });
+    if (contacts == 0 || result.added == before) break;
+  }
+  result.remaining = ForEachCornerContact(grid, [](const std::array<int64_t, 6>&) {});
+  return result;
+}
+
+}  // namespace membrane

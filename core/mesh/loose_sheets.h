@@ -1,0 +1,24 @@
+// Loose-sheet removal before the smooth surface (membrane-quality.md recipe 3 step 1).
+//
+// A 26-component of membrane voxels with no inside voxel is a sheet left where a chain was
+// undone (frozen walls, problem E of algorithm-notes), not a solid with volume: its surface
+// would be a flat double layer far from the data. The membrane keeps it; only the surface
+// drops it, so this runs on a copy of the final grid.
+#ifndef MEMBRANE_CORE_MESH_LOOSE_SHEETS_H_
+#define MEMBRANE_CORE_MESH_LOOSE_SHEETS_H_
+
+#include <cstdint>
+
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+// Input: a membrane grid (outside / boundary / inside states; the array border outside).
+// Effect: every 26-component of non-outside voxels that holds no inside voxel becomes
+// OutsideState(0). Components with an inside voxel are untouched.
+// Returns the number of voxels removed. O(voxels).
+int64_t RemoveLooseSheets(VoxelGrid& grid);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_MESH_LOOSE_SHEETS_H_

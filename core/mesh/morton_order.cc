@@ -1,0 +1,64 @@
+#include "core/mesh/morton_order.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <vector>
+
+namespace membrane {
+namespace {
+
+// Spreads the low 21 bits of v so that two zero bits follow each one.
+uint64_t Spread(uint64_t v) {
+  v &= 0x1fffff;
+  v = (v | v << 32) & 0x1f00000000ffffull;
+  v = (v | v << 16) & 0x1f0000ff0000ffull;
+  v = (v | v << 8) & 0x100f00f00f00f00full;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+  v = (v | v << 2) & 0x1249249249249249ull;
+  return v;
+}
+
+}  // namespace
+
+void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companion) {
+  const size_t nv = mesh.vertices.size();
+  if (nv == 0) return;
+  std::array<float, 3> lo = mesh.vertices[0];
+  for (const Point3f& p : mesh.vertices)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]);
+  std::vector<uint64_t> key(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    uint64_t code = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double c = std::floor((mesh.vertices[v][k] - lo[k]) / cell);
+      code |= Spread(static_cast<uint64_t>(std::clamp(c, 0.0, double(0x1fffff)))) << k;
+    }
+    key[v] = code;
+  }
+  std::vector<int32_t> order(nv);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
+    return key[a] != key[b] ? key[a] < key[b] : a < b;
+  });
+  std::vector<int32_t> new_id(nv);
+  std::vector<Point3f> vertices(nv);
+  for (size_t i = 0; i < nv; ++i) {
+    new_id[order[i]] = static_cast<int32_t>(i);
+    vertices[i] = mesh.vertices[order[i]];
+  }
+  mesh.vertices = std::move(vertices);
+  if (companion != nullptr) {
+    std::vector<Point3f> moved(nv);
+    for (size_t i = 0; i < nv; ++i) moved[i] = (*companion)[order[i]];
+    *companion = std::move(moved);
+  }
+  for (auto& f : mesh.faces)
+    for (int32_t& v : f) v = new_id[v];
+  std::stable_sort(mesh.faces.begin(), mesh.faces.end(), [](const auto& a, const auto& b) {
+    return std::min({a[0], a[1], a[2]}) < std::min({b[0], b[1], b[2]});
+  });
+}
+
+}  // namespace membrane

@@ -1,0 +1,22 @@
+// Reorders a mesh along a Morton (Z-order) curve: vertices by position, faces by their lowest
+// new vertex. Spatial neighbours become memory neighbours, so the fit and the intersection
+// searches, which walk the surface and look at small 3-D neighbourhoods, stay in cache (the
+// scan order of the voxel grid spreads one neighbourhood over many distant rows).
+#ifndef MEMBRANE_CORE_MESH_MORTON_ORDER_H_
+#define MEMBRANE_CORE_MESH_MORTON_ORDER_H_
+
+#include <vector>
+
+#include "core/geometry/triangle_mesh.h"
+
+namespace membrane {
+
+// Input: any mesh with valid indices. `cell` (model units, > 0) is the quantum of the curve,
+// e.g. the voxel size. `companion`, if not null, holds one value per vertex and is permuted
+// with the vertices. Output: the same mesh (same geometry, same faces up to renumbering, each
+// face's vertex order kept, so orientation is unchanged).
+void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companion = nullptr);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_MESH_MORTON_ORDER_H_

@@ -1,0 +1,322 @@
+#include "core/mesh/point_fitting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "core/mesh/plane_fit.h"
+#include "core/mesh/point_hash_grid.h"
+#include "core/mesh/self_intersection.h"
+#include "core/mesh/triangle_intersection.h"
+#include "core/mesh/vec3.h"
+
+namespace membrane {
+namespace {
+
+// Fractions of the way to the target tried in turn (recipe 3 step 5); a move that makes two
+// triangles cross goes back through the same fractions, then to where it started.
+constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
+constexpr int kFullyBackedOff = 3;
+constexpr int kCancelPollVertices = 4096;
+
+class Fitter {
+ public:
+  Fitter(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,
+         const FitOptions& options)
+      : mesh_(mesh),
+        l_(voxel_size),
+        options_(options),
+        rest_(mesh.vertices),
+        // Cells twice the search radius: 8 look-ups per query (instead of 27) for a few more
+        // points scanned, which is cheaper.
+        points_(points, 2 * options.search_radius * voxel_size) {
+    const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
+    const int32_t nf = static_cast<int32_t>(mesh.faces.size());
+    star_start_.assign(nv + 1, 0);
+    for (const auto& f : mesh.faces)
+      for (int32_t v : f) ++star_start_[v + 1];
+    for (int32_t v = 0; v < nv; ++v) star_start_[v + 1] += star_start_[v];
+    star_.resize(star_start_[nv]);
+    std::vector<int32_t> fill(star_start_.begin(), star_start_.end() - 1);
+    rest_normal_.resize(nf);
+    for (int32_t f = 0; f < nf; ++f) {
+      for (int32_t v : mesh.faces[f]) star_[fill[v]++] = f;
+      const Triangle3d t = Tri(f);
+      rest_normal_[f] = TriangleNormal(t[0], t[1], t[2]);
+    }
+    // "Non-zero area": twice the area above a tiny fraction of a voxel face, so that no later
+    // float32 rounding can flip a sliver.
+    min_double_area_ = 1e-6 * l_ * l_;
+    changed_at_.assign(nv, 0);
+    settled_at_.assign(nv, -1);
+    level_.assign(nv, 0);
+    in_round_.assign(nv, 0);
+    start_.resize(nv);
+    target_.resize(nv);
+    dirty_.assign(nf, 0);
+  }
+
+  absl::Status Run(const CancelFn& cancel, FitStats& stats) {
+    const int32_t nv = static_cast<int32_t>(mesh_.vertices.size());
+    for (int round = 0; round < options_.rounds; ++round) {
+      moved_.clear();
+      for (int32_t v = 0; v < nv; ++v) {
+        if (v % kCancelPollVertices == 0 && Cancelled(cancel)) {
+          // Leave a valid mesh: undo what this round has not verified yet.
+          for (int32_t u : moved_) Set(u, start_[u]);
+          return absl::CancelledError("fitting cancelled");
+        }
+        // The weights change between the first round and the others; after that a vertex
+        // whose target was already reached, and around which nothing moved since, would
+        // compute the same target again.
+        if (round >= 2 && Settled(v)) continue;
+        FitVertex(v, round, stats);
+      }
+      Verify(stats);
+    }
+    return absl::OkStatus();
+  }
+
+ private:
+  Vec3d Pos(int32_t v) const { return ToVec3d(mesh_.vertices[v]); }
+  Triangle3d Tri(int32_t f) const {
+    const auto& t = mesh_.faces[f];
+    return {Pos(t[0]), Pos(t[1]), Pos(t[2])};
+  }
+  void Set(int32_t v, const Point3f& p) {
+    mesh_.vertices[v] = p;
+    changed_at_[v] = ++clock_;
+  }
+
+  bool Settled(int32_t v) const {
+    if (settled_at_[v] < 0) return false;
+    for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i)
+      for (int32_t u : mesh_.faces[star_[i]])
+        if (changed_at_[u] > settled_at_[v]) return false;
+    return true;
+  }
+
+  Vec3d VertexNormal(int32_t v) const {
+    Vec3d n{0, 0, 0};
+    for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) {
+      const Triangle3d t = Tri(star_[i]);
+      n = n + TriangleNormal(t[0], t[1], t[2]);
+    }
+    const double len = Norm(n);
+    return len > 0 ? (1.0 / len) * n : Vec3d{0, 0, 0};
+  }
+
+  // Mean of the 1-ring: around a closed fan every neighbour is in exactly two triangles.
+  Vec3d RingMean(int32_t v) const {
+    Vec3d sum{0, 0, 0};
+    int count = 0;
+    for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i)
+      for (int32_t u : mesh_.faces[star_[i]])
+        if (u != v) {
+          sum = sum + Pos(u);
+          ++count;
+        }
+    return count > 0 ? (1.0 / count) * sum : Pos(v);
+  }
+
+  Vec3d Target(int32_t v, int round, FitStats& stats) const {
+    const Vec3d x = Pos(v);
+    const Vec3d normal = VertexNormal(v);
+    const double inv_2s2 = 1.0 / (2 * options_.sigma * options_.sigma * l_ * l_);
+    const double inv_2n2 = 1.0 / (2 * options_.normal_sigma * options_.normal_sigma * l_ * l_);
+    const bool anisotropic = round >= 1;
+    PlaneFitAccumulator acc;
+    int count = 0;
+    points_.ForEachWithin(x, options_.search_radius * l_, [&](const Point3f& p, double d2) {
+      const Vec3d d = ToVec3d(p) - x;
+      double e = d2 * inv_2s2;
+      if (anisotropic) {
+        const double dn = Dot(d, normal);
+        e = (d2 - dn * dn) * inv_2s2 + dn * dn * inv_2n2;
+      }
+      acc.Add(d, std::exp(-e));
+      ++count;
+    });
+    if (count >= options_.min_points && acc.weight() > 0) {
+      ++stats.plane_targets;
+      const auto plane = acc.Fit();
+      // Points on a line or in a blob define no plane: slide along the vertex normal onto the
+      // plane through their centroid instead.
+      const Vec3d c = plane ? plane->centroid : (1.0 / acc.weight()) * acc.WeightedSum();
+      const Vec3d n = plane ? plane->normal : normal;
+      return x + Dot(c, n) * n;
+    }
+    ++stats.umbrella_targets;
+    return x + options_.umbrella_step * (RingMean(v) - x);
+  }
+
+  // The checks that need only the vertex's own triangles: non-zero area, normal on the side of
+  // the surface-nets normal, and no two of them overlapping.
+  bool StarOk(int32_t v, const Point3f& candidate) {
+    const Vec3d c = ToVec3d(candidate);
+    const int32_t begin = star_start_[v], end = star_start_[v + 1];
+    new_tri_.clear();
+    for (int32_t i = begin; i < end; ++i) {
+      const int32_t f = star_[i];
+      Triangle3d t = Tri(f);
+      for (int k = 0; k < 3; ++k)
+        if (mesh_.faces[f][k] == v) t[k] = c;
+      if (!FaceOk(f, t)) return false;
+      new_tri_.push_back(t);
+    }
+    const int32_t n = end - begin;
+    for (int32_t i = 0; i < n; ++i)
+      for (int32_t j = i + 1; j < n; ++j)
+        if (MeshTrianglesIntersect(mesh_.faces[star_[begin + i]], new_tri_[i],
+                                   mesh_.faces[star_[begin + j]], new_tri_[j]))
+          return false;
+    return true;
+  }
+
+  bool FaceOk(int32_t f, const Triangle3d& t) const {
+    const Vec3d n = TriangleNormal(t[0], t[1], t[2]);
+    return Norm(n) > min_double_area_ && Dot(n, rest_normal_[f]) > 0;
+  }
+
+  void FitVertex(int32_t v, int round, FitStats& stats) {
+    settled_at_[v] = -1;
+    const Vec3d x = Pos(v);
+    Vec3d target = Target(v, round, stats);
+    const Vec3d rest = ToVec3d(rest_[v]);
+    const Vec3d off = target - rest;
+    const double max_off = options_.max_offset * l_;
+    if (SquaredNorm(off) > max_off * max_off) target = rest + (max_off / Norm(off)) * off;
+    const Vec3d delta = target - x;
+    if (SquaredNorm(delta) < options_.min_move * options_.min_move * l_ * l_) {
+      settled_at_[v] = clock_;
+      return;
+    }
+    for (int level = 0; level < kFullyBackedOff; ++level) {
+      const Point3f candidate = ToPoint3f(x + kStepFractions[level] * delta);
+      if (candidate == mesh_.vertices[v]) break;
+      if (StarOk(v, candidate)) {
+        start_[v] = mesh_.vertices[v];
+        target_[v] = x + delta;
+        level_[v] = level;
+        in_round_[v] = 1;
+        Set(v, candidate);
+        moved_.push_back(v);
+        return;
+      }
+    }
+    settled_at_[v] = clock_;
+    ++stats.refused;
+  }
+
+  // Ends a round: searches the faces around this round's moves for pairs that intersect (on
+  // the float32 positions that are written: this is also the rounding check of step 6) and
+  // backs the moved vertices of such pairs off through the step fractions, then to where they
+  // started, until nothing crosses. A back-off can leave a triangle inverted next to a vertex
+  // that moved later; its moved vertices then go back to their start too.
+  void Verify(FitStats& stats) {
+    if (moved_.empty()) return;
+    std::vector<int32_t> changed = moved_;
+    for (;;) {
+      std::fill(dirty_.begin(), dirty_.end(), 0);
+      for (int32_t v : changed)
+        for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) dirty_[star_[i]] = 1;
+      const auto pairs = FindIntersectingFacesNear(mesh_, dirty_);
+      if (pairs.empty()) break;
+      changed.clear();
+      for (const auto& [a, b] : pairs)
+        for (int32_t f : {a, b})
+          for (int32_t v : mesh_.faces[f])
+            if (mesh_.vertices[v] != start_[v] && IsMoved(v)) changed.push_back(v);
+      std::sort(changed.begin(), changed.end());
+      changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+      if (changed.empty()) break;  // cannot happen from a clean start; never loop forever
+      for (int32_t v : changed) BackOff(v);
+      // Inverted or collapsed triangles next to backed-off vertices: send their moved
+      // vertices home as well, until every such triangle is fine.
+      for (size_t k = 0; k < changed.size(); ++k) {
+        const int32_t v = changed[k];
+        for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) {
+          const int32_t f = star_[i];
+          if (FaceOk(f, Tri(f))) continue;
+          for (int32_t u : mesh_.faces[f])
+            if (IsMoved(u) && mesh_.vertices[u] != start_[u]) {
+              level_[u] = kFullyBackedOff;
+              Set(u, start_[u]);
+              changed.push_back(u);
+            }
+        }
+      }
+    }
+    for (int32_t v : moved_) {
+      if (mesh_.vertices[v] != start_[v]) {
+        ++stats.moves;
+      } else {
+        ++stats.refused;
+      }
+      if (level_[v] > 0) ++stats.backed_off;
+    }
+    for (int32_t v : moved_) in_round_[v] = 0;
+  }
+
+  bool IsMoved(int32_t v) const { return in_round_[v] != 0; }
+
+  // The next fraction of the way from start to target, or the start.
+  void BackOff(int32_t v) {
+    ++level_[v];
+    const Vec3d s = ToVec3d(start_[v]);
+    const double f = level_[v] < kFullyBackedOff ? kStepFractions[level_[v]] : 0.0;
+    Set(v, f > 0 ? ToPoint3f(s + f * (target_[v] - s)) : start_[v]);
+  }
+
+  TriangleMesh& mesh_;
+  const double l_;
+  const FitOptions options_;
+  const std::vector<Point3f> rest_;
+  const PointHashGrid points_;
+  std::vector<int32_t> star_start_, star_;
+  std::vector<Vec3d> rest_normal_;
+  double min_double_area_ = 0;
+  // Move clock: changed_at_[v] = clock value of v's last change; settled_at_[v] = clock value
+  // when v last found its target already reached or refused (-1: not settled).
+  int64_t clock_ = 0;
+  std::vector<int64_t> changed_at_, settled_at_;
+  // This round's moves: start and applied position, back-off level.
+  std::vector<int32_t> moved_;
+  std::vector<char> in_round_;
+  std::vector<Point3f> start_;
+  std::vector<Vec3d> target_;
+  std::vector<int> level_;
+  std::vector<char> dirty_;
+  std::vector<Triangle3d> new_tri_;
+};
+
+absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
+  if (!(voxel_size > 0) || !std::isfinite(voxel_size))
+    return absl::InvalidArgumentError(absl::StrCat("voxel size ", voxel_size, " is not positive"));
+  if (o.rounds < 0 || !(o.search_radius > 0) || !(o.sigma > 0) || !(o.normal_sigma > 0) ||
+      o.min_points < 3 || !(o.umbrella_step >= 0 && o.umbrella_step <= 1) ||
+      !(o.max_offset >= 0) || !(o.min_move >= 0))
+    return absl::InvalidArgumentError(absl::StrCat(
+        "fit options out of range: rounds ", o.rounds, ", search_radius ", o.search_radius,
+        ", sigma ", o.sigma, ", normal_sigma ", o.normal_sigma, ", min_points ", o.min_points,
+        ", umbrella_step ", o.umbrella_step, ", max_offset ", o.max_offset, ", min_move ",
+        o.min_move));
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
+                                     absl::Span<const Point3f> points, const FitOptions& options,
+                                     const CancelFn& cancel) {
+  if (absl::Status s = ValidateOptions(voxel_size, options); !s.ok()) return s;
+  FitStats stats;
+  if (mesh.faces.empty()) return stats;
+  Fitter fitter(mesh, voxel_size, points, options);
+  if (absl::Status s = fitter.Run(cancel, stats); !s.ok()) return s;
+  return stats;
+}
+
+}  // namespace membrane

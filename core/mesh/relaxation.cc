@@ -1,0 +1,218 @@
+#include "core/mesh/relaxation.h"
+
+#include <array>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "core/engine/local_topology.h"
+
+namespace membrane {
+namespace {
+
+constexpr int kPollSteps = 1024;
+constexpr int kPadding = VoxelGrid::kPadding;
+
+// What a voxel adds to its neighbours' DLC.
+int Category(VoxelState s) { return IsOutside(s) ? 1 : IsInside(s) ? -1 : 0; }
+bool NonOutside(VoxelState s) { return !IsOutside(s); }
+
+class Relaxer {
+ public:
+  Relaxer(VoxelGrid& grid, int threshold, const CancelFn& cancel)
+      : grid_(grid), threshold_(threshold), cancel_(cancel) {
+    const auto st = grid.strides();
+    int n = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if (dx != 0 || dy != 0 || dz != 0) offsets_[n++] = dx * st[0] + dy * st[1] + dz * st[2];
+  }
+
+  // DLC of every voxel not on the array border, by three 1-D box sums of the categories.
+  absl::Status ComputeDlc() {
+    const int nx = grid_.dim(0), ny = grid_.dim(1), nz = grid_.dim(2);
+    const int64_t n = grid_.size(), sy = nx, sz = int64_t{nx} * ny;
+    std::vector<int8_t> cat(n), sum(n, 0);
+    dlc_.assign(n, 0);
+    const VoxelState* s = grid_.states().data();
+    for (int64_t i = 0; i < n; ++i) cat[i] = static_cast<int8_t>(Category(s[i]));
+    // The sums are only read for voxels off the border, whose neighbours all exist.
+    for (int64_t i = 1; i + 1 < n; ++i) sum[i] = static_cast<int8_t>(cat[i - 1] + cat[i] + cat[i + 1]);
+    if (Cancelled(cancel_)) return Cancel();
+    for (int64_t i = sy; i + sy < n; ++i) dlc_[i] = static_cast<int8_t>(sum[i - sy] + sum[i] + sum[i + sy]);
+    if (Cancelled(cancel_)) return Cancel();
+    for (int64_t i = sz; i + sz < n; ++i) sum[i] = static_cast<int8_t>(dlc_[i - sz] + dlc_[i] + dlc_[i + sz]);
+    for (int64_t i = 0; i < n; ++i) dlc_[i] = static_cast<int8_t>(sum[i] - cat[i]);
+    (void)nz;
+    return absl::OkStatus();
+  }
+
+  // sign = -1: phase 1 (DLC <= -threshold); +1: phase 2 (DLC >= threshold).
+  absl::Status Phase(int sign, RelaxationStats& stats) {
+    sign_ = sign;
+    for (auto& b : buckets_) {
+      b.items.clear();
+      b.next = 0;
+    }
+    const auto& d = grid_.dims();
+    for (int z = kPadding; z < d[2] - kPadding; ++z) {
+      if (Cancelled(cancel_)) return Cancel();
+      for (int y = kPadding; y < d[1] - kPadding; ++y)
+        for (int x = kPadding; x < d[0] - kPadding; ++x) Offer(grid_.Index(x, y, z));
+    }
+    int64_t steps = 0;
+    for (int key = 26; key >= threshold_;) {
+      Bucket& b = buckets_[key];
+      if (b.next == b.items.size()) {
+        --key;
+        continue;
+      }
+      const int64_t v = b.items[b.next++];
+      if (!Movable(v) || Key(v) != key) continue;  // stale entry
+      if (++steps % kPollSteps == 0 && Cancelled(cancel_)) return Cancel();
+      touched_.clear();
+      const bool moved = sign < 0 ? StepInward(v, stats) : StepOutward(v, stats);
+      if (!moved) continue;
+      for (int64_t t : touched_) Offer(t);
+      // A move can raise a neighbour above the current key: restart from the top.
+      key = 26;
+    }
+    return absl::OkStatus();
+  }
+
+ private:
+  struct Bucket {
+    std::vector<int64_t> items;
+    size_t next = 0;
+  };
+
+  static absl::Status Cancel() { return absl::CancelledError("relaxation cancelled"); }
+
+  int Key(int64_t i) const { return sign_ * dlc_[i]; }
+
+  bool InMovableRegion(int64_t i) const {
+    const Coord c = grid_.CoordOf(i);
+    for (int a = 0; a < 3; ++a)
+      if (c[a] < kPadding || c[a] >= grid_.dim(a) - kPadding) return false;
+    return true;
+  }
+
+  bool Movable(int64_t i) const {
+    const VoxelState s = grid_.at(i);
+    return IsBoundary(s) && !IsHard(s) && InMovableRegion(i);
+  }
+
+  void Offer(int64_t i) {
+    const VoxelState s = grid_.at(i);
+    if (!IsBoundary(s) || IsHard(s)) return;
+    const int key = Key(i);
+    if (key < threshold_ || !InMovableRegion(i)) return;
+    buckets_[key].items.push_back(i);
+  }
+
+  // Sets a state and keeps the neighbours' DLC right.
+  void Set(int64_t i, VoxelState s) {
+    const int delta = Category(s) - Category(grid_.at(i));
+    grid_.set(i, s);
+    if (delta == 0) return;
+    for (int64_t o : offsets_) {
+      dlc_[i + o] = static_cast<int8_t>(dlc_[i + o] + delta);
+      touched_.push_back(i + o);
+    }
+  }
+
+  bool Simple(int64_t i) const { return IsSimple(NeighbourhoodMask(grid_, i, NonOutside)); }
+
+  // Phase 1: V inside, its outside neighbours boundary, each added only while simple.
+  bool StepInward(int64_t v, RelaxationStats& stats) {
+    std::array<int64_t, 26> outside{};
+    std::array<VoxelState, 26> old{};
+    int n = 0;
+    for (int64_t o : offsets_) {
+      const int64_t w = v + o;
+      if (!IsOutside(grid_.at(w))) continue;
+      if (!InMovableRegion(w)) return false;
+      outside[n++] = w;
+    }
+    for (int k = 0; k < n; ++k) {
+      const int64_t w = outside[k];
+      if (!Simple(w)) {
+        for (int j = k - 1; j >= 0; --j) Set(outside[j], old[j]);
+        ++stats.not_simple;
+        return false;
+      }
+      old[k] = grid_.at(w);
+      Set(w, kBoundarySoft);
+    }
+    Set(v, static_cast<VoxelState>(grid_.at(v) & ~kBoundaryBit));
+    ++stats.phase1_moves;
+    stats.phase1_added += n;
+    return true;
+  }
+
+  // Phase 2: V outside if simple, its inside neighbours boundary.
+  bool StepOutward(int64_t v, RelaxationStats& stats) {
+    if (!Simple(v)) {
+      ++stats.not_simple;
+      return false;
+    }
+    // Simple implies an outside face neighbour (T6 = 1): the new outside voxel joins it, so
+    // the outside stays connected to the padding. Take its generation.
+    int label = 0;
+    const auto st = grid_.strides();
+    for (int a = 0; a < 3; ++a)
+      for (int64_t j : {v - st[a], v + st[a]})
+        if (IsOutside(grid_.at(j))) label = GenerationLabel(grid_.at(j));
+    std::array<int64_t, 26> inside{};
+    int n = 0;
+    for (int64_t o : offsets_) {
+      const int64_t u = v + o;
+      if (!IsInside(grid_.at(u))) continue;
+      if (!InMovableRegion(u)) return false;
+      inside[n++] = u;
+    }
+    Set(v, OutsideState(label));
+    for (int k = 0; k < n; ++k) Set(inside[k], static_cast<VoxelState>(grid_.at(inside[k]) | kBoundaryBit));
+    ++stats.phase2_moves;
+    stats.phase2_uncovered += n;
+    return true;
+  }
+
+  VoxelGrid& grid_;
+  const int threshold_;
+  const CancelFn& cancel_;
+  std::array<int64_t, 26> offsets_{};
+  std::vector<int8_t> dlc_;
+  std::array<Bucket, 27> buckets_;
+  int sign_ = -1;
+  std::vector<int64_t> touched_;
+};
+
+}  // namespace
+
+int DiscreteLocalCurvature(const VoxelGrid& grid, const Coord& c) {
+  int dlc = 0;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (dx != 0 || dy != 0 || dz != 0) dlc += Category(grid.at(Coord{c.x + dx, c.y + dy, c.z + dz}));
+  return dlc;
+}
+
+absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelFn& cancel,
+                                      const RelaxationOptions& options) {
+  if (options.threshold < 1 || options.threshold > 26)
+    return absl::InvalidArgumentError(
+        absl::StrCat("relaxation threshold ", options.threshold, " is outside [1, 26]"));
+  RelaxationStats stats;
+  for (int a = 0; a < 3; ++a)
+    if (membrane.dim(a) < 2 * kPadding + 1) return stats;  // no movable voxel
+  Relaxer relaxer(membrane, options.threshold, cancel);
+  if (absl::Status s = relaxer.ComputeDlc(); !s.ok()) return s;
+  if (absl::Status s = relaxer.Phase(-1, stats); !s.ok()) return s;
+  if (absl::Status s = relaxer.Phase(+1, stats); !s.ok()) return s;
+  return stats;
+}
+
+}  // namespace membrane

@@ -1,0 +1,57 @@
+#include "core/mesh/smooth_surface.h"
+
+#include <chrono>
+
+#include "absl/status/status.h"
+#include "core/mesh/cave_filling.h"
+#include "core/mesh/diagonal_bridging.h"
+#include "core/mesh/loose_sheets.h"
+#include "core/mesh/surface_nets.h"
+
+namespace membrane {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
+                                           absl::Span<const Point3f> points,
+                                           const SmoothSurfaceOptions& options,
+                                           SmoothSurfaceStats* stats, const CancelFn& cancel) {
+  SmoothSurfaceStats local;
+  SmoothSurfaceStats& s = stats ? *stats : local;
+  s = SmoothSurfaceStats{};
+  auto start = std::chrono::steady_clock::now();
+  // The membrane and its reported topology stay as they are: the clean-up is for the surface.
+  VoxelGrid grid = membrane;
+  // Loose sheets go first so that cave filling cannot thicken a sheet into something kept.
+  if (options.remove_loose_sheets) s.loose_sheet_voxels = RemoveLooseSheets(grid);
+  if (Cancelled(cancel)) return absl::CancelledError("surface cancelled");
+  if (options.fill_caves) s.cave_voxels = FillCaves(grid);
+  if (Cancelled(cancel)) return absl::CancelledError("surface cancelled");
+  if (options.bridging_scans > 0) {
+    const BridgingResult bridging = BridgeDiagonalContacts(grid, options.bridging_scans);
+    s.bridges = bridging.added;
+    s.corner_contacts_left = bridging.remaining;
+  }
+  s.prepare_seconds = SecondsSince(start);
+  if (Cancelled(cancel)) return absl::CancelledError("surface cancelled");
+
+  start = std::chrono::steady_clock::now();
+  TriangleMesh mesh = SurfaceNets(grid);
+  s.surface_nets_seconds = SecondsSince(start);
+  if (!options.fit) return mesh;
+
+  start = std::chrono::steady_clock::now();
+  absl::StatusOr<FitStats> fit =
+      FitToPoints(mesh, membrane.voxel_size(), points, options.fit_options, cancel);
+  if (!fit.ok()) return fit.status();
+  s.fit = *fit;
+  s.fit_seconds = SecondsSince(start);
+  return mesh;
+}
+
+}  // namespace membrane

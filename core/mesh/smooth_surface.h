@@ -1,0 +1,53 @@
+// The default `smooth` surface of a membrane (paper section 6; algorithm-notes 13;
+// membrane-quality.md recipes 2 and 3): clean-up on a copy of the grid, surface nets, fitting to
+// the points.
+#ifndef MEMBRANE_CORE_MESH_SMOOTH_SURFACE_H_
+#define MEMBRANE_CORE_MESH_SMOOTH_SURFACE_H_
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "absl/types/span.h"
+#include "core/engine/voxel_grid.h"
+#include "core/geometry/point_cloud.h"
+#include "core/geometry/triangle_mesh.h"
+#include "core/mesh/cancel_fn.h"
+#include "core/mesh/point_fitting.h"
+
+namespace membrane {
+
+struct SmoothSurfaceOptions {
+  bool remove_loose_sheets = true;  // recipe 3 step 1
+  bool fill_caves = true;           // recipe 2
+  int bridging_scans = 3;           // recipe 3 step 2 (0 = off)
+  bool fit = true;                  // recipe 3 steps 5-6
+  FitOptions fit_options;
+};
+
+struct SmoothSurfaceStats {
+  int64_t loose_sheet_voxels = 0;   // voxels of removed loose sheets
+  int64_t cave_voxels = 0;          // voxels filled in caves
+  int64_t bridges = 0;              // voxels added at corner-only contacts
+  int64_t corner_contacts_left = 0; // contacts no simple voxel could bridge
+  FitStats fit;
+  double prepare_seconds = 0, surface_nets_seconds = 0, fit_seconds = 0;
+};
+
+// Input: the final (optionally relaxed) membrane, read only; `points` the input cloud in model
+// units. The steps, in order, on a copy of the grid: loose-sheet removal (loose_sheets.h),
+// homotopic cave filling (cave_filling.h), diagonal-contact bridging (diagonal_bridging.h);
+// then SurfaceNets() and FitToPoints().
+// Output: a closed, manifold, outward-oriented mesh without self-intersections, in model
+// units, whose shells and genus are those of the membrane's solid minus any removed loose
+// sheets (caves and bridges are filled homotopically), unless `corner_contacts_left` > 0.
+// `stats` may be null. Errors: InvalidArgument for bad fit options; Cancelled when `cancel`
+// fired.
+absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
+                                           absl::Span<const Point3f> points,
+                                           const SmoothSurfaceOptions& options = {},
+                                           SmoothSurfaceStats* stats = nullptr,
+                                           const CancelFn& cancel = nullptr);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_MESH_SMOOTH_SURFACE_H_

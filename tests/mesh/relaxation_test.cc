@@ -1,0 +1,190 @@
+#include "core/mesh/relaxation.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/engine/membrane_invariants.h"
+#include "core/engine/voxel_topology.h"
+#include "gtest/gtest.h"
+#include "tests/mesh/test_grids.h"
+
+namespace membrane {
+namespace {
+
+using namespace membrane::testing;
+
+// Boundary voxels frozen, as the engine leaves most of them (Property 3), with every fourth
+// one hard, the data.
+void FreezeWithSomeHard(VoxelGrid& g) {
+  for (int64_t i = 0; i < g.size(); ++i) {
+    if (!IsBoundary(g.at(i))) continue;
+    g.set(i, i % 4 == 0 ? kBoundaryHard : kBoundaryFrozen);
+  }
+}
+
+void ExpectSameTopology(const VoxelGrid& a, const VoxelGrid& b) {
+  const VoxelTopology ta = ComputeVoxelTopology(a), tb = ComputeVoxelTopology(b);
+  EXPECT_EQ(ta.shells, tb.shells);
+  EXPECT_EQ(ta.genus, tb.genus);
+  EXPECT_EQ(tb.cavities, 0);
+}
+
+void ExpectMembraneInvariants(const VoxelGrid& g) {
+  InvariantOptions options;
+  options.require_property3 = false;  // relaxation documents that Property 3 is given up
+  const absl::Status s = CheckMembraneInvariants(g, options);
+  EXPECT_TRUE(s.ok()) << s;
+}
+
+RelaxationStats RelaxOk(VoxelGrid& g) {
+  const absl::StatusOr<RelaxationStats> stats = Relax(g, nullptr);
+  EXPECT_TRUE(stats.ok()) << stats.status();
+  return stats.ok() ? *stats : RelaxationStats{};
+}
+
+TEST(Relaxation, DlcOfAnIsolatedVoxelIs26) {
+  VoxelGrid g = OutsideGrid(7);
+  g.set(Coord{3, 3, 3}, kBoundaryFrozen);
+  EXPECT_EQ(DiscreteLocalCurvature(g, Coord{3, 3, 3}), 26);
+}
+
+TEST(Relaxation, DlcOfAVoxelInAFlatFaceIsZeroWhenTheLayerBelowIsInside) {
+  VoxelGrid g = OutsideGrid(12);
+  MarkSolid(g, [](int x, int y, int z) { return x >= 2 && x < 10 && y >= 2 && y < 10 && z >= 2 && z < 7; });
+  // (5, 5, 6) is on the top face: 9 outside above, 9 boundary around, 9 below of which the
+  // centre column is inside.
+  EXPECT_EQ(DiscreteLocalCurvature(g, Coord{5, 5, 6}), 9 - 9);
+}
+
+TEST(Relaxation, KeepsGenusOfTorus) {
+  VoxelGrid g = SolidTorusGrid(40, 12, 4.5);
+  FreezeWithSomeHard(g);
+  const VoxelGrid before = g;
+  const RelaxationStats stats = RelaxOk(g);
+  EXPECT_GT(stats.phase1_moves + stats.phase2_moves, 0);
+  ExpectSameTopology(before, g);
+  EXPECT_EQ(ComputeVoxelTopology(g).genus, std::vector<int>{1});
+  ExpectMembraneInvariants(g);
+}
+
+TEST(Relaxation, KeepsShellsOfTwoBalls) {
+  VoxelGrid g = TwoBallsGrid(36, 7, 2);
+  FreezeWithSomeHard(g);
+  const VoxelGrid before = g;
+  RelaxOk(g);
+  ExpectSameTopology(before, g);
+  EXPECT_EQ(ComputeVoxelTopology(g).shells, 2);
+  ExpectMembraneInvariants(g);
+}
+
+TEST(Relaxation, NeverDeletesTwoSidedSheet) {
+  // A square frame with a one-voxel membrane spanning its opening: outside on both sides of
+  // the sheet (DLC about +16), so phase 2 wants it gone; removing it would open a handle.
+  VoxelGrid g = OutsideGrid(24);
+  MarkSolid(g, [](int x, int y, int z) {
+    const bool frame = x >= 3 && x < 21 && y >= 3 && y < 21 && z >= 9 && z < 15 &&
+                       !(x >= 8 && x < 16 && y >= 8 && y < 16);
+    const bool sheet = x >= 8 && x < 16 && y >= 8 && y < 16 && z == 12;
+    return frame || sheet;
+  });
+  FreezeWithSomeHard(g);
+  const VoxelGrid before = g;
+  RelaxOk(g);
+  ExpectSameTopology(before, g);
+  EXPECT_EQ(ComputeVoxelTopology(g).genus, std::vector<int>{0});
+  int sheet_left = 0;
+  for (int y = 9; y < 15; ++y)
+    for (int x = 9; x < 15; ++x) sheet_left += !IsOutside(g.at(Coord{x, y, 12}));
+  EXPECT_EQ(sheet_left, 36);
+  ExpectMembraneInvariants(g);
+}
+
+TEST(Relaxation, NeverMovesHardVoxels) {
+  VoxelGrid g = BallGrid(30, 10.5);
+  FreezeWithSomeHard(g);
+  const VoxelGrid before = g;
+  RelaxOk(g);
+  for (int64_t i = 0; i < g.size(); ++i) {
+    if (!IsHard(before.at(i))) continue;
+    ASSERT_FALSE(IsOutside(g.at(i))) << i;
+    ASSERT_TRUE(IsHard(g.at(i))) << i;
+    ASSERT_EQ(IsInside(before.at(i)), IsInside(g.at(i))) << i;  // hard boundary stays boundary
+  }
+}
+
+TEST(Relaxation, FillsASoftDent) {
+  // A flat face with a 3x3 pit one voxel deep: the pit's floor voxels see mostly inside
+  // voxels around them (DLC far below -13) and fill it.
+  VoxelGrid g = OutsideGrid(16);
+  MarkSolid(g, [](int x, int y, int z) {
+    const bool block = x >= 2 && x < 14 && y >= 2 && y < 14 && z >= 2 && z < 10;
+    const bool pit = x >= 6 && x < 9 && y >= 6 && y < 9 && z >= 8;
+    return block && !pit;
+  }, kBoundaryFrozen);
+  const RelaxationStats stats = RelaxOk(g);
+  EXPECT_GT(stats.phase1_moves, 0);
+  EXPECT_GT(stats.phase1_added, 0);
+  ExpectMembraneInvariants(g);
+}
+
+TEST(Relaxation, ShavesASoftBump) {
+  VoxelGrid g = OutsideGrid(16);
+  MarkSolid(g, [](int x, int y, int z) {
+    const bool block = x >= 2 && x < 14 && y >= 2 && y < 14 && z >= 2 && z < 8;
+    const bool bump = x == 7 && y == 7 && z == 8;
+    return block || bump;
+  }, kBoundaryFrozen);
+  const RelaxationStats stats = RelaxOk(g);
+  EXPECT_GT(stats.phase2_moves, 0);
+  EXPECT_TRUE(IsOutside(g.at(Coord{7, 7, 8})));
+  ExpectMembraneInvariants(g);
+}
+
+TEST(Relaxation, NeverTouchesThePaddingLayers) {
+  // A solid reaching the third layer: its dents next to the padding cannot fill outward.
+  VoxelGrid g = OutsideGrid(14);
+  MarkSolid(g, [](int x, int y, int z) {
+    return x >= 2 && x < 12 && y >= 2 && y < 12 && z >= 2 && z < 12 && !(x == 2 && y == 6 && z == 6);
+  }, kBoundaryFrozen);
+  RelaxOk(g);
+  const auto& d = g.dims();
+  for (int z = 0; z < d[2]; ++z)
+    for (int y = 0; y < d[1]; ++y)
+      for (int x = 0; x < d[0]; ++x) {
+        const bool padding = x < 2 || y < 2 || z < 2 || x >= d[0] - 2 || y >= d[1] - 2 || z >= d[2] - 2;
+        if (padding) {
+          ASSERT_TRUE(IsOutside(g.at(Coord{x, y, z}))) << x << " " << y << " " << z;
+        }
+      }
+}
+
+TEST(Relaxation, RejectsThresholdOutOfRange) {
+  VoxelGrid g = BallGrid(12, 3.5);
+  RelaxationOptions options;
+  options.threshold = 27;
+  EXPECT_EQ(Relax(g, nullptr, options).status().code(), absl::StatusCode::kInvalidArgument);
+}
+
+TEST(Relaxation, StopsWhenCancelledAndLeavesAValidMembrane) {
+  VoxelGrid g = SolidTorusGrid(40, 12, 4.5);
+  FreezeWithSomeHard(g);
+  int polls = 0;
+  const absl::StatusOr<RelaxationStats> stats = Relax(g, [&] { return ++polls > 3; });
+  EXPECT_EQ(stats.status().code(), absl::StatusCode::kCancelled);
+  ExpectMembraneInvariants(g);
+}
+
+TEST(Relaxation, CancelReturnsWithin100Milliseconds) {
+  VoxelGrid g = BallGrid(200, 92);
+  FreezeWithSomeHard(g);
+  // Cancel requested 20 ms in; measured from the request, not from the first poll after it.
+  const auto requested = std::chrono::steady_clock::now() + std::chrono::milliseconds(20);
+  const absl::StatusOr<RelaxationStats> stats =
+      Relax(g, [&] { return std::chrono::steady_clock::now() >= requested; });
+  const auto end = std::chrono::steady_clock::now();
+  ASSERT_EQ(stats.status().code(), absl::StatusCode::kCancelled);
+  EXPECT_LT(std::chrono::duration<double>(end - requested).count(), 0.1);
+}
+
+}  // namespace
+}  // namespace membrane

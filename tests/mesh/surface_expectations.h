@@ -1,0 +1,17 @@
+// The promises every surface of a membrane must keep, as one test helper.
+#ifndef MEMBRANE_TESTS_MESH_SURFACE_EXPECTATIONS_H_
+#define MEMBRANE_TESTS_MESH_SURFACE_EXPECTATIONS_H_
+
+#include <vector>
+
+#include "core/geometry/triangle_mesh.h"
+
+namespace membrane::testing {
+
+// Closed, manifold, oriented, positive volume, no self-intersection, no degenerate face, and
+// `shells` shells whose genus, sorted, is `genus` sorted. Reports failures with EXPECT_*.
+void ExpectValidSurface(const TriangleMesh& mesh, int shells, std::vector<int> genus);
+
+}  // namespace membrane::testing
+
+#endif  // MEMBRANE_TESTS_MESH_SURFACE_EXPECTATIONS_H_

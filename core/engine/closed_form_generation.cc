@@ -15,8 +15,7 @@ bool Cancelled(const CancelToken* cancel) { return cancel != nullptr && cancel->
 
 // Bit-planes of one state predicate, 64 voxels at a time.
 template <typename Pred>
-FlatBitset Plane(const VoxelGrid& grid, Pred pred) {
-  FlatBitset plane(grid.size());
+void FillPlane(const VoxelGrid& grid, Pred pred, FlatBitset& plane) {
   const VoxelState* s = grid.states().data();
   uint64_t* w = plane.words();
   const int64_t nv = grid.size();
@@ -26,7 +25,6 @@ FlatBitset Plane(const VoxelGrid& grid, Pred pred) {
     for (int64_t i = begin; i < end; ++i) bits |= static_cast<uint64_t>(pred(s[i])) << (i - begin);
     w[k] = bits;
   }
-  return plane;
 }
 
 FlatBitset InteriorPlane(const VoxelGrid& grid) {
@@ -47,25 +45,36 @@ FlatBitset InteriorPlane(const VoxelGrid& grid) {
 
 }  // namespace
 
+ClosedFormWorkspace::ClosedFormWorkspace(const VoxelGrid& grid)
+    : interior(InteriorPlane(grid)), out0(grid.size()), free_cells(grid.size()),
+      out(grid.size()), back(grid.size()), reach(grid.size()), tmp(grid.size()),
+      fresh(grid.size()), was_boundary_soft(grid.size()), adjacent(grid.size()),
+      converted(grid.size()), near_hard(grid.size()) {
+  for (FlatBitset& plane : squares) plane = FlatBitset(grid.size());
+}
+
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
                                                           const ChainOptions& options,
-                                                          const CancelToken* cancel) {
+                                                          const CancelToken* cancel,
+                                                          ClosedFormWorkspace& ws) {
   const int n = options.plate_size;
   const auto st = grid.strides();
   const int64_t strides[3] = {st[0], st[1], st[2]};
   ClosedFormOutcome outcome;
 
-  const FlatBitset interior = InteriorPlane(grid);
-  if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
-  const FlatBitset out0 = Plane(grid, [](VoxelState s) { return IsOutside(s); });
+  const FlatBitset& interior = ws.interior;
+  FlatBitset& out0 = ws.out0;
+  FillPlane(grid, [](VoxelState s) { return IsOutside(s); }, out0);
   if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
   // FREE: cells a plate may cover: no hard or frozen voxel, off the array border. Inside
   // and boundary only prune no-op plates (fast-shrink.md section 4), so both count.
-  FlatBitset free_cells = Plane(grid, [](VoxelState s) { return !IsHardOrFrozen(s); });
+  FlatBitset& free_cells = ws.free_cells;
+  FillPlane(grid, [](VoxelState s) { return !IsHardOrFrozen(s); }, free_cells);
   free_cells.And(interior);
 
-  FlatBitset out = out0;
-  FlatBitset squares[6];  // anchors of all-free n x n squares, per orientation
+  FlatBitset& out = ws.out;
+  out = out0;
+  FlatBitset* squares = ws.squares;  // anchors of all-free n x n squares, per orientation
   for (int o = 0; o < 6; ++o) {
     if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
     const Orientation& orient = kOrientations[o];
@@ -73,7 +82,9 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     squares[o].ErodeRun(n, st[orient.u_axis()]);
     squares[o].ErodeRun(n, st[orient.v_axis()]);
   }
-  FlatBitset back(grid.size()), reach(grid.size()), tmp(grid.size());
+  FlatBitset& back = ws.back;
+  FlatBitset& reach = ws.reach;
+  FlatBitset& tmp = ws.tmp;
   for (bool changed = true; changed && outcome.rounds < 64;) {
     changed = false;
     ++outcome.rounds;
@@ -104,21 +115,25 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   }
 
   // Apply: new outside voxels, and their inside 26-neighbours become boundary.
-  FlatBitset fresh = out;
+  FlatBitset& fresh = ws.fresh;
+  fresh = out;
   fresh.AndNot(out0);
   outcome.new_outside = fresh.Count();
   if (outcome.new_outside == 0) {
     outcome.applied = true;
     return outcome;
   }
-  FlatBitset was_boundary_soft = Plane(grid, [](VoxelState s) { return s == kBoundarySoft; });
-  FlatBitset adjacent = fresh;
+  FlatBitset& was_boundary_soft = ws.was_boundary_soft;
+  FillPlane(grid, [](VoxelState s) { return s == kBoundarySoft; }, was_boundary_soft);
+  FlatBitset& adjacent = ws.adjacent;
+  adjacent = fresh;
   adjacent.Dilate26(strides);
   adjacent.AndNot(out);
   VoxelState* s = grid.mutable_states().data();
   const VoxelState label = OutsideState(options.generation_label);
   fresh.ForEach([&](int64_t i) { s[i] = label; });
-  FlatBitset converted(grid.size());
+  FlatBitset& converted = ws.converted;
+  converted.clear_all();
   adjacent.ForEach([&](int64_t i) {
     if (IsInside(s[i])) {
       s[i] |= kBoundaryBit;
@@ -134,7 +149,8 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     if (IncursionAt(grid, i, options.thick_wall_run)) ++outcome.incursions;
   });
   if (outcome.incursions == 0 && options.topology_guard) {
-    FlatBitset near_hard = Plane(grid, [](VoxelState v) { return IsHard(v); });
+    FlatBitset& near_hard = ws.near_hard;
+    FillPlane(grid, [](VoxelState v) { return IsHard(v); }, near_hard);
     near_hard.Dilate26(strides);
     near_hard.And(fresh);
     const GuardOptions guard = GuardOptionsOf(options);

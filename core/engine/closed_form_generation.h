@@ -14,6 +14,7 @@
 #include "absl/status/statusor.h"
 #include "core/engine/cancel_token.h"
 #include "core/engine/contraction.h"
+#include "core/engine/flat_bitset.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {
@@ -27,13 +28,24 @@ struct ClosedFormOutcome {
   int64_t checks = 0;          // incursion and guard tests run on the result
 };
 
+// Bit-planes reused across generations: a 70 M voxel grid needs 9 MB per plane, and fresh
+// pages for a dozen of them every generation cost more than the word operations.
+struct ClosedFormWorkspace {
+  explicit ClosedFormWorkspace(const VoxelGrid& grid);
+  FlatBitset interior, out0, free_cells, out, back, reach, tmp, fresh, was_boundary_soft,
+      adjacent, converted, near_hard;
+  FlatBitset squares[6];
+};
+
 // Runs generation `options` (plate size, label, guard and incursion settings) in closed form
 // on `grid`. On success the grid is the generation's result, the same as the chains would
 // give (every new outside voxel has generation options.generation_label; inside voxels next to
 // them became boundary). Cancelled when `cancel` fires (the grid is then restored).
+// `workspace` must have been made for this grid.
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
                                                           const ChainOptions& options,
-                                                          const CancelToken* cancel);
+                                                          const CancelToken* cancel,
+                                                          ClosedFormWorkspace& workspace);
 
 }  // namespace membrane
 

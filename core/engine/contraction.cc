@@ -213,7 +213,7 @@ ChainOutcome ChainRunner::Run(const Plate& start, const ChainOptions& options,
     movable = false;
     if (!RegionOk(o, t.layer, cells, /*lenient=*/true, movable) || !movable) continue;
     if (check_back && !BackOk(o, t.layer, back)) continue;
-    if (move == kFront && n == 1 && options.depth_bound > 0 &&
+    if (move == kFront && n <= options.depth_bound_max_plate && options.depth_bound > 0 &&
         (t.layer - start.layer) * orient.sign > options.depth_bound) {
       depth_refused = true;
       failed = true;

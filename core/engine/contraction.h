@@ -24,7 +24,8 @@ namespace membrane {
 struct ChainOptions {
   int plate_size = 1;          // n
   int generation_label = 1;    // written into the voxels this generation turns outside
-  int depth_bound = 3;         // at n = 1, deeper front moves count as incursions; 0 = unbounded
+  int depth_bound = 3;         // at small n, deeper front moves count as incursions; 0 = unbounded
+  int depth_bound_max_plate = 1;  // the plate sizes the depth bound applies to: n <= this
   int thick_wall_run = 3;      // longest hard run of the thick-wall incursion test; 1 = paper
   bool topology_guard = true;  // algorithm-notes 12
   int guard_tunnel_min_plate = 5;  // tunnels away from hard voxels are allowed from this n

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
@@ -108,6 +109,7 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
   const std::vector<int> labels = GenerationLabels(static_cast<int>(sizes.size()));
   PlaceFinder finder(grid);
   ChainRunner runner(grid);
+  std::optional<ClosedFormWorkspace> closed_form_planes;  // made at the first closed form
   for (size_t g = 0; g < sizes.size(); ++g) {
     const Clock::time_point t0 = Clock::now();
     GenerationStats stats;
@@ -118,6 +120,7 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     chain.plate_size = sizes[g];
     chain.generation_label = labels[g];
     chain.depth_bound = options.depth_bound;
+    chain.depth_bound_max_plate = options.depth_bound_max_plate;
     chain.thick_wall_run = options.thick_wall_run;
     chain.topology_guard = options.topology_guard;
     chain.guard_tunnel_min_plate = options.guard_tunnel_min_plate;
@@ -127,7 +130,9 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     // tunnel size): then only tunnels next to hard voxels are refused, and it checks those.
     if (options.closed_form_min_plate > 0 && sizes[g] >= options.closed_form_min_plate &&
         sizes[g] >= options.guard_tunnel_min_plate) {
-      absl::StatusOr<ClosedFormOutcome> closed = RunClosedFormGeneration(grid, chain, cancel);
+      if (!closed_form_planes) closed_form_planes.emplace(grid);
+      absl::StatusOr<ClosedFormOutcome> closed =
+          RunClosedFormGeneration(grid, chain, cancel, *closed_form_planes);
       if (!closed.ok()) return CancelledIn(stats);
       done = stats.closed_form = closed->applied;
       stats.closed_form_rounds = closed->rounds;

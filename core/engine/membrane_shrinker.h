@@ -20,6 +20,7 @@ struct ShrinkOptions {
   PlateSchedule schedule = PlateSchedule::kHalving;
   int initial_plate = 0;            // 0: from the grid (Algorithm 1)
   int depth_bound = 3;              // algorithm-notes 14; 0 = unbounded (the paper)
+  int depth_bound_max_plate = 2;    // ...applied to plate sizes up to this one
   int thick_wall_run = 3;           // algorithm-notes 15; 1 = the paper's test only
   bool topology_guard = true;       // algorithm-notes 12
   int guard_tunnel_min_plate = 5;   // notes 12: tunnels away from hard voxels from this n

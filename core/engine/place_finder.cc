@@ -5,7 +5,9 @@
 
 namespace membrane {
 
-PlaceFinder::PlaceFinder(const VoxelGrid& grid) : grid_(grid), interior_(grid.size()) {
+PlaceFinder::PlaceFinder(const VoxelGrid& grid)
+    : grid_(grid), interior_(grid.size()), out_(grid.size()), boundary_soft_(grid.size()),
+      free_(grid.size()), candidates_(grid.size()), ok_(grid.size()), covered_(grid.size()) {
   const auto& d = grid.dims();
   for (int z = 1; z + 1 < d[2]; ++z)
     for (int y = 1; y + 1 < d[1]; ++y)
@@ -21,7 +23,8 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   n_ = n;
   const int64_t nv = grid_.size();
   const auto st = grid_.strides();
-  FlatBitset out(nv), bs(nv);
+  FlatBitset& out = out_;
+  FlatBitset& bs = boundary_soft_;
   {
     // Build the two planes 64 voxels at a time.
     const VoxelState* s = grid_.states().data();
@@ -39,11 +42,15 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
       bw[w] = b;
     }
   }
-  FlatBitset free_cells = out;  // outside or boundary soft, off the border
+  FlatBitset& free_cells = free_;  // outside or boundary soft, off the border
+  free_cells = out;
   free_cells.Or(bs);
   free_cells.And(interior_);
 
-  FlatBitset candidates(nv), ok(nv), covered(nv);
+  FlatBitset& candidates = candidates_;
+  FlatBitset& ok = ok_;
+  FlatBitset& covered = covered_;
+  candidates.clear_all();
   for (int o = 0; o < 6; ++o) {
     if (cancelled()) return std::nullopt;
     const Orientation& orient = kOrientations[o];

@@ -42,6 +42,8 @@ class PlaceFinder {
   FlatBitset interior_;                  // not on the array border
   std::array<FlatBitset, 6> anchors_;    // E_o: lowest corner of each fitting plate
   std::array<FlatBitset, 6> anchor_rows_;  // DC_o: E_o dilated along v by n
+  // Work planes, allocated once: a snapshot per pass must not pay for fresh pages.
+  FlatBitset out_, boundary_soft_, free_, candidates_, ok_, covered_;
 };
 
 }  // namespace membrane

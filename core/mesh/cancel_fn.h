@@ -1,4 +1,6 @@
-// Cooperative cancellation for the mesh steps: a callback polled between units of work.
+// Cooperative cancellation for the mesh steps (relaxation, surface): a callback polled between
+// units of work, so that a cancelled job (design/contracts.md, `membrane jobs cancel`) stops
+// within milliseconds, as the engine does with its CancelToken.
 #ifndef MEMBRANE_CORE_MESH_CANCEL_FN_H_
 #define MEMBRANE_CORE_MESH_CANCEL_FN_H_
 

@@ -15,7 +15,9 @@ void BoxFilter(const VoxelGrid& grid, std::vector<char>& mask, std::vector<char>
                char beyond) {
   const int nx = grid.dim(0), ny = grid.dim(1), nz = grid.dim(2);
   const int64_t sy = nx, sz = int64_t{nx} * ny;
-  auto combine = [erode](char a, char b, char c) -> char { return erode ? (a & b & c) : (a | b | c); };
+  auto combine = [erode](char a, char b, char c) -> char {
+    return erode ? (a & b & c) : (a | b | c);
+  };
   // Along x.
   for (int64_t row = 0; row < int64_t{ny} * nz; ++row) {
     const char* m = mask.data() + row * nx;

@@ -7,8 +7,7 @@
 
 namespace membrane {
 
-CrossingRepair RepairCrossings(TriangleMesh& mesh, const std::vector<Point3f>& safe,
-                               int halvings) {
+CrossingRepair RepairCrossings(TriangleMesh& mesh, const std::vector<Point3f>& safe, int halvings) {
   CrossingRepair result;
   std::vector<int32_t> vertices;
   // Per vertex: how often it was moved back already. A vertex moved halfway `halvings` times

@@ -1,7 +1,7 @@
 // Back-off repair of self-intersections: the vertices of crossing triangles move toward
-// positions known to be embedded until nothing crosses (membrane-quality.md recipe 3 step 6).
-// Used twice: the surface nets falls back toward the cuberille geometry of the same
-// combinatorics, and the fit falls back toward the surface-nets positions.
+// positions known to be embedded until nothing crosses (the back-off of membrane-quality.md
+// recipe 3 step 6). SurfaceNets() uses it to fall back toward the cuberille geometry of the
+// same faces; FitToPoints() does the same inside its own final check.
 #ifndef MEMBRANE_CORE_MESH_CROSSING_REPAIR_H_
 #define MEMBRANE_CORE_MESH_CROSSING_REPAIR_H_
 
@@ -13,9 +13,9 @@
 namespace membrane {
 
 struct CrossingRepair {
-  int64_t checks = 0;           // whole-mesh intersection searches run
-  int64_t moved_vertices = 0;   // vertex moves, summed over the rounds
-  int64_t crossings_left = 0;   // pairs still crossing at the end (0 when `safe` is embedded)
+  int64_t checks = 0;          // whole-mesh intersection searches run
+  int64_t moved_vertices = 0;  // vertex moves, summed over the rounds
+  int64_t crossings_left = 0;  // pairs still crossing at the end (0 when `safe` is embedded)
 };
 
 // Input: `mesh`, and `safe` (one position per vertex, model units) at which the mesh with the

@@ -35,8 +35,8 @@ int64_t ForEachCornerContact(const VoxelGrid& grid, Fn fn) {
             std::array<int64_t, 6> others{};
             bool contact = true;
             for (int o = 1; o < 7; ++o) {
-              const int64_t j = i + ((o & 1) ? step[0] : 0) + ((o & 2) ? step[1] : 0) +
-                                ((o & 4) ? step[2] : 0);
+              const int64_t j =
+                  i + ((o & 1) ? step[0] : 0) + ((o & 2) ? step[1] : 0) + ((o & 4) ? step[2] : 0);
               others[o - 1] = j;
               if (Solid(grid.at(j))) contact = false;
             }

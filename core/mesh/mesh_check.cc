@@ -105,7 +105,8 @@ MeshReport CheckMesh(const TriangleMesh& mesh) {
   std::vector<char> valid(nf, 0);
   for (int64_t f = 0; f < nf; ++f) {
     const auto& t = mesh.faces[f];
-    const bool in_range = t[0] >= 0 && t[0] < nv && t[1] >= 0 && t[1] < nv && t[2] >= 0 && t[2] < nv;
+    const bool in_range =
+        t[0] >= 0 && t[0] < nv && t[1] >= 0 && t[1] < nv && t[2] >= 0 && t[2] < nv;
     if (!in_range) {
       ++r.invalid_faces;
       continue;
@@ -132,8 +133,8 @@ MeshReport CheckMesh(const TriangleMesh& mesh) {
   };
 
   UnionFind shells_uf(nf);
-  std::vector<int64_t> edge_shell_face;  // one face per undirected edge, for per-shell E
-  std::vector<char> edge_ok;             // edge has exactly two faces
+  std::vector<int64_t> edge_shell_face;            // one face per undirected edge, for per-shell E
+  std::vector<char> edge_ok;                       // edge has exactly two faces
   std::vector<std::pair<int32_t, int32_t>> group;  // (other end, item)
   for (int64_t v = 0; v < nv; ++v) {
     group.clear();
@@ -181,7 +182,8 @@ MeshReport CheckMesh(const TriangleMesh& mesh) {
     ++shell_f[shell_of[f]];
     const auto& t = mesh.faces[f];
     const double vol = Dot(ToVec3d(mesh.vertices[t[0]]),
-                           Cross(ToVec3d(mesh.vertices[t[1]]), ToVec3d(mesh.vertices[t[2]]))) / 6;
+                           Cross(ToVec3d(mesh.vertices[t[1]]), ToVec3d(mesh.vertices[t[2]]))) /
+                       6;
     shell_volume[shell_of[f]] += vol;
     r.volume += vol;
   }
@@ -210,7 +212,8 @@ MeshReport CheckMesh(const TriangleMesh& mesh) {
       vertex_shells.push_back(shell_of[item / 3]);
     }
     std::sort(vertex_shells.begin(), vertex_shells.end());
-    vertex_shells.erase(std::unique(vertex_shells.begin(), vertex_shells.end()), vertex_shells.end());
+    vertex_shells.erase(std::unique(vertex_shells.begin(), vertex_shells.end()),
+                        vertex_shells.end());
     for (int64_t s : vertex_shells) ++shell_v[s];
     if (!SingleFan(link, scratch_nodes, scratch_labels)) {
       ++r.nonmanifold_vertices;

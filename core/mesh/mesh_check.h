@@ -22,23 +22,23 @@ struct MeshReport {
   int64_t degenerate_faces = 0;
   // Vertices used by no valid face; left out of the Euler characteristics.
   int64_t unreferenced_vertices = 0;
-  int64_t boundary_edges = 0;       // undirected edges in exactly one face
-  int64_t nonmanifold_edges = 0;    // undirected edges in three or more faces
-  int64_t misoriented_edges = 0;    // edges used twice in the same direction
-  int64_t nonmanifold_vertices = 0; // vertices whose faces form more than one fan
-  bool closed = false;              // every edge in exactly two faces
-  bool edge_manifold = false;       // no edge in more than two faces
-  bool vertex_manifold = false;     // the faces around each vertex form one fan or cycle
-  bool manifold = false;            // edge_manifold && vertex_manifold
-  bool oriented = false;            // no edge used twice in one direction
-  double volume = 0;                // signed volume, model units^3 (positive = outward)
-  bool positive_volume = false;     // every shell encloses a positive signed volume
+  int64_t boundary_edges = 0;        // undirected edges in exactly one face
+  int64_t nonmanifold_edges = 0;     // undirected edges in three or more faces
+  int64_t misoriented_edges = 0;     // edges used twice in the same direction
+  int64_t nonmanifold_vertices = 0;  // vertices whose faces form more than one fan
+  bool closed = false;               // every edge in exactly two faces
+  bool edge_manifold = false;        // no edge in more than two faces
+  bool vertex_manifold = false;      // the faces around each vertex form one fan or cycle
+  bool manifold = false;             // edge_manifold && vertex_manifold
+  bool oriented = false;             // no edge used twice in one direction
+  double volume = 0;                 // signed volume, model units^3 (positive = outward)
+  bool positive_volume = false;      // every shell encloses a positive signed volume
   // Pairs of faces that intersect. Faces with no common vertex count on any contact
   // (touching included). Faces sharing a vertex or an edge count only on a NON-TRIVIAL
   // overlap: a common point besides the shared vertex, or coplanar faces folded over their
   // shared edge.
   int64_t self_intersections = 0;
-  int shells = 0;                   // connected components of faces over shared edges
+  int shells = 0;  // connected components of faces over shared edges
   // Genus of each shell, in shell order (ordered by first face), from V - E + F = 2 - 2g;
   // -1 for a shell that is not closed and manifold (where the formula means nothing).
   std::vector<int> genus;

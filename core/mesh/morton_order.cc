@@ -39,9 +39,8 @@ void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companio
   }
   std::vector<int32_t> order(nv);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
-    return key[a] != key[b] ? key[a] < key[b] : a < b;
-  });
+  std::sort(order.begin(), order.end(),
+            [&](int32_t a, int32_t b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
   std::vector<int32_t> new_id(nv);
   std::vector<Point3f> vertices(nv);
   for (size_t i = 0; i < nv; ++i) {

@@ -19,15 +19,17 @@ namespace {
 // triangles cross goes back through the same fractions, then to where it started.
 constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
 constexpr int kFullyBackedOff = 3;
+constexpr int kRepairHalvings = 6;
 constexpr int kCancelPollVertices = 4096;
 
 class Fitter {
  public:
   Fitter(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,
-         const FitOptions& options)
+         const FitOptions& options, const std::vector<Point3f>* fallback)
       : mesh_(mesh),
         l_(voxel_size),
         options_(options),
+        fallback_(fallback),
         rest_(mesh.vertices),
         // Cells twice the search radius: 8 look-ups per query (instead of 27) for a few more
         // points scanned, which is cheaper.
@@ -46,6 +48,7 @@ class Fitter {
       const Triangle3d t = Tri(f);
       rest_normal_[f] = TriangleNormal(t[0], t[1], t[2]);
     }
+    if (fallback_ != nullptr) repair_level_.assign(nv, 0);
     // "Non-zero area": twice the area above a tiny fraction of a voxel face, so that no later
     // float32 rounding can flip a sliver.
     min_double_area_ = 1e-6 * l_ * l_;
@@ -53,6 +56,7 @@ class Fitter {
     settled_at_.assign(nv, -1);
     level_.assign(nv, 0);
     in_round_.assign(nv, 0);
+    backed_off_.assign(nv, 0);
     start_.resize(nv);
     target_.resize(nv);
     dirty_.assign(nf, 0);
@@ -61,10 +65,9 @@ class Fitter {
   absl::Status Run(const CancelFn& cancel, FitStats& stats) {
     const int32_t nv = static_cast<int32_t>(mesh_.vertices.size());
     for (int round = 0; round < options_.rounds; ++round) {
-      moved_.clear();
       for (int32_t v = 0; v < nv; ++v) {
         if (v % kCancelPollVertices == 0 && Cancelled(cancel)) {
-          // Leave a valid mesh: undo what this round has not verified yet.
+          // Leave a valid mesh: nothing is verified before the end, so undo every move.
           for (int32_t u : moved_) Set(u, start_[u]);
           return absl::CancelledError("fitting cancelled");
         }
@@ -74,8 +77,9 @@ class Fitter {
         if (round >= 2 && Settled(v)) continue;
         FitVertex(v, round, stats);
       }
-      Verify(stats);
     }
+    // With a fallback the input is not known to be clean: the first search covers it all.
+    Verify(/*search_all=*/fallback_ != nullptr, stats);
     return absl::OkStatus();
   }
 
@@ -197,12 +201,15 @@ class Fitter {
       const Point3f candidate = ToPoint3f(x + kStepFractions[level] * delta);
       if (candidate == mesh_.vertices[v]) break;
       if (StarOk(v, candidate)) {
-        start_[v] = mesh_.vertices[v];
-        target_[v] = x + delta;
-        level_[v] = level;
-        in_round_[v] = 1;
+        if (!in_round_[v]) {
+          start_[v] = mesh_.vertices[v];
+          in_round_[v] = 1;
+          moved_.push_back(v);
+        }
+        target_[v] = ToVec3d(candidate);
+        level_[v] = 0;
+        backed_off_[v] = level > 0;
         Set(v, candidate);
-        moved_.push_back(v);
         return;
       }
     }
@@ -210,16 +217,19 @@ class Fitter {
     ++stats.refused;
   }
 
-  // Ends a round: searches the faces around this round's moves for pairs that intersect (on
-  // the float32 positions that are written: this is also the rounding check of step 6) and
-  // backs the moved vertices of such pairs off through the step fractions, then to where they
-  // started, until nothing crosses. A back-off can leave a triangle inverted next to a vertex
-  // that moved later; its moved vertices then go back to their start too.
-  void Verify(FitStats& stats) {
-    if (moved_.empty()) return;
+  // Ends the fit: searches the faces around the moved vertices for pairs that intersect (on the
+  // float32 positions that are written: this is also the rounding check of step 6) and backs
+  // the moved vertices of such pairs off, from their final position toward where they started,
+  // through the step fractions, then all the way, until nothing crosses. A back-off can leave
+  // a triangle inverted next to a vertex that moved later; its moved vertices then go back to
+  // their start too. One search after all rounds instead of one per move: a linear pass rather
+  // than a grid query per vertex, with the same guarantee; crossings are rare (tens of pairs
+  // per 300k faces), so backing off whole moves loses little.
+  void Verify(bool search_all, FitStats& stats) {
+    if (moved_.empty() && !search_all) return;
     std::vector<int32_t> changed = moved_;
-    for (;;) {
-      std::fill(dirty_.begin(), dirty_.end(), 0);
+    for (bool first = true;; first = false) {
+      std::fill(dirty_.begin(), dirty_.end(), first && search_all ? 1 : 0);
       for (int32_t v : changed)
         for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) dirty_[star_[i]] = 1;
       const auto pairs = FindIntersectingFacesNear(mesh_, dirty_);
@@ -228,10 +238,15 @@ class Fitter {
       for (const auto& [a, b] : pairs)
         for (int32_t f : {a, b})
           for (int32_t v : mesh_.faces[f])
-            if (mesh_.vertices[v] != start_[v] && IsMoved(v)) changed.push_back(v);
+            if (IsMoved(v) && mesh_.vertices[v] != start_[v]) changed.push_back(v);
       std::sort(changed.begin(), changed.end());
       changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-      if (changed.empty()) break;  // cannot happen from a clean start; never loop forever
+      if (changed.empty()) {
+        // Every vertex of the crossing pairs is where the pass found it: the input crossed.
+        if (!RepairTowardFallback(pairs, changed)) break;  // nothing left to move
+        stats.repaired_vertices += static_cast<int64_t>(changed.size());
+        continue;
+      }
       for (int32_t v : changed) BackOff(v);
       // Inverted or collapsed triangles next to backed-off vertices: send their moved
       // vertices home as well, until every such triangle is fine.
@@ -255,12 +270,46 @@ class Fitter {
       } else {
         ++stats.refused;
       }
-      if (level_[v] > 0) ++stats.backed_off;
+      if (level_[v] > 0 || backed_off_[v]) ++stats.backed_off;
     }
     for (int32_t v : moved_) in_round_[v] = 0;
+    moved_.clear();
   }
 
   bool IsMoved(int32_t v) const { return in_round_[v] != 0; }
+
+  // Moves the vertices of `pairs` toward their fallback positions (halfway, then all the way
+  // after 6 halvings) and makes the new positions their input positions. Fills `moved`;
+  // returns false when nothing could move (no fallback, or all there already).
+  bool RepairTowardFallback(const std::vector<std::pair<int32_t, int32_t>>& pairs,
+                            std::vector<int32_t>& moved) {
+    moved.clear();
+    if (fallback_ == nullptr) return false;
+    for (const auto& [a, b] : pairs)
+      for (int32_t f : {a, b})
+        for (int32_t v : mesh_.faces[f]) moved.push_back(v);
+    std::sort(moved.begin(), moved.end());
+    moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+    size_t kept = 0;
+    for (int32_t v : moved) {
+      const Point3f& safe = (*fallback_)[v];
+      if (mesh_.vertices[v] == safe) continue;
+      const double keep = repair_level_[v]++ < kRepairHalvings ? 0.5 : 0.0;
+      const Vec3d s = ToVec3d(safe);
+      const Point3f p = ToPoint3f(s + keep * (Pos(v) - s));
+      Set(v, p);
+      rest_[v] = p;
+      start_[v] = p;
+      moved[kept++] = v;
+    }
+    moved.resize(kept);
+    for (int32_t v : moved)
+      for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) {
+        const Triangle3d t = Tri(star_[i]);
+        rest_normal_[star_[i]] = TriangleNormal(t[0], t[1], t[2]);
+      }
+    return !moved.empty();
+  }
 
   // The next fraction of the way from start to target, or the start.
   void BackOff(int32_t v) {
@@ -273,7 +322,10 @@ class Fitter {
   TriangleMesh& mesh_;
   const double l_;
   const FitOptions options_;
-  const std::vector<Point3f> rest_;
+  const std::vector<Point3f>* fallback_;
+  // Input positions (the clamp's centre); they move only when repaired toward the fallback.
+  std::vector<Point3f> rest_;
+  std::vector<uint8_t> repair_level_;
   const PointHashGrid points_;
   std::vector<int32_t> star_start_, star_;
   std::vector<Vec3d> rest_normal_;
@@ -282,11 +334,12 @@ class Fitter {
   // when v last found its target already reached or refused (-1: not settled).
   int64_t clock_ = 0;
   std::vector<int64_t> changed_at_, settled_at_;
-  // This round's moves: start and applied position, back-off level.
+  // The moved vertices: position before their first move, last applied position, back-off
+  // level in the final check, and whether the last move was taken short of its target.
   std::vector<int32_t> moved_;
-  std::vector<char> in_round_;
+  std::vector<char> in_round_, backed_off_;
   std::vector<Point3f> start_;
-  std::vector<Vec3d> target_;
+  std::vector<Vec3d> target_;  // last applied position
   std::vector<int> level_;
   std::vector<char> dirty_;
   std::vector<Triangle3d> new_tri_;
@@ -296,13 +349,13 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
   if (!(voxel_size > 0) || !std::isfinite(voxel_size))
     return absl::InvalidArgumentError(absl::StrCat("voxel size ", voxel_size, " is not positive"));
   if (o.rounds < 0 || !(o.search_radius > 0) || !(o.sigma > 0) || !(o.normal_sigma > 0) ||
-      o.min_points < 3 || !(o.umbrella_step >= 0 && o.umbrella_step <= 1) ||
-      !(o.max_offset >= 0) || !(o.min_move >= 0))
-    return absl::InvalidArgumentError(absl::StrCat(
-        "fit options out of range: rounds ", o.rounds, ", search_radius ", o.search_radius,
-        ", sigma ", o.sigma, ", normal_sigma ", o.normal_sigma, ", min_points ", o.min_points,
-        ", umbrella_step ", o.umbrella_step, ", max_offset ", o.max_offset, ", min_move ",
-        o.min_move));
+      o.min_points < 3 || !(o.umbrella_step >= 0 && o.umbrella_step <= 1) || !(o.max_offset >= 0) ||
+      !(o.min_move >= 0))
+    return absl::InvalidArgumentError(
+        absl::StrCat("fit options out of range: rounds ", o.rounds, ", search_radius ",
+                     o.search_radius, ", sigma ", o.sigma, ", normal_sigma ", o.normal_sigma,
+                     ", min_points ", o.min_points, ", umbrella_step ", o.umbrella_step,
+                     ", max_offset ", o.max_offset, ", min_move ", o.min_move));
   return absl::OkStatus();
 }
 
@@ -310,11 +363,14 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
 
 absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
                                      absl::Span<const Point3f> points, const FitOptions& options,
-                                     const CancelFn& cancel) {
+                                     const CancelFn& cancel, const std::vector<Point3f>* fallback) {
   if (absl::Status s = ValidateOptions(voxel_size, options); !s.ok()) return s;
   FitStats stats;
   if (mesh.faces.empty()) return stats;
-  Fitter fitter(mesh, voxel_size, points, options);
+  if (fallback != nullptr && fallback->size() != mesh.vertices.size())
+    return absl::InvalidArgumentError(absl::StrCat(
+        "fallback has ", fallback->size(), " positions for ", mesh.vertices.size(), " vertices"));
+  Fitter fitter(mesh, voxel_size, points, options, fallback);
   if (absl::Status s = fitter.Run(cancel, stats); !s.ok()) return s;
   return stats;
 }

@@ -6,6 +6,7 @@
 #define MEMBRANE_CORE_MESH_POINT_FITTING_H_
 
 #include <cstdint>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
@@ -17,16 +18,16 @@ namespace membrane {
 
 // Lengths in voxels (multiples of the membrane's voxel size).
 struct FitOptions {
-  int rounds = 4;                 // passes over all vertices
-  double search_radius = 2.0;     // points gathered within this distance of the vertex
-  double sigma = 1.0;             // Gaussian weight of a point's distance
+  int rounds = 4;              // passes over all vertices
+  double search_radius = 2.0;  // points gathered within this distance of the vertex
+  double sigma = 1.0;          // Gaussian weight of a point's distance
   // From the second round, a point's offset along the vertex normal is weighted with this
   // (narrower) sigma instead, so the opposite sheet of a thin part does not pull.
   double normal_sigma = 0.6;
-  int min_points = 6;             // fewer points: umbrella step instead of a plane fit
-  double umbrella_step = 0.5;     // fraction of the way to the 1-ring mean
-  double max_offset = 1.5;        // a vertex never moves farther from its surface-nets position
-  double min_move = 1e-3;         // smaller moves are not worth a check
+  int min_points = 6;          // fewer points: umbrella step instead of a plane fit
+  double umbrella_step = 0.5;  // fraction of the way to the 1-ring mean
+  double max_offset = 1.5;     // a vertex never moves farther from its surface-nets position
+  double min_move = 1e-3;      // smaller moves are not worth a check
 };
 
 struct FitStats {
@@ -35,6 +36,7 @@ struct FitStats {
   int64_t moves = 0;              // moves kept
   int64_t refused = 0;            // targets not taken even at 1/4 of the way
   int64_t backed_off = 0;         // moves kept at 1/2 or 1/4 of the way
+  int64_t repaired_vertices = 0;  // vertex moves toward the fallback (input crossings)
 };
 
 // Input: `mesh` as SurfaceNets() makes it (closed, manifold, outward, no self-intersections),
@@ -51,14 +53,21 @@ struct FitStats {
 // vertices of every crossing pair back off through 1/2, 1/4 of the way, then to where they
 // started, until nothing crosses. Checking once per pass instead of once per move costs one
 // linear search instead of a grid query per vertex, and gives the same guarantee.
-// After: closed, manifold and oriented as before; no self-intersections if the input had none;
-// every vertex within max_offset * voxel_size of its input position.
-// Errors: InvalidArgument for a non-positive voxel size or options out of range; Cancelled when
-// `cancel` fired (the mesh then holds a valid intermediate state: every promise above holds).
+// `fallback`, if not null, holds one position per vertex at which the mesh is known free of
+// self-intersections (SurfaceNetsBeforeRepair's); the input may then cross itself: the first
+// pass searches every face, and crossings that no move explains are repaired toward
+// `fallback` (halfway up to 6 times, then all the way, as crossing_repair.h does); the
+// repaired positions then count as the vertices' input positions.
+// After: closed, manifold and oriented as before; no self-intersections if the input had none
+// or `fallback` was given; every vertex within max_offset * voxel_size of its input position.
+// Errors: InvalidArgument for a non-positive voxel size, options out of range or a fallback of
+// the wrong size; Cancelled when `cancel` fired (the mesh then holds the last verified state:
+// the moves of the pass under way are undone).
 absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
                                      absl::Span<const Point3f> points,
                                      const FitOptions& options = {},
-                                     const CancelFn& cancel = nullptr);
+                                     const CancelFn& cancel = nullptr,
+                                     const std::vector<Point3f>* fallback = nullptr);
 
 }  // namespace membrane
 

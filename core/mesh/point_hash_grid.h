@@ -20,7 +20,7 @@ namespace membrane {
 // reading the same few runs and table slots, which stay in cache.
 class PointHashGrid {
  public:
-  // `cell` > 0. Copies the points.
+  // `cell` > 0 (model units); fewer than 2^32 points. Copies the points.
   PointHashGrid(absl::Span<const Point3f> points, double cell);
 
   // Calls fn(const Point3f&, double squared_distance) for every point within `radius` of

@@ -44,11 +44,11 @@ struct RelaxationOptions {
 };
 
 struct RelaxationStats {
-  int64_t phase1_moves = 0;       // boundary voxels made inside
-  int64_t phase1_added = 0;       // outside voxels made boundary by those moves
-  int64_t phase2_moves = 0;       // boundary voxels made outside
-  int64_t phase2_uncovered = 0;   // inside voxels made boundary by those moves
-  int64_t not_simple = 0;         // qualifying steps refused by the topology rule
+  int64_t phase1_moves = 0;      // boundary voxels made inside
+  int64_t phase1_added = 0;      // outside voxels made boundary by those moves
+  int64_t phase2_moves = 0;      // boundary voxels made outside
+  int64_t phase2_uncovered = 0;  // inside voxels made boundary by those moves
+  int64_t not_simple = 0;        // qualifying steps refused by the topology rule
 };
 
 // DLC(V) = #outside - #inside among the 26 neighbours of voxel `c`, in [-26, 26]. `c` must not

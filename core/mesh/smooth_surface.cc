@@ -41,17 +41,23 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
   if (Cancelled(cancel)) return absl::CancelledError("surface cancelled");
 
   start = std::chrono::steady_clock::now();
-  TriangleMesh mesh = SurfaceNets(grid);
+  if (!options.fit) {
+    TriangleMesh mesh = SurfaceNets(grid);
+    s.surface_nets_seconds = SecondsSince(start);
+    return mesh;
+  }
+  // The fit's first pass searches the whole mesh for crossings anyway: it also does the
+  // surface nets' repair (toward the same fallback).
+  UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(grid);
   s.surface_nets_seconds = SecondsSince(start);
-  if (!options.fit) return mesh;
 
   start = std::chrono::steady_clock::now();
-  absl::StatusOr<FitStats> fit =
-      FitToPoints(mesh, membrane.voxel_size(), points, options.fit_options, cancel);
+  absl::StatusOr<FitStats> fit = FitToPoints(nets.mesh, membrane.voxel_size(), points,
+                                             options.fit_options, cancel, &nets.fallback);
   if (!fit.ok()) return fit.status();
   s.fit = *fit;
   s.fit_seconds = SecondsSince(start);
-  return mesh;
+  return std::move(nets.mesh);
 }
 
 }  // namespace membrane

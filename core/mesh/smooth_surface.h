@@ -25,18 +25,22 @@ struct SmoothSurfaceOptions {
 };
 
 struct SmoothSurfaceStats {
-  int64_t loose_sheet_voxels = 0;   // voxels of removed loose sheets
-  int64_t cave_voxels = 0;          // voxels filled in caves
-  int64_t bridges = 0;              // voxels added at corner-only contacts
-  int64_t corner_contacts_left = 0; // contacts no simple voxel could bridge
+  int64_t loose_sheet_voxels = 0;    // voxels of removed loose sheets
+  int64_t cave_voxels = 0;           // voxels filled in caves
+  int64_t bridges = 0;               // voxels added at corner-only contacts
+  int64_t corner_contacts_left = 0;  // contacts no simple voxel could bridge
   FitStats fit;
   double prepare_seconds = 0, surface_nets_seconds = 0, fit_seconds = 0;
 };
 
 // Input: the final (optionally relaxed) membrane, read only; `points` the input cloud in model
-// units. The steps, in order, on a copy of the grid: loose-sheet removal (loose_sheets.h),
-// homotopic cave filling (cave_filling.h), diagonal-contact bridging (diagonal_bridging.h);
-// then SurfaceNets() and FitToPoints().
+// units. The steps, in order, on a copy of the grid: loose-sheet removal (loose_sheets.h; first,
+// so that cave filling cannot thicken a sheet into something kept), homotopic cave filling
+// (cave_filling.h), diagonal-contact bridging (diagonal_bridging.h); then the surface nets and
+// FitToPoints(). With the fit, the nets' crossing repair is left to the fit's final check
+// (SurfaceNetsBeforeRepair), so the whole mesh is searched once.
+// Cost, measured on a 200^3 ball with 150k points (324k faces) on the shared 2-core machine:
+// about 1 s in all, 0.7 s of it the fit.
 // Output: a closed, manifold, outward-oriented mesh without self-intersections, in model
 // units, whose shells and genus are those of the membrane's solid minus any removed loose
 // sheets (caves and bridges are filled homotopically), unless `corner_contacts_left` > 0.

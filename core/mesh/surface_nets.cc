@@ -46,8 +46,8 @@ Placement Place(const VoxelBoundary& b) {
     Vec3d safe = corner;
     if (IsCornerContact(v.config)) {
       // Each of the two cubes pulls its corner in: the sheets part instead of touching.
-      safe = corner + kSafeCornerRetreat *
-                          Normalized(OctantDirection(FanSolidOctant(v.config, v.fan)));
+      safe = corner +
+             kSafeCornerRetreat * Normalized(OctantDirection(FanSolidOctant(v.config, v.fan)));
     } else if (NumFans(v.config) > 1) {
       safe = corner + kSafeSplitOffset * Normalized(FanOutsideDirection(v.config, v.fan));
     }

@@ -20,9 +20,16 @@ struct Projector {
   int u = 0, v = 1;
   explicit Projector(const Vec3d& normal) {
     double ax = std::fabs(normal[0]), ay = std::fabs(normal[1]), az = std::fabs(normal[2]);
-    if (ax >= ay && ax >= az) { u = 1; v = 2; }
-    else if (ay >= az) { u = 2; v = 0; }
-    else { u = 0; v = 1; }
+    if (ax >= ay && ax >= az) {
+      u = 1;
+      v = 2;
+    } else if (ay >= az) {
+      u = 2;
+      v = 0;
+    } else {
+      u = 0;
+      v = 1;
+    }
   }
   Vec2d operator()(const Vec3d& p) const { return {p[u], p[v]}; }
 };
@@ -142,11 +149,16 @@ bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& 
 }
 
 bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a, const Vec3d& na,
-                            const std::array<int32_t, 3>& ib, const Triangle3d& b, const Vec3d& nb) {
+                            const std::array<int32_t, 3>& ib, const Triangle3d& b,
+                            const Vec3d& nb) {
   int shared = 0, sa = -1, sb = -1;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      if (ia[i] == ib[j]) { ++shared; sa = i; sb = j; }
+      if (ia[i] == ib[j]) {
+        ++shared;
+        sa = i;
+        sb = j;
+      }
   if (shared == 0) return TrianglesIntersectWithNormals(a, na, b, nb);
   if (shared == 3) return true;
   if (IsZero(na) || IsZero(nb)) return false;

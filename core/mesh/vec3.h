@@ -18,17 +18,25 @@ inline Vec3d ToVec3d(const Point3f& p) { return {p[0], p[1], p[2]}; }
 inline Point3f ToPoint3f(const Vec3d& v) {
   return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
 }
-inline Vec3d operator+(const Vec3d& a, const Vec3d& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-inline Vec3d operator-(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline Vec3d operator+(const Vec3d& a, const Vec3d& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+inline Vec3d operator-(const Vec3d& a, const Vec3d& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
 inline Vec3d operator*(double s, const Vec3d& a) { return {s * a[0], s * a[1], s * a[2]}; }
-inline double Dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline double Dot(const Vec3d& a, const Vec3d& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 inline Vec3d Cross(const Vec3d& a, const Vec3d& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 inline double SquaredNorm(const Vec3d& a) { return Dot(a, a); }
 inline double Norm(const Vec3d& a) { return std::sqrt(Dot(a, a)); }
 // Twice the area vector of triangle (a, b, c): its direction is the CCW normal.
-inline Vec3d TriangleNormal(const Vec3d& a, const Vec3d& b, const Vec3d& c) { return Cross(b - a, c - a); }
+inline Vec3d TriangleNormal(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  return Cross(b - a, c - a);
+}
 
 }  // namespace membrane
 

@@ -84,8 +84,10 @@ CornerFacts MakeCornerFacts(int config) {
           for (int w = 0; w < 3; ++w) {
             if (w == a) continue;
             const int quad = QuadIndex(w, bits);
-            if (first < 0) first = quad;
-            else unite(first, quad);
+            if (first < 0)
+              first = quad;
+            else
+              unite(first, quad);
           }
         }
       }
@@ -118,8 +120,8 @@ CornerFacts MakeCornerFacts(int config) {
       if ((outside_octants[f] >> o) & 1) {
         const auto bits = Bits(o);
         facts.outside_direction[f] =
-            facts.outside_direction[f] + Vec3d{bits[0] ? 1.0 : -1.0, bits[1] ? 1.0 : -1.0,
-                                               bits[2] ? 1.0 : -1.0};
+            facts.outside_direction[f] +
+            Vec3d{bits[0] ? 1.0 : -1.0, bits[1] ? 1.0 : -1.0, bits[2] ? 1.0 : -1.0};
       }
   }
   // Which ambiguous half-edges have both pairs in one fan.

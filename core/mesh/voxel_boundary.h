@@ -41,9 +41,9 @@ struct VoxelBoundary {
   // both end vertices.
   struct EdgeMidpoint {
     std::array<int32_t, 2> ends{};  // fan-vertex ids at the edge's two ends
-    Coord edge_start;                // lower lattice corner of the edge
-    int axis = 0;                    // direction of the edge
-    Coord outside;                   // the outside voxel both quads of the pair bound
+    Coord edge_start;               // lower lattice corner of the edge
+    int axis = 0;                   // direction of the edge
+    Coord outside;                  // the outside voxel both quads of the pair bound
   };
   // One quad: the face between solid voxel `solid` and its outside neighbour along `axis`,
   // on the + side when `positive`.

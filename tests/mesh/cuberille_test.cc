@@ -1,8 +1,8 @@
 #include "core/mesh/cuberille.h"
 
-#include "gtest/gtest.h"
-#include "core/mesh/mesh_check.h"
 #include "core/engine/voxel_topology.h"
+#include "core/mesh/mesh_check.h"
+#include "gtest/gtest.h"
 #include "tests/mesh/surface_expectations.h"
 #include "tests/mesh/test_grids.h"
 
@@ -56,9 +56,7 @@ TEST(Cuberille, UsesModelUnits) {
   EXPECT_NEAR(CheckMesh(m).volume, 0.125, 1e-6);
 }
 
-TEST(Cuberille, OfEmptyGridIsEmpty) {
-  EXPECT_TRUE(Cuberille(OutsideGrid(6)).faces.empty());
-}
+TEST(Cuberille, OfEmptyGridIsEmpty) { EXPECT_TRUE(Cuberille(OutsideGrid(6)).faces.empty()); }
 
 TEST(Cuberille, MatchesVoxelTopologyOnRandomSolids) {
   // Random solids hold every local configuration: edge and corner contacts, checkerboards,

@@ -1,6 +1,5 @@
 #include "core/mesh/mesh_check.h"
 
-#include <chrono>
 #include <iostream>
 
 #include "gtest/gtest.h"
@@ -147,22 +146,19 @@ TEST(MeshCheck, DetectsPokeThroughAtSharedVertex) {
 
 TEST(MeshCheck, JsonUsesSnakeCaseKeys) {
   const std::string json = MeshReportToJson(CheckMesh(CubeMesh()));
-  for (const char* key : {"\"closed\": true", "\"manifold\": true", "\"oriented\": true",
-                          "\"shells\": 1", "\"genus\": [0]", "\"self_intersections\": 0",
-                          "\"positive_volume\": true"})
+  for (const char* key :
+       {"\"closed\": true", "\"manifold\": true", "\"oriented\": true", "\"shells\": 1",
+        "\"genus\": [0]", "\"self_intersections\": 0", "\"positive_volume\": true"})
     EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
 }
 
-TEST(MeshCheck, ChecksAMillionFacesInAboutASecond) {
+// Speed is measured in tests/bench, not here; this checks a million faces come out right.
+TEST(MeshCheck, AMillionFaceTorusIsClosedManifoldAndClean) {
   const TriangleMesh m = TorusMesh(1000, 500, 3, 1);
   ASSERT_EQ(m.faces.size(), 1000000u);
-  const auto start = std::chrono::steady_clock::now();
   const MeshReport r = CheckMesh(m);
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cout << "CheckMesh on 1M faces: " << s << " s\n";
   EXPECT_TRUE(r.closed && r.manifold && r.oriented);
   EXPECT_EQ(r.self_intersections, 0);
-  EXPECT_LT(s, 5.0);  // generous: the machine is shared
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
 #include "core/mesh/point_fitting.h"
 
-#include <chrono>
 #include <cmath>
 #include <iostream>
 
 #include "core/mesh/mesh_check.h"
+#include "core/mesh/self_intersection.h"
 #include "core/mesh/smooth_surface.h"
 #include "core/mesh/surface_nets.h"
 #include "gtest/gtest.h"
@@ -20,7 +20,8 @@ using namespace membrane::testing;
 struct SphereCase {
   static constexpr double kVoxel = 0.05;
   static constexpr double kRadius = 11 * kVoxel;
-  const std::array<double, 3> centre = {16 * kVoxel + 0.013, 16 * kVoxel - 0.007, 16 * kVoxel + 0.004};
+  const std::array<double, 3> centre = {16 * kVoxel + 0.013, 16 * kVoxel - 0.007,
+                                        16 * kVoxel + 0.004};
   const std::vector<Point3f> points = SpherePoints(20000, centre, kRadius, 3);
   const VoxelGrid grid = SampledSphereGrid(32, kVoxel, centre, kRadius, points);
 
@@ -80,12 +81,12 @@ TEST(PointFitting, FittedTorusKeepsGenusOne) {
     for (int j = 0; j < 60; ++j) {
       const double u = 2 * M_PI * i / 400, v = 2 * M_PI * j / 60;
       const double r = big + small * std::cos(v);
-      points.push_back({static_cast<float>(c + r * std::cos(u)), static_cast<float>(c + r * std::sin(u)),
+      points.push_back({static_cast<float>(c + r * std::cos(u)),
+                        static_cast<float>(c + r * std::sin(u)),
                         static_cast<float>(c + small * std::sin(v))});
     }
   VoxelGrid g = OutsideGrid(32, l);
-  for (const Point3f& p : points)
-    g.set(Coord{int(p[0]), int(p[1]), int(p[2])}, kInsideSoft);
+  for (const Point3f& p : points) g.set(Coord{int(p[0]), int(p[1]), int(p[2])}, kInsideSoft);
   MarkSolid(g, [&](int x, int y, int z) {
     const double dx = x + 0.5 - c, dy = y + 0.5 - c, dz = z + 0.5 - c;
     const double ring = std::sqrt(dx * dx + dy * dy) - big;
@@ -97,6 +98,50 @@ TEST(PointFitting, FittedTorusKeepsGenusOne) {
 TEST(PointFitting, WithoutPointsOnlySmoothsAndKeepsPromises) {
   const TriangleMesh m = Surface(BallGrid(24, 8.3), {}, true);
   ExpectValidSurface(m, 1, {0});
+}
+
+TEST(PointFitting, SmoothSurfaceOfRandomSolidsKeepsEveryPromise) {
+  // Odd voxel configurations, where the raw nets sometimes cross itself and the fit's first
+  // pass has to repair it toward the fallback; points on the voxel centres of the boundary.
+  for (uint32_t seed = 1; seed <= 12; ++seed) {
+    const VoxelGrid g = RandomSolidGrid(14, 0.45, seed);
+    std::vector<Point3f> points;
+    for (int64_t i = 0; i < g.size(); ++i)
+      if (IsBoundary(g.at(i))) {
+        const auto c = g.Center(g.CoordOf(i));
+        points.push_back({float(c[0]), float(c[1]), float(c[2])});
+      }
+    SmoothSurfaceOptions options;
+    options.remove_loose_sheets = false;
+    options.fill_caves = false;
+    absl::StatusOr<TriangleMesh> mesh = SmoothSurface(g, points, options);
+    ASSERT_TRUE(mesh.ok()) << mesh.status();
+    const MeshReport r = CheckMesh(*mesh);
+    ASSERT_TRUE(r.closed && r.manifold && r.oriented && r.positive_volume)
+        << "seed " << seed << " " << MeshReportToJson(r);
+    ASSERT_EQ(r.self_intersections, 0) << "seed " << seed;
+  }
+}
+
+TEST(PointFitting, RepairsInputCrossingsTowardTheFallback) {
+  // Raw surface nets of random solids cross themselves now and then; with the moves switched
+  // off (max_offset 0) only the fallback repair can clean them.
+  FitOptions still;
+  still.max_offset = 0;
+  int repaired = 0;
+  for (uint32_t seed = 1; seed <= 100 && repaired < 3; ++seed) {
+    UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(RandomSolidGrid(12, 0.35, seed));
+    if (FindIntersectingFaces(nets.mesh).empty()) continue;
+    ++repaired;
+    const absl::StatusOr<FitStats> stats =
+        FitToPoints(nets.mesh, 1.0, {}, still, nullptr, &nets.fallback);
+    ASSERT_TRUE(stats.ok()) << stats.status();
+    EXPECT_GT(stats->repaired_vertices, 0);
+    const MeshReport r = CheckMesh(nets.mesh);
+    EXPECT_TRUE(r.closed && r.manifold && r.oriented) << MeshReportToJson(r);
+    EXPECT_EQ(r.self_intersections, 0) << "seed " << seed;
+  }
+  EXPECT_EQ(repaired, 3);
 }
 
 TEST(PointFitting, RejectsNonPositiveVoxelSize) {
@@ -116,26 +161,14 @@ TEST(PointFitting, StopsWhenCancelled) {
   EXPECT_EQ(r.self_intersections, 0);
 }
 
-TEST(PointFitting, SmoothSurfaceOfA200CubedBallWith150kPointsIsFast) {
-  // The budget of algorithm-notes: the surface must cost less than the shrink (about 1 s for a
-  // 150k-point cloud on a ~200^3 grid). Asserted loosely: the machine is shared.
+// Its speed is measured in tests/bench; here, that a 150k-point ball gives a clean surface.
+TEST(PointFitting, SmoothSurfaceOfA200CubedBallWith150kPointsIsClean) {
   const double l = 1.0, radius = 92;
   const std::array<double, 3> centre = {100.3, 99.8, 100.1};
   const std::vector<Point3f> points = SpherePoints(150000, centre, radius, 11);
   const VoxelGrid g = SampledSphereGrid(200, l, centre, radius, points);
-  SmoothSurfaceStats stats;
-  const auto start = std::chrono::steady_clock::now();
-  absl::StatusOr<TriangleMesh> mesh = SmoothSurface(g, points, {}, &stats);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  absl::StatusOr<TriangleMesh> mesh = SmoothSurface(g, points);
   ASSERT_TRUE(mesh.ok()) << mesh.status();
-  std::cout << "smooth surface of a 200^3 ball, 150k points: " << seconds << " s (prepare "
-            << stats.prepare_seconds << ", surface nets " << stats.surface_nets_seconds
-            << ", fit " << stats.fit_seconds << "), " << mesh->vertices.size() << " vertices, "
-            << mesh->faces.size() << " faces, moves " << stats.fit.moves << ", refused "
-            << stats.fit.refused << ", plane " << stats.fit.plane_targets << ", umbrella "
-            << stats.fit.umbrella_targets << "\n";
-  EXPECT_LT(seconds, 10.0);
   const MeshReport r = CheckMesh(*mesh);
   EXPECT_TRUE(r.closed && r.manifold && r.oriented && r.positive_volume);
   EXPECT_EQ(r.self_intersections, 0);

@@ -180,8 +180,8 @@ std::vector<Point3f> SpherePoints(int count, std::array<double, 3> centre, doubl
   return points;
 }
 
-VoxelGrid SampledSphereGrid(int n, double voxel_size, std::array<double, 3> centre,
-                            double radius, const std::vector<Point3f>& points) {
+VoxelGrid SampledSphereGrid(int n, double voxel_size, std::array<double, 3> centre, double radius,
+                            const std::vector<Point3f>& points) {
   VoxelGrid g = OutsideGrid(n, voxel_size);
   for (const Point3f& p : points) {
     const Coord c{static_cast<int>(std::floor(p[0] / voxel_size)),

@@ -48,8 +48,8 @@ std::vector<Point3f> SpherePoints(int count, std::array<double, 3> centre, doubl
                                   uint32_t seed);
 // The voxel solid of a sampled sphere: voxels whose centre is within `radius` of `centre`,
 // plus every voxel holding a point.
-VoxelGrid SampledSphereGrid(int n, double voxel_size, std::array<double, 3> centre,
-                            double radius, const std::vector<Point3f>& points);
+VoxelGrid SampledSphereGrid(int n, double voxel_size, std::array<double, 3> centre, double radius,
+                            const std::vector<Point3f>& points);
 
 }  // namespace membrane::testing
 

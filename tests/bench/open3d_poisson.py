@@ -10,6 +10,9 @@ Prints one JSON line:
    "seconds" (= normals + orient + poisson, wall), "vertices", "faces"}
 Exit status 2 when open3d cannot be imported (message on stderr), 1 on other errors.
 
+--write-mesh PATH saves the (unclipped) Poisson mesh as binary PLY for accuracy measurements
+(bench_surface); the JSON line is unchanged.
+
 Run with Debian's interpreter, which has python3-open3d: /usr/bin/python3 open3d_poisson.py F.ply
 """
 import argparse
@@ -28,6 +31,8 @@ def main():
     parser.add_argument("--threads", type=int, default=-1,
                         help="Poisson threads (-1 = all; normals follow OMP_NUM_THREADS)")
     parser.add_argument("--write", help="write the mesh here (not timed)")
+    parser.add_argument("--write-mesh", metavar="PATH",
+                        help="save Poisson's mesh as PLY at PATH (not timed; like --write)")
     args = parser.parse_args()
 
     try:
@@ -55,6 +60,13 @@ def main():
 
     if args.write:
         o3d.io.write_triangle_mesh(args.write, mesh)
+    if args.write_mesh:
+        # Binary PLY, positions and triangles only (no normals or colours): what ReadMesh needs.
+        mesh.vertex_normals = o3d.utility.Vector3dVector()
+        mesh.vertex_colors = o3d.utility.Vector3dVector()
+        if not o3d.io.write_triangle_mesh(args.write_mesh, mesh, write_ascii=False):
+            print(f"{args.write_mesh}: could not write the mesh", file=sys.stderr)
+            return 1
     print(json.dumps({
         "file": args.cloud,
         "points": points,

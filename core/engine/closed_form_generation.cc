@@ -5,6 +5,7 @@
 #include "absl/status/status.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/incursion_test.h"
+#include "core/engine/interior_plane.h"
 #include "core/engine/plate.h"
 #include "core/engine/topology_guard.h"
 
@@ -25,22 +26,6 @@ void FillPlane(const VoxelGrid& grid, Pred pred, FlatBitset& plane) {
     for (int64_t i = begin; i < end; ++i) bits |= static_cast<uint64_t>(pred(s[i])) << (i - begin);
     w[k] = bits;
   }
-}
-
-FlatBitset InteriorPlane(const VoxelGrid& grid) {
-  // Rows of ones from x = 1 to nx - 2, set a word at a time.
-  FlatBitset plane(grid.size());
-  const auto& d = grid.dims();
-  for (int z = 1; z + 1 < d[2]; ++z)
-    for (int y = 1; y + 1 < d[1]; ++y) {
-      int64_t i = grid.Index(1, y, z);
-      const int64_t end = grid.Index(d[0] - 1, y, z);
-      uint64_t* w = plane.words();
-      while (i < end && (i & 63) != 0) plane.set(i++);
-      for (; i + 64 <= end; i += 64) w[i >> 6] = ~0ull;
-      while (i < end) plane.set(i++);
-    }
-  return plane;
 }
 
 }  // namespace
@@ -114,6 +99,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     }
   }
 
+  if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
   // Apply: new outside voxels, and their inside 26-neighbours become boundary.
   FlatBitset& fresh = ws.fresh;
   fresh = out;
@@ -141,31 +127,41 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     }
   });
 
+  // Rejected or cancelled: restore, and (when rejected) let the chains run this generation.
+  auto restore = [&] {
+    fresh.ForEach([&](int64_t i) { s[i] = was_boundary_soft.test(i) ? kBoundarySoft : kInsideSoft; });
+    converted.ForEach([&](int64_t i) { s[i] &= static_cast<VoxelState>(~kBoundaryBit); });
+  };
   // Checks: the incursion test where the neighbourhood changed, and the guard on the new
-  // outside voxels next to hard ones, each as if it were the last removal.
+  // outside voxels next to hard ones, each as if it were the last removal. The cancel token is
+  // polled every few thousand checks: a first generation may check a million voxels.
+  bool cancelled = false;
   adjacent.ForEach([&](int64_t i) {
-    if (!IsHardOrFrozen(s[i])) return;
-    ++outcome.checks;
+    if (cancelled || outcome.incursions > 0 || !IsHardOrFrozen(s[i])) return;
+    if ((++outcome.checks & 4095) == 0 && Cancelled(cancel)) cancelled = true;
     if (IncursionAt(grid, i, options.thick_wall_run)) ++outcome.incursions;
   });
-  if (outcome.incursions == 0 && options.topology_guard) {
+  if (!cancelled && outcome.incursions == 0 && options.topology_guard) {
     FlatBitset& near_hard = ws.near_hard;
     FillPlane(grid, [](VoxelState v) { return IsHard(v); }, near_hard);
     near_hard.Dilate26(strides);
     near_hard.And(fresh);
     const GuardOptions guard = GuardOptionsOf(options);
     near_hard.ForEach([&](int64_t i) {
-      ++outcome.checks;
+      if (cancelled || outcome.guard_refusals > 0) return;
+      if ((++outcome.checks & 4095) == 0 && Cancelled(cancel)) cancelled = true;
       if (!GuardAllowsRemoval(grid, i, guard)) ++outcome.guard_refusals;
     });
+  }
+  if (cancelled) {
+    restore();
+    return absl::CancelledError("cancelled in a closed-form generation");
   }
   if (outcome.incursions == 0 && outcome.guard_refusals == 0) {
     outcome.applied = true;
     return outcome;
   }
-  // Rejected: restore, and let the chains run this generation.
-  fresh.ForEach([&](int64_t i) { s[i] = was_boundary_soft.test(i) ? kBoundarySoft : kInsideSoft; });
-  converted.ForEach([&](int64_t i) { s[i] &= static_cast<VoxelState>(~kBoundaryBit); });
+  restore();
   return outcome;
 }
 

@@ -3,15 +3,13 @@
 #include <algorithm>
 #include <bit>
 
+#include "core/engine/interior_plane.h"
+
 namespace membrane {
 
 PlaceFinder::PlaceFinder(const VoxelGrid& grid)
-    : grid_(grid), interior_(grid.size()), out_(grid.size()), boundary_soft_(grid.size()),
+    : grid_(grid), interior_(InteriorPlane(grid)), out_(grid.size()), boundary_soft_(grid.size()),
       free_(grid.size()), candidates_(grid.size()), ok_(grid.size()), covered_(grid.size()) {
-  const auto& d = grid.dims();
-  for (int z = 1; z + 1 < d[2]; ++z)
-    for (int y = 1; y + 1 < d[1]; ++y)
-      for (int x = 1; x + 1 < d[0]; ++x) interior_.set(grid.Index(x, y, z));
   for (int o = 0; o < 6; ++o) {
     anchors_[o] = FlatBitset(grid.size());
     anchor_rows_[o] = FlatBitset(grid.size());

@@ -1,0 +1,21 @@
+#include "core/engine/interior_plane.h"
+
+namespace membrane {
+
+FlatBitset InteriorPlane(const VoxelGrid& grid) {
+  // Rows of ones from x = 1 to nx - 2, set a word at a time.
+  FlatBitset plane(grid.size());
+  const auto& d = grid.dims();
+  for (int z = 1; z + 1 < d[2]; ++z)
+    for (int y = 1; y + 1 < d[1]; ++y) {
+      int64_t i = grid.Index(1, y, z);
+      const int64_t end = grid.Index(d[0] - 1, y, z);
+      uint64_t* w = plane.words();
+      while (i < end && (i & 63) != 0) plane.set(i++);
+      for (; i + 64 <= end; i += 64) w[i >> 6] = ~0ull;
+      while (i < end) plane.set(i++);
+    }
+  return plane;
+}
+
+}  // namespace membrane

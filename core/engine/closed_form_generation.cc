@@ -30,12 +30,17 @@ void FillPlane(const VoxelGrid& grid, Pred pred, FlatBitset& plane) {
 
 }  // namespace
 
-ClosedFormWorkspace::ClosedFormWorkspace(const VoxelGrid& grid)
-    : interior(InteriorPlane(grid)), out0(grid.size()), free_cells(grid.size()),
-      out(grid.size()), back(grid.size()), reach(grid.size()), tmp(grid.size()),
-      fresh(grid.size()), was_boundary_soft(grid.size()), adjacent(grid.size()),
-      converted(grid.size()), near_hard(grid.size()) {
-  for (FlatBitset& plane : squares) plane = FlatBitset(grid.size());
+bool ClosedFormWorkspace::Ensure(const VoxelGrid& grid, const CancelToken* cancel) {
+  if (interior.bits() != grid.size()) interior = InteriorPlane(grid);
+  FlatBitset* planes[] = {&out0, &free_cells, &out, &back, &reach, &tmp, &fresh,
+                          &was_boundary_soft, &adjacent, &converted, &near_hard, &scratch_a,
+                          &scratch_b, &squares[0], &squares[1], &squares[2], &squares[3],
+                          &squares[4], &squares[5]};
+  for (FlatBitset* plane : planes) {
+    if (Cancelled(cancel)) return false;
+    plane->EnsureSize(grid.size());
+  }
+  return true;
 }
 
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
@@ -46,6 +51,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   const auto st = grid.strides();
   const int64_t strides[3] = {st[0], st[1], st[2]};
   ClosedFormOutcome outcome;
+  if (!ws.Ensure(grid, cancel)) return absl::CancelledError("cancelled in a closed-form generation");
 
   const FlatBitset& interior = ws.interior;
   FlatBitset& out0 = ws.out0;
@@ -85,7 +91,8 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
       reach = squares[o];
       reach.AndShifted(back, orient.sign * sa);
       // Dig straight on: a plate whose back plate was contracted fits if its square is free.
-      reach.SpreadAlong(squares[o], orient.sign * sa, grid.dim(orient.axis));
+      reach.SpreadAlong(squares[o], orient.sign * sa, grid.dim(orient.axis), ws.scratch_a,
+                        ws.scratch_b);
       if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
       // Cells covered by the plates reached.
       reach.DilateRun(n, sv);
@@ -113,7 +120,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   FillPlane(grid, [](VoxelState s) { return s == kBoundarySoft; }, was_boundary_soft);
   FlatBitset& adjacent = ws.adjacent;
   adjacent = fresh;
-  adjacent.Dilate26(strides);
+  adjacent.Dilate26(strides, ws.scratch_a);
   adjacent.AndNot(out);
   VoxelState* s = grid.mutable_states().data();
   const VoxelState label = OutsideState(options.generation_label);
@@ -144,7 +151,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   if (!cancelled && outcome.incursions == 0 && options.topology_guard) {
     FlatBitset& near_hard = ws.near_hard;
     FillPlane(grid, [](VoxelState v) { return IsHard(v); }, near_hard);
-    near_hard.Dilate26(strides);
+    near_hard.Dilate26(strides, ws.scratch_a);
     near_hard.And(fresh);
     const GuardOptions guard = GuardOptionsOf(options);
     near_hard.ForEach([&](int64_t i) {

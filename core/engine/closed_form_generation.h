@@ -31,9 +31,11 @@ struct ClosedFormOutcome {
 // Bit-planes reused across generations: a 70 M voxel grid needs 9 MB per plane, and fresh
 // pages for a dozen of them every generation cost more than the word operations.
 struct ClosedFormWorkspace {
-  explicit ClosedFormWorkspace(const VoxelGrid& grid);
+  // Allocates the planes for `grid` unless done, polling `cancel` between them; false when
+  // it fired.
+  bool Ensure(const VoxelGrid& grid, const CancelToken* cancel);
   FlatBitset interior, out0, free_cells, out, back, reach, tmp, fresh, was_boundary_soft,
-      adjacent, converted, near_hard;
+      adjacent, converted, near_hard, scratch_a, scratch_b;
   FlatBitset squares[6];
 };
 

@@ -102,7 +102,8 @@ void FlatBitset::AndShifted(const FlatBitset& other, int64_t k) {
                  [](uint64_t a, uint64_t b) { return a & b; });
 }
 
-void FlatBitset::SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_len) {
+void FlatBitset::SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_len,
+                             FlatBitset& scratch_a, FlatBitset& scratch_b) {
   const int64_t n = static_cast<int64_t>(words_.size());
   const int64_t mag = step < 0 ? -step : step;
   if (mag >= 64) {
@@ -131,7 +132,9 @@ void FlatBitset::SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_le
     return;
   }
   // Kogge-Stone: `prefix` is the AND of `run` over the last len cells.
-  FlatBitset prefix = run, tmp(bits_);
+  FlatBitset& prefix = scratch_a;
+  FlatBitset& tmp = scratch_b;
+  prefix = run;
   for (int64_t len = 1; len < max_len; len *= 2) {
     tmp.AssignShifted(*this, len * step);
     tmp.And(prefix);
@@ -141,11 +144,11 @@ void FlatBitset::SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_le
   }
 }
 
-void FlatBitset::Dilate26(const int64_t strides[3]) {
+void FlatBitset::Dilate26(const int64_t strides[3], FlatBitset& scratch) {
   for (int a = 0; a < 3; ++a) {
-    const FlatBitset before = *this;
-    OrShifted(before, strides[a]);
-    OrShifted(before, -strides[a]);
+    scratch = *this;
+    OrShifted(scratch, strides[a]);
+    OrShifted(scratch, -strides[a]);
   }
 }
 

@@ -16,6 +16,10 @@ class FlatBitset {
   explicit FlatBitset(int64_t bits) : bits_(bits), words_(static_cast<size_t>((bits + 63) / 64), 0) {}
 
   int64_t bits() const { return bits_; }
+  // Makes this a zeroed bitset of `bits` bits unless it already has that size.
+  void EnsureSize(int64_t bits) {
+    if (bits_ != bits) *this = FlatBitset(bits);
+  }
   size_t word_count() const { return words_.size(); }
   uint64_t* words() { return words_.data(); }
   const uint64_t* words() const { return words_.data(); }
@@ -40,11 +44,14 @@ class FlatBitset {
   void AndShifted(const FlatBitset& other, int64_t k);
   // Seeded runs: this[i] |= run[i] & this[i - step] applied in the order of the step, so a
   // set bit spreads along `step` (positive or negative) while `run` stays set. `this` must be a
-  // subset of `run`. One pass when |step| >= 64; doubling (log2 of `max_len` passes) otherwise.
-  void SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_len);
+  // subset of `run`. One pass when |step| >= 64; doubling (log2 of `max_len` passes) otherwise,
+  // using `scratch_a` and `scratch_b` (same size; their contents are overwritten).
+  void SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_len, FlatBitset& scratch_a,
+                   FlatBitset& scratch_b);
   // Dilation by the 3x3x3 box: this[i] |= this[j] for every j 26-adjacent to i, given the
-  // three axis strides. Needs a border of zeros one voxel wide to avoid wrapping.
-  void Dilate26(const int64_t strides[3]);
+  // three axis strides. Needs a border of zeros one voxel wide to avoid wrapping. `scratch`
+  // (same size) is overwritten: callers keep one so that no plane is allocated per call.
+  void Dilate26(const int64_t strides[3], FlatBitset& scratch);
   // Number of set bits.
   int64_t Count() const;
   // Calls f(i) for every set bit i, in increasing order.

@@ -109,7 +109,7 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
   const std::vector<int> labels = GenerationLabels(static_cast<int>(sizes.size()));
   PlaceFinder finder(grid);
   ChainRunner runner(grid);
-  std::optional<ClosedFormWorkspace> closed_form_planes;  // made at the first closed form
+  ClosedFormWorkspace closed_form_planes;  // allocated at the first closed form
   for (size_t g = 0; g < sizes.size(); ++g) {
     const Clock::time_point t0 = Clock::now();
     GenerationStats stats;
@@ -130,9 +130,8 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     // tunnel size): then only tunnels next to hard voxels are refused, and it checks those.
     if (options.closed_form_min_plate > 0 && sizes[g] >= options.closed_form_min_plate &&
         sizes[g] >= options.guard_tunnel_min_plate) {
-      if (!closed_form_planes) closed_form_planes.emplace(grid);
       absl::StatusOr<ClosedFormOutcome> closed =
-          RunClosedFormGeneration(grid, chain, cancel, *closed_form_planes);
+          RunClosedFormGeneration(grid, chain, cancel, closed_form_planes);
       if (!closed.ok()) return CancelledIn(stats);
       done = stats.closed_form = closed->applied;
       stats.closed_form_rounds = closed->rounds;

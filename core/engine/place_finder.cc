@@ -7,17 +7,27 @@
 
 namespace membrane {
 
-PlaceFinder::PlaceFinder(const VoxelGrid& grid)
-    : grid_(grid), interior_(InteriorPlane(grid)), out_(grid.size()), boundary_soft_(grid.size()),
-      free_(grid.size()), candidates_(grid.size()), ok_(grid.size()), covered_(grid.size()) {
-  for (int o = 0; o < 6; ++o) {
-    anchors_[o] = FlatBitset(grid.size());
-    anchor_rows_[o] = FlatBitset(grid.size());
+PlaceFinder::PlaceFinder(const VoxelGrid& grid) : grid_(grid) {}
+
+bool PlaceFinder::EnsurePlanes(const CancelToken* cancel) {
+  const int64_t nv = grid_.size();
+  if (interior_.bits() != nv) interior_ = InteriorPlane(grid_);
+  FlatBitset* planes[] = {&out_, &boundary_soft_, &free_, &candidates_, &ok_, &covered_};
+  for (FlatBitset* plane : planes) {
+    if (cancel != nullptr && cancel->cancelled()) return false;
+    plane->EnsureSize(nv);
   }
+  for (int o = 0; o < 6; ++o) {
+    if (cancel != nullptr && cancel->cancelled()) return false;
+    anchors_[o].EnsureSize(nv);
+    anchor_rows_[o].EnsureSize(nv);
+  }
+  return true;
 }
 
 std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelToken* cancel) {
   auto cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
+  if (!EnsurePlanes(cancel)) return std::nullopt;
   n_ = n;
   const int64_t nv = grid_.size();
   const auto st = grid_.strides();

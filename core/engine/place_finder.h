@@ -37,6 +37,10 @@ class PlaceFinder {
   std::optional<Plate> PlaceFor(int64_t index) const;
 
  private:
+  // Allocates the planes on first use, polling `cancel` between them: fresh pages are slow
+  // enough that twenty planes of a large grid take longer than a cancel may wait.
+  bool EnsurePlanes(const CancelToken* cancel);
+
   const VoxelGrid& grid_;
   int n_ = 0;
   FlatBitset interior_;                  // not on the array border

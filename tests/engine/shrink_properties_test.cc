@@ -221,7 +221,9 @@ TEST(ShrinkCancellation, CancelReturnsWithin100Milliseconds) {
     while (!started.load()) std::this_thread::yield();
     // Cancel once the shrink has done 50 ms of work: mid-generation.
     const double start = ThreadCpuSeconds(shrink_clock);
-    while (ThreadCpuSeconds(shrink_clock) < start + 0.05) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    while (ThreadCpuSeconds(shrink_clock) < start + 0.05) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
     cancelled_at_cpu = ThreadCpuSeconds(shrink_clock);
     cancel.Cancel();
   });

@@ -97,18 +97,8 @@ std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
       auto v = value();
       if (!v) return std::nullopt;
       o.shared_dir = *v;
-    } else if (arg == "--python") {
-      auto v = value();
-      if (!v) return std::nullopt;
-      o.peer.python = *v;
-    } else if (arg == "--open3d-threads") {
-      auto v = value();
-      if (!v || !absl::SimpleAtoi(*v, &o.peer.threads) || o.peer.threads == 0) return std::nullopt;
-    } else if (arg == "--open3d-timeout") {
-      auto v = value();
-      if (!v || !absl::SimpleAtoi(*v, &o.peer.timeout_seconds) || o.peer.timeout_seconds < 0) {
-        return std::nullopt;
-      }
+    } else if (std::optional<bool> peer_flag = ParseOpen3dFlag(arg, value, o.peer)) {
+      if (!*peer_flag) return std::nullopt;
     } else {
       return std::nullopt;
     }

@@ -112,4 +112,24 @@ absl::StatusOr<Open3dRun> RunOpen3dPoisson(const Open3dPeer& peer, const std::st
   return run;
 }
 
+std::optional<bool> ParseOpen3dFlag(const std::string& arg,
+                                    const std::function<std::optional<std::string>()>& value,
+                                    Open3dPeer& peer) {
+  if (arg == "--python") {
+    auto v = value();
+    if (!v) return false;
+    peer.python = *v;
+    return true;
+  }
+  if (arg == "--open3d-threads") {
+    auto v = value();
+    return v && absl::SimpleAtoi(*v, &peer.threads) && peer.threads != 0;
+  }
+  if (arg == "--open3d-timeout") {
+    auto v = value();
+    return v && absl::SimpleAtoi(*v, &peer.timeout_seconds) && peer.timeout_seconds >= 0;
+  }
+  return std::nullopt;
+}
+
 }  // namespace membrane::bench

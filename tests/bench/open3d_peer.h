@@ -3,6 +3,8 @@
 #define MEMBRANE_TESTS_BENCH_OPEN3D_PEER_H_
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -19,6 +21,13 @@ struct Open3dPeer {
 // The Open3D version when `peer.python` imports open3d; otherwise an error whose message
 // says why (interpreter missing, import failed).
 absl::StatusOr<std::string> Open3dVersion(const Open3dPeer& peer);
+
+// Parses a flag of the peer that every benchmark running it takes (--python,
+// --open3d-threads, --open3d-timeout), reading its value with `value` (nullopt when missing).
+// nullopt when `arg` is none of them; otherwise whether its value was valid.
+std::optional<bool> ParseOpen3dFlag(const std::string& arg,
+                                    const std::function<std::optional<std::string>()>& value,
+                                    Open3dPeer& peer);
 
 struct Open3dRun {
   int64_t points = 0;

@@ -15,6 +15,8 @@
 #include "client/command.h"
 #include "client/convert_command.h"
 #include "client/exit_codes.h"
+#include "client/health_command.h"
+#include "client/jobs_command.h"
 #include "client/reconstruct_command.h"
 #include "client/synth_command.h"
 
@@ -70,7 +72,8 @@ int Main(int argc, char** argv) {
   app.footer(kExitStatusHelp);
   app.require_subcommand(1);
   const std::vector<Command> commands = {AddReconstructCommand(app), AddSynthCommand(app),
-                                         AddCheckCommand(app), AddConvertCommand(app)};
+                                         AddCheckCommand(app), AddConvertCommand(app),
+                                         AddJobsCommand(app), AddHealthCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -3,6 +3,8 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
+#include "core/pipeline/stage_lines.h"
+
 namespace membrane::client {
 namespace {
 
@@ -34,6 +36,20 @@ void ProgressPrinter::Finish(absl::string_view text) {
   // In full: the line stays on screen, so wrapping does no harm.
   Print(text, /*fit_width=*/false);
   EndLiveLine();
+}
+
+void ProgressPrinter::StageStarted(PipelineStage stage, const ReconstructionReport& report) {
+  Begin(StageStartedLine(stage, report));
+}
+
+void ProgressPrinter::GenerationFinished(const GenerationStats& generation,
+                                         int planned_generations) {
+  Update(GenerationLine(generation, planned_generations));
+}
+
+void ProgressPrinter::StageFinished(PipelineStage stage, double /*seconds*/,
+                                    const ReconstructionReport& report) {
+  Finish(StageFinishedLine(stage, report));
 }
 
 void ProgressPrinter::Print(absl::string_view text, bool fit_width) {

@@ -1,16 +1,18 @@
 // Live progress of a reconstruction on stderr. On a terminal each stage (and each plate
 // generation of the shrink) rewrites one status line in place; otherwise (logs, pipes, tests)
-// every update is a plain line, so a log shows the whole history.
+// every update is a plain line, so a log shows the whole history. It observes a local
+// reconstruction directly; for a remote one the client feeds it the server's events.
 #ifndef MEMBRANE_CLIENT_PROGRESS_PRINTER_H_
 #define MEMBRANE_CLIENT_PROGRESS_PRINTER_H_
 
 #include <cstdio>
 
 #include "absl/strings/string_view.h"
+#include "core/pipeline/reconstruction_observer.h"
 
 namespace membrane::client {
 
-class ProgressPrinter {
+class ProgressPrinter : public ReconstructionObserver {
  public:
   enum class Mode {
     kQuiet,  // print nothing
@@ -22,7 +24,7 @@ class ProgressPrinter {
   // lines are cut to the terminal's width: a wrapped line could not be rewritten in place.
   ProgressPrinter(std::FILE* out, Mode mode);
   // Ends a pending live line, so that whatever is printed next starts on a fresh line.
-  ~ProgressPrinter();
+  ~ProgressPrinter() override;
 
   ProgressPrinter(const ProgressPrinter&) = delete;
   ProgressPrinter& operator=(const ProgressPrinter&) = delete;
@@ -38,6 +40,13 @@ class ProgressPrinter {
   void Update(absl::string_view text);
   // Shows `text` as the outcome of a finished stage and moves to a new line.
   void Finish(absl::string_view text);
+
+  // ReconstructionObserver: the lines of core/pipeline/stage_lines.h through Begin, Update
+  // and Finish.
+  void StageStarted(PipelineStage stage, const ReconstructionReport& report) override;
+  void GenerationFinished(const GenerationStats& generation, int planned_generations) override;
+  void StageFinished(PipelineStage stage, double seconds,
+                     const ReconstructionReport& report) override;
 
  private:
   // Writes `text` as the mode wants it; `fit_width` cuts a live line to the terminal width.

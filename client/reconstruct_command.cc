@@ -9,18 +9,21 @@
 #include "CLI/CLI.hpp"
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/time/time.h"
 #include "client/deadline_timer.h"
 #include "client/flag_checks.h"
 #include "client/io_errors.h"
+#include "client/local_reconstruction.h"
 #include "client/progress_printer.h"
-#include "client/reconstruction_pipeline.h"
+#include "client/remote_reconstruction.h"
 #include "client/report_text.h"
-#include "client/stats_json.h"
 #include "core/engine/plate_schedule.h"
 #include "core/io/file_bytes.h"
 #include "core/io/file_format.h"
+#include "core/pipeline/stats_json.h"
 
 namespace membrane::client {
 namespace {
@@ -49,6 +52,7 @@ struct ReconstructFlags {
   std::string stats_json;
   double timeout = 0;
   bool quiet = false;
+  int64_t drop_after_events = 0;  // test hook of --server; see RemoteParams
 };
 
 void DefineFlags(CLI::App& app, ReconstructFlags& f) {
@@ -56,7 +60,8 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   app.add_option("-o,--output", f.output, "mesh to write: .ply .obj .stl .drc")->required();
   CLI::Option* local = app.add_flag("--local", f.local, "run the reconstruction in this process");
   CLI::Option* server = app.add_option(
-      "--server", f.server, "HOST:PORT of a membrane server (not supported in this build yet)");
+      "--server", f.server, "HOST:PORT of a membrane server (the default unless --local)")
+      ->capture_default_str();
   local->excludes(server);
   app.add_option("--token-file", f.token_file, "bearer token for --server (not used yet)");
   app.add_option("--tls-ca", f.tls_ca, "CA certificate for --server (not used yet)");
@@ -71,10 +76,11 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
       ->capture_default_str();
   app.add_flag("--no-relax", f.no_relax, "skip the membrane relaxation (paper section 5)");
   app.add_option("--quantization", f.quantization,
-                 "Draco position bits for .drc output, [0, 30]; 0 = lossless")
+                 "Draco position bits of the cloud sent to --server and of .drc output, [0, 30]; "
+                 "0 = lossless")
       ->capture_default_str();
   app.add_option("--compression-level", f.compression_level,
-                 "Draco compression level for .drc output, [0, 10]")
+                 "Draco compression level of the cloud sent and of .drc output, [0, 10]")
       ->capture_default_str();
   app.add_option("--voxel-budget", f.voxel_budget,
                  "largest voxel grid to allocate (padding included), 1 byte per voxel")
@@ -83,6 +89,8 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   app.add_option("--timeout", f.timeout, "give up after this many seconds (exit 4); 0 = never")
       ->capture_default_str();
   app.add_flag("-q,--quiet", f.quiet, "no progress lines on stderr");
+  // Hidden (empty group): lets the tests drop a --server call midway to exercise re-attaching.
+  app.add_option("--drop-after-events", f.drop_after_events)->group("");
 }
 
 // The values whose check needs no parsing, in the order of --help; the first failure wins.
@@ -123,12 +131,12 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   ReconstructionParams p;
   p.input = f.input;
   p.output = f.output;
-  p.voxelize.voxel_size = f.voxel_size;
-  p.voxelize.voxel_budget = f.voxel_budget;
-  p.shrink.initial_plate = static_cast<int>(f.initial_plate);
-  p.shrink.schedule = *schedule;
-  p.relax = !f.no_relax;
-  p.surface = *surface;
+  p.options.voxelize.voxel_size = f.voxel_size;
+  p.options.voxelize.voxel_budget = f.voxel_budget;
+  p.options.shrink.initial_plate = static_cast<int>(f.initial_plate);
+  p.options.shrink.schedule = *schedule;
+  p.options.relax = !f.no_relax;
+  p.options.surface = *surface;
   p.draco.position_quantization_bits = static_cast<int>(f.quantization);
   p.draco.compression_level = static_cast<int>(f.compression_level);
   return p;
@@ -145,11 +153,52 @@ absl::Status SurfaceCheckStatus(const MeshReport& m, const std::string& output) 
       absl::StrCat("the surface is ", failed, " (written to ", output, " all the same)"));
 }
 
-absl::Status RunReconstruct(const ReconstructFlags& flags) {
-  if (!flags.local) {
-    return absl::UnavailableError("no server support in this build yet; use --local");
+// The job's parameters as the server takes them. The mesh comes back lossless unless the
+// output is .drc, so that a .ply/.obj/.stl holds exactly what the server built.
+RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f) {
+  RemoteParams r;
+  r.server = f.server;
+  r.input = f.input;
+  r.output = f.output;
+  v1::Parameters& p = r.parameters;
+  p.set_voxel_size(f.voxel_size);
+  p.set_initial_plate(static_cast<int32_t>(f.initial_plate));
+  p.set_schedule(f.schedule);
+  p.set_surface(f.surface);
+  p.set_no_relax(f.no_relax);
+  const bool drc_output = absl::EndsWithIgnoreCase(f.output, ".drc");
+  p.set_quantization(drc_output ? static_cast<int32_t>(f.quantization) : 0);
+  p.set_compression_level(static_cast<int32_t>(f.compression_level));
+  // The client's default budget is the core's; the server caps it with its own.
+  p.set_voxel_budget(f.voxel_budget == kDefaultVoxelBudget ? 0 : f.voxel_budget);
+  r.upload.position_quantization_bits = static_cast<int>(f.quantization);
+  r.upload.compression_level = static_cast<int>(f.compression_level);
+  if (f.timeout > 0) r.timeout = absl::Seconds(f.timeout);
+  r.drop_after_events = static_cast<int>(f.drop_after_events);
+  return r;
+}
+
+absl::Status RunRemote(const ReconstructFlags& flags) {
+  absl::StatusOr<RemoteOutcome> outcome;
+  {
+    ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
+    outcome = RunRemoteReconstruction(RemoteParamsFromFlags(flags), progress);
   }
+  if (!outcome.ok()) return outcome.status();
+  std::fputs(GenerationTable(outcome->generations).c_str(), stdout);
+  std::fputs(RemoteSummaryLine(*outcome).c_str(), stdout);
+  std::fflush(stdout);
+  if (!flags.stats_json.empty()) {
+    absl::Status s = WriteFileBytes(flags.stats_json, outcome->statistics_json);
+    if (!s.ok()) return FileErrorAsInvalidInput(s);
+  }
+  return SurfaceCheckStatus(outcome->mesh, flags.output);
+}
+
+absl::Status RunReconstruct(const ReconstructFlags& flags) {
   absl::StatusOr<ReconstructionParams> params = ParamsFromFlags(flags);
+  if (!params.ok()) return params.status();
+  if (!flags.local) return RunRemote(flags);
   if (!params.ok()) return params.status();
 
   CancelToken cancel;
@@ -159,7 +208,7 @@ absl::Status RunReconstruct(const ReconstructFlags& flags) {
     // The printer ends its live line before any error line is printed by main.
     ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
     DeadlineTimer timer(flags.timeout, &cancel);
-    report = RunReconstruction(*params, cancel, progress);
+    report = RunLocalReconstruction(*params, cancel, progress);
     timed_out = timer.expired();
   }
   if (!report.ok()) {

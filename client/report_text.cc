@@ -1,5 +1,7 @@
 #include "client/report_text.h"
 
+#include <algorithm>
+
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
@@ -26,6 +28,17 @@ std::string SummaryLine(const ReconstructionReport& r) {
       m.shells == 1 ? "" : "s", absl::StrJoin(m.genus, ", "), m.closed ? "closed" : "NOT closed",
       m.manifold ? "manifold" : "NOT manifold", s.decode, s.voxelize, s.shrink, s.relax, s.surface,
       s.check, s.encode, s.total);
+}
+
+std::string RemoteSummaryLine(const RemoteOutcome& o) {
+  const MeshReport& m = o.mesh;
+  return absl::StrFormat(
+      "job %s: mesh %d shell%s, genus [%s], %s, %s, %d faces; upload %d bytes (%.1f%% of raw "
+      "float32), download %d bytes\n",
+      o.job_id, m.shells, m.shells == 1 ? "" : "s", absl::StrJoin(m.genus, ", "),
+      m.closed ? "closed" : "NOT closed", m.manifold ? "manifold" : "NOT manifold", m.faces,
+      o.upload_bytes, 100.0 * o.upload_bytes / std::max<uint64_t>(1, o.raw_bytes),
+      o.mesh_bytes);
 }
 
 }  // namespace membrane::client

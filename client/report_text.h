@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "client/reconstruction_report.h"
+#include "client/remote_reconstruction.h"
+#include "core/pipeline/reconstruction_report.h"
 #include "core/engine/membrane_shrinker.h"
 
 namespace membrane::client {
@@ -22,6 +23,12 @@ std::string GenerationTable(const std::vector<GenerationStats>& generations);
 //    genus [0], closed, manifold; seconds: decode 0.01 voxelize 0.02 ... total 1.2"
 // (one line in reality; wrapped here).
 std::string SummaryLine(const ReconstructionReport& report);
+
+// The summary line of a --server run (ending with '\n'): job id, mesh shells, genus,
+// closed/manifold, and the bytes on the wire, e.g.
+//   "job 9f2c...: mesh 1 shell, genus [1], closed, manifold, 20000 faces; upload 310000 bytes
+//    (25.8% of raw float32), download 150000 bytes"
+std::string RemoteSummaryLine(const RemoteOutcome& outcome);
 
 }  // namespace membrane::client
 

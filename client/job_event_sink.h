@@ -1,0 +1,60 @@
+// The client's end of a job's event stream (Reconstruct or WatchJob): shows the progress
+// lines, keeps the generation rows, the statistics and the mesh. Survives re-attaching: a
+// WatchJob replays the job's events from its first, and the ones already seen are skipped.
+#ifndef MEMBRANE_CLIENT_JOB_EVENT_SINK_H_
+#define MEMBRANE_CLIENT_JOB_EVENT_SINK_H_
+
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "client/progress_printer.h"
+#include "core/engine/membrane_shrinker.h"
+#include "membrane/v1/reconstruction.pb.h"
+
+namespace membrane::client {
+
+class JobEventSink {
+ public:
+  // `progress` (not owned) must outlive the sink.
+  explicit JobEventSink(ProgressPrinter& progress) : progress_(progress) {}
+
+  // Takes the next event of the stream.
+  void Consume(const v1::JobEvent& event);
+
+  bool accepted() const { return !job_id_.empty(); }
+  bool done() const { return done_; }
+  const std::string& job_id() const { return job_id_; }
+  // Events taken since the last Accepted or snapshot (for tests that drop a call midway).
+  int events_in_call() const { return events_in_call_; }
+
+  // Once done: OK when the job SUCCEEDED and the mesh arrived whole (size and CRC-32C as
+  // announced), else the job's status ("server: ..." message), DataLoss for a damaged mesh.
+  absl::Status Outcome() const;
+  const std::vector<GenerationStats>& generations() const { return generations_; }
+  const std::string& statistics_json() const { return statistics_json_; }
+  // The server's check of the mesh.
+  const v1::MeshSummary& mesh_summary() const { return mesh_summary_; }
+  const std::string& mesh() const { return mesh_; }
+
+ private:
+  void ConsumeProgress(const v1::JobEvent& event);
+
+  ProgressPrinter& progress_;
+  std::string job_id_;
+  int progress_seen_ = 0;   // stage and generation events handled, over all calls
+  int replay_index_ = 0;    // stage and generation events of the current call
+  int events_in_call_ = 0;
+  std::vector<GenerationStats> generations_;
+  std::string statistics_json_;
+  v1::MeshSummary mesh_summary_;
+  uint64_t mesh_bytes_ = 0;
+  uint32_t mesh_crc32c_ = 0;
+  std::string mesh_;
+  bool done_ = false;
+  v1::JobDone final_;
+};
+
+}  // namespace membrane::client
+
+#endif  // MEMBRANE_CLIENT_JOB_EVENT_SINK_H_

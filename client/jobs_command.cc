@@ -1,0 +1,138 @@
+#include "client/jobs_command.h"
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <grpcpp/client_context.h>
+
+#include "CLI/CLI.hpp"
+#include "absl/strings/str_format.h"
+#include "absl/time/clock.h"
+#include "client/io_errors.h"
+#include "client/job_event_sink.h"
+#include "client/progress_printer.h"
+#include "client/remote_reconstruction.h"
+#include "client/rpc_errors.h"
+#include "core/io/file_bytes.h"
+#include "membrane/v1/reconstruction.grpc.pb.h"
+
+namespace membrane::client {
+namespace {
+
+struct JobsFlags {
+  std::string server = "127.0.0.1:50051";
+  std::string job_id;
+  std::string output;      // watch: where to write the mesh
+  std::string stats_json;  // watch: where to write the statistics
+  double timeout = 30;     // per call; watch: for the whole job (0 = no limit)
+  bool quiet = false;
+};
+
+// A one-call context with the --timeout deadline.
+std::unique_ptr<grpc::ClientContext> CallContext(const JobsFlags& flags) {
+  auto context = std::make_unique<grpc::ClientContext>();
+  if (flags.timeout > 0) {
+    context->set_deadline(absl::ToChronoTime(absl::Now() + absl::Seconds(flags.timeout)));
+  }
+  return context;
+}
+
+std::string StateName(v1::JobState state) { return v1::JobState_Name(state); }
+
+void PrintJob(const v1::Job& job) {
+  std::printf("id: %s\nstate: %s\nqueue_position: %d\nstage: %s\nerror: %s\npeer: %s\n"
+              "upload_bytes: %llu\nmesh_bytes: %llu\n",
+              job.id().c_str(), StateName(job.state()).c_str(), job.queue_position(),
+              job.stage().c_str(), job.error().message().c_str(), job.peer().c_str(),
+              static_cast<unsigned long long>(job.upload_bytes()),
+              static_cast<unsigned long long>(job.mesh_bytes()));
+}
+
+absl::Status RunList(const JobsFlags& flags) {
+  auto stub = v1::Reconstruction::NewStub(ConnectToServer(flags.server));
+  v1::ListJobsResponse response;
+  const grpc::Status status = stub->ListJobs(CallContext(flags).get(), {}, &response);
+  if (!status.ok()) return FromGrpcStatus(status, flags.server);
+  for (const v1::Job& job : response.jobs()) {
+    std::printf("%s %s %s %llu %s\n", job.id().c_str(), StateName(job.state()).c_str(),
+                job.stage().empty() ? "-" : job.stage().c_str(),
+                static_cast<unsigned long long>(job.upload_bytes()), job.peer().c_str());
+  }
+  return absl::OkStatus();
+}
+
+absl::Status RunGet(const JobsFlags& flags, bool cancel) {
+  auto stub = v1::Reconstruction::NewStub(ConnectToServer(flags.server));
+  v1::Job job;
+  grpc::Status status;
+  if (cancel) {
+    v1::CancelJobRequest request;
+    request.set_job_id(flags.job_id);
+    status = stub->CancelJob(CallContext(flags).get(), request, &job);
+  } else {
+    v1::GetJobRequest request;
+    request.set_job_id(flags.job_id);
+    status = stub->GetJob(CallContext(flags).get(), request, &job);
+  }
+  if (!status.ok()) return FromGrpcStatus(status, flags.server);
+  PrintJob(job);
+  return absl::OkStatus();
+}
+
+absl::Status RunWatch(const JobsFlags& flags) {
+  const absl::Time deadline =
+      flags.timeout > 0 ? absl::Now() + absl::Seconds(flags.timeout) : absl::InfiniteFuture();
+  absl::Status outcome;
+  std::string mesh, statistics;
+  {
+    ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
+    JobEventSink sink(progress);
+    outcome = WatchUntilDone(flags.server, flags.job_id, deadline, sink);
+    mesh = sink.mesh();
+    statistics = sink.statistics_json();
+  }
+  if (!outcome.ok()) return outcome;
+  if (!flags.stats_json.empty()) {
+    if (absl::Status s = WriteFileBytes(flags.stats_json, statistics); !s.ok()) {
+      return FileErrorAsInvalidInput(s);
+    }
+  }
+  if (flags.output.empty()) return absl::OkStatus();
+  return WriteReceivedMesh(mesh, flags.output);
+}
+
+// Adds `name` with its flags to `jobs`; `run` gets the parsed values.
+CLI::App* AddJobsSubcommand(CLI::App& jobs, const char* name, const char* help,
+                            std::shared_ptr<JobsFlags> flags, bool needs_id) {
+  CLI::App* app = jobs.add_subcommand(name, help);
+  app->add_option("--server", flags->server, "HOST:PORT")->capture_default_str();
+  app->add_option("--timeout", flags->timeout, "seconds; 0 = no limit")->capture_default_str();
+  if (needs_id) app->add_option("JOB_ID", flags->job_id, "the job's id")->required();
+  return app;
+}
+
+}  // namespace
+
+Command AddJobsCommand(CLI::App& parent) {
+  CLI::App* jobs = parent.add_subcommand("jobs", "list, inspect, follow or cancel server jobs");
+  jobs->require_subcommand(1);
+  auto flags = std::make_shared<JobsFlags>();
+  CLI::App* list = AddJobsSubcommand(*jobs, "list", "every job the server holds", flags, false);
+  CLI::App* get = AddJobsSubcommand(*jobs, "get", "one job's state", flags, true);
+  CLI::App* watch =
+      AddJobsSubcommand(*jobs, "watch", "follow a job to its end (re-attach)", flags, true);
+  watch->add_option("-o,--output", flags->output, "write the job's mesh here");
+  watch->add_option("--stats-json", flags->stats_json, "write the job's statistics here");
+  watch->add_flag("-q,--quiet", flags->quiet, "no progress lines on stderr");
+  CLI::App* cancel = AddJobsSubcommand(*jobs, "cancel", "ask a job to stop", flags, true);
+  return Command{jobs, [=] {
+                   if (list->parsed()) return RunList(*flags);
+                   if (get->parsed()) return RunGet(*flags, /*cancel=*/false);
+                   if (watch->parsed()) return RunWatch(*flags);
+                   if (cancel->parsed()) return RunGet(*flags, /*cancel=*/true);
+                   return absl::InvalidArgumentError("jobs: expected list, get, watch or cancel");
+                 }};
+}
+
+}  // namespace membrane::client

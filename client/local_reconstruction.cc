@@ -1,0 +1,59 @@
+#include "client/local_reconstruction.h"
+
+#include <utility>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "client/io_errors.h"
+#include "core/io/mesh_io.h"
+#include "core/io/point_cloud_io.h"
+#include "core/pipeline/peak_memory.h"
+#include "core/pipeline/stopwatch.h"
+
+namespace membrane::client {
+
+absl::Status WithCommandLineContext(const absl::Status& status, const std::string& input) {
+  switch (status.code()) {
+    case absl::StatusCode::kResourceExhausted:
+      return absl::ResourceExhaustedError(absl::StrCat(
+          status.message(), "; use a larger --voxel-size or raise --voxel-budget"));
+    case absl::StatusCode::kInvalidArgument:
+      // Degenerate clouds (no points, all equal, coplanar): name the file they came from.
+      return absl::InvalidArgumentError(absl::StrCat(input, ": ", status.message()));
+    default: return status;
+  }
+}
+
+absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const ReconstructionParams& params,
+                                                            const CancelToken& cancel,
+                                                            ProgressPrinter& progress) {
+  const Stopwatch total;
+  const Stopwatch decode;
+  progress.Begin(absl::StrCat("decode: reading ", params.input));
+  absl::StatusOr<PointCloud> cloud = ReadPointCloud(params.input);
+  if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
+  const double decode_seconds = decode.Seconds();
+  progress.Finish(absl::StrFormat("decode: %d points in %.3f s", cloud->points.size(),
+                                  decode_seconds));
+  if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled after decode");
+
+  absl::StatusOr<ReconstructionResult> result =
+      ReconstructCloud(*cloud, params.options, cancel, progress);
+  if (!result.ok()) return WithCommandLineContext(result.status(), params.input);
+  ReconstructionReport& report = result->report;
+  report.seconds.decode = decode_seconds;
+
+  const Stopwatch encode;
+  progress.Begin(absl::StrCat("encode: writing ", params.output));
+  if (absl::Status s = WriteMesh(result->mesh, params.output, params.draco); !s.ok()) {
+    return FileErrorAsInvalidInput(s);
+  }
+  report.seconds.encode = encode.Seconds();
+  progress.Finish(absl::StrFormat("encode: %s in %.3f s", params.output, report.seconds.encode));
+  report.seconds.total = total.Seconds();
+  report.peak_rss_bytes = PeakRssBytes();
+  return std::move(report);
+}
+
+}  // namespace membrane::client

@@ -1,0 +1,43 @@
+// `membrane reconstruct --local`: a file in, the shared pipeline in process, a file out.
+#ifndef MEMBRANE_CLIENT_LOCAL_RECONSTRUCTION_H_
+#define MEMBRANE_CLIENT_LOCAL_RECONSTRUCTION_H_
+
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "client/progress_printer.h"
+#include "core/engine/cancel_token.h"
+#include "core/io/draco_codec.h"
+#include "core/pipeline/reconstruction_pipeline.h"
+#include "core/pipeline/reconstruction_report.h"
+
+namespace membrane::client {
+
+struct ReconstructionParams {
+  std::string input;   // point cloud path; format by extension
+  std::string output;  // mesh path; format by extension (.ply .obj .stl .drc)
+  ReconstructionOptions options;
+  DracoOptions draco;  // used for .drc output only
+};
+
+// Reads params.input, reconstructs its surface (ReconstructCloud) and writes it to
+// params.output, reporting each stage (and each plate generation) to `progress`. Returns the
+// measurements; the output file is written even when the mesh check finds the surface not
+// closed or not manifold (the caller decides what that means).
+// Errors: the reader's status (InvalidArgument / NotFound / Unimplemented, message naming the
+// file) for unreadable input; InvalidArgument naming the file for a degenerate cloud (no
+// points, all equal, coplanar); ResourceExhausted for a grid over the voxel budget, naming
+// --voxel-size and --voxel-budget; Cancelled when `cancel` fires; InvalidArgument naming the
+// output path when it cannot be written.
+absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const ReconstructionParams& params,
+                                                            const CancelToken& cancel,
+                                                            ProgressPrinter& progress);
+
+// `status` of ReconstructCloud with the context a command-line user needs: the flags to
+// change for a grid over the budget, the input file for a degenerate cloud. Other statuses
+// unchanged.
+absl::Status WithCommandLineContext(const absl::Status& status, const std::string& input);
+
+}  // namespace membrane::client
+
+#endif  // MEMBRANE_CLIENT_LOCAL_RECONSTRUCTION_H_

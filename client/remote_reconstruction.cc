@@ -1,0 +1,209 @@
+#include "client/remote_reconstruction.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include <grpcpp/client_context.h>
+#include <grpcpp/create_channel.h>
+
+#include "absl/status/status.h"
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/time/clock.h"
+#include "client/backoff.h"
+#include "client/io_errors.h"
+#include "client/rpc_errors.h"
+#include "core/io/file_bytes.h"
+#include "core/io/mesh_io.h"
+#include "core/io/point_cloud_io.h"
+#include "core/pipeline/stopwatch.h"
+#include "membrane/v1/reconstruction.grpc.pb.h"
+#include "proto/crc32c.h"
+
+namespace membrane::client {
+namespace {
+
+constexpr size_t kChunkBytes = 1 << 20;  // well under gRPC's 4 MB message limit
+constexpr int kMaxAttempts = 5;
+
+std::chrono::system_clock::time_point ToChrono(absl::Time t) {
+  if (t == absl::InfiniteFuture()) return std::chrono::system_clock::time_point::max();
+  return absl::ToChronoTime(t);
+}
+
+void SetDeadline(grpc::ClientContext& context, absl::Time deadline) {
+  if (deadline != absl::InfiniteFuture()) context.set_deadline(ToChrono(deadline));
+}
+
+// Sleeps `delay` unless that passes `deadline`; false when it would.
+bool SleepBefore(absl::Duration delay, absl::Time deadline) {
+  if (absl::Now() + delay >= deadline) return false;
+  absl::SleepFor(delay);
+  return true;
+}
+
+absl::Status DeadlineStatus(const RemoteParams& params) {
+  return absl::DeadlineExceededError(
+      absl::StrFormat("timed out after %g s", absl::ToDoubleSeconds(params.timeout)));
+}
+
+// One Reconstruct call: the upload, then the events into `sink`.
+grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams& params,
+                             const std::string& upload, absl::Time deadline, JobEventSink& sink) {
+  grpc::ClientContext context;
+  SetDeadline(context, deadline);
+  auto stream = stub.Reconstruct(&context);
+  v1::ReconstructRequest header;
+  *header.mutable_header()->mutable_parameters() = params.parameters;
+  header.mutable_header()->set_upload_bytes(upload.size());
+  header.mutable_header()->set_upload_crc32c(Crc32c(upload));
+  bool sending = stream->Write(header);
+  for (size_t at = 0; sending && at < upload.size(); at += kChunkBytes) {
+    v1::ReconstructRequest chunk;
+    chunk.set_chunk(upload.substr(at, kChunkBytes));
+    sending = stream->Write(chunk);
+  }
+  stream->WritesDone();
+  v1::JobEvent event;
+  while (stream->Read(&event)) {
+    sink.Consume(event);
+    if (params.drop_after_events > 0 && sink.accepted() &&
+        sink.events_in_call() >= params.drop_after_events) {
+      context.TryCancel();  // the test hook: as if the connection dropped here
+      break;
+    }
+  }
+  return stream->Finish();
+}
+
+absl::StatusOr<std::string> ReadAndEncode(const RemoteParams& params, RemoteOutcome& outcome,
+                                          ProgressPrinter& progress) {
+  const Stopwatch watch;
+  progress.Begin(absl::StrCat("decode: reading ", params.input));
+  absl::StatusOr<PointCloud> cloud = ReadPointCloud(params.input);
+  if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
+  absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, params.upload);
+  if (!encoded.ok()) {
+    return absl::Status(encoded.status().code(),
+                        absl::StrCat(params.input, ": ", encoded.status().message()));
+  }
+  outcome.raw_bytes = cloud->points.size() * sizeof(Point3f);
+  outcome.upload_bytes = encoded->bytes.size();
+  progress.Finish(absl::StrFormat(
+      "decode: %d points, %d bytes as Draco (%.1f%% of %d raw float32 bytes) in %.3f s",
+      cloud->points.size(), outcome.upload_bytes,
+      100.0 * outcome.upload_bytes / std::max<uint64_t>(1, outcome.raw_bytes),
+      outcome.raw_bytes, watch.Seconds()));
+  return std::move(encoded->bytes);
+}
+
+}  // namespace
+
+std::shared_ptr<grpc::Channel> ConnectToServer(const std::string& address) {
+  grpc::ChannelArguments args;
+  args.SetMaxReceiveMessageSize(4 << 20);
+  return grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args);
+}
+
+absl::Status WatchUntilDone(const std::string& address, const std::string& job_id,
+                            absl::Time deadline, JobEventSink& sink) {
+  auto stub = v1::Reconstruction::NewStub(ConnectToServer(address));
+  Backoff backoff(absl::Milliseconds(200), absl::Seconds(5));
+  for (int attempt = 1;; ++attempt) {
+    grpc::ClientContext context;
+    SetDeadline(context, deadline);
+    v1::WatchJobRequest request;
+    request.set_job_id(job_id);
+    auto reader = stub->WatchJob(&context, request);
+    v1::JobEvent event;
+    while (reader->Read(&event)) sink.Consume(event);
+    const grpc::Status status = reader->Finish();
+    if (sink.done()) return sink.Outcome();
+    if (status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED || absl::Now() >= deadline) {
+      return absl::DeadlineExceededError(absl::StrCat("timed out following job ", job_id));
+    }
+    if (status.error_code() != grpc::StatusCode::UNAVAILABLE || attempt >= kMaxAttempts ||
+        !SleepBefore(backoff.Next(RetryDelayOf(status)), deadline)) {
+      return FromGrpcStatus(status, address);
+    }
+  }
+}
+
+absl::Status WriteReceivedMesh(const std::string& mesh, const std::string& output) {
+  if (absl::EndsWithIgnoreCase(output, ".drc")) {
+    return FileErrorAsInvalidInput(WriteFileBytes(output, mesh));
+  }
+  absl::StatusOr<TriangleMesh> decoded = DecodeDracoMesh(mesh);
+  if (!decoded.ok()) {
+    return absl::DataLossError(absl::StrCat("the server's mesh: ", decoded.status().message()));
+  }
+  return FileErrorAsInvalidInput(WriteMesh(*decoded, output, DracoOptions{}));
+}
+
+namespace {
+
+// The server's check as the MeshReport fields the summary line and the exit status use.
+MeshReport MeshReportOf(const v1::MeshSummary& s) {
+  MeshReport m;
+  m.vertices = s.vertices();
+  m.faces = s.faces();
+  m.closed = s.closed();
+  m.manifold = s.manifold();
+  m.oriented = s.oriented();
+  m.shells = s.shells();
+  m.genus.assign(s.genus().begin(), s.genus().end());
+  return m;
+}
+
+}  // namespace
+
+absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params,
+                                                      ProgressPrinter& progress) {
+  const absl::Time deadline = absl::Now() + params.timeout;
+  RemoteOutcome outcome;
+  absl::StatusOr<std::string> upload = ReadAndEncode(params, outcome, progress);
+  if (!upload.ok()) return upload.status();
+
+  auto stub = v1::Reconstruction::NewStub(ConnectToServer(params.server));
+  JobEventSink sink(progress);
+  Backoff backoff(absl::Milliseconds(250), absl::Seconds(8));
+  for (int attempt = 1; !sink.accepted(); ++attempt) {
+    const grpc::Status status = ReconstructOnce(*stub, params, *upload, deadline, sink);
+    if (sink.accepted() || status.ok()) break;
+    if (status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED) return DeadlineStatus(params);
+    if (!IsRetryable(status)) return FromGrpcStatus(status, params.server);
+    const absl::Duration delay = backoff.Next(RetryDelayOf(status));
+    if (attempt >= kMaxAttempts || !SleepBefore(delay, deadline)) {
+      // Busy or gone through every attempt: "unavailable" for the exit code (4).
+      return absl::UnavailableError(absl::StrFormat(
+          "server %s still unavailable or busy after %d attempts (%s); start membraned there, "
+          "try later, or use --local",
+          params.server, attempt, status.error_message()));
+    }
+    progress.Finish(absl::StrFormat("server busy or unavailable (%s); retrying in %.1f s",
+                                    status.error_message(), absl::ToDoubleSeconds(delay)));
+  }
+  if (!sink.done()) {
+    // The call broke after the job was accepted: the job runs on; follow it by its id.
+    progress.Finish(absl::StrCat("connection lost; re-attaching to job ", sink.job_id()));
+    absl::Status watched = WatchUntilDone(params.server, sink.job_id(), deadline, sink);
+    if (absl::IsDeadlineExceeded(watched)) return DeadlineStatus(params);
+    if (!watched.ok() && !sink.done()) return watched;
+  }
+  if (absl::Status s = sink.Outcome(); !s.ok()) return s;
+
+  const Stopwatch watch;
+  progress.Begin(absl::StrCat("encode: writing ", params.output));
+  if (absl::Status s = WriteReceivedMesh(sink.mesh(), params.output); !s.ok()) return s;
+  progress.Finish(absl::StrFormat("encode: %s (%d bytes received as Draco) in %.3f s",
+                                  params.output, sink.mesh().size(), watch.Seconds()));
+  outcome.job_id = sink.job_id();
+  outcome.generations = sink.generations();
+  outcome.statistics_json = sink.statistics_json();
+  outcome.mesh = MeshReportOf(sink.mesh_summary());
+  outcome.mesh_bytes = sink.mesh().size();
+  return outcome;
+}
+
+}  // namespace membrane::client

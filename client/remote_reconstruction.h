@@ -1,0 +1,76 @@
+// `membrane reconstruct --server HOST:PORT`: the cloud read here, sent Draco-compressed to a
+// membraned, reconstructed there, and the mesh brought back and written here.
+#ifndef MEMBRANE_CLIENT_REMOTE_RECONSTRUCTION_H_
+#define MEMBRANE_CLIENT_REMOTE_RECONSTRUCTION_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <grpcpp/channel.h>
+
+#include "absl/status/statusor.h"
+#include "absl/time/time.h"
+#include "client/job_event_sink.h"
+#include "client/progress_printer.h"
+#include "core/engine/membrane_shrinker.h"
+#include "core/io/draco_codec.h"
+#include "core/mesh/mesh_check.h"
+#include "membrane/v1/reconstruction.pb.h"
+
+namespace membrane::client {
+
+struct RemoteParams {
+  std::string server;          // HOST:PORT
+  std::string input;           // point cloud path; format by extension
+  std::string output;          // mesh path; format by extension
+  v1::Parameters parameters;   // sent as they are; the server validates them
+  DracoOptions upload;         // compression of the cloud sent (--quantization 0: lossless)
+  absl::Duration timeout = absl::InfiniteDuration();  // the whole command, retries included
+  // Test hook: cancel the call after this many events of the job, then re-attach with
+  // WatchJob as after a dropped connection. 0: never.
+  int drop_after_events = 0;
+};
+
+struct RemoteOutcome {
+  std::string job_id;
+  std::vector<GenerationStats> generations;
+  std::string statistics_json;  // the server's, as design/contracts.md
+  MeshReport mesh;              // the server's check of the mesh (the summary's fields set)
+  uint64_t raw_bytes = 0;       // the cloud as float32 x y z
+  uint64_t upload_bytes = 0;    // the Draco cloud sent
+  uint64_t mesh_bytes = 0;      // the Draco mesh received
+};
+
+// Runs the reconstruction on params.server and writes params.output. Same mesh as --local:
+// with params.upload lossless (--quantization 0) the server reconstructs the very points the
+// file holds, and the mesh comes back lossless (unless the output is .drc), so the vertices
+// and faces equal --local's up to Draco's reordering (tests/server LosslessUpload...). With
+// quantized uploads (the default 11 bits) each coordinate moves by at most
+// DracoEncoding::max_position_error, and the mesh may differ from --local's by about that. Calls refused before
+// the job is accepted (UNAVAILABLE; RESOURCE_EXHAUSTED with a RetryInfo) are repeated with
+// exponential backoff honouring the server's delay, 5 attempts at most and within the timeout;
+// a call that breaks after acceptance is resumed with WatchJob the same way.
+// Errors: the reader's status for an unreadable input; the server's status (INVALID_ARGUMENT,
+// RESOURCE_EXHAUSTED for its limits, ...) with a "server: " message; Unavailable when the
+// server stays unreachable or busy; DeadlineExceeded when the timeout expires; the job's
+// status (Cancelled, InvalidArgument, Internal, ...) when it failed; DataLoss for a mesh that
+// arrives damaged; InvalidArgument naming the output when it cannot be written.
+absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params,
+                                                      ProgressPrinter& progress);
+
+// A channel to `address` for the membrane client (insecure, loopback or a trusted network).
+std::shared_ptr<grpc::Channel> ConnectToServer(const std::string& address);
+
+// Follows job `job_id` with WatchJob into `sink` until it ends, re-attaching after dropped
+// calls as RunRemoteReconstruction does, within `deadline`.
+absl::Status WatchUntilDone(const std::string& address, const std::string& job_id,
+                            absl::Time deadline, JobEventSink& sink);
+
+// Writes the Draco `mesh` to `output` by its extension: the bytes as they are for .drc,
+// decoded and re-encoded otherwise. DataLoss when the bytes are not a Draco mesh.
+absl::Status WriteReceivedMesh(const std::string& mesh, const std::string& output);
+
+}  // namespace membrane::client
+
+#endif  // MEMBRANE_CLIENT_REMOTE_RECONSTRUCTION_H_

@@ -1,0 +1,140 @@
+#include "core/pipeline/reconstruction_pipeline.h"
+
+#include <utility>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "core/engine/plate_schedule.h"
+#include "core/mesh/mesh_check.h"
+#include "core/mesh/relaxation.h"
+#include "core/pipeline/membrane_counts.h"
+#include "core/pipeline/peak_memory.h"
+#include "core/pipeline/stopwatch.h"
+
+namespace membrane {
+namespace {
+
+absl::Status StopIfCancelled(const CancelToken& cancel, PipelineStage finished_stage) {
+  if (!cancel.cancelled()) return absl::OkStatus();
+  return absl::CancelledError(
+      absl::StrCat("reconstruction cancelled after ", PipelineStageName(finished_stage)));
+}
+
+absl::StatusOr<Voxelization> VoxelizeCloud(const ReconstructionOptions& options,
+                                           const PointCloud& cloud, ReconstructionReport& report,
+                                           ReconstructionObserver& observer) {
+  const Stopwatch watch;
+  observer.StageStarted(PipelineStage::kVoxelize, report);
+  absl::StatusOr<Voxelization> v = Voxelize(cloud.points, options.voxelize);
+  if (!v.ok()) return v.status();
+  report.voxel_size = v->grid.voxel_size();
+  report.grid = v->grid.dims();
+  report.data_grid = v->data_dims;
+  report.hard_voxels = v->hard_voxels;
+  report.density_ratio = v->density_ratio;
+  report.seconds.voxelize = watch.Seconds();
+  observer.StageFinished(PipelineStage::kVoxelize, report.seconds.voxelize, report);
+  return v;
+}
+
+absl::Status Shrink(const ReconstructionOptions& options, const CancelToken& cancel,
+                    VoxelGrid& grid, ReconstructionReport& report,
+                    ReconstructionObserver& observer) {
+  const Stopwatch watch;
+  // The shrinker computes the same schedule; asking for it here gives observers the "3/9"
+  // of a generation without a hook in the engine.
+  report.planned_generations = static_cast<int>(
+      PlateSizes(report.data_grid, options.shrink.schedule, options.shrink.initial_plate).size());
+  observer.StageStarted(PipelineStage::kShrink, report);
+  const int planned = report.planned_generations;
+  const GenerationCallback on_generation = [&observer, planned](const GenerationStats& g) {
+    observer.GenerationFinished(g, planned);
+  };
+  absl::StatusOr<ShrinkResult> result =
+      ShrinkMembrane(grid, options.shrink, on_generation, &cancel);
+  if (!result.ok()) return result.status();
+  report.generations = std::move(result->generations);
+  report.post_process = result->post_process;
+  report.seconds.shrink = watch.Seconds();
+  observer.StageFinished(PipelineStage::kShrink, report.seconds.shrink, report);
+  return absl::OkStatus();
+}
+
+absl::Status RelaxMembrane(const CancelToken& cancel, VoxelGrid& grid,
+                           ReconstructionReport& report, ReconstructionObserver& observer) {
+  const Stopwatch watch;
+  observer.StageStarted(PipelineStage::kRelax, report);
+  absl::StatusOr<RelaxationStats> stats = Relax(grid, [&cancel] { return cancel.cancelled(); });
+  if (!stats.ok()) return stats.status();
+  report.relaxed = true;
+  report.relaxation = *stats;
+  report.seconds.relax = watch.Seconds();
+  observer.StageFinished(PipelineStage::kRelax, report.seconds.relax, report);
+  return absl::OkStatus();
+}
+
+absl::StatusOr<TriangleMesh> Surface(const ReconstructionOptions& options,
+                                     const CancelToken& cancel, const VoxelGrid& grid,
+                                     const PointCloud& cloud, ReconstructionReport& report,
+                                     ReconstructionObserver& observer) {
+  const Stopwatch watch;
+  observer.StageStarted(PipelineStage::kSurface, report);
+  absl::StatusOr<TriangleMesh> mesh = BuildSurface(grid, cloud, options.surface, &cancel);
+  if (!mesh.ok()) return mesh.status();
+  report.seconds.surface = watch.Seconds();
+  // Known now; the check repeats them with the rest of its findings.
+  report.mesh.vertices = static_cast<int64_t>(mesh->vertices.size());
+  report.mesh.faces = static_cast<int64_t>(mesh->faces.size());
+  observer.StageFinished(PipelineStage::kSurface, report.seconds.surface, report);
+  return mesh;
+}
+
+void Check(const TriangleMesh& mesh, ReconstructionReport& report,
+           ReconstructionObserver& observer) {
+  const Stopwatch watch;
+  observer.StageStarted(PipelineStage::kCheck, report);
+  report.mesh = CheckMesh(mesh);
+  report.seconds.check = watch.Seconds();
+  observer.StageFinished(PipelineStage::kCheck, report.seconds.check, report);
+}
+
+}  // namespace
+
+absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
+                                                      const ReconstructionOptions& options,
+                                                      const CancelToken& cancel,
+                                                      ReconstructionObserver& observer) {
+  const Stopwatch total;
+  ReconstructionResult result;
+  ReconstructionReport& report = result.report;
+  report.points = static_cast<int64_t>(cloud.points.size());
+  report.schedule = PlateScheduleName(options.shrink.schedule);
+  report.surface = SurfaceKindName(options.surface);
+
+  absl::StatusOr<Voxelization> voxelization = VoxelizeCloud(options, cloud, report, observer);
+  if (!voxelization.ok()) return voxelization.status();
+  if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kVoxelize); !s.ok()) return s;
+  VoxelGrid& grid = voxelization->grid;
+
+  if (absl::Status s = Shrink(options, cancel, grid, report, observer); !s.ok()) return s;
+  report.membrane = CountMembrane(grid);
+  if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kShrink); !s.ok()) return s;
+
+  if (options.relax) {
+    if (absl::Status s = RelaxMembrane(cancel, grid, report, observer); !s.ok()) return s;
+  }
+
+  absl::StatusOr<TriangleMesh> mesh = Surface(options, cancel, grid, cloud, report, observer);
+  if (!mesh.ok()) return mesh.status();
+  if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
+
+  Check(*mesh, report, observer);
+  if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kCheck); !s.ok()) return s;
+
+  result.mesh = *std::move(mesh);
+  report.seconds.total = total.Seconds();
+  report.peak_rss_bytes = PeakRssBytes();
+  return result;
+}
+
+}  // namespace membrane

@@ -1,0 +1,49 @@
+// The reconstruction proper, from a point cloud in memory to a checked triangle mesh:
+// voxelize, shrink, relax, surface, check. Reading the input and writing the output are the
+// caller's (a file for `membrane reconstruct --local`, an upload for the server), so both run
+// this one function and give the same mesh for the same cloud and options.
+#ifndef MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_PIPELINE_H_
+#define MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_PIPELINE_H_
+
+#include "absl/status/statusor.h"
+#include "core/engine/cancel_token.h"
+#include "core/engine/membrane_shrinker.h"
+#include "core/engine/voxelization.h"
+#include "core/geometry/point_cloud.h"
+#include "core/geometry/triangle_mesh.h"
+#include "core/pipeline/reconstruction_observer.h"
+#include "core/pipeline/reconstruction_report.h"
+#include "core/pipeline/surface_builder.h"
+
+namespace membrane {
+
+struct ReconstructionOptions {
+  VoxelizeOptions voxelize;
+  ShrinkOptions shrink;
+  bool relax = true;
+  SurfaceKind surface = SurfaceKind::kSmooth;
+};
+
+struct ReconstructionResult {
+  TriangleMesh mesh;  // model units, outward faces
+  // Every measurement but seconds.decode and seconds.encode (left 0 for the caller);
+  // seconds.total spans the five stages here, peak_rss_bytes is this process's peak so far.
+  ReconstructionReport report;
+};
+
+// Reconstructs the surface of `cloud` with `options`, telling `observer` of each stage and
+// each plate generation. The result holds the mesh even when the check finds it not closed
+// or not manifold (the caller decides what that means: see report.mesh).
+// Errors, with the core's messages (callers add their own context, such as a file name or a
+// flag to change): InvalidArgument for a degenerate cloud (no points, all equal, coplanar) or
+// invalid options; ResourceExhausted for a grid over options.voxelize.voxel_budget; Cancelled
+// when `cancel` fires (polled within the shrink, the relaxation and the smooth surface, and
+// between stages, so a cancel takes effect within milliseconds).
+absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
+                                                      const ReconstructionOptions& options,
+                                                      const CancelToken& cancel,
+                                                      ReconstructionObserver& observer);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_PIPELINE_H_

@@ -1,0 +1,53 @@
+// Everything a reconstruction measured: the source of the final table, the summary line and
+// the statistics JSON (design/contracts.md).
+#ifndef MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_REPORT_H_
+#define MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_REPORT_H_
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/pipeline/membrane_counts.h"
+#include "core/engine/membrane_shrinker.h"
+#include "core/engine/post_process.h"
+#include "core/mesh/mesh_check.h"
+#include "core/mesh/relaxation.h"
+
+namespace membrane {
+
+// Wall-clock seconds per stage. `total` spans all stages, the statistics writing excepted.
+struct StageSeconds {
+  double decode = 0;  // reading and parsing the input (the caller's stage)
+  double voxelize = 0;
+  double shrink = 0;  // all generations and the section 7 post-process
+  double relax = 0;   // 0 with --no-relax
+  double surface = 0;
+  double check = 0;   // CheckMesh of the surface
+  double encode = 0;  // encoding and writing the output (the caller's stage)
+  double total = 0;
+};
+
+struct ReconstructionReport {
+  int64_t points = 0;
+  double voxel_size = 0;                     // model units
+  std::array<int, 3> grid{};                 // voxels per axis, VoxelGrid::kPadding layers included
+  std::array<int, 3> data_grid{};            // voxels per axis covering the points (no padding)
+  int64_t hard_voxels = 0;                   // voxels holding points
+  double density_ratio = 0;                  // Voxelization::density_ratio
+  std::string schedule;                      // "halving" or "linear"
+  std::string surface;                       // "smooth" or "cuberille"
+  bool relaxed = false;                      // false with --no-relax
+  int planned_generations = 0;               // plate sizes of the schedule, known before shrinking
+  std::vector<GenerationStats> generations;  // one per plate size, the last has plate size 1
+  PostProcessStats post_process;
+  MembraneCounts membrane;     // the final DMS, before relaxation
+  RelaxationStats relaxation;  // all 0 with --no-relax
+  MeshReport mesh;             // CheckMesh of the surface (vertices and faces set before it)
+  StageSeconds seconds;
+  int64_t peak_rss_bytes = 0;  // getrusage ru_maxrss, in bytes
+};
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_REPORT_H_

@@ -1,0 +1,63 @@
+#include "core/pipeline/stage_lines.h"
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
+
+namespace membrane {
+
+std::string StageStartedLine(PipelineStage stage, const ReconstructionReport& report) {
+  switch (stage) {
+    case PipelineStage::kShrink:
+      return absl::StrFormat("shrink: generation 1/%d ...", report.planned_generations);
+    case PipelineStage::kSurface: return absl::StrCat("surface: ", report.surface, " ...");
+    default: return absl::StrCat(PipelineStageName(stage), ": ...");
+  }
+}
+
+std::string GenerationLine(const GenerationStats& g, int planned_generations) {
+  return absl::StrFormat(
+      "shrink: generation %d/%d, plate size %d: %d soft voxels, %d started contractions, "
+      "%d backtrackings, %.3f s",
+      g.generation, planned_generations, g.plate_size, g.soft_voxels, g.started_contractions,
+      g.backtrackings, g.seconds);
+}
+
+std::string StageFinishedLine(PipelineStage stage, const ReconstructionReport& r) {
+  const StageSeconds& s = r.seconds;
+  switch (stage) {
+    case PipelineStage::kDecode:
+      return absl::StrFormat("decode: %d points in %.3f s", r.points, s.decode);
+    case PipelineStage::kVoxelize:
+      return absl::StrFormat(
+          "voxelize: grid %s (voxel size %.6g), %d hard voxels, density ratio %.3g in %.3f s",
+          absl::StrJoin(r.grid, "x"), r.voxel_size, r.hard_voxels, r.density_ratio, s.voxelize);
+    case PipelineStage::kShrink:
+      return absl::StrFormat(
+          "shrink: %d generations in %.3f s; %d of %d inside hard voxels connected to the "
+          "membrane",
+          r.generations.size(), s.shrink,
+          r.post_process.inside_hard_before - r.post_process.inside_hard_after,
+          r.post_process.inside_hard_before);
+    case PipelineStage::kRelax:
+      return absl::StrFormat(
+          "relax: %d dents filled, %d bumps shaved, %d steps refused to keep the topology in "
+          "%.3f s",
+          r.relaxation.phase1_moves, r.relaxation.phase2_moves, r.relaxation.not_simple, s.relax);
+    case PipelineStage::kSurface:
+      return absl::StrFormat("surface: %s, %d vertices, %d faces in %.3f s", r.surface,
+                             r.mesh.vertices, r.mesh.faces, s.surface);
+    case PipelineStage::kCheck: {
+      const MeshReport& m = r.mesh;
+      return absl::StrFormat(
+          "check: %s, %s, %s, %d shell(s), genus [%s], %d self-intersections in %.3f s",
+          m.closed ? "closed" : "NOT closed", m.manifold ? "manifold" : "NOT manifold",
+          m.oriented ? "oriented" : "NOT oriented", m.shells, absl::StrJoin(m.genus, ", "),
+          m.self_intersections, s.check);
+    }
+    case PipelineStage::kEncode: return absl::StrFormat("encode: done in %.3f s", s.encode);
+  }
+  return "";
+}
+
+}  // namespace membrane

@@ -1,0 +1,92 @@
+#include "core/pipeline/stats_json.h"
+
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "core/pipeline/json_text.h"
+
+namespace membrane {
+namespace {
+
+std::string IntArray(const auto& values) {
+  return absl::StrCat("[", absl::StrJoin(values, ", "), "]");
+}
+
+std::string GenerationJson(const GenerationStats& g) {
+  return absl::StrCat("{\"plate_size\": ", g.plate_size, ", \"soft_voxels\": ", g.soft_voxels,
+                      ", \"started_contractions\": ", g.started_contractions,
+                      ", \"backtrackings\": ", g.backtrackings,
+                      ", \"seconds\": ", JsonNumber(g.seconds), ", \"generation\": ", g.generation,
+                      ", \"contractions\": ", g.contractions,
+                      ", \"undone_contractions\": ", g.undone_contractions,
+                      ", \"guard_refusals\": ", g.guard_refusals,
+                      ", \"depth_refusals\": ", g.depth_refusals, ", \"passes\": ", g.passes, "}");
+}
+
+std::string GenerationsJson(const std::vector<GenerationStats>& generations) {
+  std::vector<std::string> rows;
+  rows.reserve(generations.size());
+  for (const GenerationStats& g : generations) rows.push_back(GenerationJson(g));
+  if (rows.empty()) return "[]";
+  return absl::StrCat("[\n    ", absl::StrJoin(rows, ",\n    "), "\n  ]");
+}
+
+std::string PostProcessJson(const PostProcessStats& p) {
+  return absl::StrCat("{\"inside_hard_before\": ", p.inside_hard_before,
+                      ", \"inside_hard_after\": ", p.inside_hard_after,
+                      ", \"carved_voxels\": ", p.carved_voxels,
+                      ", \"bridge_voxels\": ", p.bridge_voxels, "}");
+}
+
+std::string RelaxationJson(const RelaxationStats& r) {
+  return absl::StrCat("{\"phase1_moves\": ", r.phase1_moves, ", \"phase1_added\": ", r.phase1_added,
+                      ", \"phase2_moves\": ", r.phase2_moves,
+                      ", \"phase2_uncovered\": ", r.phase2_uncovered,
+                      ", \"not_simple\": ", r.not_simple, "}");
+}
+
+std::string MembraneJson(const MembraneCounts& m) {
+  return absl::StrCat(
+      "{\"hard_voxels\": ", m.hard_voxels, ", \"frozen_voxels\": ", m.frozen_voxels,
+      ", \"soft_voxels\": ", m.soft_voxels, ", \"inside_hard_voxels\": ", m.inside_hard_voxels,
+      ", \"inside_soft_voxels\": ", m.inside_soft_voxels, ", \"shells\": ", m.shells,
+      ", \"inside_frozen_voxels\": ", m.inside_frozen_voxels, ", \"genus\": ", IntArray(m.genus),
+      "}");
+}
+
+std::string MeshJson(const MeshReport& m) {
+  return absl::StrCat(
+      "{\"vertices\": ", m.vertices, ", \"faces\": ", m.faces, ", \"closed\": ", JsonBool(m.closed),
+      ", \"manifold\": ", JsonBool(m.manifold), ", \"oriented\": ", JsonBool(m.oriented),
+      ", \"shells\": ", m.shells, ", \"genus\": ", IntArray(m.genus),
+      ", \"self_intersections\": ", m.self_intersections,
+      ", \"positive_volume\": ", JsonBool(m.positive_volume), "}");
+}
+
+std::string SecondsJson(const StageSeconds& s) {
+  return absl::StrCat(
+      "{\"decode\": ", JsonNumber(s.decode), ", \"voxelize\": ", JsonNumber(s.voxelize),
+      ", \"shrink\": ", JsonNumber(s.shrink), ", \"relax\": ", JsonNumber(s.relax),
+      ", \"surface\": ", JsonNumber(s.surface), ", \"encode\": ", JsonNumber(s.encode),
+      ", \"total\": ", JsonNumber(s.total), ", \"check\": ", JsonNumber(s.check), "}");
+}
+
+}  // namespace
+
+std::string StatsJson(const ReconstructionReport& r) {
+  return absl::StrCat(
+      "{\n  \"points\": ", r.points, ",\n  \"voxel_size\": ", JsonNumber(r.voxel_size),
+      ",\n  \"grid\": ", IntArray(r.grid), ",\n  \"hard_voxels\": ", r.hard_voxels,
+      ",\n  \"density_ratio\": ", JsonNumber(r.density_ratio),
+      ",\n  \"generations\": ", GenerationsJson(r.generations),
+      ",\n  \"membrane\": ", MembraneJson(r.membrane), ",\n  \"mesh\": ", MeshJson(r.mesh),
+      ",\n  \"seconds\": ", SecondsJson(r.seconds), ",\n  \"peak_rss_bytes\": ", r.peak_rss_bytes,
+      ",\n  \"data_grid\": ", IntArray(r.data_grid), ",\n  \"schedule\": ", JsonString(r.schedule),
+      ",\n  \"surface\": ", JsonString(r.surface), ",\n  \"relaxed\": ", JsonBool(r.relaxed),
+      ",\n  \"post_process\": ", PostProcessJson(r.post_process),
+      ",\n  \"relaxation\": ", RelaxationJson(r.relaxation), "\n}\n");
+}
+
+}  // namespace membrane

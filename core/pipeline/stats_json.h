@@ -1,0 +1,31 @@
+// The statistics JSON of `membrane reconstruct --stats-json FILE` (design/contracts.md).
+#ifndef MEMBRANE_CORE_PIPELINE_STATS_JSON_H_
+#define MEMBRANE_CORE_PIPELINE_STATS_JSON_H_
+
+#include <string>
+
+#include "core/pipeline/reconstruction_report.h"
+
+namespace membrane {
+
+// `report` as one JSON object, snake_case keys, times in seconds, counts as integers. Every
+// key of design/contracts.md is present:
+//   points, voxel_size, grid [nx, ny, nz] (the full voxel grid: data region plus
+//   VoxelGrid::kPadding outside layers on each side), hard_voxels, density_ratio,
+//   generations [{plate_size, soft_voxels, started_contractions, backtrackings, seconds}],
+//   membrane {hard_voxels, frozen_voxels, soft_voxels, inside_hard_voxels,
+//             inside_soft_voxels, shells} (the final DMS before relaxation; counts of
+//             BOUNDARY voxels, then of INSIDE voxels),
+//   mesh {vertices, faces, closed, manifold, oriented, shells, genus [per shell]},
+//   seconds {decode, voxelize, shrink, relax, surface, encode, total}, peak_rss_bytes.
+// Extra keys: data_grid (grid without padding), schedule, surface, relaxed; per generation
+// generation, contractions, undone_contractions, guard_refusals, depth_refusals, passes;
+// post_process {inside_hard_before, inside_hard_after, carved_voxels, bridge_voxels};
+// relaxation {phase1_moves, phase1_added, phase2_moves, phase2_uncovered, not_simple};
+// membrane.inside_frozen_voxels and membrane.genus; mesh.self_intersections and
+// mesh.positive_volume; seconds.check. Non-finite reals are written as null.
+std::string StatsJson(const ReconstructionReport& report);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_PIPELINE_STATS_JSON_H_

@@ -1,0 +1,29 @@
+#include "core/pipeline/surface_builder.h"
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "core/mesh/cancel_fn.h"
+#include "core/mesh/cuberille.h"
+#include "core/mesh/smooth_surface.h"
+
+namespace membrane {
+
+absl::StatusOr<SurfaceKind> ParseSurfaceKind(absl::string_view name) {
+  if (name == "smooth") return SurfaceKind::kSmooth;
+  if (name == "cuberille") return SurfaceKind::kCuberille;
+  return absl::InvalidArgumentError(
+      absl::StrCat("--surface '", name, "' is not one of: smooth, cuberille"));
+}
+
+const char* SurfaceKindName(SurfaceKind kind) {
+  return kind == SurfaceKind::kSmooth ? "smooth" : "cuberille";
+}
+
+absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
+                                          SurfaceKind kind, const CancelToken* cancel) {
+  if (kind == SurfaceKind::kCuberille) return Cuberille(membrane);
+  const CancelFn cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
+  return SmoothSurface(membrane, cloud.points, SmoothSurfaceOptions{}, nullptr, cancelled);
+}
+
+}  // namespace membrane

@@ -1,0 +1,35 @@
+// The surface step of `membrane reconstruct` (paper section 6): which surface to build from
+// the final membrane, by the name given to --surface.
+#ifndef MEMBRANE_CORE_PIPELINE_SURFACE_BUILDER_H_
+#define MEMBRANE_CORE_PIPELINE_SURFACE_BUILDER_H_
+
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "core/engine/cancel_token.h"
+#include "core/engine/voxel_grid.h"
+#include "core/geometry/point_cloud.h"
+#include "core/geometry/triangle_mesh.h"
+
+namespace membrane {
+
+enum class SurfaceKind {
+  kSmooth,     // surface nets fitted to the points (membrane-quality.md recipe 3)
+  kCuberille,  // the voxel faces between the solid and the outside: exact but staircased
+};
+
+// "smooth" or "cuberille"; InvalidArgument "--surface 'x' is not one of: smooth, cuberille".
+absl::StatusOr<SurfaceKind> ParseSurfaceKind(absl::string_view name);
+
+// The --surface name of `kind`.
+const char* SurfaceKindName(SurfaceKind kind);
+
+// The closed, manifold, outward surface of `membrane` (a final DMS, its outer layer outside),
+// vertices in model units; `cloud` is what the smooth surface is fitted to (SmoothSurface of
+// core/mesh with its default options; Cuberille ignores it). Cancelled when `cancel` (may be
+// null) fires during the smooth surface.
+absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
+                                          SurfaceKind kind, const CancelToken* cancel);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_PIPELINE_SURFACE_BUILDER_H_

@@ -1,0 +1,193 @@
+#include "server/decode_subprocess.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/strip.h"
+
+namespace membrane::server {
+namespace {
+
+constexpr int kPollMillis = 50;  // how often the timeout and the cancel token are looked at
+
+// Pipe ends owned by the parent; closed on destruction.
+struct ChildPipes {
+  int to_stdin = -1;
+  int from_stdout = -1;
+  int from_stderr = -1;
+  ~ChildPipes() {
+    for (int fd : {to_stdin, from_stdout, from_stderr}) {
+      if (fd >= 0) close(fd);
+    }
+  }
+};
+
+// Starts the helper with its limits; fills `pipes`. Returns the child's pid or -1.
+pid_t StartHelper(const DecodeLimits& limits, ChildPipes& pipes) {
+  int in[2], out[2], err[2];
+  if (pipe2(in, O_CLOEXEC) != 0) return -1;
+  if (pipe2(out, O_CLOEXEC) != 0) {
+    close(in[0]);
+    close(in[1]);
+    return -1;
+  }
+  if (pipe2(err, O_CLOEXEC) != 0) {
+    for (int fd : {in[0], in[1], out[0], out[1]}) close(fd);
+    return -1;
+  }
+  // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
+  const std::string max_points = std::to_string(limits.max_points);
+  std::vector<char*> argv = {const_cast<char*>(limits.helper_path.c_str()),
+                             const_cast<char*>(max_points.c_str()), nullptr};
+  const rlim_t cpu = static_cast<rlim_t>(std::ceil(std::max(1.0, limits.timeout_seconds)));
+  const rlimit cpu_limit{cpu, cpu + 1};
+  const rlimit memory_limit{static_cast<rlim_t>(limits.memory_bytes),
+                            static_cast<rlim_t>(limits.memory_bytes)};
+  const rlimit no_core{0, 0};
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(in[0], STDIN_FILENO);
+    dup2(out[1], STDOUT_FILENO);
+    dup2(err[1], STDERR_FILENO);
+    setrlimit(RLIMIT_CPU, &cpu_limit);
+    setrlimit(RLIMIT_AS, &memory_limit);
+    setrlimit(RLIMIT_CORE, &no_core);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  close(in[0]);
+  close(out[1]);
+  close(err[1]);
+  pipes.to_stdin = in[1];
+  pipes.from_stdout = out[0];
+  pipes.from_stderr = err[0];
+  if (pid < 0) return -1;
+  for (int fd : {pipes.to_stdin, pipes.from_stdout, pipes.from_stderr}) {
+    fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
+  }
+  return pid;
+}
+
+// Reads what `fd` has into `sink`; false at end of file or on error.
+bool Drain(int fd, std::string& sink) {
+  char buffer[1 << 16];
+  while (true) {
+    const ssize_t n = read(fd, buffer, sizeof buffer);
+    if (n > 0) {
+      sink.append(buffer, static_cast<size_t>(n));
+      continue;
+    }
+    if (n < 0 && (errno == EAGAIN || errno == EINTR)) return true;
+    return false;
+  }
+}
+
+enum class Exchange { kDone, kTimedOut, kCancelled };
+
+// Feeds `bytes` to the child and collects its output until both output pipes close.
+Exchange Communicate(absl::string_view bytes, const DecodeLimits& limits,
+                     const CancelToken& cancel, ChildPipes& pipes, std::string& out,
+                     std::string& err) {
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration<double>(limits.timeout_seconds);
+  size_t written = 0;
+  bool out_open = true, err_open = true;
+  while (out_open || err_open) {
+    if (cancel.cancelled()) return Exchange::kCancelled;
+    if (std::chrono::steady_clock::now() > deadline) return Exchange::kTimedOut;
+    pollfd fds[3] = {{pipes.from_stdout, POLLIN, 0}, {pipes.from_stderr, POLLIN, 0},
+                     {pipes.to_stdin, POLLOUT, 0}};
+    const nfds_t count = pipes.to_stdin >= 0 ? 3 : 2;
+    if (poll(fds, count, kPollMillis) < 0 && errno != EINTR) return Exchange::kDone;
+    if (out_open && (fds[0].revents & (POLLIN | POLLHUP | POLLERR))) {
+      out_open = Drain(pipes.from_stdout, out);
+    }
+    if (err_open && (fds[1].revents & (POLLIN | POLLHUP | POLLERR))) {
+      err_open = Drain(pipes.from_stderr, err);
+    }
+    if (count == 3 && (fds[2].revents & (POLLOUT | POLLERR | POLLHUP))) {
+      const ssize_t n = write(pipes.to_stdin, bytes.data() + written, bytes.size() - written);
+      if (n > 0) written += static_cast<size_t>(n);
+      // A child that stops reading (it failed early) closes the pipe: stop feeding it.
+      if ((n < 0 && errno != EAGAIN && errno != EINTR) || written == bytes.size()) {
+        close(pipes.to_stdin);
+        pipes.to_stdin = -1;
+      }
+    }
+  }
+  return Exchange::kDone;
+}
+
+absl::StatusOr<PointCloud> ParsePoints(const std::string& out) {
+  uint64_t count = 0;
+  if (out.size() < sizeof count) {
+    return absl::InvalidArgumentError("the Draco decoder returned no points");
+  }
+  std::memcpy(&count, out.data(), sizeof count);
+  if (out.size() != sizeof count + count * sizeof(Point3f)) {
+    return absl::InvalidArgumentError("the Draco decoder returned a truncated point list");
+  }
+  PointCloud cloud;
+  cloud.points.resize(count);
+  std::memcpy(cloud.points.data(), out.data() + sizeof count, count * sizeof(Point3f));
+  return cloud;
+}
+
+}  // namespace
+
+absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const DecodeLimits& limits,
+                                              const CancelToken& cancel) {
+  ChildPipes pipes;
+  const pid_t pid = StartHelper(limits, pipes);
+  if (pid < 0) {
+    return absl::InternalError(
+        absl::StrCat("cannot start the decoder ", limits.helper_path, ": ", strerror(errno)));
+  }
+  std::string out, err;
+  const Exchange exchange = Communicate(bytes, limits, cancel, pipes, out, err);
+  if (exchange != Exchange::kDone) kill(pid, SIGKILL);
+  int wait_status = 0;
+  while (waitpid(pid, &wait_status, 0) < 0 && errno == EINTR) {
+  }
+  if (exchange == Exchange::kCancelled) return absl::CancelledError("cancelled while decoding");
+  if (exchange == Exchange::kTimedOut) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "the upload could not be decoded: the Draco decoder took over %g s",
+        limits.timeout_seconds));
+  }
+  if (WIFSIGNALED(wait_status)) {
+    const int sig = WTERMSIG(wait_status);
+    // SIGXCPU: over RLIMIT_CPU; SIGABRT/SIGSEGV with RLIMIT_AS: usually a failed allocation.
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "the upload could not be decoded: the Draco decoder died of signal %d (%s)%s", sig,
+        strsignal(sig), sig == SIGXCPU ? ", out of CPU time" : ""));
+  }
+  const int code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
+  if (code == 127) {
+    return absl::InternalError(absl::StrCat("cannot run the decoder ", limits.helper_path));
+  }
+  if (code == 4) {  // membrane-decode's "over --max-points"
+    return absl::ResourceExhaustedError(absl::StripTrailingAsciiWhitespace(err));
+  }
+  if (code != 0) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "the upload could not be decoded: ", absl::StripTrailingAsciiWhitespace(err)));
+  }
+  return ParsePoints(out);
+}
+
+}  // namespace membrane::server

@@ -1,0 +1,38 @@
+#include "server/in_memory_job_store.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace membrane::server {
+
+void InMemoryJobStore::Add(std::shared_ptr<Job> job) {
+  absl::MutexLock lock(&mutex_);
+  jobs_.push_back(std::move(job));
+}
+
+std::shared_ptr<Job> InMemoryJobStore::Find(const std::string& id) const {
+  absl::MutexLock lock(&mutex_);
+  // Linear: the store holds at most queue + workers + the jobs of one TTL.
+  for (const std::shared_ptr<Job>& job : jobs_) {
+    if (job->id() == id) return job;
+  }
+  return nullptr;
+}
+
+std::vector<std::shared_ptr<Job>> InMemoryJobStore::List() const {
+  absl::MutexLock lock(&mutex_);
+  return std::vector<std::shared_ptr<Job>>(jobs_.rbegin(), jobs_.rend());
+}
+
+int InMemoryJobStore::RemoveFinishedBefore(absl::Time cutoff) {
+  absl::MutexLock lock(&mutex_);
+  const auto expired = [cutoff](const std::shared_ptr<Job>& job) {
+    return job->done() && job->finished_at() < cutoff;
+  };
+  const auto first = std::remove_if(jobs_.begin(), jobs_.end(), expired);
+  const int removed = static_cast<int>(jobs_.end() - first);
+  jobs_.erase(first, jobs_.end());
+  return removed;
+}
+
+}  // namespace membrane::server

@@ -1,0 +1,151 @@
+#include "server/job.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "proto/crc32c.h"
+#include "server/rpc_status.h"
+
+namespace membrane::server {
+
+Job::Job(std::string id, std::string peer, v1::Parameters parameters, std::string upload)
+    : id_(std::move(id)),
+      peer_(std::move(peer)),
+      parameters_(std::move(parameters)),
+      upload_bytes_(upload.size()),
+      created_at_(absl::Now()),
+      upload_(std::move(upload)) {}
+
+std::string Job::TakeUpload() {
+  absl::MutexLock lock(&mutex_);
+  return std::exchange(upload_, std::string());
+}
+
+v1::Job Job::Snapshot() const {
+  absl::MutexLock lock(&mutex_);
+  v1::Job job;
+  job.set_id(id_);
+  job.set_state(state_);
+  job.set_queue_position(state_ == v1::QUEUED ? queue_position_ : 0);
+  job.set_stage(stage_);
+  if (!status_.ok()) *job.mutable_error() = ToRpcStatus(status_);
+  job.set_peer(peer_);
+  job.set_upload_bytes(upload_bytes_);
+  job.set_mesh_bytes(mesh_.size());
+  job.set_created_unix_seconds(absl::ToDoubleSeconds(created_at_ - absl::UnixEpoch()));
+  if (DoneLocked()) {
+    job.set_finished_unix_seconds(absl::ToDoubleSeconds(finished_at_ - absl::UnixEpoch()));
+  }
+  *job.mutable_parameters() = parameters_;
+  return job;
+}
+
+v1::JobState Job::state() const {
+  absl::MutexLock lock(&mutex_);
+  return state_;
+}
+
+bool Job::done() const {
+  absl::MutexLock lock(&mutex_);
+  return DoneLocked();
+}
+
+bool Job::DoneLocked() const {
+  return state_ == v1::SUCCEEDED || state_ == v1::FAILED || state_ == v1::CANCELLED;
+}
+
+void Job::SetQueuePosition(int position) {
+  absl::MutexLock lock(&mutex_);
+  queue_position_ = position;
+}
+
+bool Job::Start() {
+  absl::MutexLock lock(&mutex_);
+  if (state_ != v1::QUEUED) return false;
+  state_ = v1::RUNNING;
+  return true;
+}
+
+void Job::AddEvent(v1::JobEvent event) {
+  absl::MutexLock lock(&mutex_);
+  if (event.has_stage() && event.stage().phase() == v1::StageEvent::STARTED) {
+    stage_ = event.stage().stage();
+  }
+  events_.push_back(std::move(event));
+}
+
+void Job::Succeed(std::string statistics_json, v1::MeshSummary summary, std::string mesh) {
+  absl::MutexLock lock(&mutex_);
+  if (DoneLocked()) return;
+  statistics_json_ = std::move(statistics_json);
+  mesh_summary_ = std::move(summary);
+  mesh_ = std::move(mesh);
+  FinishLocked(v1::SUCCEEDED, absl::OkStatus());
+}
+
+void Job::Fail(const absl::Status& status) {
+  absl::MutexLock lock(&mutex_);
+  if (DoneLocked()) return;
+  FinishLocked(status.code() == absl::StatusCode::kCancelled ? v1::CANCELLED : v1::FAILED,
+               status);
+}
+
+void Job::RequestCancel(const std::string& reason) {
+  absl::MutexLock lock(&mutex_);
+  if (DoneLocked()) return;
+  if (cancel_reason_.empty()) cancel_reason_ = reason;
+  cancel_.Cancel();
+  if (state_ == v1::QUEUED) FinishLocked(v1::CANCELLED, absl::CancelledError(reason));
+}
+
+std::string Job::cancel_reason() const {
+  absl::MutexLock lock(&mutex_);
+  return cancel_reason_;
+}
+
+void Job::FinishLocked(v1::JobState state, const absl::Status& status) {
+  state_ = state;
+  status_ = status;
+  stage_.clear();
+  upload_.clear();
+  upload_.shrink_to_fit();
+  finished_at_ = absl::Now();
+}
+
+size_t Job::WaitForEvents(size_t next, absl::Duration timeout,
+                          std::vector<v1::JobEvent>& out) const {
+  absl::MutexLock lock(&mutex_);
+  auto ready = [this, next]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) {
+    return events_.size() > next || DoneLocked();
+  };
+  mutex_.AwaitWithTimeout(absl::Condition(&ready), timeout);
+  for (size_t i = next; i < events_.size(); ++i) out.push_back(events_[i]);
+  return std::max(next, events_.size());
+}
+
+std::vector<v1::JobEvent> Job::ClosingEvents(size_t chunk_bytes) const {
+  absl::MutexLock lock(&mutex_);
+  std::vector<v1::JobEvent> events;
+  if (!DoneLocked()) return events;
+  if (state_ == v1::SUCCEEDED) {
+    v1::ResultHeader* result = events.emplace_back().mutable_result();
+    result->set_statistics_json(statistics_json_);
+    result->set_mesh_bytes(mesh_.size());
+    result->set_mesh_crc32c(Crc32c(mesh_));
+    *result->mutable_mesh() = mesh_summary_;
+    for (size_t at = 0; at < mesh_.size(); at += chunk_bytes) {
+      events.emplace_back().set_mesh_chunk(mesh_.substr(at, chunk_bytes));
+    }
+  }
+  v1::JobDone* done = events.emplace_back().mutable_done();
+  done->set_state(state_);
+  *done->mutable_status() = ToRpcStatus(status_);
+  return events;
+}
+
+absl::Time Job::finished_at() const {
+  absl::MutexLock lock(&mutex_);
+  return finished_at_;
+}
+
+}  // namespace membrane::server

@@ -1,0 +1,102 @@
+// One reconstruction job as the server holds it: its state, the events it produced so far
+// (for every watcher, however late), its result, and its cancel token. Thread-safe: the
+// worker writes, any number of handlers read and wait.
+#ifndef MEMBRANE_SERVER_JOB_H_
+#define MEMBRANE_SERVER_JOB_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "absl/base/thread_annotations.h"
+#include "absl/status/status.h"
+#include "absl/synchronization/mutex.h"
+#include "absl/time/time.h"
+#include "core/engine/cancel_token.h"
+#include "membrane/v1/reconstruction.pb.h"
+
+namespace membrane::server {
+
+class Job {
+ public:
+  // A QUEUED job. `upload` is the Draco cloud (kept until the job runs).
+  Job(std::string id, std::string peer, v1::Parameters parameters, std::string upload);
+
+  Job(const Job&) = delete;
+  Job& operator=(const Job&) = delete;
+
+  const std::string& id() const { return id_; }
+  const std::string& peer() const { return peer_; }
+  const v1::Parameters& parameters() const { return parameters_; }
+  CancelToken& cancel_token() { return cancel_; }
+
+  // The upload, handed over once to the worker (later calls return an empty string).
+  std::string TakeUpload() ABSL_LOCKS_EXCLUDED(mutex_);
+  uint64_t upload_bytes() const { return upload_bytes_; }
+
+  // The resource as GetJob returns it.
+  v1::Job Snapshot() const ABSL_LOCKS_EXCLUDED(mutex_);
+  v1::JobState state() const ABSL_LOCKS_EXCLUDED(mutex_);
+  bool done() const ABSL_LOCKS_EXCLUDED(mutex_);
+
+  // Updates the queue position (1 = next) of a QUEUED job.
+  void SetQueuePosition(int position) ABSL_LOCKS_EXCLUDED(mutex_);
+  // QUEUED -> RUNNING. False when the job is already done (cancelled while queued).
+  bool Start() ABSL_LOCKS_EXCLUDED(mutex_);
+  // Appends a stage or generation event for every watcher; a StageEvent STARTED also sets
+  // the job's current stage.
+  void AddEvent(v1::JobEvent event) ABSL_LOCKS_EXCLUDED(mutex_);
+  // Ends the job: SUCCEEDED with `statistics_json`, the mesh check and the Draco `mesh`, or
+  // FAILED/CANCELLED
+  // with `status`. A second call is ignored (the first outcome stands).
+  void Succeed(std::string statistics_json, v1::MeshSummary summary, std::string mesh)
+      ABSL_LOCKS_EXCLUDED(mutex_);
+  void Fail(const absl::Status& status) ABSL_LOCKS_EXCLUDED(mutex_);
+  // Asks the job to stop for `reason` ("cancelled by the client", "deadline expired", ...):
+  // a QUEUED job ends CANCELLED at once; a RUNNING one has its token fired and ends when the
+  // worker sees it (within 100 ms). Ignored once the job is done.
+  void RequestCancel(const std::string& reason) ABSL_LOCKS_EXCLUDED(mutex_);
+  // The reason given to the first RequestCancel, for the worker's Cancelled status.
+  std::string cancel_reason() const ABSL_LOCKS_EXCLUDED(mutex_);
+
+  // Waits up to `timeout` for events past the first `next` or for the end of the job, then
+  // appends the events past `next` to `out` and returns how many there are now in all.
+  size_t WaitForEvents(size_t next, absl::Duration timeout, std::vector<v1::JobEvent>& out) const
+      ABSL_LOCKS_EXCLUDED(mutex_);
+
+  // The closing events of a finished job: ResultHeader, mesh chunks of at most `chunk_bytes`
+  // (SUCCEEDED only), then JobDone. Empty while the job runs.
+  std::vector<v1::JobEvent> ClosingEvents(size_t chunk_bytes) const ABSL_LOCKS_EXCLUDED(mutex_);
+
+  // When the job finished; InfinitePast while it runs.
+  absl::Time finished_at() const ABSL_LOCKS_EXCLUDED(mutex_);
+
+ private:
+  bool DoneLocked() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  void FinishLocked(v1::JobState state, const absl::Status& status)
+      ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+
+  const std::string id_;
+  const std::string peer_;
+  const v1::Parameters parameters_;
+  const uint64_t upload_bytes_;
+  const absl::Time created_at_;
+  CancelToken cancel_;
+
+  mutable absl::Mutex mutex_;
+  std::string upload_ ABSL_GUARDED_BY(mutex_);
+  v1::JobState state_ ABSL_GUARDED_BY(mutex_) = v1::QUEUED;
+  int queue_position_ ABSL_GUARDED_BY(mutex_) = 0;
+  std::string stage_ ABSL_GUARDED_BY(mutex_);
+  std::vector<v1::JobEvent> events_ ABSL_GUARDED_BY(mutex_);
+  absl::Status status_ ABSL_GUARDED_BY(mutex_);
+  std::string statistics_json_ ABSL_GUARDED_BY(mutex_);
+  v1::MeshSummary mesh_summary_ ABSL_GUARDED_BY(mutex_);
+  std::string mesh_ ABSL_GUARDED_BY(mutex_);
+  absl::Time finished_at_ ABSL_GUARDED_BY(mutex_) = absl::InfinitePast();
+  std::string cancel_reason_ ABSL_GUARDED_BY(mutex_);
+};
+
+}  // namespace membrane::server
+
+#endif  // MEMBRANE_SERVER_JOB_H_

@@ -1,0 +1,44 @@
+#include "server/job_event_observer.h"
+
+#include "core/pipeline/stage_lines.h"
+
+namespace membrane::server {
+namespace {
+
+v1::JobEvent StageEvent(PipelineStage stage, v1::StageEvent::Phase phase, double seconds,
+                        std::string line) {
+  v1::JobEvent event;
+  v1::StageEvent* s = event.mutable_stage();
+  s->set_stage(PipelineStageName(stage));
+  s->set_phase(phase);
+  s->set_seconds(seconds);
+  s->set_line(std::move(line));
+  return event;
+}
+
+}  // namespace
+
+void JobEventObserver::StageStarted(PipelineStage stage, const ReconstructionReport& report) {
+  job_.AddEvent(StageEvent(stage, v1::StageEvent::STARTED, 0, StageStartedLine(stage, report)));
+}
+
+void JobEventObserver::GenerationFinished(const GenerationStats& g, int planned_generations) {
+  v1::JobEvent event;
+  v1::GenerationEvent* e = event.mutable_generation();
+  e->set_generation(g.generation);
+  e->set_planned_generations(planned_generations);
+  e->set_plate_size(g.plate_size);
+  e->set_soft_voxels(g.soft_voxels);
+  e->set_started_contractions(g.started_contractions);
+  e->set_backtrackings(g.backtrackings);
+  e->set_seconds(g.seconds);
+  job_.AddEvent(std::move(event));
+}
+
+void JobEventObserver::StageFinished(PipelineStage stage, double seconds,
+                                     const ReconstructionReport& report) {
+  job_.AddEvent(
+      StageEvent(stage, v1::StageEvent::FINISHED, seconds, StageFinishedLine(stage, report)));
+}
+
+}  // namespace membrane::server

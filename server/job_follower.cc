@@ -1,0 +1,54 @@
+#include "server/job_follower.h"
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "absl/time/time.h"
+#include "server/server_log.h"
+
+namespace membrane::server {
+namespace {
+
+constexpr size_t kMeshChunkBytes = 1 << 20;  // well under gRPC's 4 MB message limit
+
+grpc::Status CallEnded(Job& job, grpc::ServerContext& context, FollowPolicy policy) {
+  const bool deadline_expired = context.deadline() <= std::chrono::system_clock::now();
+  if (deadline_expired) {
+    job.RequestCancel("the call's deadline expired");
+  } else if (policy.cancel_on_drop) {
+    job.RequestCancel("the client disconnected (--on-disconnect=cancel)");
+  }
+  LogEvent("call_dropped", {{"job", job.id()},
+                            {"peer", context.peer()},
+                            {"deadline_expired", deadline_expired ? "true" : "false"}});
+  return deadline_expired ? grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED, "deadline expired")
+                          : grpc::Status(grpc::StatusCode::CANCELLED, "call cancelled");
+}
+
+}  // namespace
+
+grpc::Status FollowJob(Job& job, grpc::ServerContext& context, FollowPolicy policy,
+                       const std::function<bool(const v1::JobEvent&)>& write) {
+  size_t next = 0;
+  while (true) {
+    if (context.IsCancelled()) return CallEnded(job, context, policy);
+    // Read `done` first: no event is added after the job ends, so the events fetched next
+    // are then all of them.
+    const bool done = job.done();
+    std::vector<v1::JobEvent> events;
+    next = job.WaitForEvents(next, done ? absl::ZeroDuration() : absl::Milliseconds(50), events);
+    for (const v1::JobEvent& event : events) {
+      if (!write(event)) return CallEnded(job, context, policy);
+    }
+    if (!done) continue;
+    std::vector<v1::JobEvent> closing = job.ClosingEvents(kMeshChunkBytes);
+    for (const v1::JobEvent& event : closing) {
+      if (!write(event)) return CallEnded(job, context, policy);
+    }
+    const google::rpc::Status& status = closing.back().done().status();
+    return grpc::Status(static_cast<grpc::StatusCode>(status.code()), status.message());
+  }
+}
+
+}  // namespace membrane::server

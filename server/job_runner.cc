@@ -1,0 +1,144 @@
+#include "server/job_runner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "core/engine/voxel_grid.h"
+#include "core/engine/voxelization.h"
+#include "core/io/draco_codec.h"
+#include "core/pipeline/peak_memory.h"
+#include "core/pipeline/stats_json.h"
+#include "core/pipeline/stopwatch.h"
+#include "server/decode_subprocess.h"
+#include "server/job_event_observer.h"
+#include "server/parameter_checks.h"
+#include "server/server_log.h"
+
+namespace membrane::server {
+namespace {
+
+// The voxels Voxelize will allocate for `cloud` (padding included), computed the same way
+// before anything is allocated; InvalidArgument for a degenerate cloud.
+absl::StatusOr<int64_t> PlannedVoxels(const PointCloud& cloud, double voxel_size) {
+  absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
+  if (!bounds.ok()) return bounds.status();
+  const double l = voxel_size > 0
+                       ? voxel_size
+                       : EstimateVoxelSize(*bounds, static_cast<int64_t>(cloud.points.size()));
+  double voxels = 1;
+  for (const double side : bounds->Extent()) {
+    voxels *= std::floor(side / l) + 1 + 2 * VoxelGrid::kPadding;
+  }
+  return static_cast<int64_t>(std::min(voxels, 9e18));
+}
+
+// A grid over the budget: the message says which job fields change it.
+absl::Status WithParameterHint(const absl::Status& status) {
+  if (status.code() != absl::StatusCode::kResourceExhausted) return status;
+  return absl::ResourceExhaustedError(
+      absl::StrCat(status.message(), "; use a larger voxel_size (the server's voxel budget caps "
+                                     "voxel_budget)"));
+}
+
+v1::MeshSummary MeshSummaryOf(const MeshReport& m) {
+  v1::MeshSummary summary;
+  summary.set_vertices(m.vertices);
+  summary.set_faces(m.faces);
+  summary.set_closed(m.closed);
+  summary.set_manifold(m.manifold);
+  summary.set_oriented(m.oriented);
+  summary.set_shells(m.shells);
+  for (const int g : m.genus) summary.add_genus(g);
+  return summary;
+}
+
+// Holds a memory reservation for as long as the job runs.
+class Reservation {
+ public:
+  Reservation(MemoryBudget& budget, int64_t bytes) : budget_(budget), bytes_(bytes) {}
+  ~Reservation() { budget_.Release(bytes_); }
+  Reservation(const Reservation&) = delete;
+  Reservation& operator=(const Reservation&) = delete;
+
+ private:
+  MemoryBudget& budget_;
+  const int64_t bytes_;
+};
+
+}  // namespace
+
+void JobRunner::Run(const std::shared_ptr<Job>& job) const {
+  if (!job->Start()) return;  // cancelled while queued
+  LogEvent("job_started", {{"job", job->id()}, {"peer", job->peer()}});
+  const Stopwatch total;
+  JobEventObserver observer(*job);
+  const auto fail = [&](const absl::Status& status) {
+    absl::Status final_status = status;
+    if (status.code() == absl::StatusCode::kCancelled && !job->cancel_reason().empty()) {
+      final_status = absl::CancelledError(job->cancel_reason());
+    }
+    job->Fail(final_status);
+    LogEvent("job_finished",
+             {{"job", job->id()},
+              {"outcome", absl::StatusCodeToString(final_status.code())},
+              {"seconds", absl::StrFormat("%.3f", total.Seconds())},
+              {"message", std::string(final_status.message())}});
+  };
+
+  absl::StatusOr<JobSettings> settings =
+      CheckParameters(job->parameters(), options_.voxel_budget);
+  if (!settings.ok()) return fail(settings.status());
+
+  ReconstructionReport decode_report;
+  const Stopwatch decode_watch;
+  observer.StageStarted(PipelineStage::kDecode, decode_report);
+  const DecodeLimits limits{options_.decoder_path, options_.decoder_timeout_seconds,
+                            options_.decoder_memory_bytes, options_.max_points};
+  absl::StatusOr<PointCloud> cloud =
+      DecodeInSubprocess(job->TakeUpload(), limits, job->cancel_token());
+  if (!cloud.ok()) return fail(cloud.status());
+  decode_report.points = static_cast<int64_t>(cloud->points.size());
+  decode_report.seconds.decode = decode_watch.Seconds();
+  observer.StageFinished(PipelineStage::kDecode, decode_report.seconds.decode, decode_report);
+
+  absl::StatusOr<int64_t> voxels =
+      PlannedVoxels(*cloud, settings->reconstruction.voxelize.voxel_size);
+  if (!voxels.ok()) return fail(voxels.status());
+  // Over the voxel budget: Voxelize refuses it with the grid in its message; do not reserve.
+  const int64_t bytes = EstimateJobBytes(
+      std::min(*voxels, settings->reconstruction.voxelize.voxel_budget), decode_report.points);
+  if (absl::Status s = memory_.Reserve(bytes, job->cancel_token()); !s.ok()) return fail(s);
+  const Reservation reservation(memory_, bytes);
+
+  absl::StatusOr<ReconstructionResult> result = ReconstructCloud(
+      *cloud, settings->reconstruction, job->cancel_token(), observer);
+  if (!result.ok()) return fail(WithParameterHint(result.status()));
+  ReconstructionReport& report = result->report;
+  report.seconds.decode = decode_report.seconds.decode;
+
+  const Stopwatch encode_watch;
+  observer.StageStarted(PipelineStage::kEncode, report);
+  absl::StatusOr<DracoEncoding> mesh = EncodeDracoMesh(result->mesh, settings->mesh_encoding);
+  if (!mesh.ok()) return fail(mesh.status());
+  report.seconds.encode = encode_watch.Seconds();
+  report.seconds.total = total.Seconds();
+  report.peak_rss_bytes = PeakRssBytes();
+  observer.StageFinished(PipelineStage::kEncode, report.seconds.encode, report);
+  const size_t mesh_bytes = mesh->bytes.size();
+  job->Succeed(StatsJson(report), MeshSummaryOf(report.mesh), std::move(mesh->bytes));
+  LogEvent("job_finished", {{"job", job->id()},
+                            {"outcome", "OK"},
+                            {"points", absl::StrCat(report.points)},
+                            {"upload_bytes", absl::StrCat(job->upload_bytes())},
+                            {"mesh_bytes", absl::StrCat(mesh_bytes)},
+                            {"faces", absl::StrCat(report.mesh.faces)},
+                            {"seconds", absl::StrFormat("%.3f", report.seconds.total)}});
+}
+
+}  // namespace membrane::server

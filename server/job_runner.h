@@ -1,0 +1,35 @@
+// What a worker does with one job: decode the upload in a subprocess, reserve memory,
+// reconstruct with the shared pipeline (core/pipeline), encode the mesh with Draco, and end
+// the job with its statistics and mesh or its status.
+#ifndef MEMBRANE_SERVER_JOB_RUNNER_H_
+#define MEMBRANE_SERVER_JOB_RUNNER_H_
+
+#include <memory>
+
+#include "server/job.h"
+#include "server/memory_budget.h"
+#include "server/server_options.h"
+
+namespace membrane::server {
+
+class JobRunner {
+ public:
+  // `options` and `memory` (not owned) must outlive the runner.
+  JobRunner(const ServerOptions& options, MemoryBudget& memory)
+      : options_(options), memory_(memory) {}
+
+  // Runs `job` to its end (QUEUED -> RUNNING -> SUCCEEDED / FAILED / CANCELLED) on the
+  // calling thread; returns at once when the job was cancelled while queued. Statuses a job
+  // can end with: InvalidArgument (bad parameters, an upload the decoder rejects or dies on,
+  // a degenerate cloud), ResourceExhausted (points, voxels or memory over the server's
+  // limits), Cancelled (with the reason given to Job::RequestCancel), Internal.
+  void Run(const std::shared_ptr<Job>& job) const;
+
+ private:
+  const ServerOptions& options_;
+  MemoryBudget& memory_;
+};
+
+}  // namespace membrane::server
+
+#endif  // MEMBRANE_SERVER_JOB_RUNNER_H_

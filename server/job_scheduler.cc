@@ -1,0 +1,90 @@
+#include "server/job_scheduler.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "absl/strings/str_format.h"
+
+namespace membrane::server {
+
+JobScheduler::JobScheduler(int workers, int queue_capacity, RunFn run)
+    : queue_capacity_(queue_capacity), run_(std::move(run)) {
+  for (int i = 0; i < workers; ++i) workers_.emplace_back([this] { WorkerLoop(); });
+}
+
+JobScheduler::~JobScheduler() { Shutdown(absl::ZeroDuration()); }
+
+absl::Status JobScheduler::Submit(std::shared_ptr<Job> job) {
+  absl::MutexLock lock(&mutex_);
+  if (stopping_) return absl::UnavailableError("the server is shutting down; try another replica");
+  // Jobs waiting beyond the idle workers count against the queue.
+  if (queue_.size() + running_.size() >= workers_.size() + queue_capacity_) {
+    return absl::ResourceExhaustedError(absl::StrFormat(
+        "the server is busy: queue full (%d jobs waiting, %d running)", queue_.size(),
+        running_.size()));
+  }
+  queue_.push_back(std::move(job));
+  RenumberQueueLocked();
+  return absl::OkStatus();
+}
+
+void JobScheduler::RenumberQueueLocked() {
+  int position = 1;
+  for (const std::shared_ptr<Job>& job : queue_) job->SetQueuePosition(position++);
+}
+
+void JobScheduler::WorkerLoop() {
+  while (true) {
+    std::shared_ptr<Job> job;
+    {
+      absl::MutexLock lock(&mutex_);
+      mutex_.Await(absl::Condition(
+          +[](JobScheduler* s) ABSL_EXCLUSIVE_LOCKS_REQUIRED(s->mutex_) {
+            return s->stopping_ || !s->queue_.empty();
+          },
+          this));
+      if (queue_.empty()) return;  // stopping, nothing left
+      job = std::move(queue_.front());
+      queue_.pop_front();
+      RenumberQueueLocked();
+      running_.push_back(job);
+    }
+    run_(job);
+    absl::MutexLock lock(&mutex_);
+    running_.erase(std::find(running_.begin(), running_.end(), job));
+  }
+}
+
+void JobScheduler::Shutdown(absl::Duration grace) {
+  if (joined_) return;
+  {
+    absl::MutexLock lock(&mutex_);
+    stopping_ = true;
+    for (const std::shared_ptr<Job>& job : queue_) {
+      job->RequestCancel("the server shut down before the job started");
+    }
+    queue_.clear();
+    auto idle = [this]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) { return running_.empty(); };
+    if (!mutex_.AwaitWithTimeout(absl::Condition(&idle), grace)) {
+      for (const std::shared_ptr<Job>& job : running_) {
+        job->RequestCancel(absl::StrFormat(
+            "the server shut down; the job did not finish within the %g s grace period",
+            absl::ToDoubleSeconds(grace)));
+      }
+    }
+  }
+  for (std::thread& worker : workers_) worker.join();
+  joined_ = true;
+}
+
+int JobScheduler::queued() const {
+  absl::MutexLock lock(&mutex_);
+  return static_cast<int>(queue_.size());
+}
+
+int JobScheduler::running() const {
+  absl::MutexLock lock(&mutex_);
+  return static_cast<int>(running_.size());
+}
+
+}  // namespace membrane::server

@@ -1,0 +1,31 @@
+// Where the server keeps its jobs. Handlers see only this interface, so a durable store (a
+// database, a shared cache for several replicas) can replace the in-memory one without
+// touching them.
+#ifndef MEMBRANE_SERVER_JOB_STORE_H_
+#define MEMBRANE_SERVER_JOB_STORE_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "absl/time/time.h"
+#include "server/job.h"
+
+namespace membrane::server {
+
+class JobStore {
+ public:
+  virtual ~JobStore() = default;
+  // Adds `job`, whose id must be new.
+  virtual void Add(std::shared_ptr<Job> job) = 0;
+  // The job with `id`, or null when unknown or expired.
+  virtual std::shared_ptr<Job> Find(const std::string& id) const = 0;
+  // Every job held, newest first.
+  virtual std::vector<std::shared_ptr<Job>> List() const = 0;
+  // Drops the jobs that finished before `cutoff`; returns how many.
+  virtual int RemoveFinishedBefore(absl::Time cutoff) = 0;
+};
+
+}  // namespace membrane::server
+
+#endif  // MEMBRANE_SERVER_JOB_STORE_H_

@@ -1,0 +1,132 @@
+// membraned: the membrane reconstruction server (proto/membrane/v1/reconstruction.proto).
+// Runs until SIGTERM or SIGINT, then shuts down gracefully (see MembraneServer::Shutdown).
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <climits>
+#include <cstdio>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/flags/flag.h"
+#include "absl/flags/parse.h"
+#include "absl/flags/usage.h"
+#include "absl/strings/str_cat.h"
+#include "server/membrane_server.h"
+#include "server/server_options.h"
+
+ABSL_FLAG(std::string, listen, "127.0.0.1:50051", "address to listen on (HOST:PORT; port 0 = any)");
+ABSL_FLAG(int, workers, 0, "jobs running at once; 0 = the number of cores");
+ABSL_FLAG(int, queue, 16, "jobs waiting beyond the running ones; more get RESOURCE_EXHAUSTED");
+ABSL_FLAG(int64_t, max_upload_bytes, 512LL << 20, "largest Draco upload, bytes");
+ABSL_FLAG(int64_t, max_points, 50'000'000, "largest decoded cloud, points");
+ABSL_FLAG(int64_t, voxel_budget, 400'000'000, "largest grid of one job, voxels (padding included)");
+ABSL_FLAG(int64_t, memory_budget_bytes, 0,
+          "estimated bytes across running jobs (about 6 per voxel); 0 = no limit");
+ABSL_FLAG(double, result_ttl_seconds, 3600, "how long finished jobs and results are kept");
+ABSL_FLAG(double, grace_seconds, 30, "on SIGTERM, how long running jobs may finish");
+ABSL_FLAG(std::string, on_disconnect, "continue",
+          "a dropped Reconstruct call: continue (re-attach with WatchJob) or cancel");
+ABSL_FLAG(double, decoder_timeout_seconds, 30, "wall-clock limit of one upload's decoding");
+ABSL_FLAG(int64_t, decoder_memory_bytes, 4LL << 30, "address-space limit of the decoder process");
+ABSL_FLAG(std::string, decoder_path, "", "the membrane-decode binary; empty = beside membraned");
+ABSL_FLAG(double, retry_delay_seconds, 2, "retry delay sent with a full queue");
+
+namespace membrane::server {
+namespace {
+
+// The directory of this executable, for the default --decoder_path.
+std::string ExecutableDirectory() {
+  char path[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
+  if (n <= 0) return ".";
+  std::string dir(path, static_cast<size_t>(n));
+  return dir.substr(0, dir.rfind('/'));
+}
+
+// The options from the flags; an error line and false when a value is out of range.
+bool OptionsFromFlags(ServerOptions& o) {
+  o.workers = absl::GetFlag(FLAGS_workers);
+  if (o.workers <= 0) o.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.queue = absl::GetFlag(FLAGS_queue);
+  o.max_upload_bytes = absl::GetFlag(FLAGS_max_upload_bytes);
+  o.max_points = absl::GetFlag(FLAGS_max_points);
+  o.voxel_budget = absl::GetFlag(FLAGS_voxel_budget);
+  o.memory_budget_bytes = absl::GetFlag(FLAGS_memory_budget_bytes);
+  o.result_ttl_seconds = absl::GetFlag(FLAGS_result_ttl_seconds);
+  o.grace_seconds = absl::GetFlag(FLAGS_grace_seconds);
+  o.decoder_timeout_seconds = absl::GetFlag(FLAGS_decoder_timeout_seconds);
+  o.decoder_memory_bytes = absl::GetFlag(FLAGS_decoder_memory_bytes);
+  o.decoder_path = absl::GetFlag(FLAGS_decoder_path);
+  if (o.decoder_path.empty()) o.decoder_path = ExecutableDirectory() + "/membrane-decode";
+  o.retry_delay_seconds = absl::GetFlag(FLAGS_retry_delay_seconds);
+  const std::string on_disconnect = absl::GetFlag(FLAGS_on_disconnect);
+  if (on_disconnect == "continue") {
+    o.on_disconnect = DisconnectPolicy::kContinue;
+  } else if (on_disconnect == "cancel") {
+    o.on_disconnect = DisconnectPolicy::kCancel;
+  } else {
+    std::fprintf(stderr, "membraned: --on-disconnect '%s' is not one of: continue, cancel\n",
+                 on_disconnect.c_str());
+    return false;
+  }
+  if (o.queue < 0 || o.max_upload_bytes <= 0 || o.max_points <= 0 || o.voxel_budget <= 0 ||
+      o.result_ttl_seconds < 0 || o.grace_seconds < 0 || o.decoder_timeout_seconds <= 0) {
+    std::fprintf(stderr,
+                 "membraned: --queue, --grace-seconds and --result-ttl-seconds must be >= 0; "
+                 "the other limits > 0\n");
+    return false;
+  }
+  return true;
+}
+
+// Abseil flag names are C++ identifiers (--grace_seconds); operators and our docs write
+// --grace-seconds. Rewrites the dashes of each "--name[=value]" name to underscores.
+std::vector<char*> UnderscoreFlagNames(int argc, char** argv, std::vector<std::string>& storage) {
+  storage.assign(argv, argv + argc);
+  std::vector<char*> out;
+  for (std::string& arg : storage) {
+    if (arg.rfind("--", 0) == 0) {
+      const size_t end = std::min(arg.find('='), arg.size());
+      for (size_t i = 2; i < end; ++i) {
+        if (arg[i] == '-') arg[i] = '_';
+      }
+    }
+    out.push_back(arg.data());
+  }
+  return out;
+}
+
+int Main(int argc, char** argv) {
+  absl::SetProgramUsageMessage("membrane reconstruction server; see --help");
+  std::vector<std::string> storage;
+  std::vector<char*> args = UnderscoreFlagNames(argc, argv, storage);
+  absl::ParseCommandLine(static_cast<int>(args.size()), args.data());
+  ServerOptions options;
+  if (!OptionsFromFlags(options)) return 2;
+  // Block the stop signals before any thread starts, so that only sigwait below sees them.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGTERM);
+  sigaddset(&stop_signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+
+  MembraneServer server(options);
+  absl::StatusOr<int> port = server.Start(absl::GetFlag(FLAGS_listen));
+  if (!port.ok()) {
+    std::fprintf(stderr, "membraned: %s\n", std::string(port.status().message()).c_str());
+    return 4;
+  }
+  int signal_number = 0;
+  sigwait(&stop_signals, &signal_number);
+  server.Shutdown(absl::Seconds(options.grace_seconds));
+  server.Wait();
+  return 0;
+}
+
+}  // namespace
+}  // namespace membrane::server
+
+int main(int argc, char** argv) { return membrane::server::Main(argc, argv); }

@@ -1,0 +1,74 @@
+#include "server/membrane_server.h"
+
+#include <signal.h>
+
+#include <chrono>
+#include <utility>
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/server_builder.h>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "server/server_log.h"
+
+namespace membrane::server {
+namespace {
+
+constexpr int kMaxMessageBytes = 4 << 20;  // gRPC's default, stated: chunks keep under it
+
+}  // namespace
+
+MembraneServer::MembraneServer(ServerOptions options)
+    : options_(std::move(options)),
+      memory_(options_.memory_budget_bytes),
+      runner_(options_, memory_),
+      scheduler_(options_.workers, options_.queue,
+                 [this](const std::shared_ptr<Job>& job) { runner_.Run(job); }),
+      service_(options_, store_, scheduler_) {}
+
+MembraneServer::~MembraneServer() { Shutdown(absl::ZeroDuration()); }
+
+absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
+  // A decoder child that dies while its stdin is being fed must cost an EPIPE, not the
+  // server: SIGPIPE is ignored process-wide (gRPC needs the same for its sockets).
+  signal(SIGPIPE, SIG_IGN);
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(address, grpc::InsecureServerCredentials(), &port);
+  builder.SetMaxReceiveMessageSize(kMaxMessageBytes);
+  builder.RegisterService(&service_);
+  server_ = builder.BuildAndStart();
+  if (server_ == nullptr || port == 0) {
+    return absl::UnavailableError(absl::StrCat("cannot listen on ", address));
+  }
+  server_->GetHealthCheckService()->SetServingStatus(true);
+  LogEvent("server_started", {{"address", address},
+                              {"port", absl::StrCat(port)},
+                              {"workers", absl::StrCat(options_.workers)},
+                              {"queue", absl::StrCat(options_.queue)}});
+  return port;
+}
+
+void MembraneServer::Shutdown(absl::Duration grace) {
+  if (shut_down_) return;
+  shut_down_ = true;
+  LogEvent("server_stopping", {{"grace_seconds", absl::StrCat(absl::ToDoubleSeconds(grace))}});
+  if (server_ != nullptr) server_->GetHealthCheckService()->SetServingStatus(false);
+  service_.StopAccepting();
+  scheduler_.Shutdown(grace);
+  if (server_ != nullptr) {
+    // The open calls see their jobs ended and write the outcome; a second is plenty.
+    server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(1));
+  }
+  LogEvent("server_stopped", {});
+}
+
+void MembraneServer::Wait() {
+  if (server_ != nullptr) server_->Wait();
+}
+
+}  // namespace membrane::server

@@ -1,0 +1,56 @@
+// One membraned instance: the job store, the memory budget, the workers, the gRPC service with
+// health checking and reflection, owned together so that main (or a test) holds one object.
+#ifndef MEMBRANE_SERVER_MEMBRANE_SERVER_H_
+#define MEMBRANE_SERVER_MEMBRANE_SERVER_H_
+
+#include <memory>
+#include <string>
+
+#include <grpcpp/server.h>
+
+#include "absl/status/statusor.h"
+#include "server/in_memory_job_store.h"
+#include "server/job_runner.h"
+#include "server/job_scheduler.h"
+#include "server/memory_budget.h"
+#include "server/reconstruction_service.h"
+#include "server/server_options.h"
+
+namespace membrane::server {
+
+class MembraneServer {
+ public:
+  explicit MembraneServer(ServerOptions options);
+  // Shutdown(0) unless it was called.
+  ~MembraneServer();
+
+  MembraneServer(const MembraneServer&) = delete;
+  MembraneServer& operator=(const MembraneServer&) = delete;
+
+  // Listens on `address` ("127.0.0.1:0" picks a free port), health SERVING; ignores SIGPIPE
+  // in this process (see decode_subprocess.h). Returns the bound port; Unavailable when the
+  // address cannot be bound.
+  absl::StatusOr<int> Start(const std::string& address);
+
+  // Graceful shutdown: health NOT_SERVING, new Reconstruct calls UNAVAILABLE, queued jobs
+  // cancelled, running ones given `grace` to finish and then cancelled; then the calls still
+  // open get a second to deliver their outcome and the server stops.
+  void Shutdown(absl::Duration grace);
+
+  // Blocks until Shutdown has stopped the gRPC server.
+  void Wait();
+
+ private:
+  const ServerOptions options_;
+  InMemoryJobStore store_;
+  MemoryBudget memory_;
+  JobRunner runner_;
+  JobScheduler scheduler_;
+  ReconstructionService service_;
+  std::unique_ptr<grpc::Server> server_;
+  bool shut_down_ = false;
+};
+
+}  // namespace membrane::server
+
+#endif  // MEMBRANE_SERVER_MEMBRANE_SERVER_H_

@@ -1,0 +1,64 @@
+#include "server/parameter_checks.h"
+
+#include <cmath>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "core/engine/plate_schedule.h"
+
+namespace membrane::server {
+namespace {
+
+constexpr int kMaxInitialPlate = 100000;  // ValidateShrinkOptions' bound
+
+absl::Status CheckRange(const char* field, int64_t value, int64_t low, int64_t high) {
+  if (value >= low && value <= high) return absl::OkStatus();
+  return absl::InvalidArgumentError(
+      absl::StrFormat("%s %d is out of range [%d, %d]", field, value, low, high));
+}
+
+}  // namespace
+
+absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t server_voxel_budget) {
+  if (!std::isfinite(p.voxel_size()) || p.voxel_size() < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "voxel_size %g is out of range: positive (model units), or 0 for the paper's "
+        "formula (1)",
+        p.voxel_size()));
+  }
+  for (const absl::Status& s :
+       {CheckRange("initial_plate", p.initial_plate(), 0, kMaxInitialPlate),
+        CheckRange("quantization", p.quantization(), 0, 30),
+        CheckRange("compression_level", p.compression_level(), 0, 10),
+        CheckRange("voxel_budget", p.voxel_budget(), 0, server_voxel_budget)}) {
+    if (!s.ok()) return s;
+  }
+  JobSettings settings;
+  ReconstructionOptions& r = settings.reconstruction;
+  r.voxelize.voxel_size = p.voxel_size();
+  r.voxelize.voxel_budget = p.voxel_budget() > 0 ? p.voxel_budget() : server_voxel_budget;
+  r.shrink.initial_plate = p.initial_plate();
+  if (!p.schedule().empty()) {
+    absl::StatusOr<PlateSchedule> schedule = ParsePlateSchedule(p.schedule());
+    if (!schedule.ok()) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("schedule '", p.schedule(), "' is not one of: halving, linear"));
+    }
+    r.shrink.schedule = *schedule;
+  }
+  if (!p.surface().empty()) {
+    absl::StatusOr<SurfaceKind> surface = ParseSurfaceKind(p.surface());
+    if (!surface.ok()) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("surface '", p.surface(), "' is not one of: smooth, cuberille"));
+    }
+    r.surface = *surface;
+  }
+  r.relax = !p.no_relax();
+  settings.mesh_encoding.position_quantization_bits = p.quantization();
+  settings.mesh_encoding.compression_level = p.compression_level();
+  return settings;
+}
+
+}  // namespace membrane::server

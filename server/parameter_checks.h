@@ -1,0 +1,27 @@
+// Validation of a job's Parameters on arrival, before any work is queued.
+#ifndef MEMBRANE_SERVER_PARAMETER_CHECKS_H_
+#define MEMBRANE_SERVER_PARAMETER_CHECKS_H_
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "core/io/draco_codec.h"
+#include "core/pipeline/reconstruction_pipeline.h"
+#include "membrane/v1/reconstruction.pb.h"
+
+namespace membrane::server {
+
+struct JobSettings {
+  ReconstructionOptions reconstruction;
+  DracoOptions mesh_encoding;  // of the result mesh
+};
+
+// The settings `parameters` ask for, defaults filled in, the voxel budget capped at
+// `server_voxel_budget`. InvalidArgument naming the field and its allowed range for the
+// first value out of range, e.g. "initial_plate 200000 is out of range [0, 100000]".
+absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& parameters,
+                                            int64_t server_voxel_budget);
+
+}  // namespace membrane::server
+
+#endif  // MEMBRANE_SERVER_PARAMETER_CHECKS_H_

@@ -1,0 +1,165 @@
+#include "server/reconstruction_service.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/time/clock.h"
+#include "proto/crc32c.h"
+#include "server/job_follower.h"
+#include "server/parameter_checks.h"
+#include "server/rpc_status.h"
+#include "server/server_log.h"
+
+namespace membrane::server {
+namespace {
+
+grpc::Status InvalidArgument(const std::string& message) {
+  return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, message);
+}
+
+grpc::Status JobNotFound(const std::string& id) {
+  return grpc::Status(grpc::StatusCode::NOT_FOUND,
+                      absl::StrCat("no job '", id, "' (unknown, or its result expired)"));
+}
+
+}  // namespace
+
+std::string ReconstructionService::NewJobId() {
+  absl::MutexLock lock(&id_mutex_);
+  return absl::StrFormat("%016x", absl::Uniform<uint64_t>(id_random_));
+}
+
+std::shared_ptr<Job> ReconstructionService::FindJob(const std::string& id) {
+  // Expiry is lazy: every lookup first drops the results past their time.
+  store_.RemoveFinishedBefore(absl::Now() - absl::Seconds(options_.result_ttl_seconds));
+  return store_.Find(id);
+}
+
+grpc::Status ReconstructionService::ReadUpload(
+    grpc::ServerContext* context,
+    grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
+    v1::Parameters& parameters, std::string& upload) {
+  v1::ReconstructRequest request;
+  if (!stream->Read(&request) || !request.has_header()) {
+    return InvalidArgument("the first message of Reconstruct must be an UploadHeader");
+  }
+  const v1::UploadHeader& header = request.header();
+  parameters = header.parameters();
+  if (absl::StatusOr<JobSettings> s = CheckParameters(parameters, options_.voxel_budget); !s.ok()) {
+    return ToGrpcStatus(s.status());
+  }
+  if (header.upload_bytes() == 0) return InvalidArgument("the upload is empty (0 bytes)");
+  if (header.upload_bytes() > static_cast<uint64_t>(options_.max_upload_bytes)) {
+    return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                        absl::StrFormat("upload of %d bytes is over the server's limit of %d "
+                                        "bytes (--max-upload-bytes)",
+                                        header.upload_bytes(), options_.max_upload_bytes));
+  }
+  // Reserve no more than what a few chunks justify: a header alone must not pin memory.
+  upload.reserve(std::min<uint64_t>(header.upload_bytes(), 64 << 20));
+  uint32_t crc = 0;
+  while (stream->Read(&request)) {
+    if (!request.has_chunk()) return InvalidArgument("UploadHeader sent twice");
+    if (upload.size() + request.chunk().size() > header.upload_bytes()) {
+      return InvalidArgument(absl::StrFormat("the upload is longer than the %d bytes announced",
+                                             header.upload_bytes()));
+    }
+    crc = Crc32c(request.chunk(), crc);
+    upload += request.chunk();
+  }
+  if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "call cancelled");
+  if (upload.size() != header.upload_bytes()) {
+    return InvalidArgument(absl::StrFormat("the upload is truncated: %d of %d bytes arrived",
+                                           upload.size(), header.upload_bytes()));
+  }
+  if (crc != header.upload_crc32c()) {
+    return InvalidArgument(absl::StrFormat(
+        "the upload's CRC-32C is %08x, not the %08x announced: corrupted in transit", crc,
+        header.upload_crc32c()));
+  }
+  return grpc::Status::OK;
+}
+
+grpc::Status ReconstructionService::Reconstruct(
+    grpc::ServerContext* context,
+    grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream) {
+  if (!accepting_) {
+    return ToGrpcStatusWithRetry(
+        absl::UnavailableError("the server is shutting down; try again or another replica"),
+        absl::Seconds(options_.retry_delay_seconds));
+  }
+  v1::Parameters parameters;
+  std::string upload;
+  if (grpc::Status s = ReadUpload(context, stream, parameters, upload); !s.ok()) {
+    LogEvent("upload_rejected", {{"peer", context->peer()},
+                                 {"code", absl::StrCat(s.error_code())},
+                                 {"message", s.error_message()}});
+    return s;
+  }
+  const uint64_t upload_bytes = upload.size();
+  auto job = std::make_shared<Job>(NewJobId(), context->peer(), parameters, std::move(upload));
+  if (absl::Status s = scheduler_.Submit(job); !s.ok()) {
+    LogEvent("job_refused", {{"peer", context->peer()}, {"message", std::string(s.message())}});
+    return ToGrpcStatusWithRetry(s, absl::Seconds(options_.retry_delay_seconds));
+  }
+  store_.Add(job);
+  const v1::Job snapshot = job->Snapshot();
+  LogEvent("job_accepted", {{"job", job->id()},
+                            {"peer", context->peer()},
+                            {"upload_bytes", absl::StrCat(upload_bytes)},
+                            {"queue_position", absl::StrCat(snapshot.queue_position())}});
+  v1::JobEvent accepted;
+  accepted.mutable_accepted()->set_job_id(job->id());
+  accepted.mutable_accepted()->set_queue_position(snapshot.queue_position());
+  const FollowPolicy policy{options_.on_disconnect == DisconnectPolicy::kCancel};
+  if (!stream->Write(accepted)) {
+    return FollowJob(*job, *context, policy, [](const v1::JobEvent&) { return false; });
+  }
+  return FollowJob(*job, *context, policy,
+                   [stream](const v1::JobEvent& event) { return stream->Write(event); });
+}
+
+grpc::Status ReconstructionService::GetJob(grpc::ServerContext*, const v1::GetJobRequest* request,
+                                           v1::Job* response) {
+  std::shared_ptr<Job> job = FindJob(request->job_id());
+  if (job == nullptr) return JobNotFound(request->job_id());
+  *response = job->Snapshot();
+  return grpc::Status::OK;
+}
+
+grpc::Status ReconstructionService::WatchJob(grpc::ServerContext* context,
+                                             const v1::WatchJobRequest* request,
+                                             grpc::ServerWriter<v1::JobEvent>* writer) {
+  std::shared_ptr<Job> job = FindJob(request->job_id());
+  if (job == nullptr) return JobNotFound(request->job_id());
+  LogEvent("job_watched", {{"job", job->id()}, {"peer", context->peer()}});
+  v1::JobEvent snapshot;
+  *snapshot.mutable_snapshot() = job->Snapshot();
+  if (!writer->Write(snapshot)) return grpc::Status(grpc::StatusCode::CANCELLED, "call cancelled");
+  // A watcher going away never cancels the job: only its own Reconstruct call may.
+  return FollowJob(*job, *context, FollowPolicy{},
+                   [writer](const v1::JobEvent& event) { return writer->Write(event); });
+}
+
+grpc::Status ReconstructionService::CancelJob(grpc::ServerContext* context,
+                                              const v1::CancelJobRequest* request,
+                                              v1::Job* response) {
+  std::shared_ptr<Job> job = FindJob(request->job_id());
+  if (job == nullptr) return JobNotFound(request->job_id());
+  job->RequestCancel("cancelled by the client");
+  LogEvent("job_cancel_requested", {{"job", job->id()}, {"peer", context->peer()}});
+  *response = job->Snapshot();
+  return grpc::Status::OK;
+}
+
+grpc::Status ReconstructionService::ListJobs(grpc::ServerContext*, const v1::ListJobsRequest*,
+                                             v1::ListJobsResponse* response) {
+  store_.RemoveFinishedBefore(absl::Now() - absl::Seconds(options_.result_ttl_seconds));
+  for (const std::shared_ptr<Job>& job : store_.List()) *response->add_jobs() = job->Snapshot();
+  return grpc::Status::OK;
+}
+
+}  // namespace membrane::server

@@ -1,0 +1,61 @@
+// The gRPC service membrane.v1.Reconstruction (proto/membrane/v1/reconstruction.proto): the
+// handlers, thin over a JobStore and a JobScheduler.
+#ifndef MEMBRANE_SERVER_RECONSTRUCTION_SERVICE_H_
+#define MEMBRANE_SERVER_RECONSTRUCTION_SERVICE_H_
+
+#include <atomic>
+#include <memory>
+#include <string>
+
+#include "absl/base/thread_annotations.h"
+#include "absl/random/random.h"
+#include "absl/synchronization/mutex.h"
+#include "membrane/v1/reconstruction.grpc.pb.h"
+#include "server/job_scheduler.h"
+#include "server/job_store.h"
+#include "server/server_options.h"
+
+namespace membrane::server {
+
+class ReconstructionService final : public v1::Reconstruction::Service {
+ public:
+  // `options`, `store` and `scheduler` (not owned) must outlive the service.
+  ReconstructionService(const ServerOptions& options, JobStore& store, JobScheduler& scheduler)
+      : options_(options), store_(store), scheduler_(scheduler) {}
+
+  // From now on Reconstruct answers UNAVAILABLE (graceful shutdown); other calls still work,
+  // so that clients can fetch their results.
+  void StopAccepting() { accepting_ = false; }
+
+  grpc::Status Reconstruct(
+      grpc::ServerContext* context,
+      grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream) override;
+  grpc::Status GetJob(grpc::ServerContext* context, const v1::GetJobRequest* request,
+                      v1::Job* response) override;
+  grpc::Status WatchJob(grpc::ServerContext* context, const v1::WatchJobRequest* request,
+                        grpc::ServerWriter<v1::JobEvent>* writer) override;
+  grpc::Status CancelJob(grpc::ServerContext* context, const v1::CancelJobRequest* request,
+                         v1::Job* response) override;
+  grpc::Status ListJobs(grpc::ServerContext* context, const v1::ListJobsRequest* request,
+                        v1::ListJobsResponse* response) override;
+
+ private:
+  // Reads the header and the chunks of an upload; checks size, checksum and parameters.
+  grpc::Status ReadUpload(grpc::ServerContext* context,
+                          grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
+                          v1::Parameters& parameters, std::string& upload);
+  // The job with `id` after dropping expired ones, or null.
+  std::shared_ptr<Job> FindJob(const std::string& id);
+  std::string NewJobId() ABSL_LOCKS_EXCLUDED(id_mutex_);
+
+  const ServerOptions& options_;
+  JobStore& store_;
+  JobScheduler& scheduler_;
+  std::atomic<bool> accepting_{true};
+  absl::Mutex id_mutex_;
+  absl::BitGen id_random_ ABSL_GUARDED_BY(id_mutex_);
+};
+
+}  // namespace membrane::server
+
+#endif  // MEMBRANE_SERVER_RECONSTRUCTION_SERVICE_H_

@@ -1,0 +1,33 @@
+// The limits and policies of one membraned instance, as set by its flags (server/main.cc).
+#ifndef MEMBRANE_SERVER_SERVER_OPTIONS_H_
+#define MEMBRANE_SERVER_SERVER_OPTIONS_H_
+
+#include <cstdint>
+#include <string>
+
+namespace membrane::server {
+
+enum class DisconnectPolicy {
+  kContinue,  // a job whose Reconstruct call drops keeps running, for WatchJob to re-attach
+  kCancel,    // a dropped call cancels its job
+};
+
+struct ServerOptions {
+  int workers = 1;                          // jobs running at once
+  int queue = 16;                           // jobs waiting beyond those; more: RESOURCE_EXHAUSTED
+  int64_t max_upload_bytes = 512 << 20;     // Draco bytes of one upload
+  int64_t max_points = 50'000'000;          // points of one decoded cloud
+  int64_t voxel_budget = 400'000'000;       // voxels of one job's grid, padding included
+  int64_t memory_budget_bytes = 0;          // estimated bytes across running jobs; 0 = no limit
+  double result_ttl_seconds = 3600;         // how long finished jobs and results are kept
+  double grace_seconds = 30;                // SIGTERM: how long running jobs may finish
+  DisconnectPolicy on_disconnect = DisconnectPolicy::kContinue;
+  double decoder_timeout_seconds = 30;      // wall clock for one decode subprocess
+  int64_t decoder_memory_bytes = 4LL << 30; // RLIMIT_AS of the decode subprocess
+  std::string decoder_path;                 // the membrane-decode binary
+  double retry_delay_seconds = 2;           // RetryInfo sent with a full queue
+};
+
+}  // namespace membrane::server
+
+#endif  // MEMBRANE_SERVER_SERVER_OPTIONS_H_

@@ -1,0 +1,189 @@
+// membraned and membrane as processes on a free loopback port, driven as a user would.
+#include <signal.h>
+
+#include <algorithm>
+#include <memory>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/io/mesh_io.h"
+#include "tests/cli/cli_runner.h"
+#include "tests/cli/scratch_dir.h"
+#include "tests/server/subprocess.h"
+
+namespace membrane::testing {
+namespace {
+
+class EndToEndTest : public ::testing::Test {
+ protected:
+  // Starts membraned on 127.0.0.1:0 with `flags`; reads its port from the log.
+  void StartServer(std::vector<std::string> flags = {}) {
+    std::vector<std::string> argv = {MEMBRANED_BINARY, "--listen=127.0.0.1:0",
+                                     "--workers=1", "--queue=2", "--grace_seconds=1"};
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    log_ = dir_.File("membraned.log");
+    server_ = std::make_unique<Subprocess>(argv, dir_.File("membraned.out"), log_);
+    const std::string log = WaitForText(log_, "event=server_started", 10);
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(log, m, std::regex("port=(\\d+)"))) << log;
+    address_ = "127.0.0.1:" + m[1].str();
+  }
+
+  CliResult Run(std::vector<std::string> args) { return RunMembrane(args, dir_.path()); }
+
+  // A `membrane` client running in the background.
+  std::unique_ptr<Subprocess> RunInBackground(const std::vector<std::string>& args,
+                                              const std::string& name) {
+    std::vector<std::string> argv = {MEMBRANE_BINARY};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return std::make_unique<Subprocess>(argv, dir_.File(name + ".out"), dir_.File(name + ".err"));
+  }
+
+  std::string Synth(const std::string& shape, int points) {
+    const std::string path = dir_.File(shape + std::to_string(points) + ".ply");
+    EXPECT_EQ(Run({"synth", shape, "-o", path, "--points", std::to_string(points)}).exit_code, 0);
+    return path;
+  }
+
+  void ExpectHealthy() { EXPECT_EQ(Run({"health", "--server", address_}).exit_code, 0); }
+
+  ScratchDir dir_;
+  std::string log_;
+  std::string address_;
+  std::unique_ptr<Subprocess> server_;
+};
+
+// The "k/N" of each "shrink: generation k/N" line, in order.
+std::vector<int> GenerationNumbers(const std::string& err) {
+  std::vector<int> numbers;
+  const std::regex line("shrink: generation (\\d+)/\\d+, plate size");
+  for (auto it = std::sregex_iterator(err.begin(), err.end(), line); it != std::sregex_iterator();
+       ++it) {
+    numbers.push_back(std::stoi((*it)[1].str()));
+  }
+  return numbers;
+}
+
+TEST_F(EndToEndTest, ProgressArrivesOncePerGenerationInOrder) {
+  StartServer();
+  const std::string cloud = Synth("torus", 20000);
+  const CliResult r =
+      Run({"reconstruct", cloud, "-o", dir_.File("mesh.ply"), "--server", address_});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<int> numbers = GenerationNumbers(r.err);
+  ASSERT_FALSE(numbers.empty()) << r.err;
+  for (size_t i = 0; i < numbers.size(); ++i) EXPECT_EQ(numbers[i], static_cast<int>(i) + 1);
+  EXPECT_EQ(Run({"check", dir_.File("mesh.ply")}).exit_code, 0);
+}
+
+TEST_F(EndToEndTest, LosslessUploadGivesTheSameMeshAsLocal) {
+  StartServer();
+  const std::string cloud = Synth("sphere", 10000);
+  ASSERT_EQ(Run({"reconstruct", cloud, "-o", dir_.File("remote.ply"), "--server", address_,
+                 "--quantization", "0", "--stats-json", dir_.File("remote.json")})
+                .exit_code,
+            0);
+  ASSERT_EQ(Run({"reconstruct", cloud, "-o", dir_.File("local.ply"), "--local"}).exit_code, 0);
+  absl::StatusOr<TriangleMesh> remote = ReadMesh(dir_.File("remote.ply"));
+  absl::StatusOr<TriangleMesh> local = ReadMesh(dir_.File("local.ply"));
+  ASSERT_TRUE(remote.ok() && local.ok());
+  EXPECT_EQ(remote->faces.size(), local->faces.size());
+  // Draco may reorder vertices; the sets are the same.
+  std::sort(remote->vertices.begin(), remote->vertices.end());
+  std::sort(local->vertices.begin(), local->vertices.end());
+  EXPECT_EQ(remote->vertices, local->vertices);
+  EXPECT_NE(ReadText(dir_.File("remote.json")).find("\"generations\""), std::string::npos);
+}
+
+TEST_F(EndToEndTest, DroppedClientReattachesAndGetsItsMesh) {
+  StartServer({"--on_disconnect=continue"});
+  const std::string cloud = Synth("torus", 20000);
+  const CliResult r = Run({"reconstruct", cloud, "-o", dir_.File("mesh.obj"), "--server",
+                           address_, "--drop-after-events", "4"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("re-attaching to job"), std::string::npos) << r.err;
+  // Each generation shown once although the watch replays the job's events.
+  const std::vector<int> numbers = GenerationNumbers(r.err);
+  for (size_t i = 0; i < numbers.size(); ++i) EXPECT_EQ(numbers[i], static_cast<int>(i) + 1);
+  EXPECT_EQ(Run({"check", dir_.File("mesh.obj")}).exit_code, 0);
+}
+
+TEST_F(EndToEndTest, BusyServerIsRetriedWithBackoffThenExitFour) {
+  StartServer({"--queue=0", "--retry_delay_seconds=0.3"});
+  const std::string big = Synth("sphere", 30000);
+  auto slow = RunInBackground({"reconstruct", big, "-o", dir_.File("slow.ply"), "--server",
+                               address_, "--voxel-size", "0.008", "-q"},
+                              "slow");
+  ASSERT_NE(WaitForText(log_, "event=job_started", 20).find("job_started"), std::string::npos);
+  const CliResult busy = Run({"reconstruct", Synth("sphere", 1000), "-o", dir_.File("b.ply"),
+                              "--server", address_, "--timeout", "2"});
+  EXPECT_EQ(busy.exit_code, 4) << busy.err;
+  EXPECT_NE(busy.err.find("retrying in"), std::string::npos) << busy.err;
+  // Cancel the slow job by its id: its client exits 5, the worker is free again.
+  const CliResult list = Run({"jobs", "list", "--server", address_});
+  ASSERT_EQ(list.exit_code, 0);
+  const std::string id = list.out.substr(0, list.out.find(' '));
+  EXPECT_EQ(Run({"jobs", "cancel", id, "--server", address_}).exit_code, 0);
+  EXPECT_EQ(slow->Wait(10), 5);
+  const CliResult get = Run({"jobs", "get", id, "--server", address_});
+  EXPECT_NE(get.out.find("state: CANCELLED"), std::string::npos) << get.out;
+  ExpectHealthy();
+}
+
+TEST_F(EndToEndTest, TimeoutCancelsTheJobOnTheServer) {
+  StartServer();
+  const CliResult r = Run({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("m.ply"),
+                           "--server", address_, "--voxel-size", "0.008", "--timeout", "1"});
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  const std::string log = WaitForText(log_, "outcome=CANCELLED", 5);
+  EXPECT_NE(log.find("deadline"), std::string::npos) << log;
+  ExpectHealthy();
+}
+
+TEST_F(EndToEndTest, JobsGetWatchAndUnknownIds) {
+  StartServer();
+  ASSERT_EQ(Run({"reconstruct", Synth("sphere", 3000), "-o", dir_.File("a.ply"), "--server",
+                 address_})
+                .exit_code,
+            0);
+  const CliResult list = Run({"jobs", "list", "--server", address_});
+  ASSERT_EQ(list.exit_code, 0);
+  const std::string id = list.out.substr(0, list.out.find(' '));
+  EXPECT_NE(list.out.find("SUCCEEDED"), std::string::npos);
+  const CliResult watch =
+      Run({"jobs", "watch", id, "--server", address_, "-o", dir_.File("again.drc")});
+  EXPECT_EQ(watch.exit_code, 0) << watch.err;
+  EXPECT_EQ(Run({"check", dir_.File("again.drc")}).exit_code, 0);
+  EXPECT_EQ(Run({"jobs", "get", "nope", "--server", address_}).exit_code, 3);
+}
+
+TEST_F(EndToEndTest, GridOverTheServersVoxelBudgetExitsThree) {
+  // The client checks its flags too; the server's own check is covered in process. Here: a
+  // grid over the server's voxel budget.
+  StartServer({"--voxel_budget=1000"});
+  const CliResult r =
+      Run({"reconstruct", Synth("sphere", 3000), "-o", dir_.File("a.ply"), "--server", address_});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  ExpectHealthy();
+}
+
+TEST_F(EndToEndTest, NoServerExitsFour) {
+  const CliResult r = Run({"reconstruct", Synth("sphere", 1000), "-o", dir_.File("a.ply"),
+                           "--server", "127.0.0.1:1", "--timeout", "2"});
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  EXPECT_NE(Run({"health", "--server", "127.0.0.1:1", "--timeout", "1"}).exit_code, 0);
+}
+
+TEST_F(EndToEndTest, SigtermStopsTheServerGracefully) {
+  StartServer();
+  ExpectHealthy();
+  server_->Signal(SIGTERM);
+  EXPECT_EQ(server_->Wait(10), 0);
+  EXPECT_NE(ReadText(log_).find("event=server_stopped"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace membrane::testing

@@ -1,0 +1,80 @@
+// An in-process membrane server on 127.0.0.1:0 and a real gRPC channel to it, with helpers
+// to upload clouds (well-formed or not) and collect a job's events.
+#ifndef MEMBRANE_TESTS_SERVER_SERVICE_FIXTURE_H_
+#define MEMBRANE_TESTS_SERVER_SERVICE_FIXTURE_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+
+#include "membrane/v1/reconstruction.grpc.pb.h"
+#include "server/membrane_server.h"
+
+namespace membrane::testing {
+
+// What one Reconstruct (or WatchJob) call gave.
+struct CallResult {
+  grpc::Status status;
+  std::vector<v1::JobEvent> events;
+  // The job id of the Accepted event, or empty.
+  std::string JobId() const;
+  // The GenerationEvents, in the order they came.
+  std::vector<v1::GenerationEvent> Generations() const;
+  // The JobDone event's state, or JOB_STATE_UNSPECIFIED when none came.
+  v1::JobState FinalState() const;
+  // The mesh bytes of the MeshChunks.
+  std::string Mesh() const;
+};
+
+// How an upload deviates from a well-formed one.
+struct UploadTweaks {
+  int64_t announced_bytes = -1;  // >= 0: the header's size instead of the real one
+  bool wrong_checksum = false;
+  size_t send_bytes = SIZE_MAX;  // send only this many bytes of the upload
+};
+
+class ServiceTest : public ::testing::Test {
+ protected:
+  // Options of a small server: 1 worker, queue of 1, short retry delay, the decoder helper
+  // of this build; tests change them before StartServer.
+  ServiceTest();
+  ~ServiceTest() override;
+
+  // Starts the server with options_; fails the test when it cannot listen.
+  void StartServer();
+
+  // A Draco point cloud of `shape` with `points` points (lossless).
+  static std::string DracoCloud(const std::string& shape, int points);
+
+  // One Reconstruct call sending `upload` with `parameters`, reading every event until the
+  // call ends or `deadline_seconds` pass.
+  CallResult Reconstruct(const std::string& upload, const v1::Parameters& parameters,
+                         UploadTweaks tweaks = {}, double deadline_seconds = 60);
+
+  // Starts a Reconstruct call and returns once the job is accepted (its id), leaving the call
+  // open in the background (joined at the end of the test).
+  std::string StartJobInBackground(const std::string& upload, const v1::Parameters& parameters);
+
+  // WatchJob until the job ends, bounded by `deadline_seconds`.
+  CallResult Watch(const std::string& job_id, double deadline_seconds = 60);
+
+  // The health service's answer: SERVING, NOT_SERVING, ...
+  std::string Health();
+
+  // Parameters of a job that runs for many seconds (a fine grid), for cancel and queue tests.
+  static v1::Parameters SlowParameters();
+
+  server::ServerOptions options_;
+  std::unique_ptr<server::MembraneServer> server_;
+  std::string address_;
+  std::unique_ptr<v1::Reconstruction::Stub> stub_;
+  std::vector<std::thread> background_;
+  std::vector<std::unique_ptr<grpc::ClientContext>> background_contexts_;
+};
+
+}  // namespace membrane::testing
+
+#endif  // MEMBRANE_TESTS_SERVER_SERVICE_FIXTURE_H_

@@ -1,0 +1,239 @@
+// Every call of membrane.v1.Reconstruction against an in-process server over a real channel.
+#include <chrono>
+#include <cstring>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "absl/time/clock.h"
+#include "core/io/draco_codec.h"
+#include "google/rpc/error_details.pb.h"
+#include "google/rpc/status.pb.h"
+#include "tests/server/service_fixture.h"
+
+namespace membrane::testing {
+namespace {
+
+// Waits (at most `seconds`) until GetJob reports a finished job; returns its last state.
+v1::Job WaitUntilDone(v1::Reconstruction::Stub& stub, const std::string& id, double seconds) {
+  const absl::Time end = absl::Now() + absl::Seconds(seconds);
+  v1::Job job;
+  while (absl::Now() < end) {
+    grpc::ClientContext context;
+    v1::GetJobRequest request;
+    request.set_job_id(id);
+    if (stub.GetJob(&context, request, &job).ok() &&
+        (job.state() == v1::SUCCEEDED || job.state() == v1::FAILED ||
+         job.state() == v1::CANCELLED)) {
+      return job;
+    }
+    absl::SleepFor(absl::Milliseconds(10));
+  }
+  return job;
+}
+
+TEST_F(ServiceTest, ReconstructStreamsAcceptedStagesGenerationsAndTheMesh) {
+  StartServer();
+  const CallResult r = Reconstruct(DracoCloud("sphere", 5000), {});
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  ASSERT_FALSE(r.events.empty());
+  EXPECT_TRUE(r.events.front().has_accepted());
+  EXPECT_EQ(r.FinalState(), v1::SUCCEEDED);
+  const std::vector<v1::GenerationEvent> generations = r.Generations();
+  ASSERT_FALSE(generations.empty());
+  for (size_t i = 0; i < generations.size(); ++i) {
+    EXPECT_EQ(generations[i].generation(), static_cast<int>(i) + 1);
+    EXPECT_EQ(generations[i].planned_generations(), static_cast<int>(generations.size()));
+  }
+  EXPECT_EQ(generations.back().plate_size(), 1);
+  absl::StatusOr<TriangleMesh> mesh = DecodeDracoMesh(r.Mesh());
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  EXPECT_GT(mesh->faces.size(), 100u);
+}
+
+TEST_F(ServiceTest, ResultCarriesTheStatisticsJson) {
+  StartServer();
+  const CallResult r = Reconstruct(DracoCloud("sphere", 5000), {});
+  ASSERT_TRUE(r.status.ok());
+  std::string json;
+  for (const v1::JobEvent& e : r.events) {
+    if (e.has_result()) json = e.result().statistics_json();
+  }
+  for (const char* key : {"\"points\": 5000", "\"generations\"", "\"membrane\"", "\"mesh\"",
+                          "\"seconds\"", "\"peak_rss_bytes\"", "\"decode\"", "\"encode\""}) {
+    EXPECT_NE(json.find(key), std::string::npos) << key;
+  }
+}
+
+TEST_F(ServiceTest, OutOfRangeParameterIsInvalidArgumentNamingTheFieldAndRange) {
+  StartServer();
+  v1::Parameters p;
+  p.set_initial_plate(200000);
+  const CallResult r = Reconstruct(DracoCloud("sphere", 1000), p);
+  EXPECT_EQ(r.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(r.status.error_message().find("initial_plate 200000 is out of range [0, 100000]"),
+            std::string::npos)
+      << r.status.error_message();
+  v1::Parameters q;
+  q.set_quantization(31);
+  EXPECT_NE(Reconstruct(DracoCloud("sphere", 1000), q).status.error_message().find("quantization"),
+            std::string::npos);
+  v1::Parameters s;
+  s.set_schedule("spiral");
+  EXPECT_EQ(Reconstruct(DracoCloud("sphere", 1000), s).status.error_code(),
+            grpc::StatusCode::INVALID_ARGUMENT);
+}
+
+TEST_F(ServiceTest, GetJobAndListJobsShowAFinishedJobAndItsResultIsFetchableAgain) {
+  StartServer();
+  const CallResult r = Reconstruct(DracoCloud("sphere", 3000), {});
+  ASSERT_TRUE(r.status.ok());
+  const std::string id = r.JobId();
+  grpc::ClientContext get_context;
+  v1::GetJobRequest get;
+  get.set_job_id(id);
+  v1::Job job;
+  ASSERT_TRUE(stub_->GetJob(&get_context, get, &job).ok());
+  EXPECT_EQ(job.state(), v1::SUCCEEDED);
+  EXPECT_GT(job.mesh_bytes(), 0u);
+  grpc::ClientContext list_context;
+  v1::ListJobsResponse list;
+  ASSERT_TRUE(stub_->ListJobs(&list_context, {}, &list).ok());
+  ASSERT_EQ(list.jobs_size(), 1);
+  EXPECT_EQ(list.jobs(0).id(), id);
+  // WatchJob on a finished job: the snapshot at once, then the whole result again.
+  const CallResult again = Watch(id);
+  ASSERT_TRUE(again.status.ok());
+  EXPECT_TRUE(again.events.front().has_snapshot());
+  EXPECT_EQ(again.Mesh(), r.Mesh());
+  EXPECT_EQ(again.Generations().size(), r.Generations().size());
+}
+
+TEST_F(ServiceTest, UnknownJobIsNotFound) {
+  StartServer();
+  grpc::ClientContext context;
+  v1::GetJobRequest request;
+  request.set_job_id("nope");
+  v1::Job job;
+  EXPECT_EQ(stub_->GetJob(&context, request, &job).error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_EQ(Watch("nope").status.error_code(), grpc::StatusCode::NOT_FOUND);
+}
+
+TEST_F(ServiceTest, ResultsExpireAfterTheirTimeToLive) {
+  options_.result_ttl_seconds = 0.2;
+  StartServer();
+  const CallResult r = Reconstruct(DracoCloud("sphere", 2000), {});
+  ASSERT_TRUE(r.status.ok());
+  absl::SleepFor(absl::Milliseconds(400));
+  EXPECT_EQ(Watch(r.JobId()).status.error_code(), grpc::StatusCode::NOT_FOUND);
+}
+
+TEST_F(ServiceTest, CancelJobStopsARunningJobWithin100MsAndFreesTheWorker) {
+  StartServer();
+  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  ASSERT_FALSE(id.empty());
+  // Let it get into the shrink.
+  absl::SleepFor(absl::Milliseconds(1500));
+  grpc::ClientContext context;
+  v1::CancelJobRequest request;
+  request.set_job_id(id);
+  v1::Job job;
+  const absl::Time asked = absl::Now();
+  ASSERT_TRUE(stub_->CancelJob(&context, request, &job).ok());
+  const v1::Job done = WaitUntilDone(*stub_, id, 5);
+  EXPECT_LT(absl::Now() - asked, absl::Milliseconds(100) + absl::Milliseconds(50))
+      << "stage when cancelled: " << job.stage();
+  EXPECT_EQ(done.state(), v1::CANCELLED);
+  EXPECT_NE(done.error().message().find("cancelled by the client"), std::string::npos);
+  // The worker is free: a small job runs at once.
+  const CallResult next = Reconstruct(DracoCloud("sphere", 2000), {}, {}, 20);
+  EXPECT_TRUE(next.status.ok()) << next.status.error_message();
+}
+
+TEST_F(ServiceTest, ExpiredDeadlineCancelsTheJob) {
+  StartServer();
+  const CallResult r = Reconstruct(DracoCloud("sphere", 30000), SlowParameters(), {}, 1.5);
+  EXPECT_EQ(r.status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+  const std::string id = r.JobId();
+  ASSERT_FALSE(id.empty());
+  const v1::Job done = WaitUntilDone(*stub_, id, 2);
+  EXPECT_EQ(done.state(), v1::CANCELLED);
+  EXPECT_NE(done.error().message().find("deadline"), std::string::npos);
+}
+
+TEST_F(ServiceTest, DroppedCallCancelsTheJobWhenConfigured) {
+  options_.on_disconnect = server::DisconnectPolicy::kCancel;
+  StartServer();
+  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  ASSERT_FALSE(id.empty());
+  background_contexts_.back()->TryCancel();
+  const v1::Job done = WaitUntilDone(*stub_, id, 3);
+  EXPECT_EQ(done.state(), v1::CANCELLED);
+  EXPECT_NE(done.error().message().find("disconnected"), std::string::npos)
+      << done.error().message();
+}
+
+TEST_F(ServiceTest, FullQueueIsResourceExhaustedWithARetryDelay) {
+  StartServer();  // 1 worker, queue of 1
+  const std::string cloud = DracoCloud("sphere", 30000);
+  ASSERT_FALSE(StartJobInBackground(cloud, SlowParameters()).empty());  // running
+  ASSERT_FALSE(StartJobInBackground(cloud, SlowParameters()).empty());  // queued
+  const CallResult r = Reconstruct(DracoCloud("sphere", 1000), {}, {}, 10);
+  ASSERT_EQ(r.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  google::rpc::Status details;
+  ASSERT_TRUE(details.ParseFromString(r.status.error_details()));
+  ASSERT_EQ(details.details_size(), 1);
+  google::rpc::RetryInfo retry;
+  ASSERT_TRUE(details.details(0).UnpackTo(&retry));
+  EXPECT_EQ(retry.retry_delay().seconds() * 1000 + retry.retry_delay().nanos() / 1000000, 500);
+}
+
+TEST_F(ServiceTest, QueuedJobReportsItsPosition) {
+  StartServer();
+  const std::string cloud = DracoCloud("sphere", 30000);
+  ASSERT_FALSE(StartJobInBackground(cloud, SlowParameters()).empty());
+  const std::string queued = StartJobInBackground(cloud, SlowParameters());
+  grpc::ClientContext context;
+  v1::GetJobRequest request;
+  request.set_job_id(queued);
+  v1::Job job;
+  ASSERT_TRUE(stub_->GetJob(&context, request, &job).ok());
+  EXPECT_EQ(job.state(), v1::QUEUED);
+  EXPECT_EQ(job.queue_position(), 1);
+}
+
+TEST_F(ServiceTest, WatchJobReattachesToARunningJobAndGetsItsMesh) {
+  StartServer();
+  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), {});
+  ASSERT_FALSE(id.empty());
+  const CallResult watched = Watch(id);
+  ASSERT_TRUE(watched.status.ok()) << watched.status.error_message();
+  EXPECT_TRUE(watched.events.front().has_snapshot());
+  EXPECT_EQ(watched.FinalState(), v1::SUCCEEDED);
+  EXPECT_TRUE(DecodeDracoMesh(watched.Mesh()).ok());
+}
+
+TEST_F(ServiceTest, ShutdownMakesHealthNotServingAndRefusesNewJobs) {
+  StartServer();
+  EXPECT_EQ(Health(), "SERVING");
+  std::thread stopper([this] { server_->Shutdown(absl::Seconds(1)); });
+  absl::SleepFor(absl::Milliseconds(100));
+  const std::string health = Health();
+  const CallResult r = Reconstruct(DracoCloud("sphere", 1000), {}, {}, 5);
+  stopper.join();
+  EXPECT_TRUE(health == "NOT_SERVING" || health.rfind("ERROR", 0) == 0) << health;
+  EXPECT_EQ(r.status.error_code(), grpc::StatusCode::UNAVAILABLE);
+}
+
+TEST_F(ServiceTest, ShutdownCancelsJobsStillRunningAfterTheGracePeriod) {
+  StartServer();
+  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  ASSERT_FALSE(id.empty());
+  absl::SleepFor(absl::Milliseconds(500));
+  const absl::Time start = absl::Now();
+  server_->Shutdown(absl::Milliseconds(300));
+  EXPECT_LT(absl::Now() - start, absl::Seconds(3));
+}
+
+}  // namespace
+}  // namespace membrane::testing

@@ -26,9 +26,7 @@ void ChainRunner::NoteZ(int64_t index) {
 
 bool ChainRunner::RegionOk(int o, int layer, const Region& r, bool lenient,
                            bool& any_movable) const {
-  const auto st = grid_.strides();
-  const Orientation& orient = kOrientations[o];
-  const int64_t su = st[orient.u_axis()], sv = st[orient.v_axis()];
+  const int64_t sv = grid_.strides()[kOrientations[o].v_axis()];
   const VoxelState* s = grid_.states().data();
   for (int u = r.u_lo; u <= r.u_hi; ++u) {
     int64_t i = CellIndex(o, layer, u, r.v_lo);
@@ -41,7 +39,6 @@ bool ChainRunner::RegionOk(int o, int layer, const Region& r, bool lenient,
       }
       return false;
     }
-    (void)su;
   }
   return true;
 }

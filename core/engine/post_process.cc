@@ -134,9 +134,7 @@ bool TryBridgePath(VoxelGrid& grid, int64_t centre, const int offset[3], const i
 int64_t BridgeMembraneContacts(VoxelGrid& grid) {
   static constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                         {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  const auto st = grid.strides();
   const auto& d = grid.dims();
-  int64_t added = 0;
   auto count_boundary = [&]() {
     return std::count_if(grid.states().begin(), grid.states().end(),
                          [](VoxelState v) { return IsBoundary(v); });
@@ -171,9 +169,7 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid) {
         }
     if (!changed) break;
   }
-  added = count_boundary() - before;
-  (void)st;
-  return added;
+  return count_boundary() - before;
 }
 
 }  // namespace membrane

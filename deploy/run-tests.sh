@@ -16,7 +16,8 @@ ctest --test-dir build --output-on-failure -j "$JOBS" --timeout 900
 echo "== ASan/UBSan build: engine, synth and io suites"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMEMBRANE_SANITIZE=ON \
   -DMEMBRANE_BENCH=OFF -DMEMBRANE_TEST_DIRS="engine;synth;io" >/dev/null
-cmake --build build-asan -j "$JOBS"
+# Only what these suites run: the service and client are not built a second time.
+cmake --build build-asan -j "$JOBS" --target test_engine test_shrink test_real_scans test_synth test_io
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$JOBS" --timeout 1800
 

@@ -9,35 +9,10 @@
 #include <string>
 
 #include "absl/status/status.h"
-#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
-#include "absl/strings/strip.h"
 #include "core/io/mesh_io.h"
 
 namespace membrane::bench {
-namespace {
-
-// Single-quoted for /bin/sh.
-std::string ShellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-// The value after "key": in a flat JSON object of numbers (0 when absent).
-double JsonNumber(const std::string& json, const std::string& key) {
-  const std::string needle = absl::StrCat("\"", key, "\":");
-  const size_t at = json.find(needle);
-  if (at == std::string::npos) return 0.0;
-  size_t begin = at + needle.size();
-  while (begin < json.size() && json[begin] == ' ') ++begin;
-  size_t end = begin;
-  while (end < json.size() && json[end] != ',' && json[end] != '}') ++end;
-  double value = 0.0;
-  return absl::SimpleAtod(json.substr(begin, end - begin), &value) ? value : 0.0;
-}
-
-}  // namespace
 
 absl::StatusOr<Open3dMeshRun> RunOpen3dPoissonMesh(const Open3dPeer& peer,
                                                    const std::string& cloud_path, int depth) {
@@ -69,21 +44,13 @@ absl::StatusOr<Open3dMeshRun> RunOpen3dPoissonMesh(const Open3dPeer& peer,
     return absl::DeadlineExceededError(
         absl::StrCat("open3d_poisson.py did not finish in ", peer.timeout_seconds, " s"));
   }
-  const size_t brace = out.rfind("\n{") != std::string::npos ? out.rfind("\n{") + 1 : out.find('{');
-  if (status != 0 || brace == std::string::npos) {
+  absl::StatusOr<Open3dRun> parsed = ParseOpen3dOutput(out, status);
+  if (!parsed.ok()) {
     cleanup();
-    return absl::InternalError(
-        absl::StrCat("open3d_poisson.py exited with status ", status, ": ", out));
+    return parsed.status();
   }
   Open3dMeshRun result;
-  Open3dRun& run = result.run;
-  run.json = std::string(absl::StripAsciiWhitespace(out.substr(brace)));
-  run.points = static_cast<int64_t>(JsonNumber(run.json, "points"));
-  run.normals_seconds = JsonNumber(run.json, "normals_seconds");
-  run.orient_seconds = JsonNumber(run.json, "orient_seconds");
-  run.poisson_seconds = JsonNumber(run.json, "poisson_seconds");
-  run.seconds = JsonNumber(run.json, "seconds");
-  run.faces = static_cast<int64_t>(JsonNumber(run.json, "faces"));
+  result.run = *std::move(parsed);
   absl::StatusOr<TriangleMesh> mesh = ReadMesh(mesh_path);
   cleanup();
   if (!mesh.ok()) return mesh.status();

@@ -15,18 +15,6 @@
 namespace membrane::bench {
 namespace {
 
-// Single-quoted for /bin/sh.
-std::string ShellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'') {
-      out += "'\\''";
-    } else {
-      out += c;
-    }
-  }
-  return out + "'";
-}
 
 // Runs `command` through /bin/sh; its stdout, and the exit status in `status`.
 std::string Capture(const std::string& command, int& status) {
@@ -94,19 +82,9 @@ absl::StatusOr<Open3dRun> RunOpen3dPoisson(const Open3dPeer& peer, const std::st
     return absl::DeadlineExceededError(
         absl::StrCat("open3d_poisson.py did not finish in ", peer.timeout_seconds, " s"));
   }
-  const size_t brace = out.rfind("\n{") != std::string::npos ? out.rfind("\n{") + 1 : out.find('{');
-  if (status != 0 || brace == std::string::npos) {
-    return absl::InternalError(
-        absl::StrCat("open3d_poisson.py exited with status ", status, ": ", out));
-  }
-  Open3dRun run;
-  run.json = std::string(absl::StripAsciiWhitespace(out.substr(brace)));
-  run.points = static_cast<int64_t>(JsonNumber(run.json, "points"));
-  run.normals_seconds = JsonNumber(run.json, "normals_seconds");
-  run.orient_seconds = JsonNumber(run.json, "orient_seconds");
-  run.poisson_seconds = JsonNumber(run.json, "poisson_seconds");
-  run.seconds = JsonNumber(run.json, "seconds");
-  run.faces = static_cast<int64_t>(JsonNumber(run.json, "faces"));
+  absl::StatusOr<Open3dRun> parsed = ParseOpen3dOutput(out, status);
+  if (!parsed.ok()) return parsed.status();
+  Open3dRun run = *std::move(parsed);
   run.cpu_seconds = CpuSeconds(after) - CpuSeconds(before);
   run.peak_rss_kb = after.ru_maxrss;
   return run;
@@ -130,6 +108,35 @@ std::optional<bool> ParseOpen3dFlag(const std::string& arg,
     return v && absl::SimpleAtoi(*v, &peer.timeout_seconds) && peer.timeout_seconds >= 0;
   }
   return std::nullopt;
+}
+
+std::string ShellQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'') {
+      out += "'\\''";
+    } else {
+      out += c;
+    }
+  }
+  return out + "'";
+}
+
+absl::StatusOr<Open3dRun> ParseOpen3dOutput(const std::string& out, int exit_status) {
+  const size_t brace = out.rfind("\n{") != std::string::npos ? out.rfind("\n{") + 1 : out.find('{');
+  if (exit_status != 0 || brace == std::string::npos) {
+    return absl::InternalError(
+        absl::StrCat("open3d_poisson.py exited with status ", exit_status, ": ", out));
+  }
+  Open3dRun run;
+  run.json = std::string(absl::StripAsciiWhitespace(out.substr(brace)));
+  run.points = static_cast<int64_t>(JsonNumber(run.json, "points"));
+  run.normals_seconds = JsonNumber(run.json, "normals_seconds");
+  run.orient_seconds = JsonNumber(run.json, "orient_seconds");
+  run.poisson_seconds = JsonNumber(run.json, "poisson_seconds");
+  run.seconds = JsonNumber(run.json, "seconds");
+  run.faces = static_cast<int64_t>(JsonNumber(run.json, "faces"));
+  return run;
 }
 
 }  // namespace membrane::bench

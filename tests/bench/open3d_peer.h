@@ -41,6 +41,14 @@ struct Open3dRun {
   std::string json;              // the script's line, as printed
 };
 
+// Single-quoted for /bin/sh: the peers build their command lines with it.
+std::string ShellQuote(const std::string& s);
+
+// The run the script reported: its last JSON line in `out` (points, the three phases' and the
+// total seconds, faces). Internal with the output when `exit_status` is not 0 or no JSON line
+// was printed. Resource figures (cpu_seconds, peak_rss_kb) are left to the caller.
+absl::StatusOr<Open3dRun> ParseOpen3dOutput(const std::string& out, int exit_status);
+
 // Runs the script on `cloud_path`. DeadlineExceeded when peer.timeout_seconds passed first;
 // Internal with the script's output when it fails or prints no JSON line. Must be the only child process running (rusage of children is used).
 absl::StatusOr<Open3dRun> RunOpen3dPoisson(const Open3dPeer& peer, const std::string& cloud_path);

@@ -17,7 +17,8 @@ enum ExitCode : int {
 
 // The exit status for a failed (non-OK) `status` from a command:
 //   InvalidArgument, NotFound, OutOfRange, ResourceExhausted (the voxel budget),
-//   PermissionDenied, Unimplemented (an unsupported file variant), DataLoss -> 3;
+//   PermissionDenied, Unauthenticated (a missing or wrong --token-file), Unimplemented (an
+//   unsupported file variant), DataLoss -> 3;
 //   DeadlineExceeded, Unavailable -> 4; everything else (Cancelled, Internal, ...) -> 5.
 // OK maps to 0.
 ExitCode ExitCodeFor(const absl::Status& status);

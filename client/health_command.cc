@@ -12,13 +12,14 @@
 #include "client/flag_checks.h"
 #include "client/remote_reconstruction.h"
 #include "client/rpc_errors.h"
+#include "client/server_connection.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 
 namespace membrane::client {
 namespace {
 
 struct HealthFlags {
-  std::string server = "127.0.0.1:50051";
+  ConnectionFlags connection;
   double timeout = 5;
 };
 
@@ -27,20 +28,24 @@ absl::Status RunHealth(const HealthFlags& flags) {
       !s.ok()) {
     return s;
   }
-  auto stub = grpc::health::v1::Health::NewStub(ConnectToServer(flags.server));
+  absl::StatusOr<ServerConnection> server = LoadServerConnection(flags.connection);
+  if (!server.ok()) return server.status();
+  // Health needs no token (container probes have none), but a token given is sent.
+  auto stub = grpc::health::v1::Health::NewStub(Connect(*server));
   grpc::ClientContext context;
+  Authorize(context, *server);
   context.set_deadline(absl::ToChronoTime(absl::Now() + absl::Seconds(flags.timeout)));
   grpc::health::v1::HealthCheckRequest request;
   grpc::health::v1::HealthCheckResponse response;
   const grpc::Status status = stub->Check(&context, request, &response);
-  if (!status.ok()) return FromGrpcStatus(status, flags.server);
+  if (!status.ok()) return FromGrpcStatus(status, server->address);
   const std::string name =
       grpc::health::v1::HealthCheckResponse::ServingStatus_Name(response.status());
   std::printf("%s\n", name.c_str());
   if (response.status() == grpc::health::v1::HealthCheckResponse::SERVING) {
     return absl::OkStatus();
   }
-  return absl::UnavailableError(absl::StrCat("server ", flags.server, " is ", name));
+  return absl::UnavailableError(absl::StrCat("server ", server->address, " is ", name));
 }
 
 }  // namespace
@@ -48,7 +53,7 @@ absl::Status RunHealth(const HealthFlags& flags) {
 Command AddHealthCommand(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand("health", "ask a membrane server whether it is serving");
   auto flags = std::make_shared<HealthFlags>();
-  app->add_option("--server", flags->server, "HOST:PORT")->capture_default_str();
+  AddConnectionFlags(*app, flags->connection);
   app->add_option("--timeout", flags->timeout, "seconds to wait for the answer")
       ->capture_default_str();
   return Command{app, [flags] { return RunHealth(*flags); }};

@@ -14,6 +14,7 @@
 #include "client/progress_printer.h"
 #include "client/remote_reconstruction.h"
 #include "client/rpc_errors.h"
+#include "client/server_connection.h"
 #include "core/io/file_bytes.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
 
@@ -21,7 +22,8 @@ namespace membrane::client {
 namespace {
 
 struct JobsFlags {
-  std::string server = "127.0.0.1:50051";
+  ConnectionFlags connection;
+  ServerConnection server;  // the connection's files read, before the subcommand runs
   std::string job_id;
   std::string output;      // watch: where to write the mesh
   std::string stats_json;  // watch: where to write the statistics
@@ -32,6 +34,7 @@ struct JobsFlags {
 // A one-call context with the --timeout deadline.
 std::unique_ptr<grpc::ClientContext> CallContext(const JobsFlags& flags) {
   auto context = std::make_unique<grpc::ClientContext>();
+  Authorize(*context, flags.server);
   if (flags.timeout > 0) {
     context->set_deadline(absl::ToChronoTime(absl::Now() + absl::Seconds(flags.timeout)));
   }
@@ -50,10 +53,10 @@ void PrintJob(const v1::Job& job) {
 }
 
 absl::Status RunList(const JobsFlags& flags) {
-  auto stub = v1::Reconstruction::NewStub(ConnectToServer(flags.server));
+  auto stub = v1::Reconstruction::NewStub(Connect(flags.server));
   v1::ListJobsResponse response;
   const grpc::Status status = stub->ListJobs(CallContext(flags).get(), {}, &response);
-  if (!status.ok()) return FromGrpcStatus(status, flags.server);
+  if (!status.ok()) return FromGrpcStatus(status, flags.server.address);
   for (const v1::Job& job : response.jobs()) {
     std::printf("%s %s %s %llu %s\n", job.id().c_str(), StateName(job.state()).c_str(),
                 job.stage().empty() ? "-" : job.stage().c_str(),
@@ -63,7 +66,7 @@ absl::Status RunList(const JobsFlags& flags) {
 }
 
 absl::Status RunGet(const JobsFlags& flags, bool cancel) {
-  auto stub = v1::Reconstruction::NewStub(ConnectToServer(flags.server));
+  auto stub = v1::Reconstruction::NewStub(Connect(flags.server));
   v1::Job job;
   grpc::Status status;
   if (cancel) {
@@ -75,7 +78,7 @@ absl::Status RunGet(const JobsFlags& flags, bool cancel) {
     request.set_job_id(flags.job_id);
     status = stub->GetJob(CallContext(flags).get(), request, &job);
   }
-  if (!status.ok()) return FromGrpcStatus(status, flags.server);
+  if (!status.ok()) return FromGrpcStatus(status, flags.server.address);
   PrintJob(job);
   return absl::OkStatus();
 }
@@ -106,7 +109,7 @@ absl::Status RunWatch(const JobsFlags& flags) {
 CLI::App* AddJobsSubcommand(CLI::App& jobs, const char* name, const char* help,
                             std::shared_ptr<JobsFlags> flags, bool needs_id) {
   CLI::App* app = jobs.add_subcommand(name, help);
-  app->add_option("--server", flags->server, "HOST:PORT")->capture_default_str();
+  AddConnectionFlags(*app, flags->connection);
   app->add_option("--timeout", flags->timeout, "seconds; 0 = no limit")->capture_default_str();
   if (needs_id) app->add_option("JOB_ID", flags->job_id, "the job's id")->required();
   return app;
@@ -127,6 +130,10 @@ Command AddJobsCommand(CLI::App& parent) {
   watch->add_flag("-q,--quiet", flags->quiet, "no progress lines on stderr");
   CLI::App* cancel = AddJobsSubcommand(*jobs, "cancel", "ask a job to stop", flags, true);
   return Command{jobs, [=] {
+                   absl::StatusOr<ServerConnection> server =
+                       LoadServerConnection(flags->connection);
+                   if (!server.ok()) return server.status();
+                   flags->server = *std::move(server);
                    if (list->parsed()) return RunList(*flags);
                    if (get->parsed()) return RunGet(*flags, /*cancel=*/false);
                    if (watch->parsed()) return RunWatch(*flags);

@@ -19,6 +19,7 @@
 #include "client/local_reconstruction.h"
 #include "client/progress_printer.h"
 #include "client/remote_reconstruction.h"
+#include "client/server_connection.h"
 #include "client/report_text.h"
 #include "core/engine/plate_schedule.h"
 #include "core/io/file_bytes.h"
@@ -38,9 +39,7 @@ struct ReconstructFlags {
   std::string input;
   std::string output;
   bool local = false;
-  std::string server = "127.0.0.1:50051";
-  std::string token_file;
-  std::string tls_ca;
+  ConnectionFlags connection;
   double voxel_size = 0;
   int64_t initial_plate = 0;
   std::string schedule = "halving";
@@ -59,12 +58,8 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   app.add_option("INPUT", f.input, "point cloud: .ply .obj .xyz .txt .pts .pcd .drc")->required();
   app.add_option("-o,--output", f.output, "mesh to write: .ply .obj .stl .drc")->required();
   CLI::Option* local = app.add_flag("--local", f.local, "run the reconstruction in this process");
-  CLI::Option* server = app.add_option(
-      "--server", f.server, "HOST:PORT of a membrane server (the default unless --local)")
-      ->capture_default_str();
-  local->excludes(server);
-  app.add_option("--token-file", f.token_file, "bearer token for --server (not used yet)");
-  app.add_option("--tls-ca", f.tls_ca, "CA certificate for --server (not used yet)");
+  // --server is the default unless --local.
+  local->excludes(AddConnectionFlags(app, f.connection));
   app.add_option("--voxel-size", f.voxel_size,
                  "voxel edge in model units; 0 = the paper's formula (1)")
       ->capture_default_str();
@@ -155,9 +150,9 @@ absl::Status SurfaceCheckStatus(const MeshReport& m, const std::string& output) 
 
 // The job's parameters as the server takes them. The mesh comes back lossless unless the
 // output is .drc, so that a .ply/.obj/.stl holds exactly what the server built.
-RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f) {
+RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f, ServerConnection server) {
   RemoteParams r;
-  r.server = f.server;
+  r.server = std::move(server);
   r.input = f.input;
   r.output = f.output;
   v1::Parameters& p = r.parameters;
@@ -179,10 +174,12 @@ RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f) {
 }
 
 absl::Status RunRemote(const ReconstructFlags& flags) {
+  absl::StatusOr<ServerConnection> server = LoadServerConnection(flags.connection);
+  if (!server.ok()) return server.status();
   absl::StatusOr<RemoteOutcome> outcome;
   {
     ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
-    outcome = RunRemoteReconstruction(RemoteParamsFromFlags(flags), progress);
+    outcome = RunRemoteReconstruction(RemoteParamsFromFlags(flags, *std::move(server)), progress);
   }
   if (!outcome.ok()) return outcome.status();
   std::fputs(GenerationTable(outcome->generations).c_str(), stdout);

@@ -53,6 +53,7 @@ grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams&
                              const std::string& upload, absl::Time deadline, JobEventSink& sink) {
   grpc::ClientContext context;
   SetDeadline(context, deadline);
+  Authorize(context, params.server);
   auto stream = stub.Reconstruct(&context);
   v1::ReconstructRequest header;
   *header.mutable_header()->mutable_parameters() = params.parameters;
@@ -100,19 +101,14 @@ absl::StatusOr<std::string> ReadAndEncode(const RemoteParams& params, RemoteOutc
 
 }  // namespace
 
-std::shared_ptr<grpc::Channel> ConnectToServer(const std::string& address) {
-  grpc::ChannelArguments args;
-  args.SetMaxReceiveMessageSize(4 << 20);
-  return grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args);
-}
-
-absl::Status WatchUntilDone(const std::string& address, const std::string& job_id,
+absl::Status WatchUntilDone(const ServerConnection& server, const std::string& job_id,
                             absl::Time deadline, JobEventSink& sink) {
-  auto stub = v1::Reconstruction::NewStub(ConnectToServer(address));
+  auto stub = v1::Reconstruction::NewStub(Connect(server));
   Backoff backoff(absl::Milliseconds(200), absl::Seconds(5));
   for (int attempt = 1;; ++attempt) {
     grpc::ClientContext context;
     SetDeadline(context, deadline);
+    Authorize(context, server);
     v1::WatchJobRequest request;
     request.set_job_id(job_id);
     auto reader = stub->WatchJob(&context, request);
@@ -125,7 +121,7 @@ absl::Status WatchUntilDone(const std::string& address, const std::string& job_i
     }
     if (status.error_code() != grpc::StatusCode::UNAVAILABLE || attempt >= kMaxAttempts ||
         !SleepBefore(backoff.Next(RetryDelayOf(status)), deadline)) {
-      return FromGrpcStatus(status, address);
+      return FromGrpcStatus(status, server.address);
     }
   }
 }
@@ -165,21 +161,21 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
   absl::StatusOr<std::string> upload = ReadAndEncode(params, outcome, progress);
   if (!upload.ok()) return upload.status();
 
-  auto stub = v1::Reconstruction::NewStub(ConnectToServer(params.server));
+  auto stub = v1::Reconstruction::NewStub(Connect(params.server));
   JobEventSink sink(progress);
   Backoff backoff(absl::Milliseconds(250), absl::Seconds(8));
   for (int attempt = 1; !sink.accepted(); ++attempt) {
     const grpc::Status status = ReconstructOnce(*stub, params, *upload, deadline, sink);
     if (sink.accepted() || status.ok()) break;
     if (status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED) return DeadlineStatus(params);
-    if (!IsRetryable(status)) return FromGrpcStatus(status, params.server);
+    if (!IsRetryable(status)) return FromGrpcStatus(status, params.server.address);
     const absl::Duration delay = backoff.Next(RetryDelayOf(status));
     if (attempt >= kMaxAttempts || !SleepBefore(delay, deadline)) {
       // Busy or gone through every attempt: "unavailable" for the exit code (4).
       return absl::UnavailableError(absl::StrFormat(
           "server %s still unavailable or busy after %d attempts (%s); start membraned there, "
           "try later, or use --local",
-          params.server, attempt, status.error_message()));
+          params.server.address, attempt, status.error_message()));
     }
     progress.Finish(absl::StrFormat("server busy or unavailable (%s); retrying in %.1f s",
                                     status.error_message(), absl::ToDoubleSeconds(delay)));

@@ -13,6 +13,7 @@
 #include "absl/time/time.h"
 #include "client/job_event_sink.h"
 #include "client/progress_printer.h"
+#include "client/server_connection.h"
 #include "core/engine/membrane_shrinker.h"
 #include "core/io/draco_codec.h"
 #include "core/mesh/mesh_check.h"
@@ -21,7 +22,7 @@
 namespace membrane::client {
 
 struct RemoteParams {
-  std::string server;          // HOST:PORT
+  ServerConnection server;     // HOST:PORT, TLS and token
   std::string input;           // point cloud path; format by extension
   std::string output;          // mesh path; format by extension
   v1::Parameters parameters;   // sent as they are; the server validates them
@@ -59,12 +60,9 @@ struct RemoteOutcome {
 absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params,
                                                       ProgressPrinter& progress);
 
-// A channel to `address` for the membrane client (insecure, loopback or a trusted network).
-std::shared_ptr<grpc::Channel> ConnectToServer(const std::string& address);
-
 // Follows job `job_id` with WatchJob into `sink` until it ends, re-attaching after dropped
 // calls as RunRemoteReconstruction does, within `deadline`.
-absl::Status WatchUntilDone(const std::string& address, const std::string& job_id,
+absl::Status WatchUntilDone(const ServerConnection& server, const std::string& job_id,
                             absl::Time deadline, JobEventSink& sink);
 
 // Writes the Draco `mesh` to `output` by its extension: the bytes as they are for .drc,

@@ -12,6 +12,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer job
   python3-open3d             # the peer measured beside us in tests/bench
+  openssl                    # the TLS test makes its own self-signed certificate
 )
 
 missing=()

@@ -8,12 +8,15 @@
 #include <cstdio>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
 #include "absl/flags/usage.h"
 #include "absl/strings/str_cat.h"
+#include "core/io/file_bytes.h"
+#include "core/io/token_file.h"
 #include "server/membrane_server.h"
 #include "server/server_options.h"
 
@@ -33,6 +36,10 @@ ABSL_FLAG(double, decoder_timeout_seconds, 30, "wall-clock limit of one upload's
 ABSL_FLAG(int64_t, decoder_memory_bytes, 4LL << 30, "address-space limit of the decoder process");
 ABSL_FLAG(std::string, decoder_path, "", "the membrane-decode binary; empty = beside membraned");
 ABSL_FLAG(double, retry_delay_seconds, 2, "retry delay sent with a full queue");
+ABSL_FLAG(std::string, token_file, "",
+          "file holding a bearer token every membrane.v1 call must carry; empty = none");
+ABSL_FLAG(std::string, tls_cert, "", "PEM certificate chain: serve TLS (with --tls-key)");
+ABSL_FLAG(std::string, tls_key, "", "PEM private key of --tls-cert");
 
 namespace membrane::server {
 namespace {
@@ -44,6 +51,37 @@ std::string ExecutableDirectory() {
   if (n <= 0) return ".";
   std::string dir(path, static_cast<size_t>(n));
   return dir.substr(0, dir.rfind('/'));
+}
+
+// Reads the files of --token-file, --tls-cert and --tls-key into `o`; an error line and false
+// when one cannot be read or only one of the TLS pair is given.
+bool ReadSecrets(ServerOptions& o) {
+  if (const std::string path = absl::GetFlag(FLAGS_token_file); !path.empty()) {
+    absl::StatusOr<std::string> token = ReadTokenFile(path);
+    if (!token.ok()) {
+      std::fprintf(stderr, "membraned: --token-file: %s\n",
+                   std::string(token.status().message()).c_str());
+      return false;
+    }
+    o.bearer_token = *std::move(token);
+  }
+  const std::string cert = absl::GetFlag(FLAGS_tls_cert), key = absl::GetFlag(FLAGS_tls_key);
+  if (cert.empty() != key.empty()) {
+    std::fprintf(stderr, "membraned: --tls-cert and --tls-key go together\n");
+    return false;
+  }
+  if (cert.empty()) return true;
+  for (auto [flag, path, pem] : {std::tuple{"--tls-cert", cert, &o.tls_cert_pem},
+                                 std::tuple{"--tls-key", key, &o.tls_key_pem}}) {
+    absl::StatusOr<std::string> bytes = ReadFileBytes(path);
+    if (!bytes.ok()) {
+      std::fprintf(stderr, "membraned: %s: %s\n", flag,
+                   std::string(bytes.status().message()).c_str());
+      return false;
+    }
+    *pem = *std::move(bytes);
+  }
+  return true;
 }
 
 // The options from the flags; an error line and false when a value is out of range.
@@ -72,6 +110,7 @@ bool OptionsFromFlags(ServerOptions& o) {
                  on_disconnect.c_str());
     return false;
   }
+  if (!ReadSecrets(o)) return false;
   if (o.queue < 0 || o.max_upload_bytes <= 0 || o.max_points <= 0 || o.voxel_budget <= 0 ||
       o.result_ttl_seconds < 0 || o.grace_seconds < 0 || o.decoder_timeout_seconds <= 0) {
     std::fprintf(stderr,

@@ -7,6 +7,7 @@
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/security/server_credentials.h>
 #include <grpcpp/server_builder.h>
 
 #include "absl/status/status.h"
@@ -38,7 +39,13 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   int port = 0;
-  builder.AddListeningPort(address, grpc::InsecureServerCredentials(), &port);
+  std::shared_ptr<grpc::ServerCredentials> credentials = grpc::InsecureServerCredentials();
+  if (!options_.tls_cert_pem.empty()) {
+    grpc::SslServerCredentialsOptions ssl;
+    ssl.pem_key_cert_pairs.push_back({options_.tls_key_pem, options_.tls_cert_pem});
+    credentials = grpc::SslServerCredentials(ssl);
+  }
+  builder.AddListeningPort(address, credentials, &port);
   builder.SetMaxReceiveMessageSize(kMaxMessageBytes);
   builder.RegisterService(&service_);
   server_ = builder.BuildAndStart();
@@ -49,7 +56,9 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   LogEvent("server_started", {{"address", address},
                               {"port", absl::StrCat(port)},
                               {"workers", absl::StrCat(options_.workers)},
-                              {"queue", absl::StrCat(options_.queue)}});
+                              {"queue", absl::StrCat(options_.queue)},
+                              {"tls", options_.tls_cert_pem.empty() ? "off" : "on"},
+                              {"token", options_.bearer_token.empty() ? "off" : "on"}});
   return port;
 }
 

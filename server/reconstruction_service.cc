@@ -8,6 +8,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
 #include "proto/crc32c.h"
+#include "server/bearer_token.h"
 #include "server/job_follower.h"
 #include "server/parameter_checks.h"
 #include "server/rpc_status.h"
@@ -36,6 +37,14 @@ std::shared_ptr<Job> ReconstructionService::FindJob(const std::string& id) {
   // Expiry is lazy: every lookup first drops the results past their time.
   store_.RemoveFinishedBefore(absl::Now() - absl::Seconds(options_.result_ttl_seconds));
   return store_.Find(id);
+}
+
+grpc::Status ReconstructionService::Authenticate(const grpc::ServerContext& context) {
+  grpc::Status s = CheckBearerToken(context, options_.bearer_token);
+  if (!s.ok()) {
+    LogEvent("call_unauthenticated", {{"peer", context.peer()}, {"message", s.error_message()}});
+  }
+  return s;
 }
 
 grpc::Status ReconstructionService::ReadUpload(
@@ -86,6 +95,7 @@ grpc::Status ReconstructionService::ReadUpload(
 grpc::Status ReconstructionService::Reconstruct(
     grpc::ServerContext* context,
     grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream) {
+  if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
   if (!accepting_) {
     return ToGrpcStatusWithRetry(
         absl::UnavailableError("the server is shutting down; try again or another replica"),
@@ -122,8 +132,9 @@ grpc::Status ReconstructionService::Reconstruct(
                    [stream](const v1::JobEvent& event) { return stream->Write(event); });
 }
 
-grpc::Status ReconstructionService::GetJob(grpc::ServerContext*, const v1::GetJobRequest* request,
-                                           v1::Job* response) {
+grpc::Status ReconstructionService::GetJob(grpc::ServerContext* context,
+                                           const v1::GetJobRequest* request, v1::Job* response) {
+  if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
   std::shared_ptr<Job> job = FindJob(request->job_id());
   if (job == nullptr) return JobNotFound(request->job_id());
   *response = job->Snapshot();
@@ -133,6 +144,7 @@ grpc::Status ReconstructionService::GetJob(grpc::ServerContext*, const v1::GetJo
 grpc::Status ReconstructionService::WatchJob(grpc::ServerContext* context,
                                              const v1::WatchJobRequest* request,
                                              grpc::ServerWriter<v1::JobEvent>* writer) {
+  if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
   std::shared_ptr<Job> job = FindJob(request->job_id());
   if (job == nullptr) return JobNotFound(request->job_id());
   LogEvent("job_watched", {{"job", job->id()}, {"peer", context->peer()}});
@@ -147,6 +159,7 @@ grpc::Status ReconstructionService::WatchJob(grpc::ServerContext* context,
 grpc::Status ReconstructionService::CancelJob(grpc::ServerContext* context,
                                               const v1::CancelJobRequest* request,
                                               v1::Job* response) {
+  if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
   std::shared_ptr<Job> job = FindJob(request->job_id());
   if (job == nullptr) return JobNotFound(request->job_id());
   job->RequestCancel("cancelled by the client");
@@ -155,8 +168,10 @@ grpc::Status ReconstructionService::CancelJob(grpc::ServerContext* context,
   return grpc::Status::OK;
 }
 
-grpc::Status ReconstructionService::ListJobs(grpc::ServerContext*, const v1::ListJobsRequest*,
+grpc::Status ReconstructionService::ListJobs(grpc::ServerContext* context,
+                                             const v1::ListJobsRequest*,
                                              v1::ListJobsResponse* response) {
+  if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
   store_.RemoveFinishedBefore(absl::Now() - absl::Seconds(options_.result_ttl_seconds));
   for (const std::shared_ptr<Job>& job : store_.List()) *response->add_jobs() = job->Snapshot();
   return grpc::Status::OK;

@@ -44,6 +44,9 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   grpc::Status ReadUpload(grpc::ServerContext* context,
                           grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
                           v1::Parameters& parameters, std::string& upload);
+  // OK for a call with the configured bearer token (or when none is); UNAUTHENTICATED, logged
+  // with the peer, otherwise.
+  grpc::Status Authenticate(const grpc::ServerContext& context);
   // The job with `id` after dropping expired ones, or null.
   std::shared_ptr<Job> FindJob(const std::string& id);
   std::string NewJobId() ABSL_LOCKS_EXCLUDED(id_mutex_);

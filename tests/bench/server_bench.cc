@@ -2,12 +2,15 @@
 // through a membraned on loopback (`--server`), wall time of the client each way (target:
 // server within 10% of local), upload and download bytes with the Draco ratio against raw
 // float32, and the per-stage seconds of both statistics JSONs.
-// Usage: server_bench [--points N] [--quantization BITS]; run from the build tree (the
-// binaries are found at ../../client/membrane and ../../server/membraned beside it).
+// Usage: server_bench [--points N] [--quantization BITS] [--repeat R]; run from the build tree
+// (the binaries are found at ../../client/membrane and ../../server/membraned beside it).
+// The R local and R server runs alternate (local, server, local, ...) so that a noisy shared
+// machine slows both alike; the medians and their ratio are printed.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -25,6 +28,7 @@ namespace fs = std::filesystem;
 
 // Starts `argv` with stdout and stderr to `log`; returns its pid.
 pid_t Spawn(const std::vector<std::string>& argv, const std::string& log) {
+  std::fflush(stdout);  // else the child's freopen writes our buffered lines a second time
   const pid_t pid = fork();
   if (pid == 0) {
     // One file, one offset: stderr shares stdout's descriptor.
@@ -65,6 +69,12 @@ double Timed(const std::vector<std::string>& argv, const std::string& log) {
   return seconds;
 }
 
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 std::string Match(const std::string& text, const std::string& pattern) {
   std::smatch m;
   return std::regex_search(text, m, std::regex(pattern)) ? m[1].str() : "?";
@@ -74,9 +84,11 @@ std::string Match(const std::string& text, const std::string& pattern) {
 
 int main(int argc, char** argv) {
   std::string points = "1000000", quantization = "11";
+  int repeat = 3;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::string(argv[i]) == "--points") points = argv[i + 1];
     if (std::string(argv[i]) == "--quantization") quantization = argv[i + 1];
+    if (std::string(argv[i]) == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
   }
   const fs::path here = fs::canonical("/proc/self/exe").parent_path();
   const std::string membrane = (here / "../../client/membrane").string();
@@ -97,22 +109,31 @@ int main(int argc, char** argv) {
     const std::string log = Read(server_log);
     if (log.find("server_started") != std::string::npos) port = Match(log, "port=(\\d+)");
   }
-  const double local =
-      Timed({membrane, "reconstruct", cloud, "-o", (dir / "local.ply").string(), "--local",
-             "--stats-json", (dir / "local.json").string()},
-            (dir / "local.log").string());
-  const double remote =
-      Timed({membrane, "reconstruct", cloud, "-o", (dir / "remote.ply").string(), "--server",
-             "127.0.0.1:" + port, "--quantization", quantization, "--stats-json",
-             (dir / "remote.json").string()},
-            (dir / "remote.log").string());
+  std::vector<double> locals, remotes;
+  for (int r = 0; r < repeat; ++r) {
+    const double local =
+        Timed({membrane, "reconstruct", cloud, "-o", (dir / "local.ply").string(), "--local",
+               "--stats-json", (dir / "local.json").string()},
+              (dir / "local.log").string());
+    const double remote =
+        Timed({membrane, "reconstruct", cloud, "-o", (dir / "remote.ply").string(),
+               "--server", "127.0.0.1:" + port, "--quantization", quantization, "--stats-json",
+               (dir / "remote.json").string()},
+              (dir / "remote.log").string());
+    if (local < 0 || remote < 0) break;
+    locals.push_back(local);
+    remotes.push_back(remote);
+    std::printf("run %d: local %.3f s, server %.3f s\n", r + 1, local, remote);
+  }
   kill(server, SIGTERM);
   Wait(server);
-  if (local < 0 || remote < 0) return 1;
+  if (static_cast<int>(locals.size()) < repeat) return 1;
+  const double local = Median(locals), remote = Median(remotes);
   const std::string remote_out = Read((dir / "remote.log").string());
   std::printf("points %s, upload quantization %s bits\n", points.c_str(), quantization.c_str());
-  std::printf("client wall seconds: local %.3f, server %.3f (%+.1f%%)\n", local, remote,
-              100.0 * (remote - local) / local);
+  std::printf("client wall seconds, median of %d alternating runs: local %.3f, server %.3f "
+              "(server/local %.3f, %+.1f%%)\n",
+              repeat, local, remote, remote / local, 100.0 * (remote - local) / local);
   std::printf("upload: %s bytes Draco of %s raw float32 bytes (%s%%)\n",
               Match(remote_out, "(\\d+) bytes as Draco").c_str(),
               Match(remote_out, "of (\\d+) raw float32").c_str(),
@@ -121,7 +142,7 @@ int main(int argc, char** argv) {
               Match(remote_out, "download (\\d+) bytes").c_str());
   for (const char* name : {"local", "remote"}) {
     const std::string json = Read((dir / (std::string(name) + ".json")).string());
-    std::printf("%s seconds: %s\n", name, Match(json, "\"seconds\": (\\{[^}]*\\})").c_str());
+    std::printf("%s seconds (last run): %s\n", name, Match(json, "\"seconds\": (\\{[^}]*\\})").c_str());
   }
   fs::remove_all(dir);
   return 0;

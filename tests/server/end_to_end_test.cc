@@ -2,6 +2,7 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <memory>
 #include <regex>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/scratch_dir.h"
@@ -55,6 +57,10 @@ class EndToEndTest : public ::testing::Test {
   std::string address_;
   std::unique_ptr<Subprocess> server_;
 };
+
+void WriteText(const std::string& path, const std::string& text) {
+  ASSERT_TRUE(WriteFileBytes(path, text).ok()) << path;
+}
 
 // The "k/N" of each "shrink: generation k/N" line, in order.
 std::vector<int> GenerationNumbers(const std::string& err) {
@@ -183,6 +189,83 @@ TEST_F(EndToEndTest, SigtermStopsTheServerGracefully) {
   server_->Signal(SIGTERM);
   EXPECT_EQ(server_->Wait(10), 0);
   EXPECT_NE(ReadText(log_).find("event=server_stopped"), std::string::npos);
+}
+
+TEST_F(EndToEndTest, TokenIsNeededOnEveryCallButHealth) {
+  WriteText(dir_.File("token"), "  s3cret-token\n");
+  WriteText(dir_.File("wrong"), "not-the-token\n");
+  StartServer({"--token_file=" + dir_.File("token")});
+  const std::string cloud = Synth("sphere", 3000);
+  const std::string out = dir_.File("a.ply");
+  CliResult r = Run({"reconstruct", cloud, "-o", out, "--server", address_});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("needs a bearer token"), std::string::npos) << r.err;
+  r = Run({"reconstruct", cloud, "-o", out, "--server", address_, "--token-file",
+           dir_.File("wrong")});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("bearer token is not this server's"), std::string::npos) << r.err;
+  EXPECT_EQ(Run({"jobs", "list", "--server", address_}).exit_code, 3);
+  r = Run({"reconstruct", cloud, "-o", out, "--server", address_, "--token-file",
+           dir_.File("token")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = Run({"jobs", "list", "--server", address_, "--token-file", dir_.File("token")});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("SUCCEEDED"), std::string::npos) << r.out;
+  ExpectHealthy();  // probes carry no token
+  EXPECT_NE(ReadText(log_).find("event=call_unauthenticated"), std::string::npos);
+}
+
+TEST_F(EndToEndTest, TokenAndCaFilesAreChecked) {
+  WriteText(dir_.File("empty"), "\n");
+  WriteText(dir_.File("not-pem"), "hello\n");
+  CliResult r = Run({"reconstruct", Synth("sphere", 1000), "-o", dir_.File("a.ply"),
+                     "--server", "127.0.0.1:1", "--token-file", dir_.File("empty")});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("--token-file: " + dir_.File("empty") + " holds no token"),
+            std::string::npos)
+      << r.err;
+  r = Run({"health", "--server", "127.0.0.1:1", "--tls-ca", dir_.File("not-pem")});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("holds no PEM certificate"), std::string::npos) << r.err;
+  r = Run({"jobs", "list", "--server", "127.0.0.1:1", "--token-file", dir_.File("missing")});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  // The server refuses to start on a half TLS configuration or an unreadable token file.
+  Subprocess half({MEMBRANED_BINARY, "--listen=127.0.0.1:0", "--tls_cert=" + dir_.File("not-pem")},
+                  dir_.File("half.out"), dir_.File("half.err"));
+  EXPECT_EQ(half.Wait(10), 2);
+  EXPECT_NE(ReadText(dir_.File("half.err")).find("--tls-cert and --tls-key go together"),
+            std::string::npos);
+  Subprocess no_token({MEMBRANED_BINARY, "--listen=127.0.0.1:0",
+                       "--token_file=" + dir_.File("missing")},
+                      dir_.File("no_token.out"), dir_.File("no_token.err"));
+  EXPECT_EQ(no_token.Wait(10), 2);
+}
+
+TEST_F(EndToEndTest, TlsServerIsReachedWithItsCaOnly) {
+  // A throwaway self-signed certificate for the loopback address (install-deps.sh installs
+  // openssl).
+  const std::string key = dir_.File("key.pem"), cert = dir_.File("cert.pem");
+  const std::string make_cert =
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=localhost "
+      "-addext subjectAltName=IP:127.0.0.1,DNS:localhost -keyout " + key + " -out " + cert +
+      " >" + dir_.File("openssl.log") + " 2>&1";
+  if (std::system(make_cert.c_str()) != 0) {
+    GTEST_SKIP() << "openssl could not make a test certificate (deploy/install-deps.sh "
+                    "installs it): " << ReadText(dir_.File("openssl.log"));
+  }
+  StartServer({"--tls_cert=" + cert, "--tls_key=" + key});
+  EXPECT_NE(ReadText(log_).find("tls=on"), std::string::npos);
+  const std::string cloud = Synth("torus", 5000);
+  CliResult r = Run({"reconstruct", cloud, "-o", dir_.File("a.ply"), "--server", address_,
+                     "--tls-ca", cert});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(Run({"check", dir_.File("a.ply")}).exit_code, 0);
+  EXPECT_EQ(Run({"health", "--server", address_, "--tls-ca", cert}).exit_code, 0);
+  EXPECT_EQ(Run({"jobs", "list", "--server", address_, "--tls-ca", cert}).exit_code, 0);
+  // Plaintext against a TLS port never completes a handshake: unavailable, exit 4.
+  r = Run({"reconstruct", cloud, "-o", dir_.File("b.ply"), "--server", address_, "--timeout",
+           "2"});
+  EXPECT_EQ(r.exit_code, 4) << r.err;
 }
 
 }  // namespace

@@ -1,0 +1,68 @@
+#include "client/server_connection.h"
+
+#include <grpcpp/create_channel.h>
+#include <grpcpp/security/credentials.h>
+
+#include "CLI/CLI.hpp"
+#include "absl/status/status.h"
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "core/io/file_bytes.h"
+#include "core/io/token_file.h"
+
+namespace membrane::client {
+
+CLI::Option* AddConnectionFlags(CLI::App& app, ConnectionFlags& flags) {
+  CLI::Option* server =
+      app.add_option("--server", flags.server, "HOST:PORT of a membrane server")
+          ->capture_default_str();
+  app.add_option("--token-file", flags.token_file,
+                 "file holding the bearer token of a server started with --token-file");
+  app.add_option("--tls-ca", flags.tls_ca,
+                 "PEM file of the CA that signed the server's certificate (enables TLS)");
+  return server;
+}
+
+absl::StatusOr<ServerConnection> LoadServerConnection(const ConnectionFlags& flags) {
+  ServerConnection c;
+  c.address = flags.server;
+  if (!flags.token_file.empty()) {
+    absl::StatusOr<std::string> token = ReadTokenFile(flags.token_file);
+    if (!token.ok()) {
+      return absl::InvalidArgumentError(absl::StrCat("--token-file: ", token.status().message()));
+    }
+    c.token = *std::move(token);
+  }
+  if (!flags.tls_ca.empty()) {
+    absl::StatusOr<std::string> pem = ReadFileBytes(flags.tls_ca);
+    if (!pem.ok()) {
+      return absl::InvalidArgumentError(absl::StrCat("--tls-ca: ", pem.status().message()));
+    }
+    if (!absl::StrContains(*pem, "-----BEGIN CERTIFICATE-----")) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--tls-ca: ", flags.tls_ca, " holds no PEM certificate"));
+    }
+    c.tls_ca_pem = *std::move(pem);
+  }
+  return c;
+}
+
+std::shared_ptr<grpc::Channel> Connect(const ServerConnection& connection) {
+  grpc::ChannelArguments args;
+  args.SetMaxReceiveMessageSize(4 << 20);
+  std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
+  if (!connection.tls_ca_pem.empty()) {
+    grpc::SslCredentialsOptions ssl;
+    ssl.pem_root_certs = connection.tls_ca_pem;
+    credentials = grpc::SslCredentials(ssl);
+  }
+  return grpc::CreateCustomChannel(connection.address, credentials, args);
+}
+
+void Authorize(grpc::ClientContext& context, const ServerConnection& connection) {
+  if (!connection.token.empty()) {
+    context.AddMetadata("authorization", absl::StrCat("Bearer ", connection.token));
+  }
+}
+
+}  // namespace membrane::client

@@ -1,0 +1,36 @@
+#include "server/bearer_token.h"
+
+#include "absl/strings/str_cat.h"
+
+namespace membrane::server {
+namespace {
+
+// Equal length and bytes, in time that depends on the lengths only.
+bool ConstantTimeEqual(absl::string_view a, absl::string_view b) {
+  if (a.size() != b.size()) return false;
+  unsigned char diff = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    diff |= static_cast<unsigned char>(a[i] ^ b[i]);
+  }
+  return diff == 0;
+}
+
+}  // namespace
+
+grpc::Status CheckBearerToken(const grpc::ServerContext& context, absl::string_view expected) {
+  if (expected.empty()) return grpc::Status::OK;
+  const auto& metadata = context.client_metadata();
+  const auto found = metadata.find("authorization");
+  if (found == metadata.end()) {
+    return grpc::Status(grpc::StatusCode::UNAUTHENTICATED,
+                        "this server needs a bearer token (\"authorization: Bearer <token>\"; "
+                        "membrane --token-file FILE)");
+  }
+  const absl::string_view given(found->second.data(), found->second.size());
+  if (!ConstantTimeEqual(given, absl::StrCat("Bearer ", expected))) {
+    return grpc::Status(grpc::StatusCode::UNAUTHENTICATED, "the bearer token is not this server's");
+  }
+  return grpc::Status::OK;
+}
+
+}  // namespace membrane::server

@@ -104,6 +104,24 @@ TEST_F(EndToEndTest, LosslessUploadGivesTheSameMeshAsLocal) {
   EXPECT_NE(ReadText(dir_.File("remote.json")).find("\"generations\""), std::string::npos);
 }
 
+TEST_F(EndToEndTest, TenMillionPointCloudGoesThroughInChunks) {
+  StartServer();
+  const std::string cloud = dir_.File("big.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "10000000"}).exit_code, 0);
+  // A coarse grid: formula (1) for 10M points would be over the voxel budget.
+  const CliResult r =
+      Run({"reconstruct", cloud, "-o", dir_.File("mesh.ply"), "--server", address_,
+           "--voxel-size", "0.05", "--surface", "cuberille", "--stats-json",
+           dir_.File("stats.json")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, std::regex("upload (\\d+) bytes"))) << r.out;
+  EXPECT_GT(std::stoll(m[1].str()), 4 << 20) << "the upload must need more than one message";
+  EXPECT_NE(ReadText(dir_.File("stats.json")).find("\"points\": 10000000"), std::string::npos);
+  EXPECT_EQ(Run({"check", dir_.File("mesh.ply")}).exit_code, 0);
+  ExpectHealthy();
+}
+
 TEST_F(EndToEndTest, DroppedClientReattachesAndGetsItsMesh) {
   StartServer({"--on_disconnect=continue"});
   const std::string cloud = Synth("torus", 20000);

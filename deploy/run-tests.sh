@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test: the Release suite, then the engine,
-# synth and io suites again under AddressSanitizer and UndefinedBehaviorSanitizer, then the
-# libFuzzer smoke of the readers (clang).
+# synth, io, mesh and in-process server suites again under AddressSanitizer and
+# UndefinedBehaviorSanitizer, then the libFuzzer smoke of the readers (clang).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS="${JOBS:-$(nproc)}"
@@ -13,11 +13,13 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$JOBS"
 ctest --test-dir build --output-on-failure -j "$JOBS" --timeout 900
 
-echo "== ASan/UBSan build: engine, synth and io suites"
+echo "== ASan/UBSan build: engine, synth, io, mesh and server (in process) suites"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMEMBRANE_SANITIZE=ON \
-  -DMEMBRANE_BENCH=OFF -DMEMBRANE_TEST_DIRS="engine;synth;io" >/dev/null
-# Only what these suites run: the service and client are not built a second time.
-cmake --build build-asan -j "$JOBS" --target test_engine test_shrink test_real_scans test_synth test_io
+  -DMEMBRANE_BENCH=OFF -DMEMBRANE_TEST_DIRS="engine;synth;io;mesh;server" >/dev/null
+# Only what these suites run: the client and the process-level server tests are not built a
+# second time (the in-process suite covers the service, its job runner and the decoder child).
+cmake --build build-asan -j "$JOBS" --target test_engine test_shrink test_real_scans test_synth \
+  test_io test_mesh test_reconstructed_surfaces test_server_service
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$JOBS" --timeout 1800
 

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -23,6 +24,43 @@ namespace membrane::server {
 namespace {
 
 constexpr int kPollMillis = 50;  // how often the timeout and the cancel token are looked at
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
+// The helper's environment: ours, except in AddressSanitizer builds (the test suite's
+// sanitizer job). ASan reserves terabytes of shadow address space as it starts, so a helper
+// built with it dies at once under RLIMIT_AS; there the allocator's own limits stand in for
+// it (one allocation, and the resident size), and leak checking is off because a leak inside
+// Draco would fail every decode.
+std::vector<std::string> HelperEnvironment(int64_t memory_bytes) {
+  std::vector<std::string> env;
+  std::string asan_options;
+  for (char** e = environ; *e != nullptr; ++e) {
+    const std::string entry = *e;
+    if (kAddressSanitizer && entry.rfind("ASAN_OPTIONS=", 0) == 0) {
+      asan_options = entry.substr(13);
+    } else {
+      env.push_back(entry);
+    }
+  }
+  if (kAddressSanitizer) {
+    const int64_t mb = std::max<int64_t>(1, memory_bytes >> 20);
+    env.push_back(absl::StrCat("ASAN_OPTIONS=", asan_options, asan_options.empty() ? "" : ":",
+                               "max_allocation_size_mb=", mb, ":hard_rss_limit_mb=", mb,
+                               ":allocator_may_return_null=0:detect_leaks=0"));
+  }
+  return env;
+}
 
 // Pipe ends owned by the parent; closed on destruction.
 struct ChildPipes {
@@ -58,15 +96,19 @@ pid_t StartHelper(const DecodeLimits& limits, ChildPipes& pipes) {
   const rlimit memory_limit{static_cast<rlim_t>(limits.memory_bytes),
                             static_cast<rlim_t>(limits.memory_bytes)};
   const rlimit no_core{0, 0};
+  std::vector<std::string> env = HelperEnvironment(limits.memory_bytes);
+  std::vector<char*> envp;
+  for (std::string& e : env) envp.push_back(e.data());
+  envp.push_back(nullptr);
   const pid_t pid = fork();
   if (pid == 0) {
     dup2(in[0], STDIN_FILENO);
     dup2(out[1], STDOUT_FILENO);
     dup2(err[1], STDERR_FILENO);
     setrlimit(RLIMIT_CPU, &cpu_limit);
-    setrlimit(RLIMIT_AS, &memory_limit);
+    if (!kAddressSanitizer) setrlimit(RLIMIT_AS, &memory_limit);
     setrlimit(RLIMIT_CORE, &no_core);
-    execv(argv[0], argv.data());
+    execve(argv[0], argv.data(), envp.data());
     _exit(127);
   }
   close(in[0]);

@@ -55,7 +55,8 @@ grpc::Status ReconstructionService::ReadUpload(
   if (!stream->Read(&request) || !request.has_header()) {
     return InvalidArgument("the first message of Reconstruct must be an UploadHeader");
   }
-  const v1::UploadHeader& header = request.header();
+  // A copy: the chunks are read into `request` below, which frees the header it held.
+  const v1::UploadHeader header = request.header();
   parameters = header.parameters();
   if (absl::StatusOr<JobSettings> s = CheckParameters(parameters, options_.voxel_budget); !s.ok()) {
     return ToGrpcStatus(s.status());
@@ -70,14 +71,15 @@ grpc::Status ReconstructionService::ReadUpload(
   // Reserve no more than what a few chunks justify: a header alone must not pin memory.
   upload.reserve(std::min<uint64_t>(header.upload_bytes(), 64 << 20));
   uint32_t crc = 0;
-  while (stream->Read(&request)) {
-    if (!request.has_chunk()) return InvalidArgument("UploadHeader sent twice");
-    if (upload.size() + request.chunk().size() > header.upload_bytes()) {
+  v1::ReconstructRequest chunk;
+  while (stream->Read(&chunk)) {
+    if (!chunk.has_chunk()) return InvalidArgument("UploadHeader sent twice");
+    if (upload.size() + chunk.chunk().size() > header.upload_bytes()) {
       return InvalidArgument(absl::StrFormat("the upload is longer than the %d bytes announced",
                                              header.upload_bytes()));
     }
-    crc = Crc32c(request.chunk(), crc);
-    upload += request.chunk();
+    crc = Crc32c(chunk.chunk(), crc);
+    upload += chunk.chunk();
   }
   if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "call cancelled");
   if (upload.size() != header.upload_bytes()) {

@@ -7,26 +7,13 @@
 #include "core/engine/incursion_test.h"
 #include "core/engine/interior_plane.h"
 #include "core/engine/plate.h"
+#include "core/engine/state_planes.h"
 #include "core/engine/topology_guard.h"
 
 namespace membrane {
 namespace {
 
 bool Cancelled(const CancelToken* cancel) { return cancel != nullptr && cancel->cancelled(); }
-
-// Bit-planes of one state predicate, 64 voxels at a time.
-template <typename Pred>
-void FillPlane(const VoxelGrid& grid, Pred pred, FlatBitset& plane) {
-  const VoxelState* s = grid.states().data();
-  uint64_t* w = plane.words();
-  const int64_t nv = grid.size();
-  for (int64_t k = 0; k < static_cast<int64_t>(plane.word_count()); ++k) {
-    const int64_t begin = k * 64, end = std::min<int64_t>(begin + 64, nv);
-    uint64_t bits = 0;
-    for (int64_t i = begin; i < end; ++i) bits |= static_cast<uint64_t>(pred(s[i])) << (i - begin);
-    w[k] = bits;
-  }
-}
 
 }  // namespace
 
@@ -55,12 +42,12 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
 
   const FlatBitset& interior = ws.interior;
   FlatBitset& out0 = ws.out0;
-  FillPlane(grid, [](VoxelState s) { return IsOutside(s); }, out0);
+  FillStatePlane(grid.states(), StatePredicate::kOutside, out0);
   if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
   // FREE: cells a plate may cover: no hard or frozen voxel, off the array border. Inside
   // and boundary only prune no-op plates (fast-shrink.md section 4), so both count.
   FlatBitset& free_cells = ws.free_cells;
-  FillPlane(grid, [](VoxelState s) { return !IsHardOrFrozen(s); }, free_cells);
+  FillStatePlane(grid.states(), StatePredicate::kFree, free_cells);
   free_cells.And(interior);
 
   FlatBitset& out = ws.out;
@@ -117,7 +104,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     return outcome;
   }
   FlatBitset& was_boundary_soft = ws.was_boundary_soft;
-  FillPlane(grid, [](VoxelState s) { return s == kBoundarySoft; }, was_boundary_soft);
+  FillStatePlane(grid.states(), StatePredicate::kBoundarySoft, was_boundary_soft);
   FlatBitset& adjacent = ws.adjacent;
   adjacent = fresh;
   adjacent.Dilate26(strides, ws.scratch_a);
@@ -150,7 +137,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   });
   if (!cancelled && outcome.incursions == 0 && options.topology_guard) {
     FlatBitset& near_hard = ws.near_hard;
-    FillPlane(grid, [](VoxelState v) { return IsHard(v); }, near_hard);
+    FillStatePlane(grid.states(), StatePredicate::kHard, near_hard);
     near_hard.Dilate26(strides, ws.scratch_a);
     near_hard.And(fresh);
     const GuardOptions guard = GuardOptionsOf(options);

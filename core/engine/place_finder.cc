@@ -4,6 +4,7 @@
 #include <bit>
 
 #include "core/engine/interior_plane.h"
+#include "core/engine/state_planes.h"
 
 namespace membrane {
 
@@ -29,27 +30,12 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   auto cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
   if (!EnsurePlanes(cancel)) return std::nullopt;
   n_ = n;
-  const int64_t nv = grid_.size();
   const auto st = grid_.strides();
   FlatBitset& out = out_;
   FlatBitset& bs = boundary_soft_;
-  {
-    // Build the two planes 64 voxels at a time.
-    const VoxelState* s = grid_.states().data();
-    uint64_t* ow = out.words();
-    uint64_t* bw = bs.words();
-    for (int64_t w = 0; w < static_cast<int64_t>(out.word_count()); ++w) {
-      if ((w & 0xffff) == 0 && cancelled()) return std::nullopt;
-      const int64_t begin = w * 64, end = std::min<int64_t>(begin + 64, nv);
-      uint64_t o = 0, b = 0;
-      for (int64_t i = begin; i < end; ++i) {
-        o |= static_cast<uint64_t>(IsOutside(s[i])) << (i - begin);
-        b |= static_cast<uint64_t>(IsBoundarySoft(s[i])) << (i - begin);
-      }
-      ow[w] = o;
-      bw[w] = b;
-    }
-  }
+  FillStatePlane(grid_.states(), StatePredicate::kOutside, out);
+  FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, bs);
+  if (cancelled()) return std::nullopt;
   FlatBitset& free_cells = free_;  // outside or boundary soft, off the border
   free_cells = out;
   free_cells.Or(bs);

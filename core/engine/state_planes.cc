@@ -1,0 +1,110 @@
+#include "core/engine/state_planes.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
+namespace membrane {
+namespace {
+
+constexpr uint64_t kHigh = 0x8080808080808080ull;  // the top bit of every byte
+constexpr uint64_t kLow7 = 0x7f7f7f7f7f7f7f7full;
+constexpr uint64_t kOnes = 0x0101010101010101ull;
+constexpr uint64_t kHardness = kOnes * kHardnessMask;
+
+static_assert(kOutsideBit == 0x80 && kHardnessMask == 0x06 && kBoundarySoft == 0x01,
+              "the byte tricks below rely on the state layout of voxel_state.h");
+
+// The top bit of every byte of `x` that is zero (exact: no carry crosses a byte).
+constexpr uint64_t ZeroBytes(uint64_t x) { return ~(((x & kLow7) + kLow7) | x) & kHigh; }
+
+// The top bit of every byte whose state satisfies P.
+template <StatePredicate P>
+constexpr uint64_t Matches(uint64_t x) {
+  const uint64_t outside = x & kHigh;
+  if constexpr (P == StatePredicate::kOutside) {
+    return outside;
+  } else if constexpr (P == StatePredicate::kBoundarySoft) {
+    return ZeroBytes(x ^ (kOnes * kBoundarySoft));
+  } else if constexpr (P == StatePredicate::kFree) {
+    // Hardness bits are 0 (soft) or the voxel is outside; (x & 6) + 0x7e reaches the top bit
+    // exactly when some hardness bit is set.
+    const uint64_t hard_or_frozen = ((x & kHardness) + (kOnes * 0x7e)) & kHigh;
+    return (outside | ~hard_or_frozen) & kHigh;
+  } else {
+    const uint64_t hard_bits = ZeroBytes((x & kHardness) ^ (kOnes * 0x02));
+    return hard_bits & ~outside;
+  }
+}
+
+// Packs the top bits of the eight bytes into one byte, byte k giving bit k.
+constexpr uint64_t PackTopBits(uint64_t m) { return ((m >> 7) * 0x0102040810204080ull) >> 56; }
+
+uint64_t Load8(const VoxelState* p) {
+  uint64_t x;
+  std::memcpy(&x, p, sizeof x);
+  return x;
+}
+
+template <StatePredicate P>
+void Fill(const VoxelState* s, int64_t nv, uint64_t* words, int64_t word_begin, int64_t word_end) {
+  // Words covering whole state bytes: eight loads each. The last partial word bit by bit.
+  const int64_t full_words = std::min(word_end, nv / 64);
+  int64_t w = word_begin;
+  for (; w < full_words; ++w) {
+    const VoxelState* p = s + w * 64;
+    uint64_t bits = 0;
+    for (int k = 0; k < 8; ++k) bits |= PackTopBits(Matches<P>(Load8(p + 8 * k))) << (8 * k);
+    words[w] = bits;
+  }
+  for (; w < word_end; ++w) {
+    uint64_t bits = 0;
+    for (int64_t i = w * 64; i < std::min(nv, w * 64 + 64); ++i) {
+      // The word trick on one byte: only byte 0's verdict is kept.
+      bits |= ((Matches<P>(s[i]) >> 7) & 1) << (i - w * 64);
+    }
+    words[w] = bits;
+  }
+}
+
+}  // namespace
+
+void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicate,
+                    FlatBitset& plane, int64_t word_begin, int64_t word_end) {
+  const VoxelState* s = states.data();
+  const int64_t nv = static_cast<int64_t>(states.size());
+  uint64_t* w = plane.words();
+  switch (predicate) {
+    case StatePredicate::kOutside:
+      Fill<StatePredicate::kOutside>(s, nv, w, word_begin, word_end);
+      break;
+    case StatePredicate::kBoundarySoft:
+      Fill<StatePredicate::kBoundarySoft>(s, nv, w, word_begin, word_end);
+      break;
+    case StatePredicate::kFree:
+      Fill<StatePredicate::kFree>(s, nv, w, word_begin, word_end);
+      break;
+    case StatePredicate::kHard:
+      Fill<StatePredicate::kHard>(s, nv, w, word_begin, word_end);
+      break;
+  }
+}
+
+StateCounts CountStates(absl::Span<const VoxelState> states) {
+  StateCounts c;
+  const VoxelState* s = states.data();
+  const int64_t nv = static_cast<int64_t>(states.size());
+  int64_t i = 0;
+  for (; i + 8 <= nv; i += 8) {
+    const uint64_t x = Load8(s + i);
+    c.outside += std::popcount(Matches<StatePredicate::kOutside>(x));
+    c.boundary_soft += std::popcount(Matches<StatePredicate::kBoundarySoft>(x));
+  }
+  for (; i < nv; ++i) {
+    c.outside += IsOutside(s[i]);
+    c.boundary_soft += IsBoundarySoft(s[i]);
+  }
+  return c;
+}
+
+}  // namespace membrane

@@ -21,8 +21,7 @@ bool ClosedFormWorkspace::Ensure(const VoxelGrid& grid, const CancelToken* cance
   if (interior.bits() != grid.size()) interior = InteriorPlane(grid);
   FlatBitset* planes[] = {&out0, &free_cells, &out, &back, &reach, &tmp, &fresh,
                           &was_boundary_soft, &adjacent, &converted, &near_hard, &scratch_a,
-                          &scratch_b, &squares[0], &squares[1], &squares[2], &squares[3],
-                          &squares[4], &squares[5]};
+                          &squares[0], &squares[1], &squares[2]};
   for (FlatBitset* plane : planes) {
     if (Cancelled(cancel)) return false;
     plane->EnsureSize(grid.size());
@@ -52,44 +51,54 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
 
   FlatBitset& out = ws.out;
   out = out0;
-  FlatBitset* squares = ws.squares;  // anchors of all-free n x n squares, per orientation
-  for (int o = 0; o < 6; ++o) {
-    if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
-    const Orientation& orient = kOrientations[o];
-    squares[o] = free_cells;
-    squares[o].ErodeRun(n, st[orient.u_axis()]);
-    squares[o].ErodeRun(n, st[orient.v_axis()]);
-  }
+  // Anchors of all-free n x n squares per plate axis (both signs share them): the erosion
+  // along z serves the x and y axes, so four runs make the three planes.
+  FlatBitset* squares = ws.squares;
+  FlatBitset& eroded_z = ws.tmp;
+  eroded_z = free_cells;
+  eroded_z.ErodeRun(n, st[2]);
+  squares[0] = eroded_z;
+  squares[0].ErodeRun(n, st[1]);  // x: in-plane y, z
+  squares[1] = eroded_z;
+  squares[1].ErodeRun(n, st[0]);  // y: in-plane z, x
+  squares[2] = free_cells;
+  squares[2].ErodeRun(n, st[0]);
+  squares[2].ErodeRun(n, st[1]);  // z: in-plane x, y
+  bool square_fits[3];
+  for (int a = 0; a < 3; ++a) square_fits[a] = squares[a].any();
+  if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+
   FlatBitset& back = ws.back;
   FlatBitset& reach = ws.reach;
-  FlatBitset& tmp = ws.tmp;
+  FlatBitset& reach_back = ws.fresh;  // free until the apply step
   for (bool changed = true; changed && outcome.rounds < 64;) {
     changed = false;
     ++outcome.rounds;
-    for (int o = 0; o < 6; ++o) {
+    for (int a = 0; a < 3; ++a) {
+      if (!square_fits[a]) continue;
       if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
-      const Orientation& orient = kOrientations[o];
-      const int64_t sa = st[orient.axis], su = st[orient.u_axis()], sv = st[orient.v_axis()];
-      // Plates whose back square (one layer behind, against the front) is all outside.
+      const int64_t sa = st[a], su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
+      // Plates whose back square (one layer behind, against the front) is all outside. Both
+      // fronts of the axis use the same eroded plane: a step of the least fixed point only
+      // needs its plates valid for the current `out`, so updating `out` after both (rather
+      // than between them) reaches the same fixed point.
       back = out;
       back.ErodeRun(n, su);
-      if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
       back.ErodeRun(n, sv);
-      reach = squares[o];
-      reach.AndShifted(back, orient.sign * sa);
-      // Dig straight on: a plate whose back plate was contracted fits if its square is free.
-      reach.SpreadAlong(squares[o], orient.sign * sa, grid.dim(orient.axis), ws.scratch_a,
-                        ws.scratch_b);
       if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
-      // Cells covered by the plates reached.
+      // Dig straight on: a plate whose back plate was contracted fits if its square is free.
+      reach = squares[a];
+      reach.AndShifted(back, sa);
+      reach.SpreadAlong(squares[a], sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
+      reach_back = squares[a];
+      reach_back.AndShifted(back, -sa);
+      reach_back.SpreadAlong(squares[a], -sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
+      reach.Or(reach_back);
+      if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+      // Cells covered by the plates reached (dilation distributes over the union).
       reach.DilateRun(n, sv);
       reach.DilateRun(n, su);
-      tmp = reach;
-      tmp.AndNot(out);
-      if (tmp.any()) {
-        out.Or(reach);
-        changed = true;
-      }
+      if (out.OrChanged(reach)) changed = true;
     }
   }
 

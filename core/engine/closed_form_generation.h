@@ -24,7 +24,7 @@ struct ClosedFormOutcome {
   int64_t new_outside = 0;     // voxels the fixed point turned outside
   int64_t incursions = 0;      // hard or frozen voxels where the incursion test fired
   int64_t guard_refusals = 0;  // new outside voxels the topology guard refused
-  int rounds = 0;              // rounds of the six orientation sweeps
+  int rounds = 0;              // rounds of the sweeps (three axes, both fronts at once)
   int64_t checks = 0;          // incursion and guard tests run on the result
 };
 
@@ -35,8 +35,9 @@ struct ClosedFormWorkspace {
   // it fired.
   bool Ensure(const VoxelGrid& grid, const CancelToken* cancel);
   FlatBitset interior, out0, free_cells, out, back, reach, tmp, fresh, was_boundary_soft,
-      adjacent, converted, near_hard, scratch_a, scratch_b;
-  FlatBitset squares[6];
+      adjacent, converted, near_hard, scratch_a;
+  FlatBitset scratch_b;  // sized on first use: only the doubling spread (x stride < 64) needs it
+  FlatBitset squares[3];  // per plate axis
 };
 
 // Runs generation `options` (plate size, label, guard and incursion settings) in closed form

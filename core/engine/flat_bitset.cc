@@ -20,6 +20,15 @@ void FlatBitset::AndNot(const FlatBitset& o) {
   for (size_t w = 0; w < words_.size(); ++w) words_[w] &= ~o.words_[w];
 }
 
+bool FlatBitset::OrChanged(const FlatBitset& o) {
+  uint64_t added = 0;
+  for (size_t w = 0; w < words_.size(); ++w) {
+    added |= o.words_[w] & ~words_[w];
+    words_[w] |= o.words_[w];
+  }
+  return added != 0;
+}
+
 uint64_t FlatBitset::WordAt(int64_t pos) const {
   const int64_t n = static_cast<int64_t>(words_.size());
   // Floor division so that negative positions work.
@@ -85,6 +94,18 @@ void CombineShifted(uint64_t* dst, const uint64_t* src, int64_t words, int64_t k
   for (; w < words; ++w) dst[w] = op(dst[w], get(w));
 }
 
+uint64_t ReverseBits(uint64_t x) {
+  x = ((x >> 1) & 0x5555555555555555ull) | ((x & 0x5555555555555555ull) << 1);
+  x = ((x >> 2) & 0x3333333333333333ull) | ((x & 0x3333333333333333ull) << 2);
+  x = ((x >> 4) & 0x0f0f0f0f0f0f0f0full) | ((x & 0x0f0f0f0f0f0f0f0full) << 4);
+  return __builtin_bswap64(x);
+}
+
+// Within one word, the bits of `run` from each run's lowest seed upwards, `seed` a subset of
+// `run`: adding a seed bit carries through the ones above it up to the end of its run and
+// clears them; seeds above the lowest one in a run are set again by the addition itself.
+uint64_t FillUp(uint64_t run, uint64_t seed) { return (run & ~(run + seed)) | seed; }
+
 }  // namespace
 
 void FlatBitset::AssignShifted(const FlatBitset& other, int64_t k) {
@@ -131,9 +152,32 @@ void FlatBitset::SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_le
     }
     return;
   }
+  if (mag == 1) {
+    // Along x: one pass, the top (resp. bottom) result bit of a word seeding the next word.
+    const uint64_t* run_w = run.words_.data();
+    uint64_t* w = words_.data();
+    uint64_t carry = 0;
+    if (step > 0) {
+      for (int64_t k = 0; k < n; ++k) {
+        const uint64_t r = run_w[k];
+        w[k] = FillUp(r, w[k] | (carry & r & 1));
+        carry = w[k] >> 63;
+      }
+    } else {
+      // Downwards is upwards in bit-reversed words, taken from the highest word down.
+      for (int64_t k = n - 1; k >= 0; --k) {
+        const uint64_t r = ReverseBits(run_w[k]);
+        const uint64_t filled = FillUp(r, ReverseBits(w[k]) | (carry & r & 1));
+        w[k] = ReverseBits(filled);
+        carry = filled >> 63;
+      }
+    }
+    return;
+  }
   // Kogge-Stone: `prefix` is the AND of `run` over the last len cells.
   FlatBitset& prefix = scratch_a;
   FlatBitset& tmp = scratch_b;
+  tmp.EnsureSize(bits_);
   prefix = run;
   for (int64_t len = 1; len < max_len; len *= 2) {
     tmp.AssignShifted(*this, len * step);

@@ -13,7 +13,8 @@ PlaceFinder::PlaceFinder(const VoxelGrid& grid) : grid_(grid) {}
 bool PlaceFinder::EnsurePlanes(const CancelToken* cancel) {
   const int64_t nv = grid_.size();
   if (interior_.bits() != nv) interior_ = InteriorPlane(grid_);
-  FlatBitset* planes[] = {&out_, &boundary_soft_, &free_, &candidates_, &ok_, &covered_};
+  FlatBitset* planes[] = {&out_,    &boundary_soft_, &free_,       &candidates_, &covered_,
+                          &free_z_, &out_z_,         &free_square_, &out_square_};
   for (FlatBitset* plane : planes) {
     if (cancel != nullptr && cancel->cancelled()) return false;
     plane->EnsureSize(nv);
@@ -41,25 +42,50 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   free_cells.Or(bs);
   free_cells.And(interior_);
 
+  // The anchors of orientation (a, sign) are the plates whose cells are free and whose back
+  // side is outside: E = erode_uv(free & out shifted by sign along a), and erosion commutes
+  // with the shift and distributes over &, so E = erode_uv(free) & (erode_uv(out) shifted).
+  // Both signs share the two eroded planes, and the three axes share the erosions along z
+  // and along x: 8 erosion runs instead of 12.
+  FlatBitset& free_z = free_z_;
+  FlatBitset& out_z = out_z_;
+  free_z = free_cells;
+  free_z.ErodeRun(n, st[2]);
+  out_z = out;
+  out_z.ErodeRun(n, st[2]);
+  if (cancelled()) return std::nullopt;
+  FlatBitset& free_x = free_cells;  // eroded in place: the plain planes are not needed again
+  FlatBitset& out_x = out;
+  free_x.ErodeRun(n, st[0]);
+  out_x.ErodeRun(n, st[0]);
+
   FlatBitset& candidates = candidates_;
-  FlatBitset& ok = ok_;
   FlatBitset& covered = covered_;
   candidates.clear_all();
-  for (int o = 0; o < 6; ++o) {
+  for (int a = 0; a < 3; ++a) {
     if (cancelled()) return std::nullopt;
-    const Orientation& orient = kOrientations[o];
-    // ok[i] = free[i] & out[i - sign * stride_a]: the back side is outside.
-    ok.AssignShifted(out, orient.sign * st[orient.axis]);
-    ok.And(free_cells);
-    FlatBitset& e = anchors_[o];
-    e = ok;
-    e.ErodeRun(n, st[orient.u_axis()]);
-    e.ErodeRun(n, st[orient.v_axis()]);
-    FlatBitset& dc = anchor_rows_[o];
-    dc = e;
-    dc.DilateRun(n, st[orient.v_axis()]);
-    covered = dc;
-    covered.DilateRun(n, st[orient.u_axis()]);
+    // In-plane axes (u, v) = (y, z), (z, x), (x, y): one more erosion of a shared plane.
+    const bool from_z = a != 2;
+    const int last_axis = a == 1 ? 0 : 1;
+    FlatBitset& free_square = free_square_;
+    FlatBitset& out_square = out_square_;
+    free_square = from_z ? free_z : free_x;
+    free_square.ErodeRun(n, st[last_axis]);
+    out_square = from_z ? out_z : out_x;
+    out_square.ErodeRun(n, st[last_axis]);
+    const int64_t su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
+    for (int o = 2 * a; o < 2 * a + 2; ++o) {
+      FlatBitset& e = anchors_[o];
+      e = free_square;
+      e.AndShifted(out_square, kOrientations[o].sign * st[a]);
+      FlatBitset& dc = anchor_rows_[o];
+      dc = e;
+      dc.DilateRun(n, sv);
+    }
+    // Dilation distributes over the union of both signs' plates.
+    covered = anchor_rows_[2 * a];
+    covered.Or(anchor_rows_[2 * a + 1]);
+    covered.DilateRun(n, su);
     covered.And(bs);
     candidates.Or(covered);
   }

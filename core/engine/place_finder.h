@@ -47,7 +47,8 @@ class PlaceFinder {
   std::array<FlatBitset, 6> anchors_;    // E_o: lowest corner of each fitting plate
   std::array<FlatBitset, 6> anchor_rows_;  // DC_o: E_o dilated along v by n
   // Work planes, allocated once: a snapshot per pass must not pay for fresh pages.
-  FlatBitset out_, boundary_soft_, free_, candidates_, ok_, covered_;
+  FlatBitset out_, boundary_soft_, free_, candidates_, covered_, free_z_, out_z_, free_square_,
+      out_square_;
 };
 
 }  // namespace membrane

@@ -41,14 +41,22 @@ uint64_t FlatBitset::WordAt(int64_t pos) const {
 }
 
 void FlatBitset::AndShiftedDown(int64_t k) {
-  // Ascending: word w reads words >= w, which are not yet written.
+  // Ascending: word w reads words >= w, which are not yet written. The main loop has no
+  // bounds checks (this and OrShiftedUp are most of the word operations of a shrink).
   const int64_t n = static_cast<int64_t>(words_.size());
   const int64_t q = k >> 6;
   const int r = static_cast<int>(k & 63);
-  for (int64_t w = 0; w < n; ++w) {
-    const uint64_t lo = w + q < n ? words_[static_cast<size_t>(w + q)] : 0;
-    const uint64_t hi = (r != 0 && w + q + 1 < n) ? words_[static_cast<size_t>(w + q + 1)] : 0;
-    words_[static_cast<size_t>(w)] &= r == 0 ? lo : (lo >> r) | (hi << (64 - r));
+  uint64_t* w = words_.data();
+  const int64_t main_end = std::max<int64_t>(0, n - q - 1);
+  if (r == 0) {
+    for (int64_t i = 0; i < main_end; ++i) w[i] &= w[i + q];
+  } else {
+    for (int64_t i = 0; i < main_end; ++i) w[i] &= (w[i + q] >> r) | (w[i + q + 1] << (64 - r));
+  }
+  for (int64_t i = main_end; i < n; ++i) {
+    const uint64_t lo = i + q < n ? w[i + q] : 0;
+    const uint64_t hi = (r != 0 && i + q + 1 < n) ? w[i + q + 1] : 0;
+    w[i] &= r == 0 ? lo : (lo >> r) | (hi << (64 - r));
   }
 }
 
@@ -57,11 +65,20 @@ void FlatBitset::OrShiftedUp(int64_t k) {
   const int64_t n = static_cast<int64_t>(words_.size());
   const int64_t q = k >> 6;
   const int r = static_cast<int>(k & 63);
-  for (int64_t w = n - 1; w >= 0; --w) {
-    const int64_t src = w - q;
-    const uint64_t hi = src >= 0 ? words_[static_cast<size_t>(src)] : 0;
-    const uint64_t lo = (r != 0 && src - 1 >= 0) ? words_[static_cast<size_t>(src - 1)] : 0;
-    words_[static_cast<size_t>(w)] |= r == 0 ? hi : (hi << r) | (lo >> (64 - r));
+  uint64_t* w = words_.data();
+  const int64_t main_begin = std::min<int64_t>(n, q + 1);  // i - q - 1 >= 0 from here
+  if (r == 0) {
+    for (int64_t i = n - 1; i >= main_begin; --i) w[i] |= w[i - q];
+  } else {
+    for (int64_t i = n - 1; i >= main_begin; --i) {
+      w[i] |= (w[i - q] << r) | (w[i - q - 1] >> (64 - r));
+    }
+  }
+  for (int64_t i = main_begin - 1; i >= 0; --i) {
+    const int64_t src = i - q;
+    const uint64_t hi = src >= 0 ? w[src] : 0;
+    const uint64_t lo = (r != 0 && src - 1 >= 0) ? w[src - 1] : 0;
+    w[i] |= r == 0 ? hi : (hi << r) | (lo >> (64 - r));
   }
 }
 

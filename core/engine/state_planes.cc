@@ -1,7 +1,6 @@
 #include "core/engine/state_planes.h"
 
 #include <algorithm>
-#include <bit>
 #include <cstring>
 
 namespace membrane {
@@ -36,6 +35,10 @@ constexpr uint64_t Matches(uint64_t x) {
     return hard_bits & ~outside;
   }
 }
+
+// Number of bytes with the top bit set, for a word with no other bits (no popcnt instruction
+// on the baseline x86-64 target: std::popcount is a library call there).
+constexpr int CountTopBits(uint64_t m) { return static_cast<int>(((m >> 7) * kOnes) >> 56); }
 
 // Packs the top bits of the eight bytes into one byte, byte k giving bit k.
 constexpr uint64_t PackTopBits(uint64_t m) { return ((m >> 7) * 0x0102040810204080ull) >> 56; }
@@ -97,8 +100,8 @@ StateCounts CountStates(absl::Span<const VoxelState> states) {
   int64_t i = 0;
   for (; i + 8 <= nv; i += 8) {
     const uint64_t x = Load8(s + i);
-    c.outside += std::popcount(Matches<StatePredicate::kOutside>(x));
-    c.boundary_soft += std::popcount(Matches<StatePredicate::kBoundarySoft>(x));
+    c.outside += CountTopBits(Matches<StatePredicate::kOutside>(x));
+    c.boundary_soft += CountTopBits(Matches<StatePredicate::kBoundarySoft>(x));
   }
   for (; i < nv; ++i) {
     c.outside += IsOutside(s[i]);

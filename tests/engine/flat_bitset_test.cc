@@ -65,6 +65,31 @@ TEST(FlatBitsetSpreadAlong, RunsCrossWordBordersAlongX) {
   EXPECT_FALSE(down.test(59));
 }
 
+TEST(FlatBitsetRuns, ErodeAndDilateMatchTheirDefinitions) {
+  // Strides within a word, across words, a multiple of 64, and past the end of the set.
+  for (int64_t stride : {1, 5, 64, 70, 300, 5000}) {
+    for (int n : {1, 2, 3, 7, 8, 20}) {
+      const int64_t bits = 3000;
+      // Dense for the erosion, sparse for the dilation, so that both answers vary.
+      const FlatBitset a = RandomBits(bits, 0.9, static_cast<uint32_t>(stride * 31 + n));
+      const FlatBitset b = RandomBits(bits, 0.08, static_cast<uint32_t>(stride * 17 + n));
+      FlatBitset eroded = a, dilated = b;
+      eroded.ErodeRun(n, stride);
+      dilated.DilateRun(n, stride);
+      for (int64_t i = 0; i < bits; ++i) {
+        bool all = true, any = false;
+        for (int j = 0; j < n; ++j) {
+          const int64_t up = i + j * stride, down = i - j * stride;
+          all = all && up < bits && a.test(up);
+          any = any || (down >= 0 && b.test(down));
+        }
+        ASSERT_EQ(eroded.test(i), all) << "stride " << stride << " n " << n << " bit " << i;
+        ASSERT_EQ(dilated.test(i), any) << "stride " << stride << " n " << n << " bit " << i;
+      }
+    }
+  }
+}
+
 TEST(FlatBitsetOrChanged, ReportsOnlyNewBits) {
   FlatBitset a(300), b(300);
   a.set(5);

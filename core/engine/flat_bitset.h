@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/engine/huge_page_allocator.h"
+
 namespace membrane {
 
 class FlatBitset {
@@ -80,7 +82,7 @@ class FlatBitset {
   uint64_t WordAt(int64_t pos) const;
 
   int64_t bits_ = 0;
-  std::vector<uint64_t> words_;
+  std::vector<uint64_t, HugePageAllocator<uint64_t>> words_;
 };
 
 }  // namespace membrane

@@ -5,7 +5,6 @@
 #include "absl/status/status.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/incursion_test.h"
-#include "core/engine/interior_plane.h"
 #include "core/engine/plate.h"
 #include "core/engine/state_planes.h"
 #include "core/engine/topology_guard.h"
@@ -17,27 +16,32 @@ bool Cancelled(const CancelToken* cancel) { return cancel != nullptr && cancel->
 
 }  // namespace
 
-bool ClosedFormWorkspace::Ensure(const VoxelGrid& grid, const CancelToken* cancel) {
-  if (interior.bits() != grid.size()) interior = InteriorPlane(grid);
-  FlatBitset* planes[] = {&out0, &free_cells, &out, &back, &reach, &tmp, &fresh,
-                          &was_boundary_soft, &adjacent, &converted, &near_hard, &scratch_a,
-                          &squares[0], &squares[1], &squares[2]};
-  for (FlatBitset* plane : planes) {
-    if (Cancelled(cancel)) return false;
-    plane->EnsureSize(grid.size());
-  }
-  return true;
-}
+// The planes of a closed-form generation, named.
+struct ClosedFormPlanes {
+  explicit ClosedFormPlanes(WorkPlanes& p)
+      : interior(p.interior()), out0(p.plane(0)), free_cells(p.plane(1)), out(p.plane(2)),
+        back(p.plane(3)), reach(p.plane(4)), tmp(p.plane(5)), fresh(p.plane(6)),
+        was_boundary_soft(p.plane(7)), adjacent(p.plane(8)), converted(p.plane(9)),
+        near_hard(p.plane(10)), scratch_a(p.plane(11)), scratch_b(p.plane(12)),
+        squares{&p.plane(13), &p.plane(14), &p.plane(5)} {}
+  const FlatBitset& interior;
+  FlatBitset &out0, &free_cells, &out, &back, &reach, &tmp, &fresh, &was_boundary_soft,
+      &adjacent, &converted, &near_hard, &scratch_a, &scratch_b;
+  FlatBitset* squares[3];  // per plate axis; the third reuses `tmp` once it is free
+};
 
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
                                                           const ChainOptions& options,
                                                           const CancelToken* cancel,
-                                                          ClosedFormWorkspace& ws) {
+                                                          WorkPlanes& planes) {
   const int n = options.plate_size;
   const auto st = grid.strides();
   const int64_t strides[3] = {st[0], st[1], st[2]};
   ClosedFormOutcome outcome;
-  if (!ws.Ensure(grid, cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+  if (!planes.Ensure(kClosedFormPlanes, cancel)) {
+    return absl::CancelledError("cancelled in a closed-form generation");
+  }
+  ClosedFormPlanes ws(planes);
 
   const FlatBitset& interior = ws.interior;
   FlatBitset& out0 = ws.out0;
@@ -53,19 +57,19 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   out = out0;
   // Anchors of all-free n x n squares per plate axis (both signs share them): the erosion
   // along z serves the x and y axes, so four runs make the three planes.
-  FlatBitset* squares = ws.squares;
+  FlatBitset* const* squares = ws.squares;
   FlatBitset& eroded_z = ws.tmp;
   eroded_z = free_cells;
   eroded_z.ErodeRun(n, st[2]);
-  squares[0] = eroded_z;
-  squares[0].ErodeRun(n, st[1]);  // x: in-plane y, z
-  squares[1] = eroded_z;
-  squares[1].ErodeRun(n, st[0]);  // y: in-plane z, x
-  squares[2] = free_cells;
-  squares[2].ErodeRun(n, st[0]);
-  squares[2].ErodeRun(n, st[1]);  // z: in-plane x, y
+  *squares[0] = eroded_z;
+  squares[0]->ErodeRun(n, st[1]);  // x: in-plane y, z
+  *squares[1] = eroded_z;
+  squares[1]->ErodeRun(n, st[0]);  // y: in-plane z, x
+  *squares[2] = free_cells;         // overwrites eroded_z, no longer needed
+  squares[2]->ErodeRun(n, st[0]);
+  squares[2]->ErodeRun(n, st[1]);  // z: in-plane x, y
   bool square_fits[3];
-  for (int a = 0; a < 3; ++a) square_fits[a] = squares[a].any();
+  for (int a = 0; a < 3; ++a) square_fits[a] = squares[a]->any();
   if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
 
   FlatBitset& back = ws.back;
@@ -87,12 +91,12 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
       back.ErodeRun(n, sv);
       if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
       // Dig straight on: a plate whose back plate was contracted fits if its square is free.
-      reach = squares[a];
+      reach = *squares[a];
       reach.AndShifted(back, sa);
-      reach.SpreadAlong(squares[a], sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
-      reach_back = squares[a];
+      reach.SpreadAlong(*squares[a], sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
+      reach_back = *squares[a];
       reach_back.AndShifted(back, -sa);
-      reach_back.SpreadAlong(squares[a], -sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
+      reach_back.SpreadAlong(*squares[a], -sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
       reach.Or(reach_back);
       if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
       // Cells covered by the plates reached (dilation distributes over the union).

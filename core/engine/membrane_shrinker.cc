@@ -11,6 +11,7 @@
 #include "core/engine/place_finder.h"
 #include "core/engine/silhouette.h"
 #include "core/engine/state_planes.h"
+#include "core/engine/work_planes.h"
 
 namespace membrane {
 namespace {
@@ -98,9 +99,9 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
 
   const std::vector<int> sizes = PlateSizes(data_dims, options.schedule, options.initial_plate);
   const std::vector<int> labels = GenerationLabels(static_cast<int>(sizes.size()));
-  PlaceFinder finder(grid);
+  WorkPlanes planes(grid);  // allocated at the first snapshot or closed form
+  PlaceFinder finder(grid, planes);
   ChainRunner runner(grid);
-  ClosedFormWorkspace closed_form_planes;  // allocated at the first closed form
   // One pass over the states per generation: the counts after one are the counts before the
   // next (on a 70 M voxel grid each pass costs as much as a small generation).
   StateCounts counts = CountStates(grid.states());
@@ -124,7 +125,7 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     if (options.closed_form_min_plate > 0 && sizes[g] >= options.closed_form_min_plate &&
         sizes[g] >= options.guard_tunnel_min_plate) {
       absl::StatusOr<ClosedFormOutcome> closed =
-          RunClosedFormGeneration(grid, chain, cancel, closed_form_planes);
+          RunClosedFormGeneration(grid, chain, cancel, planes);
       if (!closed.ok()) return CancelledIn(stats);
       done = stats.closed_form = closed->applied;
       stats.closed_form_rounds = closed->rounds;

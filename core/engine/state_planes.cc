@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cstring>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace membrane {
 namespace {
 
@@ -49,16 +53,42 @@ uint64_t Load8(const VoxelState* p) {
   return x;
 }
 
+#if defined(__SSE2__)
+// Sixteen voxels at once: the predicate as a byte mask, its top bits gathered by movemask.
+template <StatePredicate P>
+uint64_t Matches16(const VoxelState* p) {
+  const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+  __m128i m;
+  if constexpr (P == StatePredicate::kOutside) {
+    m = x;
+  } else if constexpr (P == StatePredicate::kBoundarySoft) {
+    m = _mm_cmpeq_epi8(x, _mm_set1_epi8(kBoundarySoft));
+  } else if constexpr (P == StatePredicate::kFree) {
+    m = _mm_or_si128(x, _mm_cmpeq_epi8(_mm_and_si128(x, _mm_set1_epi8(kHardnessMask)),
+                                       _mm_setzero_si128()));
+  } else {
+    const __m128i outside_and_hardness = _mm_set1_epi8(static_cast<char>(kOutsideBit | kHardnessMask));
+    m = _mm_cmpeq_epi8(_mm_and_si128(x, outside_and_hardness), _mm_set1_epi8(kInsideHard));
+  }
+  return static_cast<uint64_t>(static_cast<uint32_t>(_mm_movemask_epi8(m)));
+}
+#endif
+
 template <StatePredicate P>
 void Fill(const VoxelState* s, int64_t nv, uint64_t* words, int64_t word_begin, int64_t word_end) {
-  // Words covering whole state bytes: eight loads each. The last partial word bit by bit.
+  // Words covering whole state bytes in blocks; the last partial word bit by bit.
   const int64_t full_words = std::min(word_end, nv / 64);
   int64_t w = word_begin;
   for (; w < full_words; ++w) {
     const VoxelState* p = s + w * 64;
+#if defined(__SSE2__)
+    words[w] = Matches16<P>(p) | Matches16<P>(p + 16) << 16 | Matches16<P>(p + 32) << 32 |
+               Matches16<P>(p + 48) << 48;
+#else
     uint64_t bits = 0;
     for (int k = 0; k < 8; ++k) bits |= PackTopBits(Matches<P>(Load8(p + 8 * k))) << (8 * k);
     words[w] = bits;
+#endif
   }
   for (; w < word_end; ++w) {
     uint64_t bits = 0;

@@ -40,6 +40,11 @@ constexpr uint64_t Matches(uint64_t x) {
   }
 }
 
+// The top bit of every byte that is a boundary state: outside bit clear, boundary bit set.
+constexpr uint64_t BoundaryBytes(uint64_t x) {
+  return ZeroBytes((x & (kOnes * (kOutsideBit | kBoundaryBit))) ^ (kOnes * kBoundaryBit));
+}
+
 // Number of bytes with the top bit set, for a word with no other bits (no popcnt instruction
 // on the baseline x86-64 target: std::popcount is a library call there).
 constexpr int CountTopBits(uint64_t m) { return static_cast<int>(((m >> 7) * kOnes) >> 56); }
@@ -131,13 +136,20 @@ StateCounts CountStates(absl::Span<const VoxelState> states) {
   for (; i + 8 <= nv; i += 8) {
     const uint64_t x = Load8(s + i);
     c.outside += CountTopBits(Matches<StatePredicate::kOutside>(x));
+    c.boundary += CountTopBits(BoundaryBytes(x));
     c.boundary_soft += CountTopBits(Matches<StatePredicate::kBoundarySoft>(x));
   }
   for (; i < nv; ++i) {
     c.outside += IsOutside(s[i]);
+    c.boundary += IsBoundary(s[i]);
     c.boundary_soft += IsBoundarySoft(s[i]);
   }
   return c;
+}
+
+int FirstBoundaryOfEight(const VoxelState* states) {
+  const uint64_t b = BoundaryBytes(Load8(states));
+  return b == 0 ? 8 : __builtin_ctzll(b) / 8;  // little-endian load: byte k is bits 8k..
 }
 
 }  // namespace membrane

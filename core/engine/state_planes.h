@@ -37,11 +37,16 @@ inline void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate p
 
 struct StateCounts {
   int64_t outside = 0;
+  int64_t boundary = 0;       // IsBoundary, any hardness
   int64_t boundary_soft = 0;  // boundary, soft, not frozen
 };
 
-// Counts the outside and the boundary soft voxels of `states` in one pass.
+// Counts the outside, boundary and boundary soft voxels of `states` in one pass.
 StateCounts CountStates(absl::Span<const VoxelState> states);
+
+// Index (0..7) of the first of the eight states at `states` that is a boundary voxel
+// (IsBoundary), or 8 when none is: lets a scan for boundary voxels skip eight at a time.
+int FirstBoundaryOfEight(const VoxelState* states);
 
 }  // namespace membrane
 

@@ -68,14 +68,33 @@ TEST(StatePlanes, WordRangeLeavesOtherWordsAlone) {
 
 TEST(StatePlanes, CountsOutsideAndBoundarySoft) {
   const std::vector<VoxelState> s = RandomStates(1003, 3);
-  int64_t outside = 0, boundary_soft = 0;
+  int64_t outside = 0, boundary = 0, boundary_soft = 0;
   for (VoxelState v : s) {
     outside += IsOutside(v);
+    boundary += IsBoundary(v);
     boundary_soft += IsBoundarySoft(v);
   }
   const StateCounts c = CountStates(s);
   EXPECT_EQ(c.outside, outside);
+  EXPECT_EQ(c.boundary, boundary);
   EXPECT_EQ(c.boundary_soft, boundary_soft);
+}
+
+TEST(StatePlanes, FirstBoundaryOfEightFindsTheFirstBoundaryState) {
+  const std::vector<VoxelState> all = AllStates();
+  for (VoxelState b : {kBoundarySoft, kBoundaryHard, kBoundaryFrozen}) {
+    for (int at = 0; at < 8; ++at) {
+      // Every non-boundary state before `at`, a boundary state at `at`, anything after.
+      VoxelState eight[8];
+      for (int k = 0; k < 8; ++k) eight[k] = k == at ? b : k > at ? kBoundarySoft : kInsideHard;
+      EXPECT_EQ(FirstBoundaryOfEight(eight), at);
+    }
+  }
+  for (VoxelState v : all) {
+    if (IsBoundary(v)) continue;
+    VoxelState eight[8] = {v, v, v, v, v, v, v, v};
+    EXPECT_EQ(FirstBoundaryOfEight(eight), 8) << "state " << int(v);
+  }
 }
 
 }  // namespace

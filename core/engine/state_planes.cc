@@ -133,6 +133,30 @@ StateCounts CountStates(absl::Span<const VoxelState> states) {
   const VoxelState* s = states.data();
   const int64_t nv = static_cast<int64_t>(states.size());
   int64_t i = 0;
+#if defined(__SSE2__)
+  // Byte counters (a match is -1, subtracted), summed into 64-bit lanes before they overflow.
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i position_bits = _mm_set1_epi8(static_cast<char>(kOutsideBit | kBoundaryBit));
+  const __m128i boundary_bit = _mm_set1_epi8(kBoundaryBit);
+  while (i + 16 <= nv) {
+    __m128i outside = zero, boundary = zero, boundary_soft = zero;
+    for (int block = 0; block < 255 && i + 16 <= nv; ++block, i += 16) {
+      const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + i));
+      outside = _mm_sub_epi8(outside, _mm_cmplt_epi8(x, zero));
+      boundary = _mm_sub_epi8(boundary,
+                              _mm_cmpeq_epi8(_mm_and_si128(x, position_bits), boundary_bit));
+      boundary_soft = _mm_sub_epi8(boundary_soft, _mm_cmpeq_epi8(x, boundary_bit));
+    }
+    auto sum = [&](__m128i bytes) {
+      const __m128i lanes = _mm_sad_epu8(bytes, zero);
+      return static_cast<int64_t>(_mm_cvtsi128_si64(lanes)) +
+             static_cast<int64_t>(_mm_cvtsi128_si64(_mm_unpackhi_epi64(lanes, lanes)));
+    };
+    c.outside += sum(outside);
+    c.boundary += sum(boundary);
+    c.boundary_soft += sum(boundary_soft);
+  }
+#endif
   for (; i + 8 <= nv; i += 8) {
     const uint64_t x = Load8(s + i);
     c.outside += CountTopBits(Matches<StatePredicate::kOutside>(x));

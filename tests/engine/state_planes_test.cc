@@ -80,6 +80,15 @@ TEST(StatePlanes, CountsOutsideAndBoundarySoft) {
   EXPECT_EQ(c.boundary_soft, boundary_soft);
 }
 
+TEST(StatePlanes, CountsDoNotWrapOnLongRunsOfOneState) {
+  // Long enough for byte-wide counters to wrap many times if they were never summed.
+  const std::vector<VoxelState> outside(100003, OutsideState(5));
+  EXPECT_EQ(CountStates(outside).outside, 100003);
+  const std::vector<VoxelState> soft(100003, kBoundarySoft);
+  EXPECT_EQ(CountStates(soft).boundary_soft, 100003);
+  EXPECT_EQ(CountStates(soft).boundary, 100003);
+}
+
 TEST(StatePlanes, FirstBoundaryOfEightFindsTheFirstBoundaryState) {
   const std::vector<VoxelState> all = AllStates();
   for (VoxelState b : {kBoundarySoft, kBoundaryHard, kBoundaryFrozen}) {

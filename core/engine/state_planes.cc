@@ -49,8 +49,10 @@ constexpr uint64_t BoundaryBytes(uint64_t x) {
 // on the baseline x86-64 target: std::popcount is a library call there).
 constexpr int CountTopBits(uint64_t m) { return static_cast<int>(((m >> 7) * kOnes) >> 56); }
 
+#if !defined(__SSE2__)
 // Packs the top bits of the eight bytes into one byte, byte k giving bit k.
 constexpr uint64_t PackTopBits(uint64_t m) { return ((m >> 7) * 0x0102040810204080ull) >> 56; }
+#endif
 
 uint64_t Load8(const VoxelState* p) {
   uint64_t x;

@@ -29,13 +29,15 @@ struct ClosedFormOutcome {
   int64_t checks = 0;          // incursion and guard tests run on the result
 };
 
+// Work planes a closed-form generation uses (see RunClosedFormGeneration).
+inline constexpr int kClosedFormPlanes = 15;
+
 // Runs generation `options` (plate size, label, guard and incursion settings) in closed form
 // on `grid`. On success the grid is the generation's result, the same as the chains would
 // give (every new outside voxel has generation options.generation_label; inside voxels next to
 // them became boundary). Cancelled when `cancel` fires (the grid is then restored).
 // `planes` must have been made for this grid; the first kClosedFormPlanes of them are
 // overwritten.
-inline constexpr int kClosedFormPlanes = 15;
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
                                                           const ChainOptions& options,
                                                           const CancelToken* cancel,

@@ -5,8 +5,8 @@
 #include "absl/status/status.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/incursion_test.h"
-#include "core/engine/interior_plane.h"
 #include "core/engine/plate.h"
+#include "core/engine/state_planes.h"
 #include "core/engine/topology_guard.h"
 
 namespace membrane {
@@ -14,95 +14,95 @@ namespace {
 
 bool Cancelled(const CancelToken* cancel) { return cancel != nullptr && cancel->cancelled(); }
 
-// Bit-planes of one state predicate, 64 voxels at a time.
-template <typename Pred>
-void FillPlane(const VoxelGrid& grid, Pred pred, FlatBitset& plane) {
-  const VoxelState* s = grid.states().data();
-  uint64_t* w = plane.words();
-  const int64_t nv = grid.size();
-  for (int64_t k = 0; k < static_cast<int64_t>(plane.word_count()); ++k) {
-    const int64_t begin = k * 64, end = std::min<int64_t>(begin + 64, nv);
-    uint64_t bits = 0;
-    for (int64_t i = begin; i < end; ++i) bits |= static_cast<uint64_t>(pred(s[i])) << (i - begin);
-    w[k] = bits;
-  }
-}
-
 }  // namespace
 
-bool ClosedFormWorkspace::Ensure(const VoxelGrid& grid, const CancelToken* cancel) {
-  if (interior.bits() != grid.size()) interior = InteriorPlane(grid);
-  FlatBitset* planes[] = {&out0, &free_cells, &out, &back, &reach, &tmp, &fresh,
-                          &was_boundary_soft, &adjacent, &converted, &near_hard, &scratch_a,
-                          &scratch_b, &squares[0], &squares[1], &squares[2], &squares[3],
-                          &squares[4], &squares[5]};
-  for (FlatBitset* plane : planes) {
-    if (Cancelled(cancel)) return false;
-    plane->EnsureSize(grid.size());
-  }
-  return true;
-}
+// The planes of a closed-form generation, named.
+struct ClosedFormPlanes {
+  explicit ClosedFormPlanes(WorkPlanes& p)
+      : interior(p.interior()), out0(p.plane(0)), free_cells(p.plane(1)), out(p.plane(2)),
+        back(p.plane(3)), reach(p.plane(4)), tmp(p.plane(5)), fresh(p.plane(6)),
+        was_boundary_soft(p.plane(7)), adjacent(p.plane(8)), converted(p.plane(9)),
+        near_hard(p.plane(10)), scratch_a(p.plane(11)), scratch_b(p.plane(12)),
+        squares{&p.plane(13), &p.plane(14), &p.plane(5)} {}
+  const FlatBitset& interior;
+  FlatBitset &out0, &free_cells, &out, &back, &reach, &tmp, &fresh, &was_boundary_soft,
+      &adjacent, &converted, &near_hard, &scratch_a, &scratch_b;
+  FlatBitset* squares[3];  // per plate axis; the third reuses `tmp` once it is free
+};
 
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
                                                           const ChainOptions& options,
                                                           const CancelToken* cancel,
-                                                          ClosedFormWorkspace& ws) {
+                                                          WorkPlanes& planes) {
   const int n = options.plate_size;
   const auto st = grid.strides();
   const int64_t strides[3] = {st[0], st[1], st[2]};
   ClosedFormOutcome outcome;
-  if (!ws.Ensure(grid, cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+  if (!planes.Ensure(kClosedFormPlanes, cancel)) {
+    return absl::CancelledError("cancelled in a closed-form generation");
+  }
+  ClosedFormPlanes ws(planes);
 
   const FlatBitset& interior = ws.interior;
   FlatBitset& out0 = ws.out0;
-  FillPlane(grid, [](VoxelState s) { return IsOutside(s); }, out0);
+  FillStatePlane(grid.states(), StatePredicate::kOutside, out0);
   if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
   // FREE: cells a plate may cover: no hard or frozen voxel, off the array border. Inside
   // and boundary only prune no-op plates (fast-shrink.md section 4), so both count.
   FlatBitset& free_cells = ws.free_cells;
-  FillPlane(grid, [](VoxelState s) { return !IsHardOrFrozen(s); }, free_cells);
+  FillStatePlane(grid.states(), StatePredicate::kFree, free_cells);
   free_cells.And(interior);
 
   FlatBitset& out = ws.out;
   out = out0;
-  FlatBitset* squares = ws.squares;  // anchors of all-free n x n squares, per orientation
-  for (int o = 0; o < 6; ++o) {
-    if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
-    const Orientation& orient = kOrientations[o];
-    squares[o] = free_cells;
-    squares[o].ErodeRun(n, st[orient.u_axis()]);
-    squares[o].ErodeRun(n, st[orient.v_axis()]);
-  }
+  // Anchors of all-free n x n squares per plate axis (both signs share them): the erosion
+  // along z serves the x and y axes, so four runs make the three planes.
+  FlatBitset* const* squares = ws.squares;
+  FlatBitset& eroded_z = ws.tmp;
+  eroded_z = free_cells;
+  eroded_z.ErodeRun(n, st[2]);
+  *squares[0] = eroded_z;
+  squares[0]->ErodeRun(n, st[1]);  // x: in-plane y, z
+  *squares[1] = eroded_z;
+  squares[1]->ErodeRun(n, st[0]);  // y: in-plane z, x
+  *squares[2] = free_cells;         // overwrites eroded_z, no longer needed
+  squares[2]->ErodeRun(n, st[0]);
+  squares[2]->ErodeRun(n, st[1]);  // z: in-plane x, y
+  bool square_fits[3];
+  for (int a = 0; a < 3; ++a) square_fits[a] = squares[a]->any();
+  if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+
   FlatBitset& back = ws.back;
   FlatBitset& reach = ws.reach;
-  FlatBitset& tmp = ws.tmp;
+  FlatBitset& reach_back = ws.fresh;  // free until the apply step
   for (bool changed = true; changed && outcome.rounds < 64;) {
     changed = false;
     ++outcome.rounds;
-    for (int o = 0; o < 6; ++o) {
+    for (int a = 0; a < 3; ++a) {
+      if (!square_fits[a]) continue;
       if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
-      const Orientation& orient = kOrientations[o];
-      const int64_t sa = st[orient.axis], su = st[orient.u_axis()], sv = st[orient.v_axis()];
-      // Plates whose back square (one layer behind, against the front) is all outside.
+      const int64_t sa = st[a], su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
+      // Plates whose back square (one layer behind, against the front) is all outside. Both
+      // fronts of the axis use the same eroded plane: a step of the least fixed point only
+      // needs its plates valid for the current `out`, so updating `out` after both (rather
+      // than between them) reaches the same fixed point.
       back = out;
       back.ErodeRun(n, su);
-      if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
       back.ErodeRun(n, sv);
-      reach = squares[o];
-      reach.AndShifted(back, orient.sign * sa);
-      // Dig straight on: a plate whose back plate was contracted fits if its square is free.
-      reach.SpreadAlong(squares[o], orient.sign * sa, grid.dim(orient.axis), ws.scratch_a,
-                        ws.scratch_b);
       if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
-      // Cells covered by the plates reached.
+      // Dig straight on: a plate whose back plate was contracted fits if its square is free.
+      reach = *squares[a];
+      reach.AndShifted(back, sa);
+      reach.SpreadAlong(*squares[a], sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
+      reach_back = *squares[a];
+      reach_back.AndShifted(back, -sa);
+      reach_back.SpreadAlong(*squares[a], -sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
+      reach.Or(reach_back);
+      if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+      // Cells covered by the plates reached (dilation distributes over the union).
       reach.DilateRun(n, sv);
       reach.DilateRun(n, su);
-      tmp = reach;
-      tmp.AndNot(out);
-      if (tmp.any()) {
-        out.Or(reach);
-        changed = true;
-      }
+      if (out.OrChanged(reach)) changed = true;
     }
   }
 
@@ -117,7 +117,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     return outcome;
   }
   FlatBitset& was_boundary_soft = ws.was_boundary_soft;
-  FillPlane(grid, [](VoxelState s) { return s == kBoundarySoft; }, was_boundary_soft);
+  FillStatePlane(grid.states(), StatePredicate::kBoundarySoft, was_boundary_soft);
   FlatBitset& adjacent = ws.adjacent;
   adjacent = fresh;
   adjacent.Dilate26(strides, ws.scratch_a);
@@ -150,7 +150,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   });
   if (!cancelled && outcome.incursions == 0 && options.topology_guard) {
     FlatBitset& near_hard = ws.near_hard;
-    FillPlane(grid, [](VoxelState v) { return IsHard(v); }, near_hard);
+    FillStatePlane(grid.states(), StatePredicate::kHard, near_hard);
     near_hard.Dilate26(strides, ws.scratch_a);
     near_hard.And(fresh);
     const GuardOptions guard = GuardOptionsOf(options);

@@ -16,6 +16,7 @@
 #include "core/engine/contraction.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/voxel_grid.h"
+#include "core/engine/work_planes.h"
 
 namespace membrane {
 
@@ -24,30 +25,23 @@ struct ClosedFormOutcome {
   int64_t new_outside = 0;     // voxels the fixed point turned outside
   int64_t incursions = 0;      // hard or frozen voxels where the incursion test fired
   int64_t guard_refusals = 0;  // new outside voxels the topology guard refused
-  int rounds = 0;              // rounds of the six orientation sweeps
+  int rounds = 0;              // rounds of the sweeps (three axes, both fronts at once)
   int64_t checks = 0;          // incursion and guard tests run on the result
 };
 
-// Bit-planes reused across generations: a 70 M voxel grid needs 9 MB per plane, and fresh
-// pages for a dozen of them every generation cost more than the word operations.
-struct ClosedFormWorkspace {
-  // Allocates the planes for `grid` unless done, polling `cancel` between them; false when
-  // it fired.
-  bool Ensure(const VoxelGrid& grid, const CancelToken* cancel);
-  FlatBitset interior, out0, free_cells, out, back, reach, tmp, fresh, was_boundary_soft,
-      adjacent, converted, near_hard, scratch_a, scratch_b;
-  FlatBitset squares[6];
-};
+// Work planes a closed-form generation uses (see RunClosedFormGeneration).
+inline constexpr int kClosedFormPlanes = 15;
 
 // Runs generation `options` (plate size, label, guard and incursion settings) in closed form
 // on `grid`. On success the grid is the generation's result, the same as the chains would
 // give (every new outside voxel has generation options.generation_label; inside voxels next to
 // them became boundary). Cancelled when `cancel` fires (the grid is then restored).
-// `workspace` must have been made for this grid.
+// `planes` must have been made for this grid; the first kClosedFormPlanes of them are
+// overwritten.
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
                                                           const ChainOptions& options,
                                                           const CancelToken* cancel,
-                                                          ClosedFormWorkspace& workspace);
+                                                          WorkPlanes& planes);
 
 }  // namespace membrane
 

@@ -2,6 +2,15 @@
 
 #include <algorithm>
 
+// Tells the compiler that a loop has no dependence that forbids vectorizing it.
+#if defined(__clang__)
+#define MEMBRANE_IVDEP _Pragma("clang loop vectorize(assume_safety)")
+#elif defined(__GNUC__)
+#define MEMBRANE_IVDEP _Pragma("GCC ivdep")
+#else
+#define MEMBRANE_IVDEP
+#endif
+
 namespace membrane {
 
 void FlatBitset::clear_all() { std::fill(words_.begin(), words_.end(), 0); }
@@ -20,6 +29,15 @@ void FlatBitset::AndNot(const FlatBitset& o) {
   for (size_t w = 0; w < words_.size(); ++w) words_[w] &= ~o.words_[w];
 }
 
+bool FlatBitset::OrChanged(const FlatBitset& o) {
+  uint64_t added = 0;
+  for (size_t w = 0; w < words_.size(); ++w) {
+    added |= o.words_[w] & ~words_[w];
+    words_[w] |= o.words_[w];
+  }
+  return added != 0;
+}
+
 uint64_t FlatBitset::WordAt(int64_t pos) const {
   const int64_t n = static_cast<int64_t>(words_.size());
   // Floor division so that negative positions work.
@@ -32,14 +50,22 @@ uint64_t FlatBitset::WordAt(int64_t pos) const {
 }
 
 void FlatBitset::AndShiftedDown(int64_t k) {
-  // Ascending: word w reads words >= w, which are not yet written.
+  // Ascending: word w reads words >= w, which are not yet written. The main loop has no
+  // bounds checks (this and OrShiftedUp are most of the word operations of a shrink).
   const int64_t n = static_cast<int64_t>(words_.size());
   const int64_t q = k >> 6;
   const int r = static_cast<int>(k & 63);
-  for (int64_t w = 0; w < n; ++w) {
-    const uint64_t lo = w + q < n ? words_[static_cast<size_t>(w + q)] : 0;
-    const uint64_t hi = (r != 0 && w + q + 1 < n) ? words_[static_cast<size_t>(w + q + 1)] : 0;
-    words_[static_cast<size_t>(w)] &= r == 0 ? lo : (lo >> r) | (hi << (64 - r));
+  uint64_t* w = words_.data();
+  const int64_t main_end = std::max<int64_t>(0, n - q - 1);
+  if (r == 0) {
+    for (int64_t i = 0; i < main_end; ++i) w[i] &= w[i + q];
+  } else {
+    for (int64_t i = 0; i < main_end; ++i) w[i] &= (w[i + q] >> r) | (w[i + q + 1] << (64 - r));
+  }
+  for (int64_t i = main_end; i < n; ++i) {
+    const uint64_t lo = i + q < n ? w[i + q] : 0;
+    const uint64_t hi = (r != 0 && i + q + 1 < n) ? w[i + q + 1] : 0;
+    w[i] &= r == 0 ? lo : (lo >> r) | (hi << (64 - r));
   }
 }
 
@@ -48,11 +74,25 @@ void FlatBitset::OrShiftedUp(int64_t k) {
   const int64_t n = static_cast<int64_t>(words_.size());
   const int64_t q = k >> 6;
   const int r = static_cast<int>(k & 63);
-  for (int64_t w = n - 1; w >= 0; --w) {
-    const int64_t src = w - q;
-    const uint64_t hi = src >= 0 ? words_[static_cast<size_t>(src)] : 0;
-    const uint64_t lo = (r != 0 && src - 1 >= 0) ? words_[static_cast<size_t>(src - 1)] : 0;
-    words_[static_cast<size_t>(w)] |= r == 0 ? hi : (hi << r) | (lo >> (64 - r));
+  uint64_t* w = words_.data();
+  const int64_t main_begin = std::min<int64_t>(n, q + 1);  // i - q - 1 >= 0 from here
+  // Every read is at or below the word written and every earlier write above it, so loading
+  // a block of sources before storing its words is exact: ivdep lets GCC vectorize the
+  // descending loop, which it would not on its own.
+  if (r == 0) {
+MEMBRANE_IVDEP
+    for (int64_t i = n - 1; i >= main_begin; --i) w[i] |= w[i - q];
+  } else {
+MEMBRANE_IVDEP
+    for (int64_t i = n - 1; i >= main_begin; --i) {
+      w[i] |= (w[i - q] << r) | (w[i - q - 1] >> (64 - r));
+    }
+  }
+  for (int64_t i = main_begin - 1; i >= 0; --i) {
+    const int64_t src = i - q;
+    const uint64_t hi = src >= 0 ? w[src] : 0;
+    const uint64_t lo = (r != 0 && src - 1 >= 0) ? w[src - 1] : 0;
+    w[i] |= r == 0 ? hi : (hi << r) | (lo >> (64 - r));
   }
 }
 
@@ -84,6 +124,18 @@ void CombineShifted(uint64_t* dst, const uint64_t* src, int64_t words, int64_t k
   }
   for (; w < words; ++w) dst[w] = op(dst[w], get(w));
 }
+
+uint64_t ReverseBits(uint64_t x) {
+  x = ((x >> 1) & 0x5555555555555555ull) | ((x & 0x5555555555555555ull) << 1);
+  x = ((x >> 2) & 0x3333333333333333ull) | ((x & 0x3333333333333333ull) << 2);
+  x = ((x >> 4) & 0x0f0f0f0f0f0f0f0full) | ((x & 0x0f0f0f0f0f0f0f0full) << 4);
+  return __builtin_bswap64(x);
+}
+
+// Within one word, the bits of `run` from each run's lowest seed upwards, `seed` a subset of
+// `run`: adding a seed bit carries through the ones above it up to the end of its run and
+// clears them; seeds above the lowest one in a run are set again by the addition itself.
+uint64_t FillUp(uint64_t run, uint64_t seed) { return (run & ~(run + seed)) | seed; }
 
 }  // namespace
 
@@ -131,9 +183,32 @@ void FlatBitset::SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_le
     }
     return;
   }
+  if (mag == 1) {
+    // Along x: one pass, the top (resp. bottom) result bit of a word seeding the next word.
+    const uint64_t* run_w = run.words_.data();
+    uint64_t* w = words_.data();
+    uint64_t carry = 0;
+    if (step > 0) {
+      for (int64_t k = 0; k < n; ++k) {
+        const uint64_t r = run_w[k];
+        w[k] = FillUp(r, w[k] | (carry & r & 1));
+        carry = w[k] >> 63;
+      }
+    } else {
+      // Downwards is upwards in bit-reversed words, taken from the highest word down.
+      for (int64_t k = n - 1; k >= 0; --k) {
+        const uint64_t r = ReverseBits(run_w[k]);
+        const uint64_t filled = FillUp(r, ReverseBits(w[k]) | (carry & r & 1));
+        w[k] = ReverseBits(filled);
+        carry = filled >> 63;
+      }
+    }
+    return;
+  }
   // Kogge-Stone: `prefix` is the AND of `run` over the last len cells.
   FlatBitset& prefix = scratch_a;
   FlatBitset& tmp = scratch_b;
+  tmp.EnsureSize(bits_);
   prefix = run;
   for (int64_t len = 1; len < max_len; len *= 2) {
     tmp.AssignShifted(*this, len * step);

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/engine/huge_page_allocator.h"
+
 namespace membrane {
 
 class FlatBitset {
@@ -33,6 +35,8 @@ class FlatBitset {
   void And(const FlatBitset& other);
   void Or(const FlatBitset& other);
   void AndNot(const FlatBitset& other);
+  // this[i] |= other[i]; true when some bit was not set before (one pass for both).
+  bool OrChanged(const FlatBitset& other);
 
   // this[i] &= this[i + k] for k >= 0 (bits past the end read as 0).
   void AndShiftedDown(int64_t k);
@@ -44,8 +48,9 @@ class FlatBitset {
   void AndShifted(const FlatBitset& other, int64_t k);
   // Seeded runs: this[i] |= run[i] & this[i - step] applied in the order of the step, so a
   // set bit spreads along `step` (positive or negative) while `run` stays set. `this` must be a
-  // subset of `run`. One pass when |step| >= 64; doubling (log2 of `max_len` passes) otherwise,
-  // using `scratch_a` and `scratch_b` (same size; their contents are overwritten).
+  // subset of `run`. One pass when |step| >= 64 or |step| == 1 (carries of an addition run
+  // along x); doubling (log2 of `max_len` passes) otherwise, using `scratch_a` and `scratch_b`
+  // (resized when needed; their contents are overwritten).
   void SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_len, FlatBitset& scratch_a,
                    FlatBitset& scratch_b);
   // Dilation by the 3x3x3 box: this[i] |= this[j] for every j 26-adjacent to i, given the
@@ -77,7 +82,7 @@ class FlatBitset {
   uint64_t WordAt(int64_t pos) const;
 
   int64_t bits_ = 0;
-  std::vector<uint64_t> words_;
+  std::vector<uint64_t, HugePageAllocator<uint64_t>> words_;
 };
 
 }  // namespace membrane

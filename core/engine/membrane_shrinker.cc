@@ -10,6 +10,8 @@
 #include "core/engine/contraction.h"
 #include "core/engine/place_finder.h"
 #include "core/engine/silhouette.h"
+#include "core/engine/state_planes.h"
+#include "core/engine/work_planes.h"
 
 namespace membrane {
 namespace {
@@ -18,16 +20,6 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-int64_t CountBoundarySoft(const VoxelGrid& grid) {
-  const auto& s = grid.states();
-  return std::count(s.begin(), s.end(), kBoundarySoft);
-}
-
-int64_t CountOutside(const VoxelGrid& grid) {
-  const auto& s = grid.states();
-  return std::count_if(s.begin(), s.end(), [](VoxelState v) { return IsOutside(v); });
 }
 
 absl::Status CancelledIn(const GenerationStats& g) {
@@ -107,15 +99,18 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
 
   const std::vector<int> sizes = PlateSizes(data_dims, options.schedule, options.initial_plate);
   const std::vector<int> labels = GenerationLabels(static_cast<int>(sizes.size()));
-  PlaceFinder finder(grid);
+  WorkPlanes planes(grid);  // allocated at the first snapshot or closed form
+  PlaceFinder finder(grid, planes);
   ChainRunner runner(grid);
-  ClosedFormWorkspace closed_form_planes;  // allocated at the first closed form
+  // One pass over the states per generation: the counts after one are the counts before the
+  // next (on a 70 M voxel grid each pass costs as much as a small generation).
+  StateCounts counts = CountStates(grid.states());
   for (size_t g = 0; g < sizes.size(); ++g) {
     const Clock::time_point t0 = Clock::now();
     GenerationStats stats;
     stats.generation = static_cast<int>(g) + 1;
     stats.plate_size = sizes[g];
-    stats.soft_voxels = CountBoundarySoft(grid);
+    stats.soft_voxels = counts.boundary_soft;
     ChainOptions chain;
     chain.plate_size = sizes[g];
     chain.generation_label = labels[g];
@@ -124,14 +119,13 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     chain.thick_wall_run = options.thick_wall_run;
     chain.topology_guard = options.topology_guard;
     chain.guard_tunnel_min_plate = options.guard_tunnel_min_plate;
-    const int64_t outside_before = CountOutside(grid);
     bool done = false;
     // The closed form needs the chains' tunnel rule to be the same everywhere (n >= the guard's
     // tunnel size): then only tunnels next to hard voxels are refused, and it checks those.
     if (options.closed_form_min_plate > 0 && sizes[g] >= options.closed_form_min_plate &&
         sizes[g] >= options.guard_tunnel_min_plate) {
       absl::StatusOr<ClosedFormOutcome> closed =
-          RunClosedFormGeneration(grid, chain, cancel, closed_form_planes);
+          RunClosedFormGeneration(grid, chain, cancel, planes);
       if (!closed.ok()) return CancelledIn(stats);
       done = stats.closed_form = closed->applied;
       stats.closed_form_rounds = closed->rounds;
@@ -142,7 +136,9 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
         return s;
       }
     }
-    stats.new_outside = CountOutside(grid) - outside_before;
+    const StateCounts after = CountStates(grid.states());
+    stats.new_outside = after.outside - counts.outside;
+    counts = after;
     stats.seconds = SecondsSince(t0);
     result.generations.push_back(stats);
     if (on_generation) on_generation(stats);

@@ -3,77 +3,77 @@
 #include <algorithm>
 #include <bit>
 
-#include "core/engine/interior_plane.h"
+#include "core/engine/state_planes.h"
 
 namespace membrane {
 
-PlaceFinder::PlaceFinder(const VoxelGrid& grid) : grid_(grid) {}
-
-bool PlaceFinder::EnsurePlanes(const CancelToken* cancel) {
-  const int64_t nv = grid_.size();
-  if (interior_.bits() != nv) interior_ = InteriorPlane(grid_);
-  FlatBitset* planes[] = {&out_, &boundary_soft_, &free_, &candidates_, &ok_, &covered_};
-  for (FlatBitset* plane : planes) {
-    if (cancel != nullptr && cancel->cancelled()) return false;
-    plane->EnsureSize(nv);
-  }
-  for (int o = 0; o < 6; ++o) {
-    if (cancel != nullptr && cancel->cancelled()) return false;
-    anchors_[o].EnsureSize(nv);
-    anchor_rows_[o].EnsureSize(nv);
-  }
-  return true;
-}
+PlaceFinder::PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes)
+    : grid_(grid), planes_(planes) {}
 
 std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelToken* cancel) {
   auto cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
-  if (!EnsurePlanes(cancel)) return std::nullopt;
+  if (!planes_.Ensure(kPlaceFinderPlanes, cancel)) return std::nullopt;
   n_ = n;
-  const int64_t nv = grid_.size();
   const auto st = grid_.strides();
-  FlatBitset& out = out_;
-  FlatBitset& bs = boundary_soft_;
-  {
-    // Build the two planes 64 voxels at a time.
-    const VoxelState* s = grid_.states().data();
-    uint64_t* ow = out.words();
-    uint64_t* bw = bs.words();
-    for (int64_t w = 0; w < static_cast<int64_t>(out.word_count()); ++w) {
-      if ((w & 0xffff) == 0 && cancelled()) return std::nullopt;
-      const int64_t begin = w * 64, end = std::min<int64_t>(begin + 64, nv);
-      uint64_t o = 0, b = 0;
-      for (int64_t i = begin; i < end; ++i) {
-        o |= static_cast<uint64_t>(IsOutside(s[i])) << (i - begin);
-        b |= static_cast<uint64_t>(IsBoundarySoft(s[i])) << (i - begin);
-      }
-      ow[w] = o;
-      bw[w] = b;
-    }
+  // Planes 0-5 hold E_o and 6-11 DC_o until the next snapshot; the rest are work planes.
+  for (int o = 0; o < 6; ++o) {
+    anchors_[o] = &planes_.plane(o);
+    anchor_rows_[o] = &planes_.plane(6 + o);
   }
-  FlatBitset& free_cells = free_;  // outside or boundary soft, off the border
+  FlatBitset& out = planes_.plane(12);
+  FlatBitset& bs = planes_.plane(13);
+  FillStatePlane(grid_.states(), StatePredicate::kOutside, out);
+  FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, bs);
+  if (cancelled()) return std::nullopt;
+  FlatBitset& free_cells = planes_.plane(14);  // outside or boundary soft, off the border
   free_cells = out;
   free_cells.Or(bs);
-  free_cells.And(interior_);
+  free_cells.And(planes_.interior());
 
-  FlatBitset& candidates = candidates_;
-  FlatBitset& ok = ok_;
-  FlatBitset& covered = covered_;
+  // The anchors of orientation (a, sign) are the plates whose cells are free and whose back
+  // side is outside: E = erode_uv(free & out shifted by sign along a), and erosion commutes
+  // with the shift and distributes over &, so E = erode_uv(free) & (erode_uv(out) shifted).
+  // Both signs share the two eroded planes, and the three axes share the erosions along z
+  // and along x: 8 erosion runs instead of 12.
+  FlatBitset& free_z = planes_.plane(15);
+  FlatBitset& out_z = planes_.plane(16);
+  free_z = free_cells;
+  free_z.ErodeRun(n, st[2]);
+  out_z = out;
+  out_z.ErodeRun(n, st[2]);
+  if (cancelled()) return std::nullopt;
+  FlatBitset& free_x = free_cells;  // eroded in place: the plain planes are not needed again
+  FlatBitset& out_x = out;
+  free_x.ErodeRun(n, st[0]);
+  out_x.ErodeRun(n, st[0]);
+
+  FlatBitset& candidates = planes_.plane(17);
+  FlatBitset& covered = planes_.plane(18);
   candidates.clear_all();
-  for (int o = 0; o < 6; ++o) {
+  for (int a = 0; a < 3; ++a) {
     if (cancelled()) return std::nullopt;
-    const Orientation& orient = kOrientations[o];
-    // ok[i] = free[i] & out[i - sign * stride_a]: the back side is outside.
-    ok.AssignShifted(out, orient.sign * st[orient.axis]);
-    ok.And(free_cells);
-    FlatBitset& e = anchors_[o];
-    e = ok;
-    e.ErodeRun(n, st[orient.u_axis()]);
-    e.ErodeRun(n, st[orient.v_axis()]);
-    FlatBitset& dc = anchor_rows_[o];
-    dc = e;
-    dc.DilateRun(n, st[orient.v_axis()]);
-    covered = dc;
-    covered.DilateRun(n, st[orient.u_axis()]);
+    // In-plane axes (u, v) = (y, z), (z, x), (x, y): one more erosion of a shared plane.
+    const bool from_z = a != 2;
+    const int last_axis = a == 1 ? 0 : 1;
+    FlatBitset& free_square = planes_.plane(19);
+    FlatBitset& out_square = planes_.plane(20);
+    free_square = from_z ? free_z : free_x;
+    free_square.ErodeRun(n, st[last_axis]);
+    out_square = from_z ? out_z : out_x;
+    out_square.ErodeRun(n, st[last_axis]);
+    const int64_t su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
+    for (int o = 2 * a; o < 2 * a + 2; ++o) {
+      FlatBitset& e = planes_.plane(o);
+      e = free_square;
+      e.AndShifted(out_square, kOrientations[o].sign * st[a]);
+      FlatBitset& dc = planes_.plane(6 + o);
+      dc = e;
+      dc.DilateRun(n, sv);
+    }
+    // Dilation distributes over the union of both signs' plates.
+    covered = planes_.plane(6 + 2 * a);
+    covered.Or(planes_.plane(6 + 2 * a + 1));
+    covered.DilateRun(n, su);
     covered.And(bs);
     candidates.Or(covered);
   }
@@ -96,9 +96,9 @@ std::optional<Plate> PlaceFinder::PlaceFor(int64_t index) const {
     const Orientation& orient = kOrientations[o];
     const int k = c[orient.axis], u = c[orient.u_axis()], v = c[orient.v_axis()];
     for (int u0 = std::max(u - n_ + 1, 0); u0 <= u; ++u0) {
-      if (!anchor_rows_[o].test(grid_.Index(PlateCell(orient, k, u0, v)))) continue;
+      if (!anchor_rows_[o]->test(grid_.Index(PlateCell(orient, k, u0, v)))) continue;
       for (int v0 = std::max(v - n_ + 1, 0); v0 <= v; ++v0) {
-        if (anchors_[o].test(grid_.Index(PlateCell(orient, k, u0, v0)))) {
+        if (anchors_[o]->test(grid_.Index(PlateCell(orient, k, u0, v0)))) {
           return Plate{o, k, u0, v0};
         }
       }

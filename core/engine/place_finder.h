@@ -16,13 +16,18 @@
 #include "core/engine/flat_bitset.h"
 #include "core/engine/plate.h"
 #include "core/engine/voxel_grid.h"
+#include "core/engine/work_planes.h"
 
 namespace membrane {
 
+inline constexpr int kPlaceFinderPlanes = 21;
+
 class PlaceFinder {
  public:
-  // Keeps a reference to `grid`, which must outlive the finder.
-  explicit PlaceFinder(const VoxelGrid& grid);
+  // Keeps references to `grid` and `planes` (made for that grid), which must outlive the
+  // finder. A snapshot overwrites the first kPlaceFinderPlanes planes; PlaceFor reads them,
+  // so nothing else may write them in between.
+  PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes);
 
   // Takes a snapshot for plate size n >= 1 of the current grid: every plate whose cells are
   // all outside or boundary soft (not frozen), that lies off the array border, and whose back
@@ -37,17 +42,13 @@ class PlaceFinder {
   std::optional<Plate> PlaceFor(int64_t index) const;
 
  private:
-  // Allocates the planes on first use, polling `cancel` between them: fresh pages are slow
-  // enough that twenty planes of a large grid take longer than a cancel may wait.
-  bool EnsurePlanes(const CancelToken* cancel);
-
   const VoxelGrid& grid_;
+  WorkPlanes& planes_;
   int n_ = 0;
-  FlatBitset interior_;                  // not on the array border
-  std::array<FlatBitset, 6> anchors_;    // E_o: lowest corner of each fitting plate
-  std::array<FlatBitset, 6> anchor_rows_;  // DC_o: E_o dilated along v by n
-  // Work planes, allocated once: a snapshot per pass must not pay for fresh pages.
-  FlatBitset out_, boundary_soft_, free_, candidates_, ok_, covered_;
+  // Set by the last snapshot: E_o, the lowest corner of each fitting plate, and DC_o, E_o
+  // dilated along v by n.
+  std::array<const FlatBitset*, 6> anchors_{};
+  std::array<const FlatBitset*, 6> anchor_rows_{};
 };
 
 }  // namespace membrane

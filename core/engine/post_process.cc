@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <deque>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/status/status.h"
 #include "core/engine/local_topology.h"
+#include "core/engine/state_planes.h"
 
 namespace membrane {
 namespace {
@@ -46,8 +48,13 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
   const auto st = grid.strides();
   const int64_t nv = grid.size();
   std::vector<int64_t> targets;
-  for (int64_t i = 0; i < nv; ++i)
-    if (IsInside(grid.at(i)) && IsHard(grid.at(i))) targets.push_back(i);
+  // Inside and hard is exactly the state kInsideHard: memchr jumps between them.
+  const VoxelState* first = grid.states().data();
+  for (const void* p = std::memchr(first, kInsideHard, static_cast<size_t>(nv)); p != nullptr;) {
+    const int64_t i = static_cast<const VoxelState*>(p) - first;
+    targets.push_back(i);
+    p = std::memchr(first + i + 1, kInsideHard, static_cast<size_t>(nv - i - 1));
+  }
   stats.inside_hard_before = static_cast<int64_t>(targets.size());
 
   const int64_t steps[6] = {-st[0], st[0], -st[1], st[1], -st[2], st[2]};
@@ -87,8 +94,7 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
       ++stats.carved_voxels;
     }
   }
-  for (int64_t i = 0; i < nv; ++i)
-    if (IsInside(grid.at(i)) && IsHard(grid.at(i))) ++stats.inside_hard_after;
+  stats.inside_hard_after = std::count(grid.states().begin(), grid.states().end(), kInsideHard);
   stats.bridge_voxels = BridgeMembraneContacts(grid);
   return stats;
 }
@@ -135,18 +141,27 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid) {
   static constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                         {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   const auto& d = grid.dims();
-  auto count_boundary = [&]() {
-    return std::count_if(grid.states().begin(), grid.states().end(),
-                         [](VoxelState v) { return IsBoundary(v); });
-  };
-  const int64_t before = count_boundary();
+  const int64_t before = CountStates(grid.states()).boundary;
+  const VoxelState* s = grid.states().data();
   for (int pass = 0; pass < 3; ++pass) {
     bool changed = false;
     for (int z = 1; z + 1 < d[2]; ++z)
       for (int y = 1; y + 1 < d[1]; ++y)
         for (int x = 1; x + 1 < d[0]; ++x) {
-          const int64_t i = grid.Index(x, y, z);
-          if (!IsBoundary(grid.at(i))) continue;
+          int64_t i = grid.Index(x, y, z);
+          // Most voxels are not on the boundary: skip them eight at a time. The states are
+          // read when the scan gets there, as one by one, so bridges made earlier count.
+          if (x + 8 < d[0]) {
+            const int skip = FirstBoundaryOfEight(s + i);
+            x += skip;
+            if (skip == 8) {
+              --x;  // the loop's ++x
+              continue;
+            }
+            i += skip;
+          } else if (!IsBoundary(s[i])) {
+            continue;
+          }
           for (;;) {
             const uint32_t boundary =
                 NeighbourhoodMask(grid, i, [](VoxelState v) { return IsBoundary(v); });
@@ -169,7 +184,7 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid) {
         }
     if (!changed) break;
   }
-  return count_boundary() - before;
+  return CountStates(grid.states()).boundary - before;
 }
 
 }  // namespace membrane

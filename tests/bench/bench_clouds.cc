@@ -50,6 +50,24 @@ absl::StatusOr<PointCloud> SynthForGridSide(const std::string& shape, int target
   return Synth(shape, points, 1);
 }
 
+absl::StatusOr<PointCloud> SubsampleForGridSide(const PointCloud& cloud, int axis,
+                                                int target_side) {
+  absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
+  if (!bounds.ok()) return bounds.status();
+  const int64_t total = static_cast<int64_t>(cloud.points.size());
+  const int64_t keep = PointsForGridSide(*bounds, axis, target_side);
+  if (keep > total) {
+    return absl::InvalidArgumentError(absl::StrCat("a grid side of ", target_side, " needs ",
+                                                   keep, " points, the cloud has ", total));
+  }
+  PointCloud out;
+  out.points.reserve(static_cast<size_t>(keep));
+  for (int64_t i = 0; i < total; ++i) {
+    if ((i + 1) * keep / total > i * keep / total) out.points.push_back(cloud.points[i]);
+  }
+  return out;
+}
+
 absl::StatusOr<PointCloud> StackedSpheres(int64_t points, int count, double spacing) {
   if (count < 1 || !(spacing > 0.0) || spacing >= 2.0 || points < count) {
     return absl::InvalidArgumentError(absl::StrCat("stacked spheres: count ", count, " spacing ",

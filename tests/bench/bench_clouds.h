@@ -24,6 +24,14 @@ int64_t PointsForGridSide(const Box3d& bounds, int axis, int target_side);
 // shapes: the bounds are measured on a probe cloud and refined once).
 absl::StatusOr<PointCloud> SynthForGridSide(const std::string& shape, int target_side);
 
+// Every k-th point of `cloud`, evenly spread over its order (point i is kept when
+// floor((i + 1) m / N) > floor(i m / N), m of N points kept), with m the point count that makes
+// formula (1) give `target_side` voxels (padding included) along `axis` of the cloud's box:
+// the same object on a coarser grid at the paper's own voxel size. InvalidArgument for a
+// degenerate cloud or when the cloud has too few points for that side.
+absl::StatusOr<PointCloud> SubsampleForGridSide(const PointCloud& cloud, int axis,
+                                                int target_side);
+
 // The tall shape standing in for the paper's Buddha (309 x 745 x 309): `count` unit spheres
 // stacked along y, centres `spacing` apart (1.43 for three spheres: bounding box 2 x 4.86 x 2,
 // the Buddha grid's 1 : 2.41 : 1), sampled uniformly on the surface of their union (each

@@ -1,0 +1,53 @@
+// Bit-planes and counts of voxel-state predicates, eight voxels per step.
+//
+// The place finder and the closed form rebuild planes such as OUT (outside) and BS (boundary
+// soft) from the state bytes of the whole grid several times per generation; bit by bit that
+// cost as much as all their word operations together. Here eight state bytes are tested as one
+// 64-bit word (the predicate lands in each byte's top bit) and the eight results are packed
+// with one multiplication.
+#ifndef MEMBRANE_CORE_ENGINE_STATE_PLANES_H_
+#define MEMBRANE_CORE_ENGINE_STATE_PLANES_H_
+
+#include <cstdint>
+
+#include "absl/types/span.h"
+#include "core/engine/flat_bitset.h"
+#include "core/engine/voxel_state.h"
+
+namespace membrane {
+
+enum class StatePredicate {
+  kOutside,       // IsOutside
+  kBoundarySoft,  // IsBoundarySoft: boundary, soft, not frozen
+  kFree,          // !IsHardOrFrozen: a cell a plate may cover
+  kHard,          // IsHard
+};
+
+// Sets bit i of `plane` to predicate(states[i]) for every i in words [word_begin, word_end)
+// of `plane` (bits past states.size() become 0). `plane` must have states.size() bits and
+// 0 <= word_begin <= word_end <= plane.word_count(); other words are left as they are.
+void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicate,
+                    FlatBitset& plane, int64_t word_begin, int64_t word_end);
+
+// The same over the whole plane.
+inline void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicate,
+                           FlatBitset& plane) {
+  FillStatePlane(states, predicate, plane, 0, static_cast<int64_t>(plane.word_count()));
+}
+
+struct StateCounts {
+  int64_t outside = 0;
+  int64_t boundary = 0;       // IsBoundary, any hardness
+  int64_t boundary_soft = 0;  // boundary, soft, not frozen
+};
+
+// Counts the outside, boundary and boundary soft voxels of `states` in one pass.
+StateCounts CountStates(absl::Span<const VoxelState> states);
+
+// Index (0..7) of the first of the eight states at `states` that is a boundary voxel
+// (IsBoundary), or 8 when none is: lets a scan for boundary voxels skip eight at a time.
+int FirstBoundaryOfEight(const VoxelState* states);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_STATE_PLANES_H_

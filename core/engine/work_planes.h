@@ -1,0 +1,43 @@
+// Bit-planes over a grid's voxels shared by the place finder and the closed form in one shrink.
+//
+// Neither keeps anything in its planes from one generation to the next (a closed-form
+// generation runs before its generation's first snapshot, and a snapshot is taken again at
+// the start of every generation that runs chains), so one set serves both: on the 70 M voxel
+// tall grid that is 16 planes, 140 MB of fresh pages, fewer than with a set each.
+#ifndef MEMBRANE_CORE_ENGINE_WORK_PLANES_H_
+#define MEMBRANE_CORE_ENGINE_WORK_PLANES_H_
+
+#include <memory>
+#include <vector>
+
+#include "core/engine/cancel_token.h"
+#include "core/engine/flat_bitset.h"
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+class WorkPlanes {
+ public:
+  // Keeps a reference to `grid`, which must outlive the planes. Allocates nothing yet.
+  explicit WorkPlanes(const VoxelGrid& grid) : grid_(grid) {}
+
+  // Makes planes 0 .. count-1 and the interior plane available, one bit per voxel of the
+  // grid, allocating the missing ones (zeroed) and polling `cancel` (may be null) between
+  // allocations: false when it fired. A plane's contents are whatever its last user left;
+  // references from plane() stay valid when later calls add planes.
+  bool Ensure(int count, const CancelToken* cancel);
+
+  // Plane i < the largest count ensured so far.
+  FlatBitset& plane(int i) { return *planes_[static_cast<size_t>(i)]; }
+  // Set for every voxel off the outermost array layer (InteriorPlane); valid after Ensure.
+  const FlatBitset& interior() const { return interior_; }
+
+ private:
+  const VoxelGrid& grid_;
+  FlatBitset interior_;
+  std::vector<std::unique_ptr<FlatBitset>> planes_;  // stable addresses
+};
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_WORK_PLANES_H_

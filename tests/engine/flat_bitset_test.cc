@@ -1,0 +1,107 @@
+#include "core/engine/flat_bitset.h"
+
+#include <random>
+#include <vector>
+
+#include "gtest/gtest.h"
+
+namespace membrane {
+namespace {
+
+FlatBitset RandomBits(int64_t n, double density, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::bernoulli_distribution bit(density);
+  FlatBitset b(n);
+  for (int64_t i = 0; i < n; ++i)
+    if (bit(rng)) b.set(i);
+  return b;
+}
+
+// The definition: a seed spreads cell by cell along `step` while `run` stays set.
+std::vector<bool> NaiveSpread(const FlatBitset& seeds, const FlatBitset& run, int64_t step) {
+  const int64_t n = seeds.bits();
+  std::vector<bool> out(static_cast<size_t>(n));
+  for (int64_t i = 0; i < n; ++i) out[i] = seeds.test(i);
+  if (step > 0) {
+    for (int64_t i = step; i < n; ++i) out[i] = out[i] || (run.test(i) && out[i - step]);
+  } else {
+    for (int64_t i = n - 1 + step; i >= 0; --i) out[i] = out[i] || (run.test(i) && out[i - step]);
+  }
+  return out;
+}
+
+TEST(FlatBitsetSpreadAlong, MatchesTheCellByCellDefinitionForEveryStepKind) {
+  // |step| 1: carries along x; 3: doubling; 64 and 70: one pass along y or z.
+  for (int64_t step : {1, -1, 3, -3, 64, -64, 70, -70}) {
+    for (int64_t n : {64, 200, 1000, 4103}) {
+      const FlatBitset run = RandomBits(n, 0.85, static_cast<uint32_t>(n + step * 7 + 100));
+      FlatBitset seeds = RandomBits(n, 0.05, static_cast<uint32_t>(n - step));
+      seeds.And(run);
+      FlatBitset spread = seeds, a(n), b(n);
+      spread.SpreadAlong(run, step, n, a, b);
+      const std::vector<bool> expected = NaiveSpread(seeds, run, step);
+      for (int64_t i = 0; i < n; ++i) {
+        ASSERT_EQ(spread.test(i), expected[i]) << "step " << step << " bits " << n << " bit " << i;
+      }
+    }
+  }
+}
+
+TEST(FlatBitsetSpreadAlong, RunsCrossWordBordersAlongX) {
+  FlatBitset run(256), spread(256), a(256), b(256);
+  for (int64_t i = 60; i < 200; ++i) run.set(i);
+  spread.set(62);
+  spread.SpreadAlong(run, 1, 256, a, b);
+  EXPECT_FALSE(spread.test(61));
+  EXPECT_TRUE(spread.test(62));
+  EXPECT_TRUE(spread.test(199));
+  EXPECT_FALSE(spread.test(200));
+  FlatBitset down(256);
+  down.set(130);
+  down.SpreadAlong(run, -1, 256, a, b);
+  EXPECT_TRUE(down.test(60));
+  EXPECT_TRUE(down.test(130));
+  EXPECT_FALSE(down.test(131));
+  EXPECT_FALSE(down.test(59));
+}
+
+TEST(FlatBitsetRuns, ErodeAndDilateMatchTheirDefinitions) {
+  // Strides within a word, across words, a multiple of 64, and past the end of the set.
+  for (int64_t stride : {1, 5, 64, 70, 300, 5000}) {
+    for (int n : {1, 2, 3, 7, 8, 20}) {
+      const int64_t bits = 3000;
+      // Dense for the erosion, sparse for the dilation, so that both answers vary.
+      const FlatBitset a = RandomBits(bits, 0.9, static_cast<uint32_t>(stride * 31 + n));
+      const FlatBitset b = RandomBits(bits, 0.08, static_cast<uint32_t>(stride * 17 + n));
+      FlatBitset eroded = a, dilated = b;
+      eroded.ErodeRun(n, stride);
+      dilated.DilateRun(n, stride);
+      for (int64_t i = 0; i < bits; ++i) {
+        bool all = true, any = false;
+        for (int j = 0; j < n; ++j) {
+          const int64_t up = i + j * stride, down = i - j * stride;
+          all = all && up < bits && a.test(up);
+          any = any || (down >= 0 && b.test(down));
+        }
+        ASSERT_EQ(eroded.test(i), all) << "stride " << stride << " n " << n << " bit " << i;
+        ASSERT_EQ(dilated.test(i), any) << "stride " << stride << " n " << n << " bit " << i;
+      }
+    }
+  }
+}
+
+TEST(FlatBitsetOrChanged, ReportsOnlyNewBits) {
+  FlatBitset a(300), b(300);
+  a.set(5);
+  a.set(250);
+  b.set(250);
+  EXPECT_FALSE(a.OrChanged(b));
+  b.set(299);
+  EXPECT_TRUE(a.OrChanged(b));
+  EXPECT_TRUE(a.test(299));
+  EXPECT_TRUE(a.test(5));
+  EXPECT_EQ(a.Count(), 3);
+}
+
+}  // namespace
+}  // namespace membrane

@@ -1,0 +1,110 @@
+#include "core/engine/state_planes.h"
+
+#include <random>
+#include <vector>
+
+#include "gtest/gtest.h"
+
+namespace membrane {
+namespace {
+
+// Every state a voxel can hold, outside labels included.
+std::vector<VoxelState> AllStates() {
+  std::vector<VoxelState> s = {kInsideSoft,   kBoundarySoft,  kInsideHard,
+                               kBoundaryHard, kInsideFrozen, kBoundaryFrozen};
+  for (int label = 0; label <= kMaxGenerationLabel; ++label) s.push_back(OutsideState(label));
+  return s;
+}
+
+std::vector<VoxelState> RandomStates(int64_t n, uint32_t seed) {
+  const std::vector<VoxelState> all = AllStates();
+  std::mt19937 rng(seed);
+  std::vector<VoxelState> s(static_cast<size_t>(n));
+  for (VoxelState& v : s) v = all[rng() % all.size()];
+  return s;
+}
+
+bool Expected(StatePredicate p, VoxelState s) {
+  switch (p) {
+    case StatePredicate::kOutside: return IsOutside(s);
+    case StatePredicate::kBoundarySoft: return IsBoundarySoft(s);
+    case StatePredicate::kFree: return !IsHardOrFrozen(s);
+    case StatePredicate::kHard: return IsHard(s);
+  }
+  return false;
+}
+
+constexpr StatePredicate kPredicates[] = {StatePredicate::kOutside, StatePredicate::kBoundarySoft,
+                                          StatePredicate::kFree, StatePredicate::kHard};
+
+TEST(StatePlanes, EveryBitMatchesTheScalarPredicate) {
+  for (int64_t n : {1, 63, 64, 65, 1000, 4099}) {
+    const std::vector<VoxelState> s = RandomStates(n, static_cast<uint32_t>(n));
+    for (StatePredicate p : kPredicates) {
+      FlatBitset plane(n);
+      FillStatePlane(s, p, plane);
+      for (int64_t i = 0; i < n; ++i) {
+        ASSERT_EQ(plane.test(i), Expected(p, s[i])) << "n " << n << " voxel " << i
+                                                    << " state " << int(s[i]);
+      }
+    }
+  }
+}
+
+TEST(StatePlanes, WordRangeLeavesOtherWordsAlone) {
+  const int64_t n = 640;
+  const std::vector<VoxelState> s = RandomStates(n, 7);
+  FlatBitset plane(n);
+  for (size_t w = 0; w < plane.word_count(); ++w) plane.words()[w] = 0xabcdull;
+  FillStatePlane(s, StatePredicate::kOutside, plane, 3, 6);
+  for (int64_t w = 0; w < static_cast<int64_t>(plane.word_count()); ++w) {
+    if (w >= 3 && w < 6) {
+      for (int64_t i = w * 64; i < w * 64 + 64; ++i) ASSERT_EQ(plane.test(i), IsOutside(s[i]));
+    } else {
+      EXPECT_EQ(plane.words()[w], 0xabcdull) << "word " << w;
+    }
+  }
+}
+
+TEST(StatePlanes, CountsOutsideAndBoundarySoft) {
+  const std::vector<VoxelState> s = RandomStates(1003, 3);
+  int64_t outside = 0, boundary = 0, boundary_soft = 0;
+  for (VoxelState v : s) {
+    outside += IsOutside(v);
+    boundary += IsBoundary(v);
+    boundary_soft += IsBoundarySoft(v);
+  }
+  const StateCounts c = CountStates(s);
+  EXPECT_EQ(c.outside, outside);
+  EXPECT_EQ(c.boundary, boundary);
+  EXPECT_EQ(c.boundary_soft, boundary_soft);
+}
+
+TEST(StatePlanes, CountsDoNotWrapOnLongRunsOfOneState) {
+  // Long enough for byte-wide counters to wrap many times if they were never summed.
+  const std::vector<VoxelState> outside(100003, OutsideState(5));
+  EXPECT_EQ(CountStates(outside).outside, 100003);
+  const std::vector<VoxelState> soft(100003, kBoundarySoft);
+  EXPECT_EQ(CountStates(soft).boundary_soft, 100003);
+  EXPECT_EQ(CountStates(soft).boundary, 100003);
+}
+
+TEST(StatePlanes, FirstBoundaryOfEightFindsTheFirstBoundaryState) {
+  const std::vector<VoxelState> all = AllStates();
+  for (VoxelState b : {kBoundarySoft, kBoundaryHard, kBoundaryFrozen}) {
+    for (int at = 0; at < 8; ++at) {
+      // Every non-boundary state before `at`, a boundary state at `at`, anything after.
+      VoxelState eight[8];
+      for (int k = 0; k < 8; ++k) eight[k] = k == at ? b : k > at ? kBoundarySoft : kInsideHard;
+      EXPECT_EQ(FirstBoundaryOfEight(eight), at);
+    }
+  }
+  for (VoxelState v : all) {
+    if (IsBoundary(v)) continue;
+    VoxelState eight[8] = {v, v, v, v, v, v, v, v};
+    EXPECT_EQ(FirstBoundaryOfEight(eight), 8) << "state " << int(v);
+  }
+}
+
+}  // namespace
+}  // namespace membrane

@@ -79,27 +79,27 @@ MeshFans::MeshFans(const TriangleMesh& mesh) {
     const int32_t n = count[v + 1] - count[v];
     const auto* s = step.data() + count[v];
     // Follow a -> b from the first face; a closed fan visits every face once and comes back.
+    // A neighbour met twice as an `a` (or as a `b`) means two fans glued at the vertex.
     bool fan = n >= 3;
-    int32_t a = fan ? s[0].first : -1;
+    for (int32_t i = 0; fan && i < n; ++i)
+      for (int32_t j = i + 1; fan && j < n; ++j)
+        fan = s[i].first != s[j].first && s[i].second != s[j].second;
+    // The steps are then one-to-one, so the walk can only come back to its start: too early
+    // means more than one cycle.
+    const int32_t start = fan ? s[0].first : -1;
+    int32_t a = start;
     for (int32_t visited = 0; fan && visited < n; ++visited) {
+      if (visited > 0 && a == start) {
+        fan = false;
+        break;
+      }
       ring_.push_back(a);
-      int32_t next = -1, matches = 0;
-      for (int32_t j = 0; j < n; ++j)
-        if (s[j].first == a) {
-          next = s[j].second;
-          ++matches;
-        }
-      fan = matches == 1;
-      a = next;
+      int32_t j = 0;
+      while (j < n && s[j].first != a) ++j;
+      fan = j < n;
+      if (fan) a = s[j].second;
     }
-    if (!fan || a != s[0].first) {
-      ring_.resize(begin);
-    } else {
-      // Each neighbour once: a ring through a neighbour twice is two fans glued at it.
-      for (size_t i = begin; fan && i < ring_.size(); ++i)
-        for (size_t j = i + 1; fan && j < ring_.size(); ++j) fan = ring_[i] != ring_[j];
-      if (!fan) ring_.resize(begin);
-    }
+    if (!fan || a != start) ring_.resize(begin);
     start_[v + 1] = static_cast<int32_t>(ring_.size());
   }
 }

@@ -138,5 +138,16 @@ TEST(FanEmbedding, DuplicatedFaceLeavesItsVerticesWithoutFan) {
   for (int32_t v : cube.faces[0]) EXPECT_TRUE(fans.ring(v).empty()) << "vertex " << v;
 }
 
+TEST(FanEmbedding, TwoFansGluedAtAVertexGiveNoRing) {
+  // Two tetrahedra sharing only vertex 0: its faces form two cycles of three.
+  TriangleMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3},
+             {0, 4, 5}, {0, 6, 4}, {0, 5, 6}, {4, 6, 5}};
+  const MeshFans fans(m);
+  EXPECT_TRUE(fans.ring(0).empty());
+  EXPECT_EQ(fans.ring(1).size(), 3u);
+}
+
 }  // namespace
 }  // namespace membrane

@@ -8,7 +8,6 @@
 #include "absl/strings/str_cat.h"
 #include "core/mesh/fan_embedding.h"
 #include "core/mesh/fast_exp.h"
-#include "core/mesh/near_point_cache.h"
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_hash_grid.h"
 #include "core/mesh/self_intersection.h"
@@ -24,9 +23,6 @@ constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
 constexpr int kFullyBackedOff = 3;
 constexpr int kRepairHalvings = 6;
 constexpr int kCancelPollVertices = 4096;
-// How far (voxels) a vertex may move from where its near points were gathered before they are
-// gathered again: most moves after the first round are a small fraction of a voxel.
-constexpr double kNearPointMargin = 0.5;
 
 class Fitter {
  public:
@@ -38,12 +34,9 @@ class Fitter {
         fallback_(fallback),
         rest_(mesh.vertices),
         fans_(mesh),
-        // Queries gather within the search radius plus the cache's margin; cells that size
-        // (27 look-ups) measured cheaper than twice it (8 look-ups, more points scanned) or
-        // half of it (125 look-ups).
-        points_(points, (options.search_radius + kNearPointMargin) * voxel_size),
-        near_(points_, static_cast<int32_t>(mesh.vertices.size()),
-              options.search_radius * voxel_size, kNearPointMargin * voxel_size) {
+        // Cells twice the search radius: 8 look-ups per query (instead of 27) for a few more
+        // points scanned, which is cheaper.
+        points_(points, 2 * options.search_radius * voxel_size) {
     const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
     const int32_t nf = static_cast<int32_t>(mesh.faces.size());
     star_start_.assign(nv + 1, 0);
@@ -135,7 +128,7 @@ class Fitter {
     return count > 0 ? (1.0 / count) * sum : Pos(v);
   }
 
-  Vec3d Target(int32_t v, int round, FitStats& stats) {
+  Vec3d Target(int32_t v, int round, FitStats& stats) const {
     const Vec3d x = Pos(v);
     const Vec3d normal = VertexNormal(v);
     const double inv_2s2 = 1.0 / (2 * options_.sigma * options_.sigma * l_ * l_);
@@ -143,7 +136,7 @@ class Fitter {
     const bool anisotropic = round >= 1;
     PlaneFitAccumulator acc;
     int count = 0;
-    near_.ForEachWithin(v, x, [&](const Point3f& p, double d2) {
+    points_.ForEachWithin(x, options_.search_radius * l_, [&](const Point3f& p, double d2) {
       const Vec3d d = ToVec3d(p) - x;
       double e = d2 * inv_2s2;
       if (anisotropic) {
@@ -350,7 +343,6 @@ class Fitter {
   std::vector<Vec3d> ring_pos_;  // scratch of FanEmbeddedAt
   std::vector<uint8_t> repair_level_;
   const PointHashGrid points_;
-  NearPointCache near_;  // after points_, which it reads
   std::vector<int32_t> star_start_, star_;
   std::vector<Vec3d> rest_normal_;
   double min_double_area_ = 0;

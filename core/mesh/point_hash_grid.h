@@ -25,27 +25,9 @@ class PointHashGrid {
 
   // Calls fn(const Point3f&, double squared_distance) for every point within `radius` of
   // `centre` (model units). Visits every cell the ball's box touches: with `radius` at most
-  // half the cell size, that is 8 cells. Points come in increasing index (see point()).
+  // half the cell size, that is 8 cells.
   template <typename Fn>
   void ForEachWithin(const Vec3d& centre, double radius, Fn fn) const {
-    ForEachIndexWithin(centre, radius,
-                       [&](uint32_t i, double d2) { fn(sorted_[i], d2); });
-  }
-
-  // Appends to `out` the index of every point within `radius` of `centre`, increasing: a
-  // caller that filters such a list later visits the points in ForEachWithin's order, so its
-  // sums come out bit for bit the same.
-  void IndicesWithin(const Vec3d& centre, double radius, std::vector<uint32_t>& out) const {
-    ForEachIndexWithin(centre, radius, [&](uint32_t i, double) { out.push_back(i); });
-  }
-
-  // The point of index `i` < size(); indices follow the cells' order, not the input's.
-  const Point3f& point(uint32_t i) const { return sorted_[i]; }
-  size_t size() const { return sorted_.size(); }
-
- private:
-  template <typename Fn>
-  void ForEachIndexWithin(const Vec3d& centre, double radius, Fn fn) const {
     if (sorted_.empty()) return;
     const double r2 = radius * radius;
     std::array<int64_t, 3> lo, hi;
@@ -62,11 +44,12 @@ class PointHashGrid {
             const Point3f& p = sorted_[i];
             const double dx = p[0] - centre[0], dy = p[1] - centre[1], dz = p[2] - centre[2];
             const double d2 = dx * dx + dy * dy + dz * dz;
-            if (d2 <= r2) fn(i, d2);
+            if (d2 <= r2) fn(p, d2);
           }
         }
   }
 
+ private:
   struct Slot {
     uint64_t key = kEmpty;
     uint32_t begin = 0, end = 0;

@@ -53,11 +53,17 @@ void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companio
     for (size_t i = 0; i < nv; ++i) moved[i] = (*companion)[order[i]];
     *companion = std::move(moved);
   }
-  for (auto& f : mesh.faces)
+  // Faces by their lowest new vertex, stably: a counting sort, linear where a comparison sort
+  // of the faces was a tenth of the surface nets.
+  std::vector<int32_t> start(nv + 1, 0);
+  for (auto& f : mesh.faces) {
     for (int32_t& v : f) v = new_id[v];
-  std::stable_sort(mesh.faces.begin(), mesh.faces.end(), [](const auto& a, const auto& b) {
-    return std::min({a[0], a[1], a[2]}) < std::min({b[0], b[1], b[2]});
-  });
+    ++start[std::min({f[0], f[1], f[2]}) + 1];
+  }
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::array<int32_t, 3>> faces(mesh.faces.size());
+  for (const auto& f : mesh.faces) faces[start[std::min({f[0], f[1], f[2]})]++] = f;
+  mesh.faces = std::move(faces);
 }
 
 }  // namespace membrane

@@ -6,8 +6,10 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/mesh/fan_embedding.h"
+#include "core/mesh/fast_exp.h"
 #include "core/mesh/plane_fit.h"
-#include "core/mesh/point_hash_grid.h"
+#include "core/mesh/point_row_grid.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/triangle_intersection.h"
 #include "core/mesh/vec3.h"
@@ -31,9 +33,10 @@ class Fitter {
         options_(options),
         fallback_(fallback),
         rest_(mesh.vertices),
-        // Cells twice the search radius: 8 look-ups per query (instead of 27) for a few more
-        // points scanned, which is cheaper.
-        points_(points, 2 * options.search_radius * voxel_size) {
+        fans_(mesh),
+        // Cells of half the search radius: a query reads 5x5 rows of 5 cells, a box little
+        // larger than its ball.
+        points_(points, 0.5 * options.search_radius * voxel_size) {
     const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
     const int32_t nf = static_cast<int32_t>(mesh.faces.size());
     star_start_.assign(nv + 1, 0);
@@ -140,7 +143,7 @@ class Fitter {
         const double dn = Dot(d, normal);
         e = (d2 - dn * dn) * inv_2s2 + dn * dn * inv_2n2;
       }
-      acc.Add(d, std::exp(-e));
+      acc.Add(d, ExpNeg(e));
       ++count;
     });
     if (count >= options_.min_points && acc.weight() > 0) {
@@ -170,6 +173,8 @@ class Fitter {
       if (!FaceOk(f, t)) return false;
       new_tri_.push_back(t);
     }
+    // The fast proof first; the pairs one by one only where it does not conclude.
+    if (FanEmbeddedAt(v, c)) return true;
     const int32_t n = end - begin;
     for (int32_t i = 0; i < n; ++i)
       for (int32_t j = i + 1; j < n; ++j)
@@ -177,6 +182,15 @@ class Fitter {
                                    mesh_.faces[star_[begin + j]], new_tri_[j]))
           return false;
     return true;
+  }
+
+  // FanIsEmbedded for v's fan with v at `centre`.
+  bool FanEmbeddedAt(int32_t v, const Vec3d& centre) {
+    const absl::Span<const int32_t> ring = fans_.ring(v);
+    if (ring.empty()) return false;
+    ring_pos_.clear();
+    for (int32_t u : ring) ring_pos_.push_back(Pos(u));
+    return FanIsEmbedded(centre, ring_pos_);
   }
 
   bool FaceOk(int32_t f, const Triangle3d& t) const {
@@ -325,8 +339,10 @@ class Fitter {
   const std::vector<Point3f>* fallback_;
   // Input positions (the clamp's centre); they move only when repaired toward the fallback.
   std::vector<Point3f> rest_;
+  const MeshFans fans_;
+  std::vector<Vec3d> ring_pos_;  // scratch of FanEmbeddedAt
   std::vector<uint8_t> repair_level_;
-  const PointHashGrid points_;
+  const PointRowGrid points_;
   std::vector<int32_t> star_start_, star_;
   std::vector<Vec3d> rest_normal_;
   double min_double_area_ = 0;

@@ -1,0 +1,69 @@
+// A dense grid of the input points, for gathering the points near a surface vertex during the
+// fit (membrane-quality.md recipe 3 step 5: "gather points within 2 voxels").
+#ifndef MEMBRANE_CORE_MESH_POINT_ROW_GRID_H_
+#define MEMBRANE_CORE_MESH_POINT_ROW_GRID_H_
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "absl/types/span.h"
+#include "core/geometry/point_cloud.h"
+#include "core/mesh/vec3.h"
+
+namespace membrane {
+
+// Cubic cells over the points' bounding box, the points stored cell by cell in (z, y, x) order:
+// the cells of one row along x are one contiguous run, so a query reads one run per (y, z) row
+// of its box, with no hashing, and cells small enough that the box holds little more than the
+// ball. Memory: one offset per cell (their count is capped at a few times the points, the
+// cells growing when the box is large and sparse) and a copy of the points.
+class PointRowGrid {
+ public:
+  // `cell` > 0 (model units): the finest cell size; fewer than 2^32 points.
+  PointRowGrid(absl::Span<const Point3f> points, double cell);
+
+  // Calls fn(const Point3f&, double squared_distance) for every point within `radius` of
+  // `centre` (model units), in storage order.
+  template <typename Fn>
+  void ForEachWithin(const Vec3d& centre, double radius, Fn fn) const {
+    if (sorted_.empty()) return;
+    const double r2 = radius * radius;
+    std::array<int64_t, 3> lo, hi;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::max<int64_t>(CellOf(centre[k] - radius, k), 0);
+      hi[k] = std::min<int64_t>(CellOf(centre[k] + radius, k), dims_[k] - 1);
+      if (lo[k] > hi[k]) return;
+    }
+    for (int64_t z = lo[2]; z <= hi[2]; ++z)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y) {
+        const int64_t row = dims_[0] * (y + dims_[1] * z);
+        const uint32_t end = start_[row + hi[0] + 1];
+        for (uint32_t i = start_[row + lo[0]]; i < end; ++i) {
+          const Point3f& p = sorted_[i];
+          const double dx = p[0] - centre[0], dy = p[1] - centre[1], dz = p[2] - centre[2];
+          const double d2 = dx * dx + dy * dy + dz * dz;
+          if (d2 <= r2) fn(p, d2);
+        }
+      }
+  }
+
+ private:
+  int64_t CellOf(double v, int axis) const {
+    // Clamped before the conversion: far-away queries must not overflow.
+    const double c = std::floor((v - lo_[axis]) / cell_);
+    return static_cast<int64_t>(std::fmin(std::fmax(c, -1.0), double(dims_[axis])));
+  }
+
+  double cell_;
+  std::array<double, 3> lo_{0, 0, 0};
+  std::array<int64_t, 3> dims_{0, 0, 0};
+  std::vector<uint32_t> start_;  // per cell, its first point; one more at the end
+  std::vector<Point3f> sorted_;
+};
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_MESH_POINT_ROW_GRID_H_

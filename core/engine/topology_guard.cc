@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/engine/local_topology.h"
+#include "core/engine/tunnel_loop.h"
 
 namespace membrane {
 namespace {
@@ -69,8 +70,15 @@ bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions
     return CountT26(~outside & kAll27 & ~kCentreBit) == 1 ||
            !CutsOffSmallComponent(grid, index, outside, options.min_shell_voxels);
   }
-  // It would open a tunnel: only a big plate, away from the data, may do that (Property 8).
-  return options.plate_size >= options.tunnel_min_plate && hard == 0;
+  // It would open a tunnel: only away from the data (Property 8), and only by a big plate...
+  if (hard != 0) return false;
+  if (options.plate_size >= options.tunnel_min_plate) return true;
+  // ...or where the loop it closes through the outside is short: it then notches a soft bridge
+  // about one voxel thick, the first cut of the split of a sheet between two shells (two
+  // spheres 5-10 voxels apart), which a plate too small for the guard's tunnels must make.
+  // A hole through a wall closes a long loop, around the wall. Measured in engine-decisions.md.
+  return options.short_loop_min_plate > 0 && options.plate_size >= options.short_loop_min_plate &&
+         TunnelClosesShortLoop(grid, index, outside, options.short_loop_steps);
 }
 
 }  // namespace membrane

@@ -92,6 +92,10 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "guard_short_loop_min_plate %d must be >= 0 (0 = off)", o.guard_short_loop_min_plate));
   }
+  if (o.guard_wall_notch_min_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "guard_wall_notch_min_plate %d must be >= 0 (0 = off)", o.guard_wall_notch_min_plate));
+  }
   if (o.guard_short_loop_steps < 1 || o.guard_short_loop_steps > 64) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "guard_short_loop_steps %d is out of range [1, 64]", o.guard_short_loop_steps));
@@ -134,6 +138,7 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     chain.guard_tunnel_min_plate = options.guard_tunnel_min_plate;
     chain.guard_short_loop_min_plate = options.guard_short_loop_min_plate;
     chain.guard_short_loop_steps = options.guard_short_loop_steps;
+    chain.guard_wall_notch_min_plate = options.guard_wall_notch_min_plate;
     const int64_t outside_before = CountOutside(grid);
     bool done = false;
     // The closed form needs the chains' tunnel rule to be the same everywhere (n >= the guard's

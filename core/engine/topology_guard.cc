@@ -70,8 +70,17 @@ bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions
     return CountT26(~outside & kAll27 & ~kCentreBit) == 1 ||
            !CutsOffSmallComponent(grid, index, outside, options.min_shell_voxels);
   }
-  // It would open a tunnel: only away from the data (Property 8), and only by a big plate...
-  if (hard != 0) return false;
+  // It would open a tunnel. Next to the data (Property 8), only the notch of a soft sheet
+  // along a wall: the hard neighbours on one side only (a gap in a wall has them on two), the
+  // loop short (a bridge about one voxel thick is cut), and both sides turned outside by the
+  // same generation (plates cutting one sheet from both sides; a plate that got through a gap
+  // joins a fresh dig to an older outside). Two spheres 2.5-5 voxels apart split this way.
+  if (hard != 0) {
+    return options.wall_notch_min_plate > 0 && options.plate_size >= options.wall_notch_min_plate &&
+           InOneFaceLayer(hard) && SameGenerationAcrossTunnel(grid, index, outside) &&
+           TunnelClosesShortLoop(grid, index, outside, options.short_loop_steps);
+  }
+  // Away from the data, a big plate may open any tunnel...
   if (options.plate_size >= options.tunnel_min_plate) return true;
   // ...or where the loop it closes through the outside is short: it then notches a soft bridge
   // about one voxel thick, the first cut of the split of a sheet between two shells (two

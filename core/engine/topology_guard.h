@@ -16,6 +16,7 @@ struct GuardOptions {
   int min_shell_voxels = 32;   // a split may not cut off a component this small
   int short_loop_min_plate = 3;  // below tunnel_min_plate, short-loop tunnels from this n; 0 = off
   int short_loop_steps = 6;      // ...whose two sides are joined within this many outside steps
+  int wall_notch_min_plate = 2;  // short-loop tunnels beside a wall from this n; 0 = off
 };
 
 // Classifies the non-outside voxel at `index` in its 3x3x3 neighbourhood as if it were removed
@@ -25,7 +26,10 @@ struct GuardOptions {
 // count) among its 26 neighbours; or such a tunnel (no hard neighbour) opened by a plate of at
 // least options.short_loop_min_plate (when > 0) whose two sides are joined by an outside path
 // of at most options.short_loop_steps voxels (TunnelClosesShortLoop): the notch that starts the
-// split of a bridge about one voxel thick. `index` must not lie on the array border.
+// split of a bridge about one voxel thick; or, with hard neighbours, such a short-loop tunnel
+// opened by a plate of at least options.wall_notch_min_plate (when > 0) whose hard neighbours
+// all lie in one face layer of the block (InOneFaceLayer) and whose two sides carry the same
+// generation label (SameGenerationAcrossTunnel). `index` must not lie on the array border.
 bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options);
 
 }  // namespace membrane

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <iterator>
 #include <utility>
 #include <vector>
 
@@ -25,7 +26,39 @@ std::vector<int64_t> IndicesOf(const VoxelGrid& grid, int64_t index, uint32_t ma
   return out;
 }
 
+// The face layer of the block at offset `side` (-1 or +1) along `axis`.
+constexpr uint32_t FaceLayer(int axis, int side) {
+  uint32_t layer = 0;
+  for (int b = 0; b < 27; ++b) {
+    const int offset[3] = {b % 3 - 1, (b / 3) % 3 - 1, b / 9 - 1};
+    if (offset[axis] == side) layer |= 1u << b;
+  }
+  return layer;
+}
+
 }  // namespace
+
+bool InOneFaceLayer(uint32_t mask) {
+  static constexpr uint32_t kLayers[6] = {FaceLayer(0, -1), FaceLayer(0, 1), FaceLayer(1, -1),
+                                          FaceLayer(1, 1),  FaceLayer(2, -1), FaceLayer(2, 1)};
+  mask &= kAll27 & ~kCentreBit;
+  return std::any_of(std::begin(kLayers), std::end(kLayers),
+                     [mask](uint32_t layer) { return (mask & ~layer) == 0; });
+}
+
+bool SameGenerationAcrossTunnel(const VoxelGrid& grid, int64_t index, uint32_t outside) {
+  const auto st = grid.strides();
+  const VoxelState* s = grid.states().data() + index;
+  const uint32_t rest = outside & N18Mask();
+  for (int d = 0; d < 3; ++d) {
+    const int off[3] = {d == 0, d == 1, d == 2};
+    const uint32_t a = 1u << NeighbourBit(-off[0], -off[1], -off[2]);
+    const uint32_t b = 1u << NeighbourBit(off[0], off[1], off[2]);
+    if ((rest & a) == 0 || (rest & b) == 0 || (Flood6(a, rest) & b) != 0) continue;
+    if (GenerationLabel(s[-st[d]]) == GenerationLabel(s[st[d]])) return true;
+  }
+  return false;
+}
 
 bool TunnelClosesShortLoop(const VoxelGrid& grid, int64_t index, uint32_t outside,
                            int max_steps) {

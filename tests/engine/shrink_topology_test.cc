@@ -22,20 +22,8 @@ constexpr int64_t kPoints = 60000;
 class ShapeTopologyTest
     : public ::testing::TestWithParam<std::tuple<std::string, double, double>> {};
 
-// Runs still wrong (open problem A in algorithm-notes; see docs/engine-decisions.md): at 2x the
-// two spheres' gap is 2.5-5 voxels and the tunnel that must open in the soft sheet between them
-// is next to hard voxels, which the topology guard refuses. Skipped by name, so that every
-// other run is asserted and a regression shows.
-bool KnownOpen(const std::string& shape, double factor, double /*density*/) {
-  return shape == "two-spheres" && factor == 2.0;
-}
-
 TEST_P(ShapeTopologyTest, HasTheShapesShellsAndGenus) {
   const auto& [shape, factor, density] = GetParam();
-  if (KnownOpen(shape, factor, density)) {
-    GTEST_SKIP() << "known open (algorithm-notes problem A): " << shape << " at " << factor
-                 << "x, density " << density;
-  }
   const PointCloud cloud = SynthCloud(shape, kPoints, density);
   auto run = ShrinkCloud(cloud, factor);
   ASSERT_TRUE(run.ok()) << run.status();

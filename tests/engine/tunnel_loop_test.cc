@@ -1,5 +1,6 @@
-// The short-loop tunnel rule of the topology guard: a notch beside a one-voxel bridge is allowed
-// to small plates, a hole through a wall is not.
+// The short-loop tunnel rules of the topology guard: a notch beside a one-voxel bridge is allowed
+// to small plates (along a wall too, when one generation is on both sides), a hole through a
+// wall is not.
 #include "core/engine/tunnel_loop.h"
 
 #include "core/engine/local_topology.h"
@@ -48,8 +49,8 @@ TEST(TunnelLoop, NoTunnelIsNoShortLoop) {
   EXPECT_FALSE(TunnelClosesShortLoop(g, v, OutsideMask(g, v), 40));
 }
 
-// The guard allows the notch from short_loop_min_plate on, never next to a hard voxel, and
-// never when the rule is off.
+// The guard allows the notch from short_loop_min_plate on, never beside hard voxels that are
+// not in one face layer, and never when the rule is off.
 TEST(TunnelLoop, GuardAllowsTheNotchFromItsPlateSizeAwayFromHardVoxels) {
   VoxelGrid g = Sheet(4, 17);
   const int64_t v = g.Index(5, kMid, kMid);
@@ -62,13 +63,48 @@ TEST(TunnelLoop, GuardAllowsTheNotchFromItsPlateSizeAwayFromHardVoxels) {
   o.short_loop_min_plate = 0;
   EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
   o.short_loop_min_plate = 3;
-  g.set(Coord{6, kMid, kMid}, kBoundaryHard);
+  g.set(Coord{6, kMid, kMid}, kBoundaryHard);  // hard neighbours in two face layers
+  g.set(Coord{5, kMid + 1, kMid}, kBoundaryHard);
   EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
   // The wide sheet's middle is a hole through a wall: refused below the tunnel size.
   const VoxelGrid wide = Sheet(3, 17);
   EXPECT_FALSE(GuardAllowsRemoval(wide, wide.Index(kMid, kMid, kMid), o));
   o.plate_size = 5;
   EXPECT_TRUE(GuardAllowsRemoval(wide, wide.Index(kMid, kMid, kMid), o));
+}
+
+TEST(TunnelLoop, InOneFaceLayer) {
+  auto bit = [](int dx, int dy, int dz) { return 1u << NeighbourBit(dx, dy, dz); };
+  EXPECT_TRUE(InOneFaceLayer(0));
+  EXPECT_TRUE(InOneFaceLayer(bit(1, -1, 0) | bit(1, 1, 1) | bit(1, 0, -1)));
+  EXPECT_TRUE(InOneFaceLayer(bit(-1, -1, -1) | bit(1, -1, 1)));  // both in y = -1
+  EXPECT_FALSE(InOneFaceLayer(bit(1, 0, 0) | bit(-1, 0, 0)));    // two sides of a gap
+  EXPECT_TRUE(InOneFaceLayer(bit(0, 0, 1) | bit(1, 1, 1)));      // z = +1
+  EXPECT_FALSE(InOneFaceLayer(bit(0, 0, 1) | bit(1, 1, -1)));
+}
+
+// Beside a hard wall (in the face layer y = +1 of the notch voxel), the notch is allowed from
+// wall_notch_min_plate on when both sides carry one generation; not when the generations
+// differ, nor between hard voxels on two sides (a gap in a wall).
+TEST(TunnelLoop, GuardAllowsANotchAlongAWallWhenOneGenerationIsOnBothSides) {
+  VoxelGrid g = Sheet(4, 17);
+  for (int x = 4; x <= 6; ++x) g.set(Coord{x, kMid + 1, kMid}, kBoundaryHard);
+  const int64_t v = g.Index(5, kMid, kMid);
+  GuardOptions o;
+  o.plate_size = 2;
+  EXPECT_TRUE(SameGenerationAcrossTunnel(g, v, OutsideMask(g, v)));
+  EXPECT_TRUE(GuardAllowsRemoval(g, v, o));
+  o.wall_notch_min_plate = 3;
+  EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
+  o.wall_notch_min_plate = 0;
+  EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
+  o.wall_notch_min_plate = 2;
+  g.set(Coord{5, kMid, kMid - 1}, OutsideState(2));
+  EXPECT_FALSE(SameGenerationAcrossTunnel(g, v, OutsideMask(g, v)));
+  EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
+  g.set(Coord{5, kMid, kMid - 1}, OutsideState(1));
+  g.set(Coord{4, kMid - 1, kMid}, kBoundaryHard);  // now hard on both sides in y
+  EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
 }
 
 }  // namespace

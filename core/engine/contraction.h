@@ -30,12 +30,17 @@ struct ChainOptions {
   bool topology_guard = true;  // algorithm-notes 12
   int guard_tunnel_min_plate = 5;  // tunnels away from hard voxels are allowed from this n
   int min_shell_voxels = 32;       // a split may not cut off a component this small
+  int guard_short_loop_min_plate = 3;  // short-loop tunnels from this n (GuardOptions); 0 = off
+  int guard_short_loop_steps = 6;      // ...within this many outside steps
+  int guard_wall_notch_min_plate = 2;  // ...and beside a wall from this n; 0 = off
 };
 
 // kSkipped: the start plate no longer fits (nothing changed).
 // The guard's part of the chain options.
 inline GuardOptions GuardOptionsOf(const ChainOptions& o) {
-  return GuardOptions{o.plate_size, o.guard_tunnel_min_plate, o.min_shell_voxels};
+  return GuardOptions{o.plate_size, o.guard_tunnel_min_plate, o.min_shell_voxels,
+                      o.guard_short_loop_min_plate, o.guard_short_loop_steps,
+                      o.guard_wall_notch_min_plate};
 }
 
 enum class ChainOutcome { kCommitted, kBacktracked, kCancelled, kSkipped };

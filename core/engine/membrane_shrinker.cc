@@ -80,6 +80,18 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "guard_tunnel_min_plate %d must be >= 1", o.guard_tunnel_min_plate));
   }
+  if (o.guard_short_loop_min_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "guard_short_loop_min_plate %d must be >= 0 (0 = off)", o.guard_short_loop_min_plate));
+  }
+  if (o.guard_wall_notch_min_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "guard_wall_notch_min_plate %d must be >= 0 (0 = off)", o.guard_wall_notch_min_plate));
+  }
+  if (o.guard_short_loop_steps < 1 || o.guard_short_loop_steps > 64) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "guard_short_loop_steps %d is out of range [1, 64]", o.guard_short_loop_steps));
+  }
   if (o.thick_wall_run < 1 || o.thick_wall_run > 5) {
     return absl::InvalidArgumentError(
         absl::StrFormat("thick_wall_run %d is out of range [1, 5]", o.thick_wall_run));
@@ -119,6 +131,9 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     chain.thick_wall_run = options.thick_wall_run;
     chain.topology_guard = options.topology_guard;
     chain.guard_tunnel_min_plate = options.guard_tunnel_min_plate;
+    chain.guard_short_loop_min_plate = options.guard_short_loop_min_plate;
+    chain.guard_short_loop_steps = options.guard_short_loop_steps;
+    chain.guard_wall_notch_min_plate = options.guard_wall_notch_min_plate;
     bool done = false;
     // The closed form needs the chains' tunnel rule to be the same everywhere (n >= the guard's
     // tunnel size): then only tunnels next to hard voxels are refused, and it checks those.

@@ -24,6 +24,9 @@ struct ShrinkOptions {
   int thick_wall_run = 3;           // algorithm-notes 15; 1 = the paper's test only
   bool topology_guard = true;       // algorithm-notes 12
   int guard_tunnel_min_plate = 5;   // notes 12: tunnels away from hard voxels from this n
+  int guard_short_loop_min_plate = 3;  // below that, short-loop tunnels from this n; 0 = off
+  int guard_short_loop_steps = 6;      // ...sides joined within this many outside steps
+  int guard_wall_notch_min_plate = 2;  // ...and beside a wall from this n; 0 = off
   int closed_form_min_plate = 8;    // generations with n >= this try the closed form; 0 = never
   bool silhouette_preshrink = false;  // algorithm-notes 3 (Fig. 21b); off by default
   bool connect_inside_hard = true;  // section 7 post-process

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/engine/local_topology.h"
+#include "core/engine/tunnel_loop.h"
 
 namespace membrane {
 namespace {
@@ -69,8 +70,24 @@ bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions
     return CountT26(~outside & kAll27 & ~kCentreBit) == 1 ||
            !CutsOffSmallComponent(grid, index, outside, options.min_shell_voxels);
   }
-  // It would open a tunnel: only a big plate, away from the data, may do that (Property 8).
-  return options.plate_size >= options.tunnel_min_plate && hard == 0;
+  // It would open a tunnel. Next to the data (Property 8), only the notch of a soft sheet
+  // along a wall: the hard neighbours on one side only (a gap in a wall has them on two), the
+  // loop short (a bridge about one voxel thick is cut), and both sides turned outside by the
+  // same generation (plates cutting one sheet from both sides; a plate that got through a gap
+  // joins a fresh dig to an older outside). Two spheres 2.5-5 voxels apart split this way.
+  if (hard != 0) {
+    return options.wall_notch_min_plate > 0 && options.plate_size >= options.wall_notch_min_plate &&
+           InOneFaceLayer(hard) && SameGenerationAcrossTunnel(grid, index, outside) &&
+           TunnelClosesShortLoop(grid, index, outside, options.short_loop_steps);
+  }
+  // Away from the data, a big plate may open any tunnel...
+  if (options.plate_size >= options.tunnel_min_plate) return true;
+  // ...or where the loop it closes through the outside is short: it then notches a soft bridge
+  // about one voxel thick, the first cut of the split of a sheet between two shells (two
+  // spheres 5-10 voxels apart), which a plate too small for the guard's tunnels must make.
+  // A hole through a wall closes a long loop, around the wall. Measured in engine-decisions.md.
+  return options.short_loop_min_plate > 0 && options.plate_size >= options.short_loop_min_plate &&
+         TunnelClosesShortLoop(grid, index, outside, options.short_loop_steps);
 }
 
 }  // namespace membrane

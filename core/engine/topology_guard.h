@@ -14,13 +14,22 @@ struct GuardOptions {
   int plate_size = 1;          // n of the current generation
   int tunnel_min_plate = 5;    // tunnels away from hard voxels are allowed from this n
   int min_shell_voxels = 32;   // a split may not cut off a component this small
+  int short_loop_min_plate = 3;  // below tunnel_min_plate, short-loop tunnels from this n; 0 = off
+  int short_loop_steps = 6;      // ...whose two sides are joined within this many outside steps
+  int wall_notch_min_plate = 2;  // short-loop tunnels beside a wall from this n; 0 = off
 };
 
 // Classifies the non-outside voxel at `index` in its 3x3x3 neighbourhood as if it were removed
 // (T6 of the outside, T26 of the rest): true when it is simple; or a local split whose every
 // part is a 26-component of more than options.min_shell_voxels voxels (mitosis); or a tunnel
 // opened by a plate of at least options.tunnel_min_plate with no HARD voxel (frozen ones do not
-// count) among its 26 neighbours. `index` must not lie on the array border.
+// count) among its 26 neighbours; or such a tunnel (no hard neighbour) opened by a plate of at
+// least options.short_loop_min_plate (when > 0) whose two sides are joined by an outside path
+// of at most options.short_loop_steps voxels (TunnelClosesShortLoop): the notch that starts the
+// split of a bridge about one voxel thick; or, with hard neighbours, such a short-loop tunnel
+// opened by a plate of at least options.wall_notch_min_plate (when > 0) whose hard neighbours
+// all lie in one face layer of the block (InOneFaceLayer) and whose two sides carry the same
+// generation label (SameGenerationAcrossTunnel). `index` must not lie on the array border.
 bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options);
 
 }  // namespace membrane

@@ -22,21 +22,8 @@ constexpr int64_t kPoints = 60000;
 class ShapeTopologyTest
     : public ::testing::TestWithParam<std::tuple<std::string, double, double>> {};
 
-// Runs still wrong (open problem A in algorithm-notes; see docs/engine-decisions.md): the two
-// spheres' gap of 5-10 voxels closes because the topology guard refuses the tunnel that must
-// open in the soft sheet between them before it splits, and one sparse capped sphere keeps a
-// handle. They are skipped by name, so that every other run is asserted and a regression shows.
-bool KnownOpen(const std::string& shape, double factor, double density) {
-  if (shape == "two-spheres") return factor == 2.0 || (density == 1.0 && factor != 1.25);
-  return shape == "capped-sphere" && factor == 1.25 && density == 30.0;
-}
-
 TEST_P(ShapeTopologyTest, HasTheShapesShellsAndGenus) {
   const auto& [shape, factor, density] = GetParam();
-  if (KnownOpen(shape, factor, density)) {
-    GTEST_SKIP() << "known open (algorithm-notes problem A): " << shape << " at " << factor
-                 << "x, density " << density;
-  }
   const PointCloud cloud = SynthCloud(shape, kPoints, density);
   auto run = ShrinkCloud(cloud, factor);
   ASSERT_TRUE(run.ok()) << run.status();

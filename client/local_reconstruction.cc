@@ -38,19 +38,21 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
                                   decode_seconds));
   if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled after decode");
 
+  // The output is written beside the mesh check (and kept whatever the check finds).
+  bool write_failed = false;
+  const MeshDelivery write = [&](const TriangleMesh& mesh) -> absl::Status {
+    absl::Status s = WriteMesh(mesh, params.output, params.draco);
+    write_failed = !s.ok();
+    return s;
+  };
   absl::StatusOr<ReconstructionResult> result =
-      ReconstructCloud(*cloud, params.options, cancel, progress);
-  if (!result.ok()) return WithCommandLineContext(result.status(), params.input);
+      ReconstructCloud(*cloud, params.options, cancel, progress, write);
+  if (!result.ok()) {
+    if (write_failed) return FileErrorAsInvalidInput(result.status());
+    return WithCommandLineContext(result.status(), params.input);
+  }
   ReconstructionReport& report = result->report;
   report.seconds.decode = decode_seconds;
-
-  const Stopwatch encode;
-  progress.Begin(absl::StrCat("encode: writing ", params.output));
-  if (absl::Status s = WriteMesh(result->mesh, params.output, params.draco); !s.ok()) {
-    return FileErrorAsInvalidInput(s);
-  }
-  report.seconds.encode = encode.Seconds();
-  progress.Finish(absl::StrFormat("encode: %s in %.3f s", params.output, report.seconds.encode));
   report.seconds.total = total.Seconds();
   report.peak_rss_bytes = PeakRssBytes();
   return std::move(report);

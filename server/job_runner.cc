@@ -116,22 +116,23 @@ void JobRunner::Run(const std::shared_ptr<Job>& job) const {
   if (absl::Status s = memory_.Reserve(bytes, job->cancel_token()); !s.ok()) return fail(s);
   const Reservation reservation(memory_, bytes);
 
+  // The Draco encoding of the result runs beside the mesh check.
+  std::string mesh;
+  const MeshDelivery encode = [&](const TriangleMesh& m) -> absl::Status {
+    absl::StatusOr<DracoEncoding> encoded = EncodeDracoMesh(m, settings->mesh_encoding);
+    if (!encoded.ok()) return encoded.status();
+    mesh = std::move(encoded->bytes);
+    return absl::OkStatus();
+  };
   absl::StatusOr<ReconstructionResult> result = ReconstructCloud(
-      *cloud, settings->reconstruction, job->cancel_token(), observer);
+      *cloud, settings->reconstruction, job->cancel_token(), observer, encode);
   if (!result.ok()) return fail(WithParameterHint(result.status()));
   ReconstructionReport& report = result->report;
   report.seconds.decode = decode_report.seconds.decode;
-
-  const Stopwatch encode_watch;
-  observer.StageStarted(PipelineStage::kEncode, report);
-  absl::StatusOr<DracoEncoding> mesh = EncodeDracoMesh(result->mesh, settings->mesh_encoding);
-  if (!mesh.ok()) return fail(mesh.status());
-  report.seconds.encode = encode_watch.Seconds();
   report.seconds.total = total.Seconds();
   report.peak_rss_bytes = PeakRssBytes();
-  observer.StageFinished(PipelineStage::kEncode, report.seconds.encode, report);
-  const size_t mesh_bytes = mesh->bytes.size();
-  job->Succeed(StatsJson(report), MeshSummaryOf(report.mesh), std::move(mesh->bytes));
+  const size_t mesh_bytes = mesh.size();
+  job->Succeed(StatsJson(report), MeshSummaryOf(report.mesh), std::move(mesh));
   LogEvent("job_finished", {{"job", job->id()},
                             {"outcome", "OK"},
                             {"points", absl::StrCat(report.points)},

@@ -1,5 +1,6 @@
 #include "core/pipeline/reconstruction_pipeline.h"
 
+#include <thread>
 #include <utility>
 
 #include "absl/status/status.h"
@@ -103,7 +104,8 @@ void Check(const TriangleMesh& mesh, ReconstructionReport& report,
 absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
                                                       const ReconstructionOptions& options,
                                                       const CancelToken& cancel,
-                                                      ReconstructionObserver& observer) {
+                                                      ReconstructionObserver& observer,
+                                                      const MeshDelivery& deliver) {
   const Stopwatch total;
   ReconstructionResult result;
   ReconstructionReport& report = result.report;
@@ -128,7 +130,23 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
   if (!mesh.ok()) return mesh.status();
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
 
-  Check(*mesh, report, observer);
+  if (deliver) {
+    absl::Status delivered;
+    double deliver_seconds = 0;
+    std::thread delivery([&] {
+      const Stopwatch watch;
+      delivered = deliver(*mesh);
+      deliver_seconds = watch.Seconds();
+    });
+    Check(*mesh, report, observer);
+    delivery.join();
+    observer.StageStarted(PipelineStage::kEncode, report);
+    report.seconds.encode = deliver_seconds;
+    observer.StageFinished(PipelineStage::kEncode, report.seconds.encode, report);
+    if (!delivered.ok()) return delivered;
+  } else {
+    Check(*mesh, report, observer);
+  }
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kCheck); !s.ok()) return s;
 
   result.mesh = *std::move(mesh);

@@ -5,6 +5,8 @@
 #ifndef MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_PIPELINE_H_
 #define MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_PIPELINE_H_
 
+#include <functional>
+
 #include "absl/status/statusor.h"
 #include "core/engine/cancel_token.h"
 #include "core/engine/membrane_shrinker.h"
@@ -26,7 +28,8 @@ struct ReconstructionOptions {
 
 struct ReconstructionResult {
   TriangleMesh mesh;  // model units, outward faces
-  // Every measurement but seconds.decode and seconds.encode (left 0 for the caller);
+  // Every measurement but seconds.decode and, without a MeshDelivery, seconds.encode (left 0
+  // for the caller);
   // seconds.total spans the five stages here, peak_rss_bytes is this process's peak so far.
   ReconstructionReport report;
 };
@@ -39,10 +42,18 @@ struct ReconstructionResult {
 // invalid options; ResourceExhausted for a grid over options.voxelize.voxel_budget; Cancelled
 // when `cancel` fires (polled within the shrink, the relaxation and the smooth surface, and
 // between stages, so a cancel takes effect within milliseconds).
+//
+// `deliver`, when given, is the caller's encoding or writing of the mesh: it runs on a thread
+// of its own while the check runs on this one (both only read the mesh), so that neither waits
+// for the other; then the encode stage is reported to `observer` with its own wall seconds in
+// report.seconds.encode (which overlap seconds.check). A non-OK status from it is the
+// reconstruction's.
+using MeshDelivery = std::function<absl::Status(const TriangleMesh& mesh)>;
 absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
                                                       const ReconstructionOptions& options,
                                                       const CancelToken& cancel,
-                                                      ReconstructionObserver& observer);
+                                                      ReconstructionObserver& observer,
+                                                      const MeshDelivery& deliver = nullptr);
 
 }  // namespace membrane
 

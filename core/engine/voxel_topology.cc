@@ -1,7 +1,10 @@
 #include "core/engine/voxel_topology.h"
 
+#include <algorithm>
 #include <array>
-#include <bit>
+#include <cstdint>
+
+#include "core/engine/voxel_runs.h"
 
 namespace membrane {
 namespace {
@@ -51,108 +54,120 @@ constexpr std::array<int, 256> MakeEulerTable() {
 
 constexpr std::array<int, 256> kEulerTable = MakeEulerTable();
 
+// Adds each lattice vertex's kEulerTable entry to the shell of its incident voxels (all of a
+// vertex's non-outside voxels share it, so they are one shell). Only vertices with all 8 voxels
+// in the array count. The 4 voxel rows around a line of vertices along x are piecewise constant
+// between run ends, so each stretch between two run ends adds one table entry times its length
+// and the walk costs O(runs), not O(voxels); inside the solid the stretches are m = 255, which
+// adds 0.
+void AddEulerCharacteristics(const VoxelRuns& shells, std::vector<int64_t>& chi8) {
+  const int nx = shells.dims[0], ny = shells.dims[1], nz = shells.dims[2];
+  constexpr int kNone = INT32_MAX;
+  for (int z = 1; z < nz; ++z)
+    for (int y = 1; y < ny; ++y) {
+      // Row k of the four holds voxels (dy, dz) = (k & 1, k >> 1); in a vertex configuration its
+      // voxel x - 1 is bit 2k and its voxel x is bit 2k + 1.
+      int64_t next[4], last[4];
+      bool active[4] = {false, false, false, false};
+      for (int k = 0; k < 4; ++k) {
+        const int64_t r = shells.Row(y - 1 + (k & 1), z - 1 + (k >> 1));
+        next[k] = shells.row_begin[static_cast<size_t>(r)];
+        last[k] = shells.row_begin[static_cast<size_t>(r) + 1];
+      }
+      if (next[0] == last[0] && next[1] == last[1] && next[2] == last[2] && next[3] == last[3]) continue;
+      int column = 0;   // 4-bit occupancy at voxel x, bit 2k for row k
+      int shell = -1;   // shell of the voxels in `column`, or of the last nonempty one
+      int from = 0;     // `column` holds on voxels [from, x)
+      for (;;) {
+        int x = kNone;
+        for (int k = 0; k < 4; ++k) {
+          if (next[k] == last[k]) continue;
+          const VoxelRun& run = shells.runs[static_cast<size_t>(next[k])];
+          x = std::min(x, active[k] ? run.end : run.begin);
+        }
+        if (x == kNone) break;
+        if (column != 0) {
+          // Vertices strictly inside [from, x) see `column` on both sides.
+          const int lo = std::max(from + 1, 1), hi = std::min(x - 1, nx - 1);
+          if (lo <= hi) {
+            chi8[static_cast<size_t>(shell)] +=
+                static_cast<int64_t>(hi - lo + 1) * kEulerTable[static_cast<size_t>(column | column << 1)];
+          }
+        }
+        int after = 0;
+        for (int k = 0; k < 4; ++k) {
+          if (next[k] == last[k]) continue;
+          const VoxelRun& run = shells.runs[static_cast<size_t>(next[k])];
+          if (active[k] && run.end == x) {
+            active[k] = false;
+            ++next[k];
+          } else if (!active[k] && run.begin == x) {
+            active[k] = true;
+          }
+          if (active[k]) {
+            after |= 1 << (2 * k);
+            shell = run.component;
+          }
+        }
+        // Vertex x sees `column` at voxel x - 1 and `after` at voxel x.
+        if (x >= 1 && x <= nx - 1) {
+          chi8[static_cast<size_t>(shell)] += kEulerTable[static_cast<size_t>(column | after << 1)];
+        }
+        column = after;
+        from = x;
+      }
+    }
+}
+
+// Outside components not reaching the array border. Matches a 6-flood seeded from the outside
+// voxels next to the border layer that never enters the border layer: components of outside
+// voxels off the border, those with a voxel next to the border layer not counted.
+int CountCavities(const VoxelRuns& shells) {
+  VoxelRuns outside = OutsideRunsOffBorder(shells);
+  const int components = LabelRunComponents(outside, RunAdjacency::kFace);
+  const int nx = outside.dims[0], ny = outside.dims[1], nz = outside.dims[2];
+  std::vector<uint8_t> open(static_cast<size_t>(components), 0);
+  for (int z = 1; z < nz - 1; ++z)
+    for (int y = 1; y < ny - 1; ++y) {
+      const int64_t r = outside.Row(y, z);
+      const bool edge_row = y == 1 || z == 1 || y == ny - 2 || z == nz - 2;
+      for (int64_t i = outside.row_begin[static_cast<size_t>(r)]; i < outside.row_begin[static_cast<size_t>(r) + 1];
+           ++i) {
+        const VoxelRun& run = outside.runs[static_cast<size_t>(i)];
+        if (edge_row || run.begin == 1 || run.end == nx - 1) open[static_cast<size_t>(run.component)] = 1;
+      }
+    }
+  int cavities = 0;
+  for (uint8_t o : open) cavities += o == 0;
+  return cavities;
+}
+
 }  // namespace
 
 int LabelShells(const VoxelGrid& grid, std::vector<int32_t>& label) {
-  const int64_t nv = grid.size();
-  const auto st = grid.strides();
-  label.assign(static_cast<size_t>(nv), -1);
-  int64_t offsets[26];
-  int k = 0;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx)
-        if (dx != 0 || dy != 0 || dz != 0) offsets[k++] = dx * st[0] + dy * st[1] + dz * st[2];
-  const VoxelState* s = grid.states().data();
-  int shells = 0;
-  std::vector<int64_t> stack;
-  for (int64_t i = 0; i < nv; ++i) {
-    if (IsOutside(s[i]) || label[static_cast<size_t>(i)] >= 0) continue;
-    label[static_cast<size_t>(i)] = shells;
-    stack.push_back(i);
-    while (!stack.empty()) {
-      const int64_t v = stack.back();
-      stack.pop_back();
-      for (int64_t off : offsets) {
-        const int64_t w = v + off;
-        if (IsOutside(s[w]) || label[static_cast<size_t>(w)] >= 0) continue;
-        label[static_cast<size_t>(w)] = shells;
-        stack.push_back(w);
-      }
+  VoxelRuns shells = NonOutsideRuns(grid);
+  const int count = LabelRunComponents(shells, RunAdjacency::kVertex);
+  label.assign(static_cast<size_t>(grid.size()), -1);
+  for (int64_t r = 0; r < shells.rows(); ++r) {
+    const int64_t row = r * shells.dims[0];
+    for (int64_t i = shells.row_begin[static_cast<size_t>(r)]; i < shells.row_begin[static_cast<size_t>(r) + 1]; ++i) {
+      const VoxelRun& run = shells.runs[static_cast<size_t>(i)];
+      std::fill(label.begin() + row + run.begin, label.begin() + row + run.end, run.component);
     }
-    ++shells;
   }
-  return shells;
+  return count;
 }
 
 VoxelTopology ComputeVoxelTopology(const VoxelGrid& grid) {
   VoxelTopology topo;
-  std::vector<int32_t> label;
-  topo.shells = LabelShells(grid, label);
-  std::vector<int64_t> chi8(static_cast<size_t>(topo.shells), 0);
+  VoxelRuns shells = NonOutsideRuns(grid);
+  topo.shells = LabelRunComponents(shells, RunAdjacency::kVertex);
   topo.voxels.assign(static_cast<size_t>(topo.shells), 0);
-  for (int32_t l : label)
-    if (l >= 0) ++topo.voxels[static_cast<size_t>(l)];
-  const auto& d = grid.dims();
-  const auto st = grid.strides();
-  const VoxelState* s = grid.states().data();
-  // Lattice vertex (x, y, z) is the corner shared by voxels x-1..x, y-1..y, z-1..z.
-  for (int z = 1; z < d[2]; ++z)
-    for (int y = 1; y < d[1]; ++y)
-      for (int x = 1; x < d[0]; ++x) {
-        const int64_t base = grid.Index(x - 1, y - 1, z - 1);
-        int m = 0;
-        int64_t any = -1;
-        for (int b = 0; b < 8; ++b) {
-          const int64_t i = base + (b & 1) * st[0] + ((b >> 1) & 1) * st[1] + ((b >> 2) & 1) * st[2];
-          if (!IsOutside(s[i])) {
-            m |= 1 << b;
-            any = i;
-          }
-        }
-        if (m != 0) chi8[static_cast<size_t>(label[static_cast<size_t>(any)])] += kEulerTable[static_cast<size_t>(m)];
-      }
+  for (const VoxelRun& run : shells.runs) topo.voxels[static_cast<size_t>(run.component)] += run.end - run.begin;
+  std::vector<int64_t> chi8(static_cast<size_t>(topo.shells), 0);
+  AddEulerCharacteristics(shells, chi8);
   for (int64_t c : chi8) topo.genus.push_back(static_cast<int>(1 - c / 8));
-
-  // Cavities: outside voxels that a 6-flood from the array border does not reach. Border
-  // voxels are marked reached and never expanded, so every expanded voxel has all six face
-  // neighbours inside the array.
-  std::vector<uint8_t> reached(static_cast<size_t>(grid.size()), 0);
-  std::vector<int64_t> stack;
-  for (int z = 0; z < d[2]; ++z)
-    for (int y = 0; y < d[1]; ++y)
-      for (int x = 0; x < d[0]; ++x) {
-        const int64_t i = grid.Index(x, y, z);
-        const bool border = x == 0 || y == 0 || z == 0 || x == d[0] - 1 || y == d[1] - 1 || z == d[2] - 1;
-        const bool next_to_border = x == 1 || y == 1 || z == 1 || x == d[0] - 2 || y == d[1] - 2 || z == d[2] - 2;
-        if (border) {
-          reached[static_cast<size_t>(i)] = 1;
-        } else if (next_to_border && IsOutside(s[i])) {
-          reached[static_cast<size_t>(i)] = 1;
-          stack.push_back(i);
-        }
-      }
-  const int64_t steps[6] = {-st[0], st[0], -st[1], st[1], -st[2], st[2]};
-  auto flood = [&]() {
-    while (!stack.empty()) {
-      const int64_t v = stack.back();
-      stack.pop_back();
-      for (int64_t step : steps) {
-        const int64_t w = v + step;
-        if (reached[static_cast<size_t>(w)] || !IsOutside(s[w])) continue;
-        reached[static_cast<size_t>(w)] = 1;
-        stack.push_back(w);
-      }
-    }
-  };
-  flood();
-  for (int64_t i = 0; i < grid.size(); ++i) {
-    if (!IsOutside(s[i]) || reached[static_cast<size_t>(i)]) continue;
-    ++topo.cavities;
-    reached[static_cast<size_t>(i)] = 1;
-    stack.push_back(i);
-    flood();
-  }
+  topo.cavities = CountCavities(shells);
   return topo;
 }
 

@@ -16,6 +16,10 @@ class FlatBitset {
  public:
   FlatBitset() = default;
   explicit FlatBitset(int64_t bits) : bits_(bits), words_(static_cast<size_t>((bits + 63) / 64), 0) {}
+  // The same, with the words taken from `arena` while it has room (it must outlive this).
+  FlatBitset(int64_t bits, PlaneArena* arena)
+      : bits_(bits),
+        words_(static_cast<size_t>((bits + 63) / 64), 0, HugePageAllocator<uint64_t>(arena)) {}
 
   int64_t bits() const { return bits_; }
   // Makes this a zeroed bitset of `bits` bits unless it already has that size.

@@ -7,6 +7,9 @@
 
 namespace membrane {
 
+// Every plane of a snapshot comes from the arena (the closed form needs fewer).
+static_assert(kPlaceFinderPlanes <= WorkPlanes::kArenaPlanes);
+
 PlaceFinder::PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes)
     : grid_(grid), planes_(planes) {}
 

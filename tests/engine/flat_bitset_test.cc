@@ -68,7 +68,7 @@ TEST(FlatBitsetSpreadAlong, RunsCrossWordBordersAlongX) {
 TEST(FlatBitsetRuns, ErodeAndDilateMatchTheirDefinitions) {
   // Strides within a word, across words, a multiple of 64, and past the end of the set.
   for (int64_t stride : {1, 5, 64, 70, 300, 5000}) {
-    for (int n : {1, 2, 3, 7, 8, 20}) {
+    for (int n : {1, 2, 3, 4, 7, 8, 16, 20, 21, 80}) {
       const int64_t bits = 3000;
       // Dense for the erosion, sparse for the dilation, so that both answers vary.
       const FlatBitset a = RandomBits(bits, 0.9, static_cast<uint32_t>(stride * 31 + n));
@@ -99,7 +99,7 @@ bool SameBits(const FlatBitset& a, const FlatBitset& b) {
 
 TEST(FlatBitsetRuns, FromVariantsEqualCopyThenRun) {
   for (int64_t stride : {1, 5, 64, 70, 300, 5000}) {
-    for (int n : {1, 2, 3, 7, 8, 20}) {
+    for (int n : {1, 2, 3, 4, 7, 8, 16, 20, 21, 80}) {
       const int64_t bits = 3000;
       const FlatBitset a = RandomBits(bits, 0.9, static_cast<uint32_t>(stride * 13 + n));
       const FlatBitset b = RandomBits(bits, 0.08, static_cast<uint32_t>(stride * 7 + n));

@@ -56,18 +56,15 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   FlatBitset& out = ws.out;
   out = out0;
   // Anchors of all-free n x n squares per plate axis (both signs share them): the erosion
-  // along z serves the x and y axes, so four runs make the three planes.
+  // along z serves the x and y axes, so four runs make the three planes. The *From runs fold
+  // a plane copy into their first pass.
   FlatBitset* const* squares = ws.squares;
   FlatBitset& eroded_z = ws.tmp;
-  eroded_z = free_cells;
-  eroded_z.ErodeRun(n, st[2]);
-  *squares[0] = eroded_z;
-  squares[0]->ErodeRun(n, st[1]);  // x: in-plane y, z
-  *squares[1] = eroded_z;
-  squares[1]->ErodeRun(n, st[0]);  // y: in-plane z, x
-  *squares[2] = free_cells;         // overwrites eroded_z, no longer needed
-  squares[2]->ErodeRun(n, st[0]);
-  squares[2]->ErodeRun(n, st[1]);  // z: in-plane x, y
+  eroded_z.ErodeRunFrom(free_cells, n, st[2]);
+  squares[0]->ErodeRunFrom(eroded_z, n, st[1]);  // x: in-plane y, z
+  squares[1]->ErodeRunFrom(eroded_z, n, st[0]);  // y: in-plane z, x
+  squares[2]->ErodeRunFrom(free_cells, n, st[0]);  // overwrites eroded_z, no longer needed
+  squares[2]->ErodeRun(n, st[1]);                  // z: in-plane x, y
   bool square_fits[3];
   for (int a = 0; a < 3; ++a) square_fits[a] = squares[a]->any();
   if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
@@ -86,16 +83,13 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
       // fronts of the axis use the same eroded plane: a step of the least fixed point only
       // needs its plates valid for the current `out`, so updating `out` after both (rather
       // than between them) reaches the same fixed point.
-      back = out;
-      back.ErodeRun(n, su);
+      back.ErodeRunFrom(out, n, su);
       back.ErodeRun(n, sv);
       if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
       // Dig straight on: a plate whose back plate was contracted fits if its square is free.
-      reach = *squares[a];
-      reach.AndShifted(back, sa);
+      reach.AssignAndShifted(*squares[a], back, sa);
       reach.SpreadAlong(*squares[a], sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
-      reach_back = *squares[a];
-      reach_back.AndShifted(back, -sa);
+      reach_back.AssignAndShifted(*squares[a], back, -sa);
       reach_back.SpreadAlong(*squares[a], -sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
       reach.Or(reach_back);
       if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");

@@ -98,10 +98,12 @@ MEMBRANE_IVDEP
 
 namespace {
 
-// Applies dst[w] = op(dst[w], the 64 bits of src starting at bit w * 64 - k) to every word,
-// with the word offset and bit shift computed once (bits outside src read as 0).
+// Applies dst[w] = op(base[w], the 64 bits of src starting at bit w * 64 - k) to every word,
+// with the word offset and bit shift computed once (bits outside src read as 0). `base` is
+// dst itself for the in-place operations.
 template <typename Op>
-void CombineShifted(uint64_t* dst, const uint64_t* src, int64_t words, int64_t k, Op op) {
+void CombineShifted(uint64_t* dst, const uint64_t* base, const uint64_t* src, int64_t words,
+                    int64_t k, Op op) {
   const int64_t off = -k;
   const int64_t q = off >= 0 ? off / 64 : -((-off + 63) / 64);
   const int r = static_cast<int>(off - q * 64);
@@ -116,13 +118,13 @@ void CombineShifted(uint64_t* dst, const uint64_t* src, int64_t words, int64_t k
   const int64_t first = std::clamp<int64_t>(-q, 0, words);
   const int64_t last = std::clamp<int64_t>(words - q - 1, first, words);
   int64_t w = 0;
-  for (; w < first; ++w) dst[w] = op(dst[w], get(w));
+  for (; w < first; ++w) dst[w] = op(base[w], get(w));
   if (r == 0) {
-    for (; w < last; ++w) dst[w] = op(dst[w], src[w + q]);
+    for (; w < last; ++w) dst[w] = op(base[w], src[w + q]);
   } else {
-    for (; w < last; ++w) dst[w] = op(dst[w], (src[w + q] >> r) | (src[w + q + 1] << (64 - r)));
+    for (; w < last; ++w) dst[w] = op(base[w], (src[w + q] >> r) | (src[w + q + 1] << (64 - r)));
   }
-  for (; w < words; ++w) dst[w] = op(dst[w], get(w));
+  for (; w < words; ++w) dst[w] = op(base[w], get(w));
 }
 
 uint64_t ReverseBits(uint64_t x) {
@@ -140,18 +142,37 @@ uint64_t FillUp(uint64_t run, uint64_t seed) { return (run & ~(run + seed)) | se
 }  // namespace
 
 void FlatBitset::AssignShifted(const FlatBitset& other, int64_t k) {
-  CombineShifted(words_.data(), other.words_.data(), static_cast<int64_t>(words_.size()), k,
+  CombineShifted(words_.data(), words_.data(), other.words_.data(),
+                 static_cast<int64_t>(words_.size()), k,
                  [](uint64_t, uint64_t b) { return b; });
 }
 
 void FlatBitset::OrShifted(const FlatBitset& other, int64_t k) {
-  CombineShifted(words_.data(), other.words_.data(), static_cast<int64_t>(words_.size()), k,
+  CombineShifted(words_.data(), words_.data(), other.words_.data(),
+                 static_cast<int64_t>(words_.size()), k,
                  [](uint64_t a, uint64_t b) { return a | b; });
 }
 
 void FlatBitset::AndShifted(const FlatBitset& other, int64_t k) {
-  CombineShifted(words_.data(), other.words_.data(), static_cast<int64_t>(words_.size()), k,
+  CombineShifted(words_.data(), words_.data(), other.words_.data(),
+                 static_cast<int64_t>(words_.size()), k,
                  [](uint64_t a, uint64_t b) { return a & b; });
+}
+
+void FlatBitset::AssignAndShifted(const FlatBitset& a, const FlatBitset& b, int64_t k) {
+  CombineShifted(words_.data(), a.words_.data(), b.words_.data(),
+                 static_cast<int64_t>(words_.size()), k,
+                 [](uint64_t x, uint64_t y) { return x & y; });
+}
+
+void FlatBitset::AssignOr(const FlatBitset& a, const FlatBitset& b) {
+  for (size_t w = 0; w < words_.size(); ++w) words_[w] = a.words_[w] | b.words_[w];
+}
+
+void FlatBitset::AssignOrAnd(const FlatBitset& a, const FlatBitset& b, const FlatBitset& c) {
+  for (size_t w = 0; w < words_.size(); ++w) {
+    words_[w] = (a.words_[w] | b.words_[w]) & c.words_[w];
+  }
 }
 
 void FlatBitset::SpreadAlong(const FlatBitset& run, int64_t step, int64_t max_len,
@@ -240,6 +261,40 @@ void FlatBitset::ErodeRun(int n, int64_t stride) {
     len *= 2;
   }
   if (len < n) AndShiftedDown((n - len) * stride);
+}
+
+void FlatBitset::ErodeRunFrom(const FlatBitset& src, int n, int64_t stride) {
+  const int64_t words = static_cast<int64_t>(words_.size());
+  if (n < 2) {
+    std::copy(src.words_.begin(), src.words_.end(), words_.begin());
+    return;
+  }
+  // The first doubling step of ErodeRun, this[i] = src[i] & src[i + s], reads src directly.
+  CombineShifted(words_.data(), src.words_.data(), src.words_.data(), words, -stride,
+                 [](uint64_t x, uint64_t y) { return x & y; });
+  int len = 2;
+  while (2 * len <= n) {
+    AndShiftedDown(len * stride);
+    len *= 2;
+  }
+  if (len < n) AndShiftedDown((n - len) * stride);
+}
+
+void FlatBitset::DilateRunFrom(const FlatBitset& src, int n, int64_t stride) {
+  const int64_t words = static_cast<int64_t>(words_.size());
+  if (n < 2) {
+    std::copy(src.words_.begin(), src.words_.end(), words_.begin());
+    return;
+  }
+  // The first doubling step of DilateRun, this[i] = src[i] | src[i - s].
+  CombineShifted(words_.data(), src.words_.data(), src.words_.data(), words, stride,
+                 [](uint64_t x, uint64_t y) { return x | y; });
+  int len = 2;
+  while (2 * len <= n) {
+    OrShiftedUp(len * stride);
+    len *= 2;
+  }
+  if (len < n) OrShiftedUp((n - len) * stride);
 }
 
 void FlatBitset::DilateRun(int n, int64_t stride) {

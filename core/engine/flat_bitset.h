@@ -16,6 +16,10 @@ class FlatBitset {
  public:
   FlatBitset() = default;
   explicit FlatBitset(int64_t bits) : bits_(bits), words_(static_cast<size_t>((bits + 63) / 64), 0) {}
+  // The same, with the words taken from `arena` while it has room (it must outlive this).
+  FlatBitset(int64_t bits, PlaneArena* arena)
+      : bits_(bits),
+        words_(static_cast<size_t>((bits + 63) / 64), 0, HugePageAllocator<uint64_t>(arena)) {}
 
   int64_t bits() const { return bits_; }
   // Makes this a zeroed bitset of `bits` bits unless it already has that size.
@@ -46,6 +50,13 @@ class FlatBitset {
   void AssignShifted(const FlatBitset& other, int64_t k);
   void OrShifted(const FlatBitset& other, int64_t k);
   void AndShifted(const FlatBitset& other, int64_t k);
+  // this[i] = a[i] & b[i - k] in one pass (a copy of `a` and AndShifted would be two); a, b
+  // and this must have the same size; this may be neither a nor b.
+  void AssignAndShifted(const FlatBitset& a, const FlatBitset& b, int64_t k);
+  // this[i] = a[i] | b[i], one pass; sizes must match.
+  void AssignOr(const FlatBitset& a, const FlatBitset& b);
+  // this[i] = (a[i] | b[i]) & c[i], one pass; sizes must match.
+  void AssignOrAnd(const FlatBitset& a, const FlatBitset& b, const FlatBitset& c);
   // Seeded runs: this[i] |= run[i] & this[i - step] applied in the order of the step, so a
   // set bit spreads along `step` (positive or negative) while `run` stays set. `this` must be a
   // subset of `run`. One pass when |step| >= 64 or |step| == 1 (carries of an addition run
@@ -76,6 +87,11 @@ class FlatBitset {
   void ErodeRun(int n, int64_t stride);
   // Dilation by a run of n along stride s: this[i] = OR_{j<n} this[i - j s].
   void DilateRun(int n, int64_t stride);
+  // this = src eroded (resp. dilated) by a run of n >= 1 along stride s, as a copy then
+  // ErodeRun (DilateRun) would give, with the copy folded into the first pass. `src` must
+  // have this bitset's size and must not be this bitset.
+  void ErodeRunFrom(const FlatBitset& src, int n, int64_t stride);
+  void DilateRunFrom(const FlatBitset& src, int n, int64_t stride);
 
  private:
   // The 64 bits starting at bit position `pos` (may be negative or past the end: zeros).

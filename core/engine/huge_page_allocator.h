@@ -5,12 +5,15 @@
 // perf on the tall grid: the kernel's fault path and the zeroing memset). Blocks of at least
 // kHugePageBytes are aligned to a huge page and advised MADV_HUGEPAGE, so the kernel maps
 // them 2 MB at a time where it can (the machine's THP mode is usually "madvise"). Smaller
-// blocks, and other systems, get plain operator new memory.
+// blocks, and other systems, get plain operator new memory. An allocator made with a
+// PlaneArena takes its blocks from the arena while it has room.
 #ifndef MEMBRANE_CORE_ENGINE_HUGE_PAGE_ALLOCATOR_H_
 #define MEMBRANE_CORE_ENGINE_HUGE_PAGE_ALLOCATOR_H_
 
 #include <cstddef>
 #include <new>
+
+#include "core/engine/plane_arena.h"
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -24,12 +27,17 @@ template <typename T>
 struct HugePageAllocator {
   using value_type = T;
   HugePageAllocator() = default;
+  // Takes blocks from `arena` (may be null: none), which must outlive every block taken.
+  explicit HugePageAllocator(PlaneArena* arena) : arena_(arena) {}
   template <typename U>
-  HugePageAllocator(const HugePageAllocator<U>&) {}
+  HugePageAllocator(const HugePageAllocator<U>& other) : arena_(other.arena()) {}
 
   // Uninitialized memory for `count` objects, failing as std::allocator does.
   T* allocate(std::size_t count) {
     const std::size_t bytes = count * sizeof(T);
+    if (arena_ != nullptr) {
+      if (void* p = arena_->Take(bytes)) return static_cast<T*>(p);
+    }
     if (bytes < kHugePageBytes) return static_cast<T*>(::operator new(bytes));
     const std::size_t rounded = (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
     void* p = ::operator new(rounded, std::align_val_t{kHugePageBytes});
@@ -39,6 +47,7 @@ struct HugePageAllocator {
     return static_cast<T*>(p);
   }
   void deallocate(T* p, std::size_t count) {
+    if (arena_ != nullptr && arena_->Owns(p)) return;  // freed with the arena
     const std::size_t bytes = count * sizeof(T);
     if (bytes < kHugePageBytes) {
       ::operator delete(p);
@@ -46,8 +55,15 @@ struct HugePageAllocator {
       ::operator delete(p, std::align_val_t{kHugePageBytes});
     }
   }
+  // Equal when they share the arena (or both have none): only then may one free the
+  // other's blocks, so containers copy rather than steal across arenas.
   template <typename U>
-  bool operator==(const HugePageAllocator<U>&) const { return true; }
+  bool operator==(const HugePageAllocator<U>& other) const { return arena_ == other.arena(); }
+
+  PlaneArena* arena() const { return arena_; }
+
+ private:
+  PlaneArena* arena_ = nullptr;
 };
 
 }  // namespace membrane

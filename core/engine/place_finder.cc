@@ -7,6 +7,9 @@
 
 namespace membrane {
 
+// Every plane of a snapshot comes from the arena (the closed form needs fewer).
+static_assert(kPlaceFinderPlanes <= WorkPlanes::kArenaPlanes);
+
 PlaceFinder::PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes)
     : grid_(grid), planes_(planes) {}
 
@@ -26,30 +29,28 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, bs);
   if (cancelled()) return std::nullopt;
   FlatBitset& free_cells = planes_.plane(14);  // outside or boundary soft, off the border
-  free_cells = out;
-  free_cells.Or(bs);
-  free_cells.And(planes_.interior());
+  free_cells.AssignOrAnd(out, bs, planes_.interior());
 
   // The anchors of orientation (a, sign) are the plates whose cells are free and whose back
   // side is outside: E = erode_uv(free & out shifted by sign along a), and erosion commutes
   // with the shift and distributes over &, so E = erode_uv(free) & (erode_uv(out) shifted).
   // Both signs share the two eroded planes, and the three axes share the erosions along z
-  // and along x: 8 erosion runs instead of 12.
+  // and along x: 8 erosion runs instead of 12. Copies are folded into the first pass of each
+  // run (the *From operations): the planes fit in cache, so a copy costs as much as a pass.
   FlatBitset& free_z = planes_.plane(15);
   FlatBitset& out_z = planes_.plane(16);
-  free_z = free_cells;
-  free_z.ErodeRun(n, st[2]);
-  out_z = out;
-  out_z.ErodeRun(n, st[2]);
+  free_z.ErodeRunFrom(free_cells, n, st[2]);
+  out_z.ErodeRunFrom(out, n, st[2]);
   if (cancelled()) return std::nullopt;
   FlatBitset& free_x = free_cells;  // eroded in place: the plain planes are not needed again
   FlatBitset& out_x = out;
   free_x.ErodeRun(n, st[0]);
   out_x.ErodeRun(n, st[0]);
 
+  // Candidates: bs & the union over axes of the cells covered by a plate of either sign
+  // (And distributes over the union, so it is applied once at the end).
   FlatBitset& candidates = planes_.plane(17);
   FlatBitset& covered = planes_.plane(18);
-  candidates.clear_all();
   for (int a = 0; a < 3; ++a) {
     if (cancelled()) return std::nullopt;
     // In-plane axes (u, v) = (y, z), (z, x), (x, y): one more erosion of a shared plane.
@@ -57,26 +58,21 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
     const int last_axis = a == 1 ? 0 : 1;
     FlatBitset& free_square = planes_.plane(19);
     FlatBitset& out_square = planes_.plane(20);
-    free_square = from_z ? free_z : free_x;
-    free_square.ErodeRun(n, st[last_axis]);
-    out_square = from_z ? out_z : out_x;
-    out_square.ErodeRun(n, st[last_axis]);
+    free_square.ErodeRunFrom(from_z ? free_z : free_x, n, st[last_axis]);
+    out_square.ErodeRunFrom(from_z ? out_z : out_x, n, st[last_axis]);
     const int64_t su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
     for (int o = 2 * a; o < 2 * a + 2; ++o) {
       FlatBitset& e = planes_.plane(o);
-      e = free_square;
-      e.AndShifted(out_square, kOrientations[o].sign * st[a]);
-      FlatBitset& dc = planes_.plane(6 + o);
-      dc = e;
-      dc.DilateRun(n, sv);
+      e.AssignAndShifted(free_square, out_square, kOrientations[o].sign * st[a]);
+      planes_.plane(6 + o).DilateRunFrom(e, n, sv);
     }
     // Dilation distributes over the union of both signs' plates.
-    covered = planes_.plane(6 + 2 * a);
-    covered.Or(planes_.plane(6 + 2 * a + 1));
-    covered.DilateRun(n, su);
-    covered.And(bs);
-    candidates.Or(covered);
+    FlatBitset& axis_covered = a == 0 ? candidates : covered;
+    axis_covered.AssignOr(planes_.plane(6 + 2 * a), planes_.plane(6 + 2 * a + 1));
+    axis_covered.DilateRun(n, su);
+    if (a != 0) candidates.Or(covered);
   }
+  candidates.And(bs);
   std::vector<int64_t> result;
   const uint64_t* cw = candidates.words();
   for (int64_t w = 0; w < static_cast<int64_t>(candidates.word_count()); ++w) {

@@ -8,6 +8,7 @@
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/status/status.h"
+#include "core/engine/flat_bitset.h"
 #include "core/engine/local_topology.h"
 #include "core/engine/state_planes.h"
 
@@ -103,7 +104,9 @@ namespace {
 
 // Tries to join the boundary voxel `centre` to the boundary voxel at `offset` (an edge or
 // corner neighbour) by a face path that steps one axis at a time in the order `order`.
-bool TryBridgePath(VoxelGrid& grid, int64_t centre, const int offset[3], const int order[3]) {
+// On success the voxels of the path are appended to `written` (those it left as they were too).
+bool TryBridgePath(VoxelGrid& grid, int64_t centre, const int offset[3], const int order[3],
+                   std::vector<int64_t>& written) {
   const auto st = grid.strides();
   VoxelState* s = grid.mutable_states().data();
   int64_t path[2];
@@ -132,7 +135,18 @@ bool TryBridgePath(VoxelGrid& grid, int64_t centre, const int offset[3], const i
     }
     s[v] = kBoundaryFrozen;
   }
+  for (int k = 0; k < steps; ++k) written.push_back(path[k]);
   return true;
+}
+
+// Sets in `plane` every voxel within Chebyshev distance 2 of voxel v (inside the array).
+void MarkNear(const VoxelGrid& grid, int64_t v, FlatBitset& plane) {
+  const Coord c = grid.CoordOf(v);
+  const auto& d = grid.dims();
+  for (int z = std::max(c[2] - 2, 0); z <= std::min(c[2] + 2, d[2] - 1); ++z)
+    for (int y = std::max(c[1] - 2, 0); y <= std::min(c[1] + 2, d[1] - 1); ++y)
+      for (int x = std::max(c[0] - 2, 0); x <= std::min(c[0] + 2, d[0] - 1); ++x)
+        plane.set(grid.Index(x, y, z));
 }
 
 }  // namespace
@@ -143,46 +157,87 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid) {
   const auto& d = grid.dims();
   const int64_t before = CountStates(grid.states()).boundary;
   const VoxelState* s = grid.states().data();
-  for (int pass = 0; pass < 3; ++pass) {
+  // Bridges from boundary voxel i until none is missing or none can be made; the voxels
+  // written go to `written`. True when something changed.
+  std::vector<int64_t> written;
+  auto bridge_from = [&](int64_t i) {
     bool changed = false;
-    for (int z = 1; z + 1 < d[2]; ++z)
-      for (int y = 1; y + 1 < d[1]; ++y)
-        for (int x = 1; x + 1 < d[0]; ++x) {
-          int64_t i = grid.Index(x, y, z);
-          // Most voxels are not on the boundary: skip them eight at a time. The states are
-          // read when the scan gets there, as one by one, so bridges made earlier count.
-          if (x + 8 < d[0]) {
-            const int skip = FirstBoundaryOfEight(s + i);
-            x += skip;
-            if (skip == 8) {
-              --x;  // the loop's ++x
-              continue;
-            }
-            i += skip;
-          } else if (!IsBoundary(s[i])) {
-            continue;
-          }
-          for (;;) {
-            const uint32_t boundary =
-                NeighbourhoodMask(grid, i, [](VoxelState v) { return IsBoundary(v); });
-            const uint32_t missing = boundary & ~Flood6(kCentreBit, boundary);
-            if (missing == 0) break;
-            bool bridged = false;
-            for (uint32_t m = missing; m != 0 && !bridged; m &= m - 1) {
-              const int b = std::countr_zero(m);
-              const int offset[3] = {b % 3 - 1, (b / 3) % 3 - 1, b / 9 - 1};
-              for (const auto& order : kOrders) {
-                if (TryBridgePath(grid, i, offset, order)) {
-                  bridged = true;
-                  break;
-                }
-              }
-            }
-            if (!bridged) break;
-            changed = true;
+    for (;;) {
+      const uint32_t boundary =
+          NeighbourhoodMask(grid, i, [](VoxelState v) { return IsBoundary(v); });
+      const uint32_t missing = boundary & ~Flood6(kCentreBit, boundary);
+      if (missing == 0) break;
+      bool bridged = false;
+      for (uint32_t m = missing; m != 0 && !bridged; m &= m - 1) {
+        const int b = std::countr_zero(m);
+        const int offset[3] = {b % 3 - 1, (b / 3) % 3 - 1, b / 9 - 1};
+        for (const auto& order : kOrders) {
+          if (TryBridgePath(grid, i, offset, order, written)) {
+            bridged = true;
+            break;
           }
         }
-    if (!changed) break;
+      }
+      if (!bridged) break;
+      changed = true;
+    }
+    return changed;
+  };
+  // First pass: every boundary voxel in index order.
+  bool changed = false;
+  for (int z = 1; z + 1 < d[2]; ++z)
+    for (int y = 1; y + 1 < d[1]; ++y)
+      for (int x = 1; x + 1 < d[0]; ++x) {
+        int64_t i = grid.Index(x, y, z);
+        // Most voxels are not on the boundary: skip them eight at a time. The states are
+        // read when the scan gets there, as one by one, so bridges made earlier count.
+        if (x + 8 < d[0]) {
+          const int skip = FirstBoundaryOfEight(s + i);
+          x += skip;
+          if (skip == 8) {
+            --x;  // the loop's ++x
+            continue;
+          }
+          i += skip;
+        } else if (!IsBoundary(s[i])) {
+          continue;
+        }
+        if (bridge_from(i)) changed = true;
+      }
+  // Two more passes at most, as full scans would be, but visiting only the voxels within
+  // distance 2 of a voxel written since their last visit: the outcome at a voxel reads only
+  // states that near (its 3x3x3 neighbourhood, and those of its path voxels), and at the end
+  // of its last visit nothing could be bridged there, so elsewhere a full scan changes
+  // nothing. Writes ahead of the scan are marked in the pass itself; the rest wait for the
+  // next pass. The same voxels are visited in the same order where anything can change.
+  FlatBitset visit;
+  for (int pass = 1; pass < 3 && changed; ++pass) {
+    changed = false;
+    visit.EnsureSize(grid.size());
+    visit.clear_all();
+    std::vector<int64_t> last;
+    last.swap(written);
+    for (int64_t v : last) MarkNear(grid, v, visit);
+    uint64_t* vw = visit.words();
+    for (int64_t w = 0; w < static_cast<int64_t>(visit.word_count()); ++w) {
+      int next_bit = 0;
+      while (next_bit < 64) {
+        const uint64_t bits = vw[w] & (~0ull << next_bit);  // re-read: marks ahead count
+        if (bits == 0) break;
+        const int b = std::countr_zero(bits);
+        next_bit = b + 1;
+        const int64_t i = w * 64 + b;
+        if (i >= grid.size()) break;
+        const Coord c = grid.CoordOf(i);
+        if (c[0] < 1 || c[1] < 1 || c[2] < 1 || c[0] + 1 >= d[0] || c[1] + 1 >= d[1] ||
+            c[2] + 1 >= d[2] || !IsBoundary(s[i])) {
+          continue;
+        }
+        const size_t first_new = written.size();
+        if (bridge_from(i)) changed = true;
+        for (size_t k = first_new; k < written.size(); ++k) MarkNear(grid, written[k], visit);
+      }
+    }
   }
   return CountStates(grid.states()).boundary - before;
 }

@@ -7,11 +7,18 @@ namespace membrane {
 bool WorkPlanes::Ensure(int count, const CancelToken* cancel) {
   const int64_t nv = grid_.size();
   if (interior_.bits() != nv) interior_ = InteriorPlane(grid_);
+  if (arena_ == nullptr && count > 0) {
+    // Planes are whole words, each block rounded to the arena's block alignment.
+    const size_t words = static_cast<size_t>((nv + 63) / 64);
+    const size_t block = (words * sizeof(uint64_t) + PlaneArena::kBlockAlignment - 1) /
+                         PlaneArena::kBlockAlignment * PlaneArena::kBlockAlignment;
+    arena_ = std::make_unique<PlaneArena>(block * kArenaPlanes);
+  }
   while (static_cast<int>(planes_.size()) < count) {
     // Fresh pages are slow enough that twenty planes of a large grid take longer than a
     // cancel may wait.
     if (cancel != nullptr && cancel->cancelled()) return false;
-    planes_.push_back(std::make_unique<FlatBitset>(nv));
+    planes_.push_back(std::make_unique<FlatBitset>(nv, arena_.get()));
   }
   return true;
 }

@@ -12,6 +12,7 @@
 
 #include "core/engine/cancel_token.h"
 #include "core/engine/flat_bitset.h"
+#include "core/engine/plane_arena.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {
@@ -27,6 +28,9 @@ class WorkPlanes {
   // references from plane() stay valid when later calls add planes.
   bool Ensure(int count, const CancelToken* cancel);
 
+  // Planes cut from one huge-page arena (PlaneArena); more are allocated on their own.
+  static constexpr int kArenaPlanes = 21;
+
   // Plane i < the largest count ensured so far.
   FlatBitset& plane(int i) { return *planes_[static_cast<size_t>(i)]; }
   // Set for every voxel off the outermost array layer (InteriorPlane); valid after Ensure.
@@ -35,6 +39,8 @@ class WorkPlanes {
  private:
   const VoxelGrid& grid_;
   FlatBitset interior_;
+  // Declared before the planes, so destroyed after them.
+  std::unique_ptr<PlaneArena> arena_;
   std::vector<std::unique_ptr<FlatBitset>> planes_;  // stable addresses
 };
 

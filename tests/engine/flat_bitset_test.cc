@@ -68,7 +68,7 @@ TEST(FlatBitsetSpreadAlong, RunsCrossWordBordersAlongX) {
 TEST(FlatBitsetRuns, ErodeAndDilateMatchTheirDefinitions) {
   // Strides within a word, across words, a multiple of 64, and past the end of the set.
   for (int64_t stride : {1, 5, 64, 70, 300, 5000}) {
-    for (int n : {1, 2, 3, 7, 8, 20}) {
+    for (int n : {1, 2, 3, 4, 7, 8, 16, 20, 21, 80}) {
       const int64_t bits = 3000;
       // Dense for the erosion, sparse for the dilation, so that both answers vary.
       const FlatBitset a = RandomBits(bits, 0.9, static_cast<uint32_t>(stride * 31 + n));
@@ -87,6 +87,54 @@ TEST(FlatBitsetRuns, ErodeAndDilateMatchTheirDefinitions) {
         ASSERT_EQ(dilated.test(i), any) << "stride " << stride << " n " << n << " bit " << i;
       }
     }
+  }
+}
+
+bool SameBits(const FlatBitset& a, const FlatBitset& b) {
+  if (a.bits() != b.bits()) return false;
+  for (int64_t i = 0; i < a.bits(); ++i)
+    if (a.test(i) != b.test(i)) return false;
+  return true;
+}
+
+TEST(FlatBitsetRuns, FromVariantsEqualCopyThenRun) {
+  for (int64_t stride : {1, 5, 64, 70, 300, 5000}) {
+    for (int n : {1, 2, 3, 4, 7, 8, 16, 20, 21, 80}) {
+      const int64_t bits = 3000;
+      const FlatBitset a = RandomBits(bits, 0.9, static_cast<uint32_t>(stride * 13 + n));
+      const FlatBitset b = RandomBits(bits, 0.08, static_cast<uint32_t>(stride * 7 + n));
+      FlatBitset eroded = a, dilated = b;
+      eroded.ErodeRun(n, stride);
+      dilated.DilateRun(n, stride);
+      FlatBitset eroded_from = RandomBits(bits, 0.5, 1), dilated_from = RandomBits(bits, 0.5, 2);
+      eroded_from.ErodeRunFrom(a, n, stride);
+      dilated_from.DilateRunFrom(b, n, stride);
+      EXPECT_TRUE(SameBits(eroded, eroded_from)) << "stride " << stride << " n " << n;
+      EXPECT_TRUE(SameBits(dilated, dilated_from)) << "stride " << stride << " n " << n;
+    }
+  }
+}
+
+TEST(FlatBitsetAssign, AndShiftedOrAndOrAndMatchTheirDefinitions) {
+  const int64_t bits = 1000;
+  const FlatBitset a = RandomBits(bits, 0.5, 11);
+  const FlatBitset b = RandomBits(bits, 0.5, 12);
+  const FlatBitset c = RandomBits(bits, 0.5, 13);
+  for (int64_t k : {0, 1, -1, 63, -64, 65, -200, 999, -999}) {
+    FlatBitset r = RandomBits(bits, 0.5, 14);  // old contents must not matter
+    r.AssignAndShifted(a, b, k);
+    for (int64_t i = 0; i < bits; ++i) {
+      const int64_t j = i - k;
+      const bool want = a.test(i) && j >= 0 && j < bits && b.test(j);
+      ASSERT_EQ(r.test(i), want) << "k " << k << " bit " << i;
+    }
+  }
+  FlatBitset o = RandomBits(bits, 0.5, 15), oa = RandomBits(bits, 0.5, 16);
+  o.AssignOr(a, b);
+  oa.AssignOrAnd(a, b, c);
+  for (int64_t i = 0; i < bits; ++i) {
+    ASSERT_EQ(o.test(i), a.test(i) || b.test(i)) << i;
+    ASSERT_EQ(oa.test(i), (a.test(i) || b.test(i)) && c.test(i)) << i;
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include "core/engine/membrane_invariants.h"
 #include "core/engine/membrane_shrinker.h"
+#include "core/engine/post_process.h"
 #include "core/engine/voxelization.h"
 #include "core/synth/cube_pinholes.h"
 #include "gmock/gmock.h"
@@ -186,6 +187,23 @@ TEST(ShrinkPostProcess, InsideHardVoxelsAreConnectedToTheMembrane) {
   EXPECT_LT(run->result.post_process.inside_hard_after, run->result.post_process.inside_hard_before);
   EXPECT_TRUE(run->invariants.ok()) << run->Describe();
   EXPECT_EQ(run->topology.genus, std::vector<int>{0});
+}
+
+TEST(ShrinkPostProcess, BridgingJoinsEveryEdgeContactOfAStaircase) {
+  // Boundary voxels on a diagonal touch only along edges; each contact gets a face voxel, in
+  // one of the two places, and nothing else changes (the later passes find nothing more).
+  VoxelGrid grid({12, 12, 12}, {0.0, 0.0, 0.0}, 1.0, kInsideSoft);
+  for (int x = 2; x <= 9; ++x) grid.set(Coord{x, x, 5}, kBoundaryHard);
+  const int64_t added = BridgeMembraneContacts(grid);
+  int64_t boundary = 0;
+  for (VoxelState v : grid.states()) boundary += IsBoundary(v) ? 1 : 0;
+  EXPECT_EQ(added, 7);
+  EXPECT_EQ(boundary, 15);
+  for (int x = 2; x < 9; ++x) {
+    EXPECT_TRUE(IsBoundary(grid.at(Coord{x + 1, x, 5})) || IsBoundary(grid.at(Coord{x, x + 1, 5})))
+        << "contact at x = " << x;
+  }
+  EXPECT_EQ(BridgeMembraneContacts(grid), 0);  // idempotent
 }
 
 TEST(ShrinkPreshrink, SilhouettePreshrinkGivesAValidMembrane) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/geometry/triangle_mesh.h"
+#include "core/mesh/cancel_fn.h"
 
 namespace membrane {
 
@@ -46,8 +47,10 @@ struct MeshReport {
 
 // Checks `mesh` (vertices in any units; faces index `mesh.vertices`, CCW seen from outside).
 // Never fails: malformed input shows up in the counts. O(F) plus a uniform-grid broad phase
-// for self-intersections (about a second for 1M faces).
-MeshReport CheckMesh(const TriangleMesh& mesh);
+// for self-intersections (about a second for 1M faces). `cancel` is polled during the
+// self-intersection search; once it fires the search stops early and the report is
+// incomplete (the caller, having cancelled, discards it).
+MeshReport CheckMesh(const TriangleMesh& mesh, const CancelFn& cancel = nullptr);
 
 // The report as one JSON object with snake_case keys ("closed", "manifold", "oriented",
 // "shells", "genus": [...], ...), for `membrane check --json` and the statistics JSON.

@@ -152,7 +152,8 @@ class SortedFaceCells {
 };
 
 std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
-                                                     const Participants& p) {
+                                                     const Participants& p,
+                                                     const CancelFn& cancel = nullptr) {
   std::vector<std::pair<int32_t, int32_t>> pairs;
   if (p.face.empty()) return pairs;
   const SortedFaceCells cells(p.box);
@@ -183,7 +184,13 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
     Box box;
   };
   std::vector<Member> members;
+  constexpr int kCellsPerPoll = 4096;
+  int cells_since_poll = 0;
   for (size_t begin = 0; begin < cells.size();) {
+    if (++cells_since_poll == kCellsPerPoll) {
+      cells_since_poll = 0;
+      if (Cancelled(cancel)) break;
+    }
     size_t end = begin + 1;
     while (end < cells.size() && cells.key(end) == cells.key(begin)) ++end;
     const CellCoord c = cells.Decode(cells.key(begin));
@@ -219,7 +226,8 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
 
 }  // namespace
 
-std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh) {
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh,
+                                                               const CancelFn& cancel) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
   Participants p;
@@ -230,7 +238,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMes
     p.face.push_back(f);
     p.box.push_back(FaceBox(mesh, f));
   }
-  return SearchPairs(mesh, p);
+  return SearchPairs(mesh, p, cancel);
 }
 
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const TriangleMesh& mesh,

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/geometry/triangle_mesh.h"
+#include "core/mesh/cancel_fn.h"
 
 namespace membrane {
 
@@ -18,7 +19,10 @@ namespace membrane {
 // skipped. Sorted by (i, j). Each pair is reported once.
 // Cost: O(F) cells and entries; the cell size follows the mean face size, and the cell count is
 // bounded by a few times F, so huge faces cost more entries, never quadratic memory.
-std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh);
+// `cancel` is polled every few thousand cells; once it fires the pairs found so far are
+// returned.
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh,
+                                                               const CancelFn& cancel = nullptr);
 
 // The same, restricted to pairs with at least one face marked in `dirty` (one flag per face):
 // after moving a few vertices, the pairs that may have changed. Costs a linear scan of the

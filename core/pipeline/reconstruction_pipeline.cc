@@ -90,11 +90,11 @@ absl::StatusOr<TriangleMesh> Surface(const ReconstructionOptions& options,
   return mesh;
 }
 
-void Check(const TriangleMesh& mesh, ReconstructionReport& report,
+void Check(const TriangleMesh& mesh, const CancelToken& cancel, ReconstructionReport& report,
            ReconstructionObserver& observer) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kCheck, report);
-  report.mesh = CheckMesh(mesh);
+  report.mesh = CheckMesh(mesh, [&cancel] { return cancel.cancelled(); });
   report.seconds.check = watch.Seconds();
   observer.StageFinished(PipelineStage::kCheck, report.seconds.check, report);
 }
@@ -138,14 +138,14 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
       delivered = deliver(*mesh);
       deliver_seconds = watch.Seconds();
     });
-    Check(*mesh, report, observer);
+    Check(*mesh, cancel, report, observer);
     delivery.join();
     observer.StageStarted(PipelineStage::kEncode, report);
     report.seconds.encode = deliver_seconds;
     observer.StageFinished(PipelineStage::kEncode, report.seconds.encode, report);
     if (!delivered.ok()) return delivered;
   } else {
-    Check(*mesh, report, observer);
+    Check(*mesh, cancel, report, observer);
   }
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kCheck); !s.ok()) return s;
 

@@ -62,6 +62,20 @@ TEST(MeshCheck, DetectsSelfIntersection) {
   EXPECT_GT(r.self_intersections, 0);
 }
 
+TEST(MeshCheck, CancelStopsTheSelfIntersectionSearchEarly) {
+  // Two fine tori crossing each other everywhere along a ring: many cells, many crossings.
+  TriangleMesh a = TorusMesh(400, 200, 1.0f, 0.3f);
+  TriangleMesh b = TorusMesh(400, 200, 1.0f, 0.3f);
+  for (auto& v : b.vertices) v[0] += 0.3f;
+  const TriangleMesh both = Concat(a, b);
+  const MeshReport full = CheckMesh(both);
+  ASSERT_GT(full.self_intersections, 100);
+  int polls = 0;
+  const MeshReport cancelled = CheckMesh(both, [&polls] { return ++polls >= 1; });
+  EXPECT_GE(polls, 1);
+  EXPECT_LT(cancelled.self_intersections, full.self_intersections);
+}
+
 TEST(MeshCheck, CountsTouchingShellsAsIntersecting) {
   // Two cubes sharing a face plane but no vertex ids: touching is a self-intersection.
   const MeshReport r = CheckMesh(Concat(CubeMesh(), CubeMesh({1, 0, 0})));

@@ -156,7 +156,9 @@ TEST_F(ServiceTest, ExpiredDeadlineCancelsTheJob) {
   EXPECT_EQ(r.status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
   const std::string id = r.JobId();
   ASSERT_FALSE(id.empty());
-  const v1::Job done = WaitUntilDone(*stub_, id, 2);
+  // Generous: ctest runs this beside heavy tests. The 100 ms bound is asserted by the
+  // CancelJob test above, on an idle worker.
+  const v1::Job done = WaitUntilDone(*stub_, id, 5);
   EXPECT_EQ(done.state(), v1::CANCELLED);
   EXPECT_NE(done.error().message().find("deadline"), std::string::npos);
 }

@@ -36,6 +36,7 @@
 #include "core/synth/shape_catalog.h"
 #include "core/synth/synthesize.h"
 #include "tests/bench/bench_clouds.h"
+#include "tests/bench/bench_util.h"
 #include "tests/bench/open3d_peer.h"
 
 namespace membrane::bench {
@@ -308,16 +309,6 @@ std::string Thousands(int64_t v) {
   return v < 0 ? "-" + out : out;
 }
 
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-double Now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 double ProcessCpu() {
   timespec ts{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
@@ -539,13 +530,6 @@ Summary RunModelInChild(const BenchOptions& o, const Model& m, bool open3d_avail
 
 // ---------------------------------------------------------------------------------------------
 // Report
-
-std::string LoadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return absl::StrCat(a, " ", b, " ", c);
-}
 
 std::string CpuModel() {
   std::ifstream in("/proc/cpuinfo");

@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -36,6 +35,7 @@
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/relaxation.h"
 #include "core/mesh/smooth_surface.h"
+#include "tests/bench/bench_util.h"
 #include "tests/bench/open3d_mesh_peer.h"
 #include "tests/bench/open3d_peer.h"
 #include "tests/bench/surface_distance.h"
@@ -111,17 +111,6 @@ std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
     if (!samples_given) o.samples = 20'000;
   }
   return o;
-}
-
-double Now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-std::string LoadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return absl::StrCat(a, " ", b, " ", c);
 }
 
 // "0" or "0,1,0"; long lists cut after 6 entries.

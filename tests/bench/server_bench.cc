@@ -22,6 +22,8 @@
 #include <thread>
 #include <vector>
 
+#include "tests/bench/bench_util.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -67,12 +69,6 @@ double Timed(const std::vector<std::string>& argv, const std::string& log) {
     return -1;
   }
   return seconds;
-}
-
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 std::string Match(const std::string& text, const std::string& pattern) {
@@ -128,7 +124,8 @@ int main(int argc, char** argv) {
   kill(server, SIGTERM);
   Wait(server);
   if (static_cast<int>(locals.size()) < repeat) return 1;
-  const double local = Median(locals), remote = Median(remotes);
+  const double local = membrane::bench::Median(locals);
+  const double remote = membrane::bench::Median(remotes);
   const std::string remote_out = Read((dir / "remote.log").string());
   std::printf("points %s, upload quantization %s bits\n", points.c_str(), quantization.c_str());
   std::printf("client wall seconds, median of %d alternating runs: local %.3f, server %.3f "

@@ -1,0 +1,28 @@
+#include "tests/bench/bench_util.h"
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+
+#include "absl/strings/str_cat.h"
+
+namespace membrane::bench {
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double Now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::string LoadAverage() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  in >> a >> b >> c;
+  return absl::StrCat(a, " ", b, " ", c);
+}
+
+}  // namespace membrane::bench

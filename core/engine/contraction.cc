@@ -66,9 +66,13 @@ bool ChainRunner::Contract(int o, int layer, const Region& r) {
     int64_t i = CellIndex(o, layer, u, r.v_lo);
     for (int v = r.v_lo; v <= r.v_hi; ++v, i += sv) {
       if (IsOutside(s[i])) continue;
-      if (options_.topology_guard && !GuardAllowsRemoval(grid_, i, GuardOptionsOf(options_))) {
-        ++guard_refused_;
-        return false;
+      if (options_.topology_guard) {
+        const GuardVerdict verdict = ClassifyRemoval(grid_, i, GuardOptionsOf(options_));
+        if (verdict == GuardVerdict::kRefused) {
+          ++guard_refused_;
+          return false;
+        }
+        if (verdict == GuardVerdict::kAllowedLoosely) ++counters_->loose_tunnels;
       }
       log_.emplace_back(static_cast<uint32_t>(i), s[i]);
       s[i] = outside;

@@ -33,6 +33,10 @@ struct ChainOptions {
   int guard_short_loop_min_plate = 3;  // short-loop tunnels from this n (GuardOptions); 0 = off
   int guard_short_loop_steps = 6;      // ...within this many outside steps
   int guard_wall_notch_min_plate = 2;  // ...and beside a wall from this n; 0 = off
+  // Count the removals the handle retry's strict sizes would refuse (GuardOptions).
+  bool classify_strict = false;
+  int strict_tunnel_min_plate = 7;
+  int strict_short_loop_min_plate = 4;
 };
 
 // kSkipped: the start plate no longer fits (nothing changed).
@@ -40,7 +44,8 @@ struct ChainOptions {
 inline GuardOptions GuardOptionsOf(const ChainOptions& o) {
   return GuardOptions{o.plate_size, o.guard_tunnel_min_plate, o.min_shell_voxels,
                       o.guard_short_loop_min_plate, o.guard_short_loop_steps,
-                      o.guard_wall_notch_min_plate};
+                      o.guard_wall_notch_min_plate, o.classify_strict,
+                      o.strict_tunnel_min_plate, o.strict_short_loop_min_plate};
 }
 
 enum class ChainOutcome { kCommitted, kBacktracked, kCancelled, kSkipped };
@@ -51,6 +56,7 @@ struct ChainCounters {
   int64_t undone_contractions = 0; // of which undone by a backtrack
   int64_t guard_refusals = 0;      // backtracks caused by the topology guard
   int64_t depth_refusals = 0;      // backtracks caused by the n = 1 depth bound
+  int64_t loose_tunnels = 0;       // removals allowed that the strict sizes refuse (undone too)
 };
 
 class ChainRunner {

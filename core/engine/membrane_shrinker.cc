@@ -2,15 +2,18 @@
 
 #include <algorithm>
 #include <chrono>
+#include <numeric>
 #include <optional>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
 #include "core/engine/closed_form_generation.h"
 #include "core/engine/contraction.h"
+#include "core/engine/huge_page_allocator.h"
 #include "core/engine/place_finder.h"
 #include "core/engine/silhouette.h"
 #include "core/engine/state_planes.h"
+#include "core/engine/voxel_topology.h"
 #include "core/engine/work_planes.h"
 
 namespace membrane {
@@ -58,6 +61,68 @@ absl::Status RunGeneration(VoxelGrid& grid, PlaceFinder& finder, ChainRunner& ru
   stats.undone_contractions = counters.undone_contractions;
   stats.guard_refusals = counters.guard_refusals;
   stats.depth_refusals = counters.depth_refusals;
+  stats.loose_tunnels = counters.loose_tunnels;
+  return absl::OkStatus();
+}
+
+// The guard's tunnel rules of the retry: tunnels away from the data only from the larger plate
+// size, short-loop tunnels only from the larger size (still off when off).
+ShrinkOptions StrictTunnelRules(const ShrinkOptions& o) {
+  ShrinkOptions strict = o;
+  strict.guard_tunnel_min_plate = std::max(o.guard_tunnel_min_plate, o.retry_tunnel_min_plate);
+  if (o.guard_short_loop_min_plate > 0) {
+    strict.guard_short_loop_min_plate =
+        std::max(o.guard_short_loop_min_plate, o.retry_short_loop_min_plate);
+  }
+  return strict;
+}
+
+// Copies of the whole grid's states: on huge pages, since a 70 M voxel copy would otherwise
+// spend longer in 4 KB page faults than in copying.
+using StateCopy = std::vector<VoxelState, HugePageAllocator<VoxelState>>;
+
+int TotalGenus(const VoxelTopology& t) { return std::accumulate(t.genus.begin(), t.genus.end(), 0); }
+
+// The handle retry (docs/engine-decisions.md): when the finished generations left handles,
+// runs generations [from, to) again from `before` with the strict rules and keeps whichever
+// result has fewer handles without fewer shells. The tunnels that mitosis needs close again
+// before the end (two spheres: genus 0 either way), so only handles that survive are weighed.
+template <typename RunGenerationFn>
+absl::Status RetryHandles(VoxelGrid& grid, const StateCopy& before,
+                          const StateCounts& counts_before, size_t from, size_t to,
+                          RunGenerationFn& run_generation,
+                          StateCounts& counts, ShrinkResult& result) {
+  const Clock::time_point t0 = Clock::now();
+  HandleRetry& r = result.handle_retry;
+  r.from_generation = static_cast<int>(from) + 1;
+  int64_t loose = 0;
+  for (size_t g = from; g < to; ++g) loose += result.generations[g].loose_tunnels;
+  // Without a removal the strict rules refuse, they would make every decision the same.
+  if (loose == 0) return absl::OkStatus();
+  const VoxelTopology first = ComputeVoxelTopology(grid);
+  r.shells_before = r.shells_after = first.shells;
+  r.genus_before = r.genus_after = TotalGenus(first);
+  if (r.genus_before > 0) {
+    r.ran = true;
+    const StateCopy finished(grid.states().begin(), grid.states().end());
+    const StateCounts counts_finished = counts;
+    std::copy(before.begin(), before.end(), grid.mutable_states().begin());
+    counts = counts_before;
+    std::vector<GenerationStats> rows;
+    for (size_t g = from; g < to; ++g)
+      if (absl::Status s = run_generation(g, /*strict_run=*/true, rows); !s.ok()) return s;
+    const VoxelTopology second = ComputeVoxelTopology(grid);
+    r.kept = second.shells >= first.shells && TotalGenus(second) < r.genus_before;
+    if (r.kept) {
+      r.shells_after = second.shells;
+      r.genus_after = TotalGenus(second);
+      std::copy(rows.begin(), rows.end(), result.generations.begin() + from);
+    } else {
+      std::copy(finished.begin(), finished.end(), grid.mutable_states().begin());
+      counts = counts_finished;
+    }
+  }
+  r.seconds = SecondsSince(t0);
   return absl::OkStatus();
 }
 
@@ -92,6 +157,14 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "guard_short_loop_steps %d is out of range [1, 64]", o.guard_short_loop_steps));
   }
+  if (o.retry_tunnel_min_plate < 1) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "retry_tunnel_min_plate %d must be >= 1", o.retry_tunnel_min_plate));
+  }
+  if (o.retry_short_loop_min_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "retry_short_loop_min_plate %d must be >= 0", o.retry_short_loop_min_plate));
+  }
   if (o.thick_wall_run < 1 || o.thick_wall_run > 5) {
     return absl::InvalidArgumentError(
         absl::StrFormat("thick_wall_run %d is out of range [1, 5]", o.thick_wall_run));
@@ -117,7 +190,19 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
   // One pass over the states per generation: the counts after one are the counts before the
   // next (on a 70 M voxel grid each pass costs as much as a small generation).
   StateCounts counts = CountStates(grid.states());
-  for (size_t g = 0; g < sizes.size(); ++g) {
+  // The strict rules differ from the default ones from the first generation whose plate is
+  // below their tunnel size: the grid is kept as it was before it, for the retry.
+  const ShrinkOptions strict = StrictTunnelRules(options);
+  size_t retry_from = sizes.size();
+  if (options.retry_handles) {
+    for (size_t g = 0; g < sizes.size() && retry_from == sizes.size(); ++g)
+      if (sizes[g] < strict.guard_tunnel_min_plate) retry_from = g;
+  }
+  // Generation g with the default or the strict tunnel rules; appends its row to `rows`. From
+  // retry_from on, the default run counts the removals the strict rules would refuse.
+  auto run_generation = [&](size_t g, bool strict_run,
+                            std::vector<GenerationStats>& rows) -> absl::Status {
+    const ShrinkOptions& rules = strict_run ? strict : options;
     const Clock::time_point t0 = Clock::now();
     GenerationStats stats;
     stats.generation = static_cast<int>(g) + 1;
@@ -130,21 +215,27 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     chain.depth_bound_max_plate = options.depth_bound_max_plate;
     chain.thick_wall_run = options.thick_wall_run;
     chain.topology_guard = options.topology_guard;
-    chain.guard_tunnel_min_plate = options.guard_tunnel_min_plate;
-    chain.guard_short_loop_min_plate = options.guard_short_loop_min_plate;
+    chain.guard_tunnel_min_plate = rules.guard_tunnel_min_plate;
+    chain.guard_short_loop_min_plate = rules.guard_short_loop_min_plate;
     chain.guard_short_loop_steps = options.guard_short_loop_steps;
     chain.guard_wall_notch_min_plate = options.guard_wall_notch_min_plate;
+    chain.classify_strict = g >= retry_from && !strict_run;
+    chain.strict_tunnel_min_plate = strict.guard_tunnel_min_plate;
+    chain.strict_short_loop_min_plate = strict.guard_short_loop_min_plate;
     bool done = false;
     // The closed form needs the chains' tunnel rule to be the same everywhere (n >= the guard's
     // tunnel size): then only tunnels next to hard voxels are refused, and it checks those.
     if (options.closed_form_min_plate > 0 && sizes[g] >= options.closed_form_min_plate &&
-        sizes[g] >= options.guard_tunnel_min_plate) {
+        sizes[g] >= rules.guard_tunnel_min_plate) {
       absl::StatusOr<ClosedFormOutcome> closed =
           RunClosedFormGeneration(grid, chain, cancel, planes);
       if (!closed.ok()) return CancelledIn(stats);
       done = stats.closed_form = closed->applied;
       stats.closed_form_rounds = closed->rounds;
       stats.closed_form_checks = closed->checks;
+      // It allows every tunnel away from hard voxels: the strict rules might not have.
+      if (done && chain.classify_strict && sizes[g] < strict.guard_tunnel_min_plate)
+        stats.loose_tunnels = 1;
     }
     if (!done) {
       if (absl::Status s = RunGeneration(grid, finder, runner, chain, cancel, stats); !s.ok()) {
@@ -155,8 +246,26 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
     stats.new_outside = after.outside - counts.outside;
     counts = after;
     stats.seconds = SecondsSince(t0);
-    result.generations.push_back(stats);
-    if (on_generation) on_generation(stats);
+    rows.push_back(stats);
+    return absl::OkStatus();
+  };
+
+  StateCopy before_retry;
+  StateCounts counts_before_retry;
+  for (size_t g = 0; g < sizes.size(); ++g) {
+    if (g == retry_from) {
+      before_retry.assign(grid.states().begin(), grid.states().end());
+      counts_before_retry = counts;
+    }
+    if (absl::Status s = run_generation(g, /*strict_run=*/false, result.generations); !s.ok()) return s;
+    if (on_generation) on_generation(result.generations.back());
+  }
+  if (retry_from < sizes.size()) {
+    if (absl::Status s = RetryHandles(grid, before_retry, counts_before_retry, retry_from,
+                                      sizes.size(), run_generation, counts, result);
+        !s.ok()) {
+      return s;
+    }
   }
   if (options.connect_inside_hard) {
     absl::StatusOr<PostProcessStats> post = ConnectInsideHardVoxels(grid, cancel);

@@ -30,6 +30,23 @@ struct ShrinkOptions {
   int closed_form_min_plate = 8;    // generations with n >= this try the closed form; 0 = never
   bool silhouette_preshrink = false;  // algorithm-notes 3 (Fig. 21b); off by default
   bool connect_inside_hard = true;  // section 7 post-process
+  // The handle retry (docs/engine-decisions.md): when the shrink ends with handles, the
+  // generations from the first plate below retry_tunnel_min_plate run again with tunnels away
+  // from the data only from that plate size and short-loop tunnels only from
+  // retry_short_loop_min_plate; the result with fewer handles and no fewer shells is kept.
+  bool retry_handles = true;
+  int retry_tunnel_min_plate = 7;
+  int retry_short_loop_min_plate = 4;
+};
+
+// What the handle retry did (ShrinkOptions::retry_handles).
+struct HandleRetry {
+  bool ran = false;          // the first result had handles, so the generations ran again
+  bool kept = false;         // the retry's result replaced the first
+  int from_generation = 0;   // first generation run again (1-based; 0: no generation qualified)
+  int shells_before = 0, genus_before = 0;  // first result (genus summed over the shells)
+  int shells_after = 0, genus_after = 0;    // result kept
+  double seconds = 0.0;      // topology counts and the generations run again
 };
 
 // One row of the paper's Tables 1 to 4 (algorithm-notes 11), plus our own counters.
@@ -43,6 +60,10 @@ struct GenerationStats {
   int64_t undone_contractions = 0;
   int64_t guard_refusals = 0;        // backtracks caused by the topology guard
   int64_t depth_refusals = 0;        // backtracks caused by the n = 1 depth bound
+  // Tunnels the handle retry's strict rules would refuse (counted from the generation it would
+  // start at; a closed-form generation below their tunnel size counts 1): with none, the
+  // retry would repeat the same run and is skipped.
+  int64_t loose_tunnels = 0;
   int passes = 0;                    // place-finding snapshots
   bool closed_form = false;          // computed as a fixed point, without chains
   int closed_form_rounds = 0;        // rounds of its six sweeps (also when it was rejected)
@@ -55,6 +76,7 @@ struct ShrinkResult {
   std::vector<GenerationStats> generations;
   int64_t preshrink_outside_voxels = 0;
   PostProcessStats post_process;
+  HandleRetry handle_retry;
   double seconds = 0.0;
 };
 
@@ -65,6 +87,9 @@ using GenerationCallback = std::function<void(const GenerationStats&)>;
 absl::Status ValidateShrinkOptions(const ShrinkOptions& options);
 
 // Shrinks the initial membrane of `grid` (as built by Voxelize) into the final DMS.
+// `generations` holds the rows of the generations kept: after a kept handle retry, the retry's
+// rows replace the first run's from HandleRetry::from_generation on (`on_generation` saw the
+// first run's rows only, as they finished).
 // After success the membrane invariants hold (CheckMembraneInvariants) and `grid` holds the
 // final DMS. `on_generation` may be empty; `cancel` may be null. Cancelled when `cancel`
 // fires (within milliseconds; `grid` is then a valid but unfinished DMS); InvalidArgument for

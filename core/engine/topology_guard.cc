@@ -48,7 +48,8 @@ bool CutsOffSmallComponent(const VoxelGrid& grid, int64_t index, uint32_t outsid
 
 }  // namespace
 
-bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options) {
+GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options) {
+  constexpr GuardVerdict kRefused = GuardVerdict::kRefused, kAllowed = GuardVerdict::kAllowed;
   const auto st = grid.strides();
   const VoxelState* s = grid.states().data() + index;
   uint32_t outside = 0, hard = 0;
@@ -63,12 +64,14 @@ bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions
   outside &= ~kCentreBit;
   hard &= ~kCentreBit;
   // One outside neighbour, across a face: removing the voxel only dents the membrane.
-  if (std::has_single_bit(outside) && (outside & FaceNeighboursMask()) != 0) return true;
+  if (std::has_single_bit(outside) && (outside & FaceNeighboursMask()) != 0) return kAllowed;
   if (CountT6(outside) == 1) {
     // Simple, or a local split (mitosis). A split that cuts off a few voxels is not mitosis
     // but a stray hard voxel of a sparse region left as a shell of its own.
     return CountT26(~outside & kAll27 & ~kCentreBit) == 1 ||
-           !CutsOffSmallComponent(grid, index, outside, options.min_shell_voxels);
+                   !CutsOffSmallComponent(grid, index, outside, options.min_shell_voxels)
+               ? kAllowed
+               : kRefused;
   }
   // It would open a tunnel. Next to the data (Property 8), only the notch of a soft sheet
   // along a wall: the hard neighbours on one side only (a gap in a wall has them on two), the
@@ -77,17 +80,34 @@ bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions
   // joins a fresh dig to an older outside). Two spheres 2.5-5 voxels apart split this way.
   if (hard != 0) {
     return options.wall_notch_min_plate > 0 && options.plate_size >= options.wall_notch_min_plate &&
-           InOneFaceLayer(hard) && SameGenerationAcrossTunnel(grid, index, outside) &&
-           TunnelClosesShortLoop(grid, index, outside, options.short_loop_steps);
+                   InOneFaceLayer(hard) && SameGenerationAcrossTunnel(grid, index, outside) &&
+                   TunnelClosesShortLoop(grid, index, outside, options.short_loop_steps)
+               ? kAllowed
+               : kRefused;
   }
+  const int n = options.plate_size;
+  // The short-loop test walks the outside: run at most once, and only where it decides.
+  auto short_loop = [&, known = false, value = false]() mutable {
+    if (!known) value = TunnelClosesShortLoop(grid, index, outside, options.short_loop_steps);
+    known = true;
+    return value;
+  };
+  auto strict_allows = [&] {
+    return n >= options.strict_tunnel_min_plate ||
+           (options.strict_short_loop_min_plate > 0 && n >= options.strict_short_loop_min_plate &&
+            short_loop());
+  };
   // Away from the data, a big plate may open any tunnel...
-  if (options.plate_size >= options.tunnel_min_plate) return true;
+  if (n >= options.tunnel_min_plate) {
+    return !options.classify_strict || strict_allows() ? kAllowed : GuardVerdict::kAllowedLoosely;
+  }
   // ...or where the loop it closes through the outside is short: it then notches a soft bridge
   // about one voxel thick, the first cut of the split of a sheet between two shells (two
   // spheres 5-10 voxels apart), which a plate too small for the guard's tunnels must make.
   // A hole through a wall closes a long loop, around the wall. Measured in engine-decisions.md.
-  return options.short_loop_min_plate > 0 && options.plate_size >= options.short_loop_min_plate &&
-         TunnelClosesShortLoop(grid, index, outside, options.short_loop_steps);
+  if (options.short_loop_min_plate <= 0 || n < options.short_loop_min_plate || !short_loop())
+    return kRefused;
+  return !options.classify_strict || strict_allows() ? kAllowed : GuardVerdict::kAllowedLoosely;
 }
 
 }  // namespace membrane

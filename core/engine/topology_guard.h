@@ -17,6 +17,17 @@ struct GuardOptions {
   int short_loop_min_plate = 3;  // below tunnel_min_plate, short-loop tunnels from this n; 0 = off
   int short_loop_steps = 6;      // ...whose two sides are joined within this many outside steps
   int wall_notch_min_plate = 2;  // short-loop tunnels beside a wall from this n; 0 = off
+  // The handle retry's stricter tunnel sizes (ShrinkOptions::retry_*): with `classify_strict`,
+  // ClassifyRemoval tells the removals these would refuse apart. They never change the answer.
+  bool classify_strict = false;
+  int strict_tunnel_min_plate = 7;
+  int strict_short_loop_min_plate = 4;  // 0 = short-loop tunnels off under the strict rules
+};
+
+enum class GuardVerdict : uint8_t {
+  kRefused,
+  kAllowed,
+  kAllowedLoosely,  // allowed, but the strict sizes would refuse it (a tunnel away from hard)
 };
 
 // Classifies the non-outside voxel at `index` in its 3x3x3 neighbourhood as if it were removed
@@ -30,7 +41,13 @@ struct GuardOptions {
 // opened by a plate of at least options.wall_notch_min_plate (when > 0) whose hard neighbours
 // all lie in one face layer of the block (InOneFaceLayer) and whose two sides carry the same
 // generation label (SameGenerationAcrossTunnel). `index` must not lie on the array border.
-bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options);
+// ClassifyRemoval tells the same, and with options.classify_strict also whether the strict
+// sizes would have refused (kAllowedLoosely): a tunnel away from hard voxels allowed below
+// strict_tunnel_min_plate that is no short-loop tunnel at or above strict_short_loop_min_plate.
+GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options);
+inline bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options) {
+  return ClassifyRemoval(grid, index, options) != GuardVerdict::kRefused;
+}
 
 }  // namespace membrane
 

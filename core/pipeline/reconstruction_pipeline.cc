@@ -56,6 +56,7 @@ absl::Status Shrink(const ReconstructionOptions& options, const CancelToken& can
   if (!result.ok()) return result.status();
   report.generations = std::move(result->generations);
   report.post_process = result->post_process;
+  report.handle_retry = result->handle_retry;
   report.seconds.shrink = watch.Seconds();
   observer.StageFinished(PipelineStage::kShrink, report.seconds.shrink, report);
   return absl::OkStatus();

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "core/pipeline/membrane_counts.h"
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/post_process.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/relaxation.h"
+#include "core/pipeline/membrane_counts.h"
 
 namespace membrane {
 
@@ -41,6 +41,7 @@ struct ReconstructionReport {
   int planned_generations = 0;               // plate sizes of the schedule, known before shrinking
   std::vector<GenerationStats> generations;  // one per plate size, the last has plate size 1
   PostProcessStats post_process;
+  HandleRetry handle_retry;    // ShrinkResult::handle_retry
   MembraneCounts membrane;     // the final DMS, before relaxation
   RelaxationStats relaxation;  // all 0 with --no-relax
   MeshReport mesh;             // CheckMesh of the surface (vertices and faces set before it)

@@ -40,6 +40,15 @@ std::string PostProcessJson(const PostProcessStats& p) {
                       ", \"bridge_voxels\": ", p.bridge_voxels, "}");
 }
 
+std::string HandleRetryJson(const HandleRetry& h) {
+  return absl::StrCat("{\"ran\": ", JsonBool(h.ran), ", \"kept\": ", JsonBool(h.kept),
+                      ", \"from_generation\": ", h.from_generation,
+                      ", \"shells_before\": ", h.shells_before,
+                      ", \"genus_before\": ", h.genus_before,
+                      ", \"shells_after\": ", h.shells_after, ", \"genus_after\": ", h.genus_after,
+                      ", \"seconds\": ", JsonNumber(h.seconds), "}");
+}
+
 std::string RelaxationJson(const RelaxationStats& r) {
   return absl::StrCat("{\"phase1_moves\": ", r.phase1_moves, ", \"phase1_added\": ", r.phase1_added,
                       ", \"phase2_moves\": ", r.phase2_moves,
@@ -86,6 +95,7 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"data_grid\": ", IntArray(r.data_grid), ",\n  \"schedule\": ", JsonString(r.schedule),
       ",\n  \"surface\": ", JsonString(r.surface), ",\n  \"relaxed\": ", JsonBool(r.relaxed),
       ",\n  \"post_process\": ", PostProcessJson(r.post_process),
+      ",\n  \"handle_retry\": ", HandleRetryJson(r.handle_retry),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation), "\n}\n");
 }
 

@@ -321,6 +321,16 @@ int64_t PeakRssKb() {
   return u.ru_maxrss;
 }
 
+// What the handle retry did, for the shrink line.
+std::string RetrySummary(const HandleRetry& r) {
+  if (r.from_generation == 0) return "no generation below its plate size";
+  if (r.genus_before == 0 && !r.ran) return "not needed";
+  if (!r.ran) return "no handles";
+  return absl::StrFormat("genus %d -> %d from generation %d, %s", r.genus_before,
+                         r.kept ? r.genus_after : r.genus_before, r.from_generation,
+                         r.kept ? "kept" : "not kept");
+}
+
 bool SameCounters(const ShrinkResult& a, const ShrinkResult& b) {
   if (a.generations.size() != b.generations.size()) return false;
   for (size_t i = 0; i < a.generations.size(); ++i) {
@@ -409,12 +419,14 @@ Summary RunModel(const BenchOptions& o, const Model& m, bool open3d_available,
     generation_sum += g.seconds;
   }
   std::printf("shrink: median %.3f s wall, %.3f s CPU over R=%d (wall runs %s); %.1f ns/voxel "
-              "wall, %.1f CPU; generations %.3f s + rest (post-process) %.3f s%s\n",
+              "wall, %.1f CPU; generations %.3f s + rest (post-process, handle retry %.3f s: %s) "
+              "%.3f s%s\n",
               s.wall, s.cpu, o.repeat,
               absl::StrJoin(walls, " ", [](std::string* out, double w) {
                 absl::StrAppend(out, absl::StrFormat("%.3f", w));
               }).c_str(),
               1e9 * s.wall / s.voxels, 1e9 * s.cpu / s.voxels, generation_sum,
+              res.handle_retry.seconds, RetrySummary(res.handle_retry).c_str(),
               res.seconds - generation_sum,
               deterministic ? "" : "; COUNTERS DIFFER BETWEEN RUNS");
   std::printf("%s %.2f s, voxelize %.3f s (median, not in the shrink time); peak RSS %.1f MB\n",

@@ -25,13 +25,6 @@ constexpr Expected kModels[] = {
     {"spot", 1, 0},           {"teapot", 1, -1},
 };
 
-// Runs still wrong at 1x (open problem A: spurious handles through data holes of the scan; see
-// docs/engine-decisions.md). Skipped by name so that every other run is asserted and a
-// regression shows; the genus found is printed.
-bool KnownOpen(const std::string& model, const std::string& kind) {
-  return model == "spot" && kind == "scan";
-}
-
 class RealScanTest : public ::testing::TestWithParam<std::tuple<Expected, std::string>> {};
 
 TEST_P(RealScanTest, HasTheExpectedShellsAndGenus) {
@@ -44,9 +37,6 @@ TEST_P(RealScanTest, HasTheExpectedShellsAndGenus) {
   ASSERT_TRUE(run.ok()) << run.status();
   RecordProperty("topology", run->Describe());
   std::cout << expected.model << "-" << kind << ": " << run->Describe() << "\n";
-  if (KnownOpen(expected.model, kind)) {
-    GTEST_SKIP() << "known open (algorithm-notes problem A): " << run->Describe();
-  }
   EXPECT_TRUE(run->invariants.ok()) << run->Describe();
   EXPECT_EQ(run->topology.shells, expected.shells) << run->Describe();
   if (expected.genus >= 0 && run->topology.shells == 1) {

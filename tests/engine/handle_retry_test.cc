@@ -1,0 +1,120 @@
+// The handle retry (docs/engine-decisions.md): when the shrink ends with handles, the late
+// generations run again under stricter tunnel sizes, and the result with fewer handles and no
+// fewer shells is kept. The real case it exists for is the spot scan (real_scans_test.cc);
+// here the strict sizes are pushed to "no tunnel away from the data at all" so that a torus
+// shows the mechanism on a shape the test makes.
+#include "absl/status/status.h"
+#include "core/engine/membrane_shrinker.h"
+#include "core/engine/voxelization.h"
+#include "gtest/gtest.h"
+#include "tests/engine/shrink_fixture.h"
+
+namespace membrane {
+namespace {
+
+using testing::ShrinkCloud;
+using testing::SynthCloud;
+
+constexpr int64_t kPoints = 60000;
+
+// Strict sizes no plate reaches: the retry then refuses every tunnel away from hard voxels.
+ShrinkOptions NoTunnelRetry() {
+  ShrinkOptions o;
+  o.retry_tunnel_min_plate = 100000;
+  o.retry_short_loop_min_plate = 100000;
+  return o;
+}
+
+TEST(HandleRetryTest, KeepsTheResultWithFewerHandles) {
+  const PointCloud torus = SynthCloud("torus", kPoints);
+  ShrinkOptions off = NoTunnelRetry();
+  off.retry_handles = false;
+  auto first = ShrinkCloud(torus, 1.0, off);
+  ASSERT_TRUE(first.ok()) << first.status();
+  ASSERT_EQ(first->topology.genus, std::vector<int>{1}) << first->Describe();
+  EXPECT_FALSE(first->result.handle_retry.ran);
+
+  auto retried = ShrinkCloud(torus, 1.0, NoTunnelRetry());
+  ASSERT_TRUE(retried.ok()) << retried.status();
+  const HandleRetry& r = retried->result.handle_retry;
+  EXPECT_TRUE(r.ran);
+  EXPECT_TRUE(r.kept);
+  EXPECT_EQ(r.shells_before, 1);
+  EXPECT_EQ(r.genus_before, 1);
+  EXPECT_EQ(r.shells_after, 1);
+  EXPECT_EQ(r.genus_after, 0);
+  // The hole spanned by a membrane: what the grid holds is what the retry reported.
+  EXPECT_EQ(retried->topology.shells, 1) << retried->Describe();
+  EXPECT_EQ(retried->topology.genus, std::vector<int>{0}) << retried->Describe();
+  EXPECT_TRUE(retried->invariants.ok()) << retried->Describe();
+  // One row per plate size, whichever run each came from.
+  ASSERT_EQ(retried->result.generations.size(), first->result.generations.size());
+  for (size_t g = 0; g < first->result.generations.size(); ++g) {
+    EXPECT_EQ(retried->result.generations[g].plate_size, first->result.generations[g].plate_size);
+  }
+  EXPECT_GE(r.from_generation, 1);
+}
+
+TEST(HandleRetryTest, TransientTunnelsOfASplitNeedNoRetry) {
+  // Two spheres split through a tunnel that closes again: no handle is left, so nothing runs
+  // again, and the split stays.
+  const PointCloud spheres = SynthCloud("two-spheres", kPoints);
+  auto run = ShrinkCloud(spheres, 1.5, NoTunnelRetry());
+  ASSERT_TRUE(run.ok()) << run.status();
+  EXPECT_EQ(run->topology.shells, 2) << run->Describe();
+  EXPECT_FALSE(run->result.handle_retry.ran);
+  EXPECT_TRUE(run->invariants.ok()) << run->Describe();
+}
+
+TEST(HandleRetryTest, NeverTradesAShellForAHandle) {
+  // A torus beside the two spheres: the handle makes the retry run, and without tunnels the
+  // spheres do not split. One handle fewer for one shell fewer is refused.
+  const PointCloud spheres = SynthCloud("two-spheres", kPoints);
+  const double voxel = 1.5 * EstimateVoxelSize(*CheckedBounds(spheres.points), kPoints);
+  PointCloud both = spheres;
+  for (Point3f p : SynthCloud("torus", kPoints).points) {
+    p[0] += 6.0f;
+    both.points.push_back(p);
+  }
+  ShrinkOptions off = NoTunnelRetry();
+  off.retry_handles = false;
+  auto first = ShrinkCloud(both, 1.0, off, voxel);
+  ASSERT_TRUE(first.ok()) << first.status();
+  ASSERT_EQ(first->topology.shells, 3) << first->Describe();
+  auto run = ShrinkCloud(both, 1.0, NoTunnelRetry(), voxel);
+  ASSERT_TRUE(run.ok()) << run.status();
+  const HandleRetry& r = run->result.handle_retry;
+  EXPECT_TRUE(r.ran);
+  EXPECT_FALSE(r.kept) << "retry: shells " << r.shells_after << ", genus " << r.genus_after;
+  EXPECT_EQ(run->topology.shells, 3) << run->Describe();
+  EXPECT_EQ(run->topology.genus, first->topology.genus) << run->Describe();
+  EXPECT_TRUE(run->invariants.ok()) << run->Describe();
+}
+
+TEST(HandleRetryTest, SameSizesMeanNoRetry) {
+  // With the strict sizes equal to the default ones no removal differs: the run would repeat.
+  ShrinkOptions o;
+  o.retry_tunnel_min_plate = o.guard_tunnel_min_plate;
+  o.retry_short_loop_min_plate = o.guard_short_loop_min_plate;
+  auto run = ShrinkCloud(SynthCloud("torus", kPoints), 1.0, o);
+  ASSERT_TRUE(run.ok()) << run.status();
+  EXPECT_EQ(run->topology.genus, std::vector<int>{1}) << run->Describe();
+  EXPECT_FALSE(run->result.handle_retry.ran);
+  for (const GenerationStats& g : run->result.generations) EXPECT_EQ(g.loose_tunnels, 0);
+}
+
+TEST(HandleRetryTest, RejectsOutOfRangeSizes) {
+  ShrinkOptions o;
+  o.retry_tunnel_min_plate = 0;
+  absl::Status s = ValidateShrinkOptions(o);
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("retry_tunnel_min_plate"), std::string::npos) << s;
+  o = ShrinkOptions{};
+  o.retry_short_loop_min_plate = -1;
+  s = ValidateShrinkOptions(o);
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("retry_short_loop_min_plate"), std::string::npos) << s;
+}
+
+}  // namespace
+}  // namespace membrane

@@ -15,7 +15,7 @@ namespace {
 using testing::ShrinkCloud;
 using testing::SynthCloud;
 
-constexpr int64_t kPoints = 60000;
+constexpr int64_t kRetryPoints = 60000;
 
 // Strict sizes no plate reaches: the retry then refuses every tunnel away from hard voxels.
 ShrinkOptions NoTunnelRetry() {
@@ -26,7 +26,7 @@ ShrinkOptions NoTunnelRetry() {
 }
 
 TEST(HandleRetryTest, KeepsTheResultWithFewerHandles) {
-  const PointCloud torus = SynthCloud("torus", kPoints);
+  const PointCloud torus = SynthCloud("torus", kRetryPoints);
   ShrinkOptions off = NoTunnelRetry();
   off.retry_handles = false;
   auto first = ShrinkCloud(torus, 1.0, off);
@@ -58,7 +58,7 @@ TEST(HandleRetryTest, KeepsTheResultWithFewerHandles) {
 TEST(HandleRetryTest, TransientTunnelsOfASplitNeedNoRetry) {
   // Two spheres split through a tunnel that closes again: no handle is left, so nothing runs
   // again, and the split stays.
-  const PointCloud spheres = SynthCloud("two-spheres", kPoints);
+  const PointCloud spheres = SynthCloud("two-spheres", kRetryPoints);
   auto run = ShrinkCloud(spheres, 1.5, NoTunnelRetry());
   ASSERT_TRUE(run.ok()) << run.status();
   EXPECT_EQ(run->topology.shells, 2) << run->Describe();
@@ -69,10 +69,10 @@ TEST(HandleRetryTest, TransientTunnelsOfASplitNeedNoRetry) {
 TEST(HandleRetryTest, NeverTradesAShellForAHandle) {
   // A torus beside the two spheres: the handle makes the retry run, and without tunnels the
   // spheres do not split. One handle fewer for one shell fewer is refused.
-  const PointCloud spheres = SynthCloud("two-spheres", kPoints);
-  const double voxel = 1.5 * EstimateVoxelSize(*CheckedBounds(spheres.points), kPoints);
+  const PointCloud spheres = SynthCloud("two-spheres", kRetryPoints);
+  const double voxel = 1.5 * EstimateVoxelSize(*CheckedBounds(spheres.points), kRetryPoints);
   PointCloud both = spheres;
-  for (Point3f p : SynthCloud("torus", kPoints).points) {
+  for (Point3f p : SynthCloud("torus", kRetryPoints).points) {
     p[0] += 6.0f;
     both.points.push_back(p);
   }
@@ -96,7 +96,7 @@ TEST(HandleRetryTest, SameSizesMeanNoRetry) {
   ShrinkOptions o;
   o.retry_tunnel_min_plate = o.guard_tunnel_min_plate;
   o.retry_short_loop_min_plate = o.guard_short_loop_min_plate;
-  auto run = ShrinkCloud(SynthCloud("torus", kPoints), 1.0, o);
+  auto run = ShrinkCloud(SynthCloud("torus", kRetryPoints), 1.0, o);
   ASSERT_TRUE(run.ok()) << run.status();
   EXPECT_EQ(run->topology.genus, std::vector<int>{1}) << run->Describe();
   EXPECT_FALSE(run->result.handle_retry.ran);

@@ -23,7 +23,7 @@ using testing::ShrinkCloud;
 using testing::SynthCloud;
 using ::testing::HasSubstr;
 
-constexpr int64_t kPoints = 30000;
+constexpr int64_t kPropertyPoints = 30000;
 
 TEST(ShrinkProperties, Property1TerminatesOnRandomNoise) {
   // No surface at all: points scattered through a box. The shrink must still finish.
@@ -43,7 +43,7 @@ TEST(ShrinkProperties, Property1TerminatesOnRandomNoise) {
 }
 
 TEST(ShrinkProperties, Property2ResultIsADiscreteMembraneSet) {
-  auto run = ShrinkCloud(SynthCloud("torus", kPoints), 1.0);
+  auto run = ShrinkCloud(SynthCloud("torus", kPropertyPoints), 1.0);
   ASSERT_TRUE(run.ok());
   InvariantOptions o;
   o.require_property3 = false;  // Properties 2 and 4 only: separation and connectivity
@@ -51,7 +51,7 @@ TEST(ShrinkProperties, Property2ResultIsADiscreteMembraneSet) {
 }
 
 TEST(ShrinkProperties, Property3ExposedBoundaryVoxelsAreHardOrFrozen) {
-  auto run = ShrinkCloud(SynthCloud("capped-sphere", kPoints), 1.0);
+  auto run = ShrinkCloud(SynthCloud("capped-sphere", kPropertyPoints), 1.0);
   ASSERT_TRUE(run.ok());
   const VoxelGrid& g = run->voxels.grid;
   const auto st = g.strides();
@@ -69,7 +69,7 @@ TEST(ShrinkProperties, Property3ExposedBoundaryVoxelsAreHardOrFrozen) {
 }
 
 TEST(ShrinkProperties, Property4OutsideVoxelsAreNeverHard) {
-  auto run = ShrinkCloud(SynthCloud("sphere", kPoints, 30.0), 1.0);
+  auto run = ShrinkCloud(SynthCloud("sphere", kPropertyPoints, 30.0), 1.0);
   ASSERT_TRUE(run.ok());
   int64_t hard = 0;
   for (VoxelState s : run->voxels.grid.states()) {
@@ -98,7 +98,7 @@ TEST(ShrinkProperties, Property7MitosisSplitsTwoSpheres) {
 }
 
 TEST(ShrinkProperties, Property8GenusIncreasesThroughTheTorusHole) {
-  auto run = ShrinkCloud(SynthCloud("torus", kPoints), 1.0);
+  auto run = ShrinkCloud(SynthCloud("torus", kPropertyPoints), 1.0);
   ASSERT_TRUE(run.ok());
   EXPECT_EQ(run->topology.genus, std::vector<int>{1}) << run->Describe();
 }
@@ -117,7 +117,7 @@ TEST(ShrinkProperties, Property8HoleSmallerThanThePlateOpensNoHandle) {
 
 TEST(ShrinkStatistics, OneRowPerGenerationWithThePaperColumns) {
   std::vector<GenerationStats> seen;
-  PointCloud cloud = SynthCloud("sphere", kPoints);
+  PointCloud cloud = SynthCloud("sphere", kPropertyPoints);
   auto voxels = Voxelize(cloud.points, {});
   ASSERT_TRUE(voxels.ok());
   auto result = ShrinkMembrane(voxels->grid, {}, [&](const GenerationStats& g) { seen.push_back(g); },
@@ -145,7 +145,7 @@ TEST(ShrinkSchedules, LinearScheduleAndInitialPlateAlsoWork) {
   ShrinkOptions o;
   o.schedule = PlateSchedule::kLinear;
   o.initial_plate = 12;
-  auto run = ShrinkCloud(SynthCloud("torus", kPoints), 1.5, o);
+  auto run = ShrinkCloud(SynthCloud("torus", kPropertyPoints), 1.5, o);
   ASSERT_TRUE(run.ok());
   ASSERT_EQ(run->result.generations.size(), 12u);
   EXPECT_EQ(run->result.generations.front().plate_size, 12);
@@ -179,7 +179,7 @@ TEST(ShrinkOptionsValidation, OutOfRangeOptionsNameTheField) {
 
 TEST(ShrinkPostProcess, InsideHardVoxelsAreConnectedToTheMembrane) {
   // A hard voxel floating inside a sphere's shell: after the post-process it is on the membrane.
-  PointCloud cloud = SynthCloud("sphere", kPoints);
+  PointCloud cloud = SynthCloud("sphere", kPropertyPoints);
   for (int i = 0; i < 5; ++i) cloud.points.push_back({0.5f + 0.01f * i, 0.0f, 0.0f});
   auto run = ShrinkCloud(cloud, 1.0);
   ASSERT_TRUE(run.ok());
@@ -209,7 +209,7 @@ TEST(ShrinkPostProcess, BridgingJoinsEveryEdgeContactOfAStaircase) {
 TEST(ShrinkPreshrink, SilhouettePreshrinkGivesAValidMembrane) {
   ShrinkOptions o;
   o.silhouette_preshrink = true;
-  auto run = ShrinkCloud(SynthCloud("sphere", kPoints), 1.5, o);
+  auto run = ShrinkCloud(SynthCloud("sphere", kPropertyPoints), 1.5, o);
   ASSERT_TRUE(run.ok());
   EXPECT_GT(run->result.preshrink_outside_voxels, 0);
   EXPECT_TRUE(run->invariants.ok()) << run->Describe();

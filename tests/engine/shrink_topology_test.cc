@@ -17,14 +17,14 @@ using testing::ShrinkCloud;
 using testing::SynthCloud;
 
 // Dense enough for the paper's voxel size to resolve the 0.3 gap of two-spheres at 2x.
-constexpr int64_t kPoints = 60000;
+constexpr int64_t kTopologyPoints = 60000;
 
 class ShapeTopologyTest
     : public ::testing::TestWithParam<std::tuple<std::string, double, double>> {};
 
 TEST_P(ShapeTopologyTest, HasTheShapesShellsAndGenus) {
   const auto& [shape, factor, density] = GetParam();
-  const PointCloud cloud = SynthCloud(shape, kPoints, density);
+  const PointCloud cloud = SynthCloud(shape, kTopologyPoints, density);
   auto run = ShrinkCloud(cloud, factor);
   ASSERT_TRUE(run.ok()) << run.status();
   const ShapeTopology expected = ExpectedTopology(shape);

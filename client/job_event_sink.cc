@@ -52,6 +52,12 @@ void JobEventSink::ConsumeProgress(const v1::JobEvent& event) {
     g.started_contractions = e.started_contractions();
     g.backtrackings = e.backtrackings();
     g.seconds = e.seconds();
+    g.handle_retry = e.handle_retry();
+    // A kept retry's row replaces the row of its generation, and those after it.
+    if (g.handle_retry && g.generation >= 1 &&
+        static_cast<size_t>(g.generation) <= generations_.size() + 1) {
+      generations_.resize(g.generation - 1);
+    }
     generations_.push_back(g);
     progress_.GenerationFinished(g, e.planned_generations());
     return;

@@ -10,10 +10,14 @@ namespace membrane::client {
 
 std::string GenerationTable(const std::vector<GenerationStats>& generations) {
   std::string table = "plate size | soft voxels | started contractions | backtrackings | seconds\n";
+  bool retried = false;
   for (const GenerationStats& g : generations) {
-    absl::StrAppendFormat(&table, "%10d | %11d | %20d | %13d | %7.3f\n", g.plate_size,
-                          g.soft_voxels, g.started_contractions, g.backtrackings, g.seconds);
+    absl::StrAppendFormat(&table, "%10d | %11d | %20d | %13d | %7.3f%s\n", g.plate_size,
+                          g.soft_voxels, g.started_contractions, g.backtrackings, g.seconds,
+                          g.handle_retry ? " *" : "");
+    retried = retried || g.handle_retry;
   }
+  if (retried) table += "* run again by the handle retry, whose result has fewer handles\n";
   return table;
 }
 

@@ -14,6 +14,7 @@ namespace membrane::client {
 
 // One header row and one row per generation, columns right-aligned:
 //   plate size | soft voxels | started contractions | backtrackings | seconds
+// Rows of a kept handle retry end with " *", and a line under the table says what that means.
 // Each line ends with '\n'.
 std::string GenerationTable(const std::vector<GenerationStats>& generations);
 

@@ -32,6 +32,7 @@ void JobEventObserver::GenerationFinished(const GenerationStats& g, int planned_
   e->set_started_contractions(g.started_contractions);
   e->set_backtrackings(g.backtrackings);
   e->set_seconds(g.seconds);
+  e->set_handle_retry(g.handle_retry);
   job_.AddEvent(std::move(event));
 }
 

@@ -91,7 +91,8 @@ template <typename RunGenerationFn>
 absl::Status RetryHandles(VoxelGrid& grid, const StateCopy& before,
                           const StateCounts& counts_before, size_t from, size_t to,
                           RunGenerationFn& run_generation,
-                          StateCounts& counts, ShrinkResult& result) {
+                          const GenerationCallback& on_generation, StateCounts& counts,
+                          ShrinkResult& result) {
   const Clock::time_point t0 = Clock::now();
   HandleRetry& r = result.handle_retry;
   r.from_generation = static_cast<int>(from) + 1;
@@ -116,7 +117,11 @@ absl::Status RetryHandles(VoxelGrid& grid, const StateCopy& before,
     if (r.kept) {
       r.shells_after = second.shells;
       r.genus_after = TotalGenus(second);
+      for (GenerationStats& row : rows) row.handle_retry = true;
       std::copy(rows.begin(), rows.end(), result.generations.begin() + from);
+      // Reported once kept: a row that is thrown away would only confuse a progress display.
+      if (on_generation)
+        for (const GenerationStats& row : rows) on_generation(row);
     } else {
       std::copy(finished.begin(), finished.end(), grid.mutable_states().begin());
       counts = counts_finished;
@@ -262,7 +267,8 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
   }
   if (retry_from < sizes.size()) {
     if (absl::Status s = RetryHandles(grid, before_retry, counts_before_retry, retry_from,
-                                      sizes.size(), run_generation, counts, result);
+                                      sizes.size(), run_generation, on_generation, counts,
+                                      result);
         !s.ok()) {
       return s;
     }

@@ -64,6 +64,7 @@ struct GenerationStats {
   // start at; a closed-form generation below their tunnel size counts 1): with none, the
   // retry would repeat the same run and is skipped.
   int64_t loose_tunnels = 0;
+  bool handle_retry = false;         // run again by the handle retry, whose result was kept
   int passes = 0;                    // place-finding snapshots
   bool closed_form = false;          // computed as a fixed point, without chains
   int closed_form_rounds = 0;        // rounds of its six sweeps (also when it was rejected)
@@ -88,8 +89,9 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& options);
 
 // Shrinks the initial membrane of `grid` (as built by Voxelize) into the final DMS.
 // `generations` holds the rows of the generations kept: after a kept handle retry, the retry's
-// rows replace the first run's from HandleRetry::from_generation on (`on_generation` saw the
-// first run's rows only, as they finished).
+// rows (handle_retry set) replace the first run's from HandleRetry::from_generation on.
+// `on_generation` sees every first-run row as it finishes, then, when a retry is kept, the
+// retry's rows, each replacing the earlier row of the same generation.
 // After success the membrane invariants hold (CheckMembraneInvariants) and `grid` holds the
 // final DMS. `on_generation` may be empty; `cancel` may be null. Cancelled when `cancel`
 // fires (within milliseconds; `grid` is then a valid but unfinished DMS); InvalidArgument for

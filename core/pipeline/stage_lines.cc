@@ -18,9 +18,9 @@ std::string StageStartedLine(PipelineStage stage, const ReconstructionReport& re
 std::string GenerationLine(const GenerationStats& g, int planned_generations) {
   return absl::StrFormat(
       "shrink: generation %d/%d, plate size %d: %d soft voxels, %d started contractions, "
-      "%d backtrackings, %.3f s",
+      "%d backtrackings, %.3f s%s",
       g.generation, planned_generations, g.plate_size, g.soft_voxels, g.started_contractions,
-      g.backtrackings, g.seconds);
+      g.backtrackings, g.seconds, g.handle_retry ? " (handle retry, kept)" : "");
 }
 
 std::string StageFinishedLine(PipelineStage stage, const ReconstructionReport& r) {
@@ -35,10 +35,15 @@ std::string StageFinishedLine(PipelineStage stage, const ReconstructionReport& r
     case PipelineStage::kShrink:
       return absl::StrFormat(
           "shrink: %d generations in %.3f s; %d of %d inside hard voxels connected to the "
-          "membrane",
+          "membrane%s",
           r.generations.size(), s.shrink,
           r.post_process.inside_hard_before - r.post_process.inside_hard_after,
-          r.post_process.inside_hard_before);
+          r.post_process.inside_hard_before,
+          r.handle_retry.kept
+              ? absl::StrFormat("; handle retry from generation %d: genus %d -> %d",
+                                r.handle_retry.from_generation, r.handle_retry.genus_before,
+                                r.handle_retry.genus_after)
+              : "");
     case PipelineStage::kRelax:
       return absl::StrFormat(
           "relax: %d dents filled, %d bumps shaved, %d steps refused to keep the topology in "

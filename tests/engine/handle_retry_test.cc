@@ -55,6 +55,33 @@ TEST(HandleRetryTest, KeepsTheResultWithFewerHandles) {
   EXPECT_GE(r.from_generation, 1);
 }
 
+TEST(HandleRetryTest, ReportsTheKeptRowsAfterTheFirstRunsRows) {
+  absl::StatusOr<Voxelization> vox = Voxelize(SynthCloud("torus", kRetryPoints).points, {});
+  ASSERT_TRUE(vox.ok()) << vox.status();
+  std::vector<GenerationStats> seen;
+  absl::StatusOr<ShrinkResult> result =
+      ShrinkMembrane(vox->grid, NoTunnelRetry(),
+                     [&seen](const GenerationStats& g) { seen.push_back(g); }, nullptr);
+  ASSERT_TRUE(result.ok()) << result.status();
+  ASSERT_TRUE(result->handle_retry.kept);
+  const size_t planned = result->generations.size();
+  const int from = result->handle_retry.from_generation;
+  ASSERT_EQ(seen.size(), planned + (planned - from + 1));
+  for (size_t i = 0; i < planned; ++i) {
+    EXPECT_EQ(seen[i].generation, static_cast<int>(i) + 1);
+    EXPECT_FALSE(seen[i].handle_retry);
+  }
+  // Then the retry's rows, which are what the result holds from `from` on.
+  for (size_t i = planned; i < seen.size(); ++i) {
+    const GenerationStats& kept = result->generations[seen[i].generation - 1];
+    EXPECT_TRUE(seen[i].handle_retry);
+    EXPECT_EQ(seen[i].generation, from + static_cast<int>(i - planned));
+    EXPECT_TRUE(kept.handle_retry);
+    EXPECT_EQ(kept.started_contractions, seen[i].started_contractions);
+  }
+  for (int g = 0; g < from - 1; ++g) EXPECT_FALSE(result->generations[g].handle_retry);
+}
+
 TEST(HandleRetryTest, TransientTunnelsOfASplitNeedNoRetry) {
   // Two spheres split through a tunnel that closes again: no handle is left, so nothing runs
   // again, and the split stays.

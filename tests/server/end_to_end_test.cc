@@ -15,6 +15,7 @@
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/scratch_dir.h"
 #include "tests/server/subprocess.h"
+#include "tests/support/shared_data.h"
 
 namespace membrane::testing {
 namespace {
@@ -83,6 +84,37 @@ TEST_F(EndToEndTest, ProgressArrivesOncePerGenerationInOrder) {
   ASSERT_FALSE(numbers.empty()) << r.err;
   for (size_t i = 0; i < numbers.size(); ++i) EXPECT_EQ(numbers[i], static_cast<int>(i) + 1);
   EXPECT_EQ(Run({"check", dir_.File("mesh.ply")}).exit_code, 0);
+}
+
+TEST_F(EndToEndTest, KeptHandleRetryRowsReplaceTheFirstRunsRows) {
+  // The spot scan is the real cloud whose first shrink leaves handles that the handle retry
+  // removes (docs/engine-decisions.md): its rows arrive after the first run's and replace them.
+  MEMBRANE_REQUIRE_SHARED_DATA(data_dir);
+  StartServer();
+  const CliResult r =
+      Run({"reconstruct", data_dir + "/clouds/spot-scan.ply", "-o", dir_.File("spot.ply"),
+           "--server", address_, "--stats-json", dir_.File("spot.json")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<int> numbers = GenerationNumbers(r.err);
+  ASSERT_EQ(numbers.size(), 12u) << r.err;  // 8 generations, then 5 to 8 again
+  EXPECT_EQ(numbers[8], 5) << r.err;
+  EXPECT_NE(r.err.find("(handle retry, kept)"), std::string::npos) << r.err;
+  // The table: one row per generation, the last four marked, then what the mark means.
+  const std::regex row("\\n +\\d+ \\| +\\d+ \\| +\\d+ \\| +\\d+ \\| +[0-9.]+( \\*)?");
+  int rows = 0, marked = 0;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), row);
+       it != std::sregex_iterator(); ++it) {
+    ++rows;
+    marked += (*it)[1].matched;
+  }
+  EXPECT_EQ(rows, 8) << r.out;
+  EXPECT_EQ(marked, 4) << r.out;
+  EXPECT_NE(r.out.find("* run again by the handle retry"), std::string::npos) << r.out;
+  const std::string json = ReadText(dir_.File("spot.json"));
+  EXPECT_NE(json.find("\"handle_retry\": {\"ran\": true, \"kept\": true, \"from_generation\": 5"),
+            std::string::npos)
+      << json;
+  EXPECT_NE(r.out.find("genus [0]"), std::string::npos) << r.out;
 }
 
 TEST_F(EndToEndTest, LosslessUploadGivesTheSameMeshAsLocal) {

@@ -7,11 +7,15 @@ cd "$(dirname "$0")/.."
 JOBS="${JOBS:-$(nproc)}"
 
 deploy/install-deps.sh
+# Each phase says how long it took: the suite must stay well under CI's budget on 2 cores.
+phase_start=$SECONDS
+phase_done() { echo "== $1 took $((SECONDS - phase_start)) s"; phase_start=$SECONDS; }
 
 echo "== Release build and full suite"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$JOBS"
 ctest --test-dir build --output-on-failure -j "$JOBS" --timeout 900
+phase_done "Release build and suite"
 
 echo "== ASan/UBSan build: engine, synth, io, mesh and server (in process) suites"
 # -O1 -g1 (line tables): sanitizer reports keep file:line at a lower build cost than -O2 -g
@@ -25,9 +29,11 @@ cmake --build build-asan -j "$JOBS" --target test_engine test_shrink test_real_s
   test_io test_mesh test_reconstructed_surfaces test_server_service
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$JOBS" --timeout 1800
+phase_done "ASan/UBSan build and suites"
 
 echo "== libFuzzer smoke of the point cloud readers (clang, ASan/UBSan)"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DMEMBRANE_FUZZ=ON -DMEMBRANE_BENCH=OFF -DMEMBRANE_TEST_DIRS="io" >/dev/null
 cmake --build build-fuzz -j "$JOBS" --target fuzz_io_ply fuzz_io_obj fuzz_io_xyz fuzz_io_pcd fuzz_io_drc
 ctest --test-dir build-fuzz -R '^fuzz_io_' --output-on-failure -j "$JOBS"
+phase_done "libFuzzer build and smoke"

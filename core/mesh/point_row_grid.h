@@ -52,9 +52,12 @@ class PointRowGrid {
 
  private:
   int64_t CellOf(double v, int axis) const {
-    // Clamped before the conversion: far-away queries must not overflow.
-    const double c = std::floor((v - lo_[axis]) / cell_);
-    return static_cast<int64_t>(std::fmin(std::fmax(c, -1.0), double(dims_[axis])));
+    // Clamped before the conversion: far-away queries must not overflow, and NaN goes to -1.
+    // Plain comparisons: std::fmin and std::fmax are library calls.
+    double c = std::floor((v - lo_[axis]) / cell_);
+    if (!(c >= -1.0)) c = -1.0;
+    if (c > double(dims_[axis])) c = double(dims_[axis]);
+    return static_cast<int64_t>(c);
   }
 
   double cell_;

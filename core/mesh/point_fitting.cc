@@ -246,11 +246,7 @@ class Fitter {
       std::fill(dirty_.begin(), dirty_.end(), first && search_all ? 1 : 0);
       for (int32_t v : changed)
         for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) dirty_[star_[i]] = 1;
-      // The first search covers most of the mesh: the fans proven embedded where they ended up
-      // spare it the pairs of neighbouring faces, most of its tests. The later searches are
-      // small and skip nothing.
-      if (first) ProveFans();
-      const auto pairs = FindIntersectingFacesNear(mesh_, dirty_, first ? &proven_ : nullptr);
+      const auto pairs = FindIntersectingFacesNear(mesh_, dirty_);
       if (pairs.empty()) break;
       changed.clear();
       for (const auto& [a, b] : pairs)
@@ -295,13 +291,6 @@ class Fitter {
   }
 
   bool IsMoved(int32_t v) const { return in_round_[v] != 0; }
-
-  // proven_[v] = the fan of v is proven embedded at the current positions (FanIsEmbedded).
-  void ProveFans() {
-    const int32_t nv = static_cast<int32_t>(mesh_.vertices.size());
-    proven_.resize(nv);
-    for (int32_t v = 0; v < nv; ++v) proven_[v] = FanEmbeddedAt(v, Pos(v)) ? 1 : 0;
-  }
 
   // Moves the vertices of `pairs` toward their fallback positions (halfway, then all the way
   // after 6 halvings) and makes the new positions their input positions. Fills `moved`;
@@ -369,7 +358,6 @@ class Fitter {
   std::vector<Vec3d> target_;  // last applied position
   std::vector<int> level_;
   std::vector<char> dirty_;
-  std::vector<char> proven_;  // scratch of Verify: fans proven embedded
   std::vector<Triangle3d> new_tri_;
 };
 

@@ -156,18 +156,9 @@ class SortedFaceCells {
   std::vector<uint64_t> entries_;
 };
 
-// True when faces `a` and `b` share a vertex flagged in `proven` (see FindIntersectingFaces).
-bool ShareProvenFan(const std::array<int32_t, 3>& a, const std::array<int32_t, 3>& b,
-                    const std::vector<char>& proven) {
-  for (int32_t u : a)
-    if (proven[u] && (u == b[0] || u == b[1] || u == b[2])) return true;
-  return false;
-}
-
 std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
                                                      const Participants& p,
-                                                     const CancelFn& cancel = nullptr,
-                                                     const std::vector<char>* proven = nullptr) {
+                                                     const CancelFn& cancel = nullptr) {
   std::vector<std::pair<int32_t, int32_t>> pairs;
   if (p.face.empty()) return pairs;
   const SortedFaceCells cells(p.box);
@@ -230,7 +221,6 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
         if (!Overlap(mi.box, mj.box)) continue;
         const int32_t j = mj.position;
         const int32_t fi = p.face[i], fj = p.face[j];
-        if (proven != nullptr && ShareProvenFan(mesh.faces[fi], mesh.faces[fj], *proven)) continue;
         if (!ti) ti = triangle(i);
         if (MeshTrianglesIntersect(mesh.faces[fi], *ti, normal[i], mesh.faces[fj], triangle(j),
                                    normal[j]))
@@ -245,8 +235,8 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
 
 }  // namespace
 
-std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(
-    const TriangleMesh& mesh, const CancelFn& cancel, const std::vector<char>* proven_fans) {
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh,
+                                                               const CancelFn& cancel) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
   Participants p;
@@ -257,12 +247,11 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(
     p.face.push_back(f);
     p.box.push_back(FaceBox(mesh, f));
   }
-  return SearchPairs(mesh, p, cancel, proven_fans);
+  return SearchPairs(mesh, p, cancel);
 }
 
-std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(
-    const TriangleMesh& mesh, const std::vector<char>& dirty,
-    const std::vector<char>* proven_fans) {
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const TriangleMesh& mesh,
+                                                                   const std::vector<char>& dirty) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
   // Boxes of the dirty faces, and the coarse cells they touch (cells twice the largest dirty
@@ -271,7 +260,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(
   for (int32_t f = 0; f < nf; ++f) n_dirty += dirty[f] != 0;
   // Mostly dirty: selecting the neighbourhood would cost more than searching everything.
   if (4 * n_dirty > nf) {
-    std::vector<std::pair<int32_t, int32_t>> pairs = FindIntersectingFaces(mesh, nullptr, proven_fans);
+    std::vector<std::pair<int32_t, int32_t>> pairs = FindIntersectingFaces(mesh);
     std::erase_if(pairs, [&](const auto& p) { return !dirty[p.first] && !dirty[p.second]; });
     return pairs;
   }
@@ -333,7 +322,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(
     p.box.push_back(b);
     p.dirty.push_back(0);
   }
-  return SearchPairs(mesh, p, nullptr, proven_fans);
+  return SearchPairs(mesh, p);
 }
 
 }  // namespace membrane

@@ -21,21 +21,14 @@ namespace membrane {
 // bounded by a few times F, so huge faces cost more entries, never quadratic memory.
 // `cancel` is polled every few thousand cells; once it fires the pairs found so far are
 // returned.
-// `proven_fans`, if not null, holds one flag per vertex; a set flag promises that the faces
-// around that vertex form one closed fan which FanIsEmbedded (fan_embedding.h) proved embedded
-// at the current positions: pairs of faces sharing such a vertex are then skipped (that proof
-// says MeshTrianglesIntersect is false for them), which is most of the pairs a search tests.
-std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(
-    const TriangleMesh& mesh, const CancelFn& cancel = nullptr,
-    const std::vector<char>* proven_fans = nullptr);
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh,
+                                                               const CancelFn& cancel = nullptr);
 
 // The same, restricted to pairs with at least one face marked in `dirty` (one flag per face):
 // after moving a few vertices, the pairs that may have changed. Costs a linear scan of the
 // faces plus the pair search around the dirty ones.
-// `proven_fans` as for FindIntersectingFaces.
-std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(
-    const TriangleMesh& mesh, const std::vector<char>& dirty,
-    const std::vector<char>* proven_fans = nullptr);
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const TriangleMesh& mesh,
+                                                                   const std::vector<char>& dirty);
 
 }  // namespace membrane
 

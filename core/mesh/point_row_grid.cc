@@ -35,9 +35,17 @@ PointRowGrid::PointRowGrid(absl::Span<const Point3f> points, double cell) : cell
   }
   for (int64_t c = 0; c < n; ++c) start_[c + 1] += start_[c];
   // Counting sort, stable: within a cell the points keep their input order.
-  sorted_.resize(points.size());
+  num_points_ = points.size();
+  x_.assign(num_points_ + kTail, kPadding);
+  y_.assign(num_points_ + kTail, kPadding);
+  z_.assign(num_points_ + kTail, kPadding);
   std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
-  for (size_t i = 0; i < points.size(); ++i) sorted_[fill[cell_of[i]]++] = points[i];
+  for (size_t i = 0; i < points.size(); ++i) {
+    const uint32_t to = fill[cell_of[i]]++;
+    x_[to] = points[i][0];
+    y_[to] = points[i][1];
+    z_[to] = points[i][2];
+  }
 }
 
 }  // namespace membrane

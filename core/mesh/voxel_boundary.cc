@@ -1,6 +1,7 @@
 #include "core/mesh/voxel_boundary.h"
 
 #include <bit>
+#include <cstring>
 #include <numeric>
 #include <utility>
 
@@ -154,6 +155,23 @@ const std::array<CornerFacts, 256>& Table() {
 constexpr int kPositiveOffsets[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
 constexpr int kNegativeOffsets[4][2] = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
 
+// True when one of the 8 voxels from `s` on (along x) is solid with an outside face
+// neighbour; the 8 voxels and their neighbours must exist. Outside is the top bit of a state.
+bool AnyBoundaryFace(const VoxelState* s, const std::array<int64_t, 3>& st) {
+  static_assert(sizeof(VoxelState) == 1 && kOutsideBit == 0x80);
+  auto load = [&](int64_t offset) {
+    uint64_t w;
+    std::memcpy(&w, s + offset, 8);
+    return w;
+  };
+  constexpr uint64_t kTop = 0x8080808080808080ull;
+  const uint64_t solid = ~load(0) & kTop;
+  const uint64_t outside_neighbour =
+      (load(-st[0]) | load(st[0]) | load(-st[1]) | load(st[1]) | load(-st[2]) | load(st[2])) &
+      kTop;
+  return (solid & outside_neighbour) != 0;
+}
+
 struct CornerEntry {
   int32_t base = 0;
   uint8_t config = 0;
@@ -221,6 +239,12 @@ VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
     for (int y = 1; y < dims[1] - 1; ++y)
       for (int x = 1; x < dims[0] - 1; ++x) {
         const int64_t i = grid.Index(x, y, z);
+        // Eight voxels at a time where none has a boundary face (nearly everywhere); the
+        // others one by one, in the same order, so the numbering is unchanged.
+        if ((x - 1) % 8 == 0 && x + 8 <= dims[0] - 1 && !AnyBoundaryFace(states + i, st)) {
+          x += 7;
+          continue;
+        }
         if (IsOutside(states[i])) continue;
         const Coord s{x, y, z};
         for (int a = 0; a < 3; ++a)

@@ -3,14 +3,13 @@
 #include <bit>
 #include <cstring>
 
+#include "core/mesh/fast_exp.h"
+
 namespace membrane {
 namespace {
 
-// Four floats per step, with the GCC/Clang vector extension: the compiler did not vectorize the
-// same loop written over lane arrays (it ran slower than the scalar double code). On targets
-// without SIMD registers the extension lowers to scalar code.
-using V4f = float __attribute__((vector_size(16)));
-using V4i = int32_t __attribute__((vector_size(16)));
+// Four points per step (fast_exp.h's V4f): the compiler did not vectorize the same loop written
+// over lane arrays (it ran slower than the scalar double code).
 constexpr int kLanes = 4;
 static_assert(PointRowGrid::kTail + 1 >= kLanes, "a run's last step may read kLanes - 1 past it");
 
@@ -20,38 +19,21 @@ V4f Load(const float* p) {
   return v;
 }
 
-V4f Splat(float f) { return V4f{f, f, f, f}; }
-
 float Sum(V4f v) { return (v[0] + v[1]) + (v[2] + v[3]); }
-
-// ExpNegF (fast_exp.h), four at a time, the same arithmetic.
-V4f ExpNeg4(V4f x) {
-  const V4f zero = Splat(0);
-  x = x < zero ? zero : x;
-  x = x > Splat(87) ? Splat(87) : x;
-  constexpr float kLog2e = 1.44269504f, kLn2Hi = 0.693145751953125f, kLn2Lo = 1.42860677e-06f;
-  constexpr float kRound = 12582912.0f;
-  const V4f k = (x * kLog2e + kRound) - kRound;
-  const V4f r = (k * kLn2Hi - x) + k * kLn2Lo;
-  constexpr float c2 = 1.0f / 2, c3 = 1.0f / 6, c4 = 1.0f / 24, c5 = 1.0f / 120, c6 = 1.0f / 720;
-  const V4f p = 1.0f + r * (1.0f + r * (c2 + r * (c3 + r * (c4 + r * (c5 + r * c6)))));
-  const V4i biased = (127 - __builtin_convertvector(k, V4i)) << 23;
-  return p * std::bit_cast<V4f>(biased);
-}
 
 }  // namespace
 
 NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
                                 const NearPointWeights& weights) {
-  const V4f ox = Splat(weights.origin[0]), oy = Splat(weights.origin[1]),
-            oz = Splat(weights.origin[2]);
-  const V4f nx = Splat(weights.normal[0]), ny = Splat(weights.normal[1]),
-            nz = Splat(weights.normal[2]);
-  const V4f r2 = Splat(weights.radius2);
+  const V4f ox = SplatV4f(weights.origin[0]), oy = SplatV4f(weights.origin[1]),
+            oz = SplatV4f(weights.origin[2]);
+  const V4f nx = SplatV4f(weights.normal[0]), ny = SplatV4f(weights.normal[1]),
+            nz = SplatV4f(weights.normal[2]);
+  const V4f r2 = SplatV4f(weights.radius2);
   // e = (|d|^2 - dn^2) a + dn^2 b = |d|^2 a + dn^2 (b - a).
-  const V4f a = Splat(weights.inv_2s2), b_minus_a = Splat(weights.inv_2n2 - weights.inv_2s2);
+  const V4f a = SplatV4f(weights.inv_2s2), b_minus_a = SplatV4f(weights.inv_2n2 - weights.inv_2s2);
   const V4i lane = {0, 1, 2, 3};
-  const V4f zero = Splat(0);
+  const V4f zero = SplatV4f(0);
   V4f sw = zero, sx = zero, sy = zero, sz = zero;
   V4f sxx = zero, sxy = zero, sxz = zero, syy = zero, syz = zero, szz = zero;
   V4i count = {0, 0, 0, 0};

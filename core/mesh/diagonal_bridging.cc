@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstring>
 
 #include "core/engine/local_topology.h"
 
@@ -9,6 +11,22 @@ namespace membrane {
 namespace {
 
 bool Solid(VoxelState s) { return !IsOutside(s); }
+
+// False only when none of the 8 voxels from index i on (along x) passes the three-load test of
+// ForEachCornerContact (solid, +z outside, not solid on both sides along x, nor along y); the
+// voxels and their face neighbours must exist. Outside is the top bit of a state.
+bool AnyContactCandidate(const VoxelGrid& grid, int64_t i, const std::array<int64_t, 3>& st) {
+  static_assert(sizeof(VoxelState) == 1 && kOutsideBit == 0x80);
+  const VoxelState* s = grid.states().data() + i;
+  auto solid = [&](int64_t offset) {  // top bit of each byte set where solid
+    uint64_t w;
+    std::memcpy(&w, s + offset, 8);
+    return ~w & 0x8080808080808080ull;
+  };
+  const uint64_t candidate = solid(0) & ~solid(st[2]) & ~(solid(-st[0]) & solid(st[0])) &
+                             ~(solid(-st[1]) & solid(st[1]));
+  return (candidate & 0x8080808080808080ull) != 0;
+}
 
 // Calls fn(others) for every corner-only contact, where `others` are the indices of the 6
 // other voxels of its 2x2x2 block in increasing order. Each contact is seen once, from its
@@ -22,6 +40,11 @@ int64_t ForEachCornerContact(const VoxelGrid& grid, Fn fn) {
     for (int y = 1; y < d[1] - 1; ++y)
       for (int x = 1; x < d[0] - 1; ++x) {
         const int64_t i = grid.Index(x, y, z);
+        // Eight voxels at a time where the test below rules them all out (nearly everywhere).
+        if ((x - 1) % 8 == 0 && x + 8 <= d[0] - 1 && !AnyContactCandidate(grid, i, st)) {
+          x += 7;
+          continue;
+        }
         if (!Solid(grid.at(i))) continue;
         // The voxel's face neighbours toward its partner (+z, and one side along x and y) are
         // outside in a contact: most voxels are ruled out by three loads.

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
+#include <utility>
 #include <vector>
 
 namespace membrane {
@@ -28,19 +28,20 @@ void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companio
   std::array<float, 3> lo = mesh.vertices[0];
   for (const Point3f& p : mesh.vertices)
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]);
-  std::vector<uint64_t> key(nv);
+  // (key, index) side by side: the sort then compares contiguous pairs instead of looking the
+  // keys up through the indices (half the sort's time). Unique pairs, so the order is the same.
+  std::vector<std::pair<uint64_t, int32_t>> keyed(nv);
   for (size_t v = 0; v < nv; ++v) {
     uint64_t code = 0;
     for (int k = 0; k < 3; ++k) {
       const double c = std::floor((mesh.vertices[v][k] - lo[k]) / cell);
       code |= Spread(static_cast<uint64_t>(std::clamp(c, 0.0, double(0x1fffff)))) << k;
     }
-    key[v] = code;
+    keyed[v] = {code, static_cast<int32_t>(v)};
   }
+  std::sort(keyed.begin(), keyed.end());
   std::vector<int32_t> order(nv);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](int32_t a, int32_t b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+  for (size_t i = 0; i < nv; ++i) order[i] = keyed[i].second;
   std::vector<int32_t> new_id(nv);
   std::vector<Point3f> vertices(nv);
   for (size_t i = 0; i < nv; ++i) {

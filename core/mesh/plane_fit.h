@@ -23,6 +23,15 @@ class PlaneFitAccumulator {
     s2_[4] += w * p[1] * p[2];
     s2_[5] += w * p[2] * p[2];
   }
+  // The accumulator whose sums are these: total weight `w`, sum of w * p `s`, and sums of
+  // w * p_i * p_j in the order xx, xy, xz, yy, yz, zz (as if each point had been Add()ed).
+  static PlaneFitAccumulator FromSums(double w, const Vec3d& s, const std::array<double, 6>& s2) {
+    PlaneFitAccumulator acc;
+    acc.sw_ = w;
+    acc.s_ = s;
+    acc.s2_ = s2;
+    return acc;
+  }
   double weight() const { return sw_; }
   // Sum of w * p; divided by weight() it is the weighted centroid.
   Vec3d WeightedSum() const { return s_; }

@@ -7,7 +7,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "core/mesh/fan_embedding.h"
-#include "core/mesh/fast_exp.h"
+#include "core/mesh/near_point_sums.h"
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_row_grid.h"
 #include "core/mesh/self_intersection.h"
@@ -132,20 +132,19 @@ class Fitter {
     const Vec3d x = Pos(v);
     const Vec3d normal = VertexNormal(v);
     const double inv_2s2 = 1.0 / (2 * options_.sigma * options_.sigma * l_ * l_);
-    const double inv_2n2 = 1.0 / (2 * options_.normal_sigma * options_.normal_sigma * l_ * l_);
-    const bool anisotropic = round >= 1;
-    PlaneFitAccumulator acc;
-    int count = 0;
-    points_.ForEachWithin(x, options_.search_radius * l_, [&](const Point3f& p, double d2) {
-      const Vec3d d = ToVec3d(p) - x;
-      double e = d2 * inv_2s2;
-      if (anisotropic) {
-        const double dn = Dot(d, normal);
-        e = (d2 - dn * dn) * inv_2s2 + dn * dn * inv_2n2;
-      }
-      acc.Add(d, ExpNeg(e));
-      ++count;
-    });
+    // The first round's weights are isotropic.
+    const double inv_2n2 =
+        round >= 1 ? 1.0 / (2 * options_.normal_sigma * options_.normal_sigma * l_ * l_) : inv_2s2;
+    const double radius = options_.search_radius * l_;
+    NearPointWeights weights;
+    weights.origin = mesh_.vertices[v];
+    weights.radius2 = static_cast<float>(radius * radius);
+    weights.inv_2s2 = static_cast<float>(inv_2s2);
+    weights.inv_2n2 = static_cast<float>(inv_2n2);
+    for (int k = 0; k < 3; ++k) weights.normal[k] = static_cast<float>(normal[k]);
+    const NearPointResult near = WeighNearPoints(points_, radius, weights);
+    const PlaneFitAccumulator& acc = near.acc;
+    const int count = near.count;
     if (count >= options_.min_points && acc.weight() > 0) {
       ++stats.plane_targets;
       const auto plane = acc.Fit();

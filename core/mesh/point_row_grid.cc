@@ -25,19 +25,29 @@ PointRowGrid::PointRowGrid(absl::Span<const Point3f> points, double cell) : cell
   }
   const int64_t n = dims_[0] * dims_[1] * dims_[2];
   std::vector<uint32_t> cell_of(points.size());
+  // Counting sort, stable: within a cell the points keep their input order. Counts first, then
+  // running totals (start_[c] = end of cell c), then the points from last to first, each one
+  // slot before its cell's end: start_[c] ends up as the cell's first point, with no second
+  // array of the cells' size.
   start_.assign(n + 1, 0);
   for (size_t i = 0; i < points.size(); ++i) {
     int64_t c[3];
     for (int k = 0; k < 3; ++k)
       c[k] = std::clamp<int64_t>(CellOf(points[i][k], k), 0, dims_[k] - 1);
     cell_of[i] = static_cast<uint32_t>(c[0] + dims_[0] * (c[1] + dims_[1] * c[2]));
-    ++start_[cell_of[i] + 1];
+    ++start_[cell_of[i]];
   }
   for (int64_t c = 0; c < n; ++c) start_[c + 1] += start_[c];
-  // Counting sort, stable: within a cell the points keep their input order.
-  sorted_.resize(points.size());
-  std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
-  for (size_t i = 0; i < points.size(); ++i) sorted_[fill[cell_of[i]]++] = points[i];
+  num_points_ = points.size();
+  x_.assign(num_points_ + kTail, kPadding);
+  y_.assign(num_points_ + kTail, kPadding);
+  z_.assign(num_points_ + kTail, kPadding);
+  for (size_t i = points.size(); i-- > 0;) {
+    const uint32_t to = --start_[cell_of[i]];
+    x_[to] = points[i][0];
+    y_[to] = points[i][1];
+    z_[to] = points[i][2];
+  }
 }
 
 }  // namespace membrane

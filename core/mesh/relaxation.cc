@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <memory>
 #include <vector>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/engine/huge_page_allocator.h"
 #include "core/engine/local_topology.h"
 
 namespace membrane {
@@ -19,6 +22,27 @@ constexpr int kPadding = VoxelGrid::kPadding;
 // What a voxel adds to its neighbours' DLC.
 int Category(VoxelState s) { return IsOutside(s) ? 1 : IsInside(s) ? -1 : 0; }
 bool NonOutside(VoxelState s) { return !IsOutside(s); }
+
+// Grid-sized scratch bytes, uninitialised (see ComputeDlc), in 2 MB pages where the kernel gives
+// them: with 4 KB pages the first touch of the three arrays faulted 3 times per 4 KB of grid,
+// about as long as the relaxation's own work on the shared virtual machine.
+struct FreeBytes {
+  int64_t n = 0;
+  void operator()(int8_t* p) const { HugePageAllocator<int8_t>().deallocate(p, n); }
+};
+using ByteArray = std::unique_ptr<int8_t[], FreeBytes>;
+ByteArray NewByteArray(int64_t n) {
+  return ByteArray(HugePageAllocator<int8_t>().allocate(static_cast<size_t>(n)), FreeBytes{n});
+}
+
+// True when one of the 8 states from `s` on is a boundary voxel (boundary bit set, outside
+// bit clear): Offer() takes nothing else.
+bool AnyBoundary(const VoxelState* s) {
+  static_assert(sizeof(VoxelState) == 1 && kOutsideBit == 0x80 && kBoundaryBit == 0x01);
+  uint64_t w;
+  std::memcpy(&w, s, 8);
+  return (w & ~(w >> 7) & 0x0101010101010101ull) != 0;
+}
 
 class Relaxer {
  public:
@@ -38,8 +62,8 @@ class Relaxer {
   // took over 100 ms without a poll.
   absl::Status ComputeDlc() {
     const int64_t n = grid_.size(), sy = grid_.dim(0), sz = sy * grid_.dim(1);
-    std::unique_ptr<int8_t[]> cat(new int8_t[n]), sum(new int8_t[n]);
-    dlc_.reset(new int8_t[n]);
+    ByteArray cat = NewByteArray(n), sum = NewByteArray(n);
+    dlc_ = NewByteArray(n);
     const VoxelState* s = grid_.states().data();
     auto pass = [&](int64_t from, int64_t to, auto fn) -> absl::Status {
       for (int64_t begin = from; begin < to; begin += kVoxelsPerPoll) {
@@ -85,7 +109,16 @@ class Relaxer {
     for (int z = kPadding; z < d[2] - kPadding; ++z) {
       if (Cancelled(cancel_)) return Cancel();
       for (int y = kPadding; y < d[1] - kPadding; ++y)
-        for (int x = kPadding; x < d[0] - kPadding; ++x) Offer(grid_.Index(x, y, z));
+        for (int x = kPadding; x < d[0] - kPadding;) {
+          const int64_t i = grid_.Index(x, y, z);
+          // Eight voxels at a time where none is a boundary voxel (most of the grid).
+          if (x + 8 <= d[0] - kPadding && !AnyBoundary(grid_.states().data() + i)) {
+            x += 8;
+            continue;
+          }
+          Offer(i);
+          ++x;
+        }
     }
     int64_t steps = 0;
     for (int key = 26; key >= threshold_;) {
@@ -210,7 +243,7 @@ class Relaxer {
   const int threshold_;
   const CancelFn& cancel_;
   std::array<int64_t, 26> offsets_{};
-  std::unique_ptr<int8_t[]> dlc_;
+  ByteArray dlc_;
   std::array<Bucket, 27> buckets_;
   int sign_ = -1;
   std::vector<int64_t> touched_;

@@ -1,5 +1,6 @@
 #include "core/mesh/point_row_grid.h"
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -37,6 +38,23 @@ TEST(PointRowGrid, FindsExactlyThePointsWithinTheRadius) {
     });
     EXPECT_EQ(found, WithinBrute(points, c, r).size()) << "query " << q;
   }
+}
+
+TEST(PointRowGrid, PointsOnCellWallsAndOnTheSphereAreFound) {
+  // A lattice on the cell walls, queried from lattice points and wall midpoints with radii that
+  // put many points exactly on the sphere: the skipped rows and cells must never hold one.
+  std::vector<Point3f> points;
+  for (int z = -4; z <= 4; ++z)
+    for (int y = -4; y <= 4; ++y)
+      for (int x = -4; x <= 4; ++x)
+        points.push_back({0.25f * x, 0.25f * y, 0.25f * z});
+  const PointRowGrid grid(points, 0.25);
+  for (const Vec3d& c : {Vec3d{0, 0, 0}, Vec3d{0.125, 0, 0.25}, Vec3d{0.5, -0.25, 0.125}})
+    for (double r : {0.25, 0.5, std::sqrt(2 * 0.0625), std::sqrt(3 * 0.0625), 0.75, 1.0}) {
+      size_t found = 0;
+      grid.ForEachWithin(c, r, [&](const Point3f&, double) { ++found; });
+      EXPECT_EQ(found, WithinBrute(points, c, r).size()) << c[0] << " " << c[1] << " " << r;
+    }
 }
 
 TEST(PointRowGrid, SparseCloudInAHugeBoxStaysSmallAndCorrect) {

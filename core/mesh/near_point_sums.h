@@ -1,0 +1,40 @@
+// The Gaussian-weighted plane sums of the points near one surface vertex, in float, four points
+// at a time: the inner loop of the fit's target (point_fitting.h; membrane-quality.md recipe 3
+// step 5, "gather points within 2 voxels, Gaussian weights"). Point by point in double it was
+// half of the fit. The weights are a smoothing kernel: float's 1e-7 relative error moves a
+// target by far less than the float32 rounding of the vertex it is written to.
+#ifndef MEMBRANE_CORE_MESH_NEAR_POINT_SUMS_H_
+#define MEMBRANE_CORE_MESH_NEAR_POINT_SUMS_H_
+
+#include <array>
+#include <cstdint>
+
+#include "core/geometry/point_cloud.h"
+#include "core/mesh/plane_fit.h"
+#include "core/mesh/point_row_grid.h"
+
+namespace membrane {
+
+// Lengths in model units; offsets d = point - origin.
+struct NearPointWeights {
+  Point3f origin;                // a float32 vertex: each offset is one rounded difference
+  float radius2 = 0;             // only points with |d|^2 <= radius2 count
+  float inv_2s2 = 0;             // 1 / (2 sigma^2): the Gaussian across the normal
+  float inv_2n2 = 0;             // 1 / (2 normal_sigma^2): along it (= inv_2s2: isotropic)
+  std::array<float, 3> normal{};  // unit; ignored when isotropic
+};
+
+struct NearPointResult {
+  PlaneFitAccumulator acc;  // sums over the points within the radius, offsets as coordinates
+  int count = 0;            // how many points are within the radius
+};
+
+// Over the points of `grid` that ForEachRun(origin, radius) lists, those with |d|^2 <= radius2,
+// weighted w = exp(-(|d|^2 - (d.n)^2) inv_2s2 - (d.n)^2 inv_2n2): the accumulated plane sums
+// (in float, returned in double) and their count.
+NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
+                                const NearPointWeights& weights);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_MESH_NEAR_POINT_SUMS_H_

@@ -96,10 +96,9 @@ absl::Status RetryHandles(VoxelGrid& grid, const StateCopy& before,
   const Clock::time_point t0 = Clock::now();
   HandleRetry& r = result.handle_retry;
   r.from_generation = static_cast<int>(from) + 1;
-  int64_t loose = 0;
-  for (size_t g = from; g < to; ++g) loose += result.generations[g].loose_tunnels;
+  for (size_t g = from; g < to; ++g) r.loose_tunnels += result.generations[g].loose_tunnels;
   // Without a removal the strict rules refuse, they would make every decision the same.
-  if (loose == 0) return absl::OkStatus();
+  if (r.loose_tunnels == 0) return absl::OkStatus();
   const VoxelTopology first = ComputeVoxelTopology(grid);
   r.shells_before = r.shells_after = first.shells;
   r.genus_before = r.genus_after = TotalGenus(first);

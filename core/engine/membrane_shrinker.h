@@ -44,6 +44,7 @@ struct HandleRetry {
   bool ran = false;          // the first result had handles, so the generations ran again
   bool kept = false;         // the retry's result replaced the first
   int from_generation = 0;   // first generation run again (1-based; 0: no generation qualified)
+  int64_t loose_tunnels = 0; // removals from there on that the strict sizes refuse (0: no retry)
   int shells_before = 0, genus_before = 0;  // first result (genus summed over the shells)
   int shells_after = 0, genus_after = 0;    // result kept
   double seconds = 0.0;      // topology counts and the generations run again

@@ -43,6 +43,7 @@ std::string PostProcessJson(const PostProcessStats& p) {
 std::string HandleRetryJson(const HandleRetry& h) {
   return absl::StrCat("{\"ran\": ", JsonBool(h.ran), ", \"kept\": ", JsonBool(h.kept),
                       ", \"from_generation\": ", h.from_generation,
+                      ", \"loose_tunnels\": ", h.loose_tunnels,
                       ", \"shells_before\": ", h.shells_before,
                       ", \"genus_before\": ", h.genus_before,
                       ", \"shells_after\": ", h.shells_after, ", \"genus_after\": ", h.genus_after,

@@ -324,9 +324,10 @@ int64_t PeakRssKb() {
 // What the handle retry did, for the shrink line.
 std::string RetrySummary(const HandleRetry& r) {
   if (r.from_generation == 0) return "no generation below its plate size";
-  if (r.genus_before == 0 && !r.ran) return "not needed";
-  if (!r.ran) return "no handles";
-  return absl::StrFormat("genus %d -> %d from generation %d, %s", r.genus_before,
+  if (r.loose_tunnels == 0) return "not needed";
+  if (!r.ran) return absl::StrFormat("%d loose tunnels, no handles", r.loose_tunnels);
+  return absl::StrFormat("%d loose tunnels, genus %d -> %d from generation %d, %s",
+                         r.loose_tunnels, r.genus_before,
                          r.kept ? r.genus_after : r.genus_before, r.from_generation,
                          r.kept ? "kept" : "not kept");
 }

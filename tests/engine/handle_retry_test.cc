@@ -37,6 +37,7 @@ TEST(HandleRetryTest, KeepsTheResultWithFewerHandles) {
   auto retried = ShrinkCloud(torus, 1.0, NoTunnelRetry());
   ASSERT_TRUE(retried.ok()) << retried.status();
   const HandleRetry& r = retried->result.handle_retry;
+  EXPECT_GT(r.loose_tunnels, 0);
   EXPECT_TRUE(r.ran);
   EXPECT_TRUE(r.kept);
   EXPECT_EQ(r.shells_before, 1);
@@ -127,6 +128,7 @@ TEST(HandleRetryTest, SameSizesMeanNoRetry) {
   ASSERT_TRUE(run.ok()) << run.status();
   EXPECT_EQ(run->topology.genus, std::vector<int>{1}) << run->Describe();
   EXPECT_FALSE(run->result.handle_retry.ran);
+  EXPECT_EQ(run->result.handle_retry.loose_tunnels, 0);
   for (const GenerationStats& g : run->result.generations) EXPECT_EQ(g.loose_tunnels, 0);
 }
 

@@ -81,7 +81,9 @@ ShrinkOptions StrictTunnelRules(const ShrinkOptions& o) {
 // spend longer in 4 KB page faults than in copying.
 using StateCopy = std::vector<VoxelState, HugePageAllocator<VoxelState>>;
 
-int TotalGenus(const VoxelTopology& t) { return std::accumulate(t.genus.begin(), t.genus.end(), 0); }
+int TotalGenus(const VoxelTopology& t) {
+  return std::accumulate(t.genus.begin(), t.genus.end(), 0);
+}
 
 // The handle retry (docs/engine-decisions.md): when the finished generations left handles,
 // runs generations [from, to) again from `before` with the strict rules and keeps whichever
@@ -261,7 +263,9 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
       before_retry.assign(grid.states().begin(), grid.states().end());
       counts_before_retry = counts;
     }
-    if (absl::Status s = run_generation(g, /*strict_run=*/false, result.generations); !s.ok()) return s;
+    if (absl::Status s = run_generation(g, /*strict_run=*/false, result.generations); !s.ok()) {
+      return s;
+    }
     if (on_generation) on_generation(result.generations.back());
   }
   if (retry_from < sizes.size()) {

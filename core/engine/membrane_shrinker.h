@@ -33,10 +33,13 @@ struct ShrinkOptions {
   // The handle retry (docs/engine-decisions.md): when the shrink ends with handles, the
   // generations from the first plate below retry_tunnel_min_plate run again with tunnels away
   // from the data only from that plate size and short-loop tunnels only from
-  // retry_short_loop_min_plate; the result with fewer handles and no fewer shells is kept.
+  // retry_short_loop_min_plate; the result with fewer handles and no fewer shells is kept,
+  // unless what it closed is a membrane across a scanned hole: at least retry_max_hard_rim of
+  // the voxels bordering it are hard (> 1: never refused on that ground).
   bool retry_handles = true;
   int retry_tunnel_min_plate = 7;
   int retry_short_loop_min_plate = 4;
+  double retry_max_hard_rim = 0.75;
 };
 
 // What the handle retry did (ShrinkOptions::retry_handles).
@@ -47,6 +50,8 @@ struct HandleRetry {
   int64_t loose_tunnels = 0; // removals from there on that the strict sizes refuse (0: no retry)
   int shells_before = 0, genus_before = 0;  // first result (genus summed over the shells)
   int shells_after = 0, genus_after = 0;    // result kept
+  int64_t web_voxels = 0;    // voxels the retry left solid where the first run had outside
+  double web_hard_rim = 0;   // share of hard voxels among the solid voxels bordering them
   double seconds = 0.0;      // topology counts and the generations run again
 };
 

@@ -47,6 +47,8 @@ std::string HandleRetryJson(const HandleRetry& h) {
                       ", \"shells_before\": ", h.shells_before,
                       ", \"genus_before\": ", h.genus_before,
                       ", \"shells_after\": ", h.shells_after, ", \"genus_after\": ", h.genus_after,
+                      ", \"web_voxels\": ", h.web_voxels,
+                      ", \"web_hard_rim\": ", JsonNumber(h.web_hard_rim),
                       ", \"seconds\": ", JsonNumber(h.seconds), "}");
 }
 

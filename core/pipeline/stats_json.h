@@ -22,7 +22,7 @@ namespace membrane {
 // generation, contractions, undone_contractions, guard_refusals, depth_refusals, passes;
 // post_process {inside_hard_before, inside_hard_after, carved_voxels, bridge_voxels};
 // handle_retry {ran, kept, from_generation, loose_tunnels, shells_before, genus_before,
-// shells_after, genus_after, seconds} (HandleRetry);
+// shells_after, genus_after, web_voxels, web_hard_rim, seconds} (HandleRetry);
 // relaxation {phase1_moves, phase1_added, phase2_moves, phase2_uncovered, not_simple};
 // membrane.inside_frozen_voxels and membrane.genus; mesh.self_intersections and
 // mesh.positive_volume; seconds.check. Non-finite reals are written as null.

@@ -17,11 +17,13 @@ using testing::SynthCloud;
 
 constexpr int64_t kRetryPoints = 60000;
 
-// Strict sizes no plate reaches: the retry then refuses every tunnel away from hard voxels.
+// Strict sizes no plate reaches: the retry then refuses every tunnel away from hard voxels,
+// and its result is kept whatever it hangs on.
 ShrinkOptions NoTunnelRetry() {
   ShrinkOptions o;
   o.retry_tunnel_min_plate = 100000;
   o.retry_short_loop_min_plate = 100000;
+  o.retry_max_hard_rim = 2.0;
   return o;
 }
 
@@ -81,6 +83,21 @@ TEST(HandleRetryTest, ReportsTheKeptRowsAfterTheFirstRunsRows) {
     EXPECT_EQ(kept.started_contractions, seen[i].started_contractions);
   }
   for (int g = 0; g < from - 1; ++g) EXPECT_FALSE(result->generations[g].handle_retry);
+}
+
+TEST(HandleRetryTest, KeepsAScannedHoleOpen) {
+  // At 2.5x the formula-(1) size the tilted torus's hole opens only at a plate of 6, which the
+  // strict sizes refuse: the retry spans the hole with a membrane whose rim is the hole's
+  // scanned edge, and that result is not kept.
+  auto run = ShrinkCloud(SynthCloud("torus", kRetryPoints), 2.5);
+  ASSERT_TRUE(run.ok()) << run.status();
+  const HandleRetry& r = run->result.handle_retry;
+  EXPECT_TRUE(r.ran);
+  EXPECT_FALSE(r.kept);
+  EXPECT_GT(r.web_voxels, 0);
+  EXPECT_GE(r.web_hard_rim, ShrinkOptions{}.retry_max_hard_rim);
+  EXPECT_EQ(run->topology.genus, std::vector<int>{1}) << run->Describe();
+  EXPECT_TRUE(run->invariants.ok()) << run->Describe();
 }
 
 TEST(HandleRetryTest, TransientTunnelsOfASplitNeedNoRetry) {
@@ -143,6 +160,11 @@ TEST(HandleRetryTest, RejectsOutOfRangeSizes) {
   s = ValidateShrinkOptions(o);
   EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(s.message().find("retry_short_loop_min_plate"), std::string::npos) << s;
+  o = ShrinkOptions{};
+  o.retry_max_hard_rim = -0.5;
+  s = ValidateShrinkOptions(o);
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("retry_max_hard_rim"), std::string::npos) << s;
 }
 
 }  // namespace

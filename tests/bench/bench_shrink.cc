@@ -326,9 +326,10 @@ std::string RetrySummary(const HandleRetry& r) {
   if (r.from_generation == 0) return "no generation below its plate size";
   if (r.loose_tunnels == 0) return "not needed";
   if (!r.ran) return absl::StrFormat("%d loose tunnels, no handles", r.loose_tunnels);
-  return absl::StrFormat("%d loose tunnels, web rim %.0f%% hard, genus %d -> %d from "
-                         "generation %d, %s",
-                         r.loose_tunnels, 100 * r.web_hard_rim, r.genus_before,
+  const std::string rim =
+      r.web_voxels > 0 ? absl::StrFormat(", web rim %.0f%% hard", 100 * r.web_hard_rim) : "";
+  return absl::StrFormat("%d loose tunnels%s, genus %d -> %d from generation %d, %s",
+                         r.loose_tunnels, rim, r.genus_before,
                          r.kept ? r.genus_after : r.genus_before, r.from_generation,
                          r.kept ? "kept" : "not kept");
 }

@@ -6,6 +6,7 @@
 
 #include "core/engine/huge_page_allocator.h"
 #include "core/engine/local_topology.h"
+#include "core/engine/voxel_state_words.h"
 
 namespace membrane {
 namespace {
@@ -142,12 +143,10 @@ Mask FloodFromBorder(const VoxelGrid& grid, const Mask& deep) {
 
 // True when one of the 8 voxels at `states` is outside while its `near` byte is 0.
 bool AnyCave(const VoxelState* states, const char* near) {
-  static_assert(sizeof(VoxelState) == 1 && kOutsideBit == 0x80);
-  uint64_t s, n;
-  std::memcpy(&s, states, 8);
+  uint64_t n;
   std::memcpy(&n, near, 8);
-  const uint64_t outside = (s >> 7) & 0x0101010101010101ull;  // 1 per outside voxel
-  return (outside & ~n) != 0;                                  // near bytes are 0 or 1
+  const uint64_t outside = (LoadStates8(states) >> 7) & kLowBits8;  // 1 per outside voxel
+  return (outside & ~n) != 0;                                        // near bytes are 0 or 1
 }
 
 }  // namespace

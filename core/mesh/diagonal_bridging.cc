@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstring>
 
 #include "core/engine/local_topology.h"
+#include "core/engine/voxel_state_words.h"
 
 namespace membrane {
 namespace {
@@ -16,16 +16,13 @@ bool Solid(VoxelState s) { return !IsOutside(s); }
 // ForEachCornerContact (solid, +z outside, not solid on both sides along x, nor along y); the
 // voxels and their face neighbours must exist. Outside is the top bit of a state.
 bool AnyContactCandidate(const VoxelGrid& grid, int64_t i, const std::array<int64_t, 3>& st) {
-  static_assert(sizeof(VoxelState) == 1 && kOutsideBit == 0x80);
   const VoxelState* s = grid.states().data() + i;
   auto solid = [&](int64_t offset) {  // top bit of each byte set where solid
-    uint64_t w;
-    std::memcpy(&w, s + offset, 8);
-    return ~w & 0x8080808080808080ull;
+    return ~LoadStates8(s + offset) & kOutsideBits8;
   };
   const uint64_t candidate = solid(0) & ~solid(st[2]) & ~(solid(-st[0]) & solid(st[0])) &
                              ~(solid(-st[1]) & solid(st[1]));
-  return (candidate & 0x8080808080808080ull) != 0;
+  return (candidate & kOutsideBits8) != 0;
 }
 
 // Calls fn(others) for every corner-only contact, where `others` are the indices of the 6

@@ -2,8 +2,9 @@
 
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <vector>
+
+#include "core/engine/voxel_state_words.h"
 
 namespace membrane {
 namespace {
@@ -17,15 +18,6 @@ std::array<int64_t, 26> NeighbourOffsets(const VoxelGrid& grid) {
       for (int dx = -1; dx <= 1; ++dx)
         if (dx != 0 || dy != 0 || dz != 0) off[n++] = dx * st[0] + dy * st[1] + dz * st[2];
   return off;
-}
-
-// True when one of the 8 states from `s` on is a boundary voxel: boundary bit set, outside bit
-// clear.
-bool AnyBoundary(const VoxelState* s) {
-  static_assert(sizeof(VoxelState) == 1 && kOutsideBit == 0x80 && kBoundaryBit == 0x01);
-  uint64_t w;
-  std::memcpy(&w, s, 8);
-  return (w & ~(w >> 7) & 0x0101010101010101ull) != 0;
 }
 
 }  // namespace
@@ -45,7 +37,7 @@ int64_t RemoveLooseSheets(VoxelGrid& grid) {
       for (int x = 1; x < d[0] - 1; ++x) {
         const int64_t i = grid.Index(x, y, z);
         // Eight voxels at a time where none is a boundary voxel (nearly everywhere).
-        if ((x - 1) % 8 == 0 && x + 8 <= d[0] - 1 && !AnyBoundary(s + i)) {
+        if ((x - 1) % 8 == 0 && x + 8 <= d[0] - 1 && !AnyBoundary8(s + i)) {
           x += 7;
           continue;
         }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -11,6 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/engine/huge_page_allocator.h"
 #include "core/engine/local_topology.h"
+#include "core/engine/voxel_state_words.h"
 
 namespace membrane {
 namespace {
@@ -33,15 +33,6 @@ struct FreeBytes {
 using ByteArray = std::unique_ptr<int8_t[], FreeBytes>;
 ByteArray NewByteArray(int64_t n) {
   return ByteArray(HugePageAllocator<int8_t>().allocate(static_cast<size_t>(n)), FreeBytes{n});
-}
-
-// True when one of the 8 states from `s` on is a boundary voxel (boundary bit set, outside
-// bit clear): Offer() takes nothing else.
-bool AnyBoundary(const VoxelState* s) {
-  static_assert(sizeof(VoxelState) == 1 && kOutsideBit == 0x80 && kBoundaryBit == 0x01);
-  uint64_t w;
-  std::memcpy(&w, s, 8);
-  return (w & ~(w >> 7) & 0x0101010101010101ull) != 0;
 }
 
 class Relaxer {
@@ -112,7 +103,7 @@ class Relaxer {
         for (int x = kPadding; x < d[0] - kPadding;) {
           const int64_t i = grid_.Index(x, y, z);
           // Eight voxels at a time where none is a boundary voxel (most of the grid).
-          if (x + 8 <= d[0] - kPadding && !AnyBoundary(grid_.states().data() + i)) {
+          if (x + 8 <= d[0] - kPadding && !AnyBoundary8(grid_.states().data() + i)) {
             x += 8;
             continue;
           }

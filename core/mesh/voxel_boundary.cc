@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cstring>
 #include <numeric>
 #include <utility>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
+#include "core/engine/voxel_state_words.h"
 
 namespace membrane {
 namespace {
@@ -161,17 +161,11 @@ constexpr int kNegativeOffsets[4][2] = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
 // True when one of the 8 voxels from `s` on (along x) is solid with an outside face
 // neighbour; the 8 voxels and their neighbours must exist. Outside is the top bit of a state.
 bool AnyBoundaryFace(const VoxelState* s, const std::array<int64_t, 3>& st) {
-  static_assert(sizeof(VoxelState) == 1 && kOutsideBit == 0x80);
-  auto load = [&](int64_t offset) {
-    uint64_t w;
-    std::memcpy(&w, s + offset, 8);
-    return w;
-  };
-  constexpr uint64_t kTop = 0x8080808080808080ull;
-  const uint64_t solid = ~load(0) & kTop;
+  auto load = [&](int64_t offset) { return LoadStates8(s + offset); };
+  const uint64_t solid = ~load(0) & kOutsideBits8;
   const uint64_t outside_neighbour =
       (load(-st[0]) | load(st[0]) | load(-st[1]) | load(st[1]) | load(-st[2]) | load(st[2])) &
-      kTop;
+      kOutsideBits8;
   return (solid & outside_neighbour) != 0;
 }
 

@@ -254,8 +254,9 @@ int64_t FlatBitset::Count() const {
   return n;
 }
 
-void FlatBitset::ErodeRun(int n, int64_t stride) {
-  int len = 1;
+void FlatBitset::ErodeRun(int n, int64_t stride) { ErodeRunFromLength(1, n, stride); }
+
+void FlatBitset::ErodeRunFromLength(int len, int n, int64_t stride) {
   while (2 * len <= n) {
     AndShiftedDown(len * stride);
     len *= 2;
@@ -272,12 +273,7 @@ void FlatBitset::ErodeRunFrom(const FlatBitset& src, int n, int64_t stride) {
   // The first doubling step of ErodeRun, this[i] = src[i] & src[i + s], reads src directly.
   CombineShifted(words_.data(), src.words_.data(), src.words_.data(), words, -stride,
                  [](uint64_t x, uint64_t y) { return x & y; });
-  int len = 2;
-  while (2 * len <= n) {
-    AndShiftedDown(len * stride);
-    len *= 2;
-  }
-  if (len < n) AndShiftedDown((n - len) * stride);
+  ErodeRunFromLength(2, n, stride);
 }
 
 void FlatBitset::DilateRunFrom(const FlatBitset& src, int n, int64_t stride) {
@@ -289,16 +285,12 @@ void FlatBitset::DilateRunFrom(const FlatBitset& src, int n, int64_t stride) {
   // The first doubling step of DilateRun, this[i] = src[i] | src[i - s].
   CombineShifted(words_.data(), src.words_.data(), src.words_.data(), words, stride,
                  [](uint64_t x, uint64_t y) { return x | y; });
-  int len = 2;
-  while (2 * len <= n) {
-    OrShiftedUp(len * stride);
-    len *= 2;
-  }
-  if (len < n) OrShiftedUp((n - len) * stride);
+  DilateRunFromLength(2, n, stride);
 }
 
-void FlatBitset::DilateRun(int n, int64_t stride) {
-  int len = 1;
+void FlatBitset::DilateRun(int n, int64_t stride) { DilateRunFromLength(1, n, stride); }
+
+void FlatBitset::DilateRunFromLength(int len, int n, int64_t stride) {
   while (2 * len <= n) {
     OrShiftedUp(len * stride);
     len *= 2;

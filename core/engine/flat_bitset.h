@@ -94,6 +94,10 @@ class FlatBitset {
   void DilateRunFrom(const FlatBitset& src, int n, int64_t stride);
 
  private:
+  // ErodeRun (DilateRun) for a bitset already eroded (dilated) by a run of `len` <= n: the
+  // doubling passes from there on.
+  void ErodeRunFromLength(int len, int n, int64_t stride);
+  void DilateRunFromLength(int len, int n, int64_t stride);
   // The 64 bits starting at bit position `pos` (may be negative or past the end: zeros).
   uint64_t WordAt(int64_t pos) const;
 

@@ -40,8 +40,9 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
 
   // The output is written beside the mesh check (and kept whatever the check finds).
   bool write_failed = false;
-  const MeshDelivery write = [&](const TriangleMesh& mesh) -> absl::Status {
-    absl::Status s = WriteMesh(mesh, params.output, params.draco);
+  const MeshDelivery write = [&](const TriangleMesh& mesh, const PositionGrid& grid) {
+    absl::Status s =
+        WriteMesh(mesh, params.output, DracoOptionsOnGrid(grid, params.draco.compression_level));
     write_failed = !s.ok();
     return s;
   };

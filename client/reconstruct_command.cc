@@ -134,6 +134,10 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   p.options.surface = *surface;
   p.draco.position_quantization_bits = static_cast<int>(f.quantization);
   p.draco.compression_level = static_cast<int>(f.compression_level);
+  // Only .drc quantizes; the surface is then built and checked on the file's grid.
+  if (absl::EndsWithIgnoreCase(f.output, ".drc")) {
+    p.options.output_quantization_bits = static_cast<int>(f.quantization);
+  }
   return p;
 }
 

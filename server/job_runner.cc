@@ -118,8 +118,9 @@ void JobRunner::Run(const std::shared_ptr<Job>& job) const {
 
   // The Draco encoding of the result runs beside the mesh check.
   std::string mesh;
-  const MeshDelivery encode = [&](const TriangleMesh& m) -> absl::Status {
-    absl::StatusOr<DracoEncoding> encoded = EncodeDracoMesh(m, settings->mesh_encoding);
+  const MeshDelivery encode = [&](const TriangleMesh& m, const PositionGrid& grid) {
+    absl::StatusOr<DracoEncoding> encoded =
+        EncodeDracoMesh(m, DracoOptionsOnGrid(grid, settings->mesh_encoding.compression_level));
     if (!encoded.ok()) return encoded.status();
     mesh = std::move(encoded->bytes);
     return absl::OkStatus();

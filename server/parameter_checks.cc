@@ -56,6 +56,8 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
     r.surface = *surface;
   }
   r.relax = !p.no_relax();
+  // The mesh is built and checked on the grid of the encoding it is returned in.
+  r.output_quantization_bits = p.quantization();
   settings.mesh_encoding.position_quantization_bits = p.quantization();
   settings.mesh_encoding.compression_level = p.compression_level();
   return settings;

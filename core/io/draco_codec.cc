@@ -57,7 +57,8 @@ void SetPositions(const std::vector<Point3f>& positions, draco::PointCloud* pc) 
 }
 
 // See DracoEncoding::max_position_error.
-double QuantizationErrorBound(const std::vector<Point3f>& positions, int bits) {
+double QuantizationErrorBound(const std::vector<Point3f>& positions, const DracoOptions& options) {
+  const int bits = options.position_quantization_bits;
   if (bits == 0) return 0;
   double range = 0, magnitude = 0;
   for (int axis = 0; axis < 3; ++axis) {
@@ -69,6 +70,7 @@ double QuantizationErrorBound(const std::vector<Point3f>& positions, int bits) {
     range = std::max(range, double{high} - low);
     magnitude = std::max({magnitude, std::fabs(double{low}), std::fabs(double{high})});
   }
+  if (options.box) range = options.box->range;
   // Draco quantizes a flat (zero-range) attribute over a range of 1.
   if (range == 0) range = 1;
   const double half_step = range / (std::ldexp(1.0, bits) - 1) / 2;
@@ -90,13 +92,34 @@ absl::Status CheckEncodable(const std::vector<Point3f>& positions, const DracoOp
     return absl::InvalidArgumentError(
         absl::StrCat("too many points for Draco: ", positions.size()));
   }
-  return CheckFinitePoints(positions, absl::StrCat("cannot Draco-encode the ", what), is_mesh);
+  status = CheckFinitePoints(positions, absl::StrCat("cannot Draco-encode the ", what), is_mesh);
+  if (!status.ok() || !options.box || options.position_quantization_bits == 0) return status;
+  // Draco does not clamp: a value off the grid's ends would get an integer out of its range.
+  // Tested on the integer Draco computes (PositionGrid::Snap's float operations).
+  const PositionBox& box = *options.box;
+  const PositionGrid grid{options.position_quantization_bits, box};
+  const float inverse_delta = static_cast<float>(grid.max_quantized()) / box.range;
+  for (size_t i = 0; i < positions.size(); ++i)
+    for (int axis = 0; axis < 3; ++axis) {
+      const float q = std::floor((positions[i][axis] - box.origin[axis]) * inverse_delta + 0.5f);
+      if (!(q >= 0 && q <= static_cast<float>(grid.max_quantized()))) {
+        return absl::InvalidArgumentError(absl::StrCat(
+            "cannot Draco-encode the ", what, ": position ", i, " lies outside the quantization "
+            "box (axis ", axis, ": ", positions[i][axis], " not in [", box.origin[axis], ", ",
+            box.origin[axis] + box.range, "])"));
+      }
+    }
+  return absl::OkStatus();
 }
 
 void Configure(const DracoOptions& options, draco::Encoder* encoder) {
   const int speed = kMaxCompressionLevel - options.compression_level;
   encoder->SetSpeedOptions(speed, speed);
-  if (options.position_quantization_bits > 0) {
+  if (options.position_quantization_bits > 0 && options.box) {
+    encoder->SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION,
+                                              options.position_quantization_bits, 3,
+                                              options.box->origin.data(), options.box->range);
+  } else if (options.position_quantization_bits > 0) {
     encoder->SetAttributeQuantization(draco::GeometryAttribute::POSITION,
                                       options.position_quantization_bits);
   }
@@ -126,8 +149,7 @@ DracoEncoding Finish(const draco::EncoderBuffer& buffer, const std::vector<Point
                      const DracoOptions& options) {
   DracoEncoding encoding;
   encoding.bytes.assign(buffer.data(), buffer.size());
-  encoding.max_position_error =
-      QuantizationErrorBound(positions, options.position_quantization_bits);
+  encoding.max_position_error = QuantizationErrorBound(positions, options);
   return encoding;
 }
 
@@ -211,6 +233,16 @@ absl::Status ValidateDracoOptions(const DracoOptions& options) {
   if (level < 0 || level > kMaxCompressionLevel) {
     return absl::InvalidArgumentError(
         absl::StrCat("compression_level is ", level, "; it must be in 0..", kMaxCompressionLevel));
+  }
+  if (options.box) {
+    const PositionBox& box = *options.box;
+    const bool finite = std::isfinite(box.origin[0]) && std::isfinite(box.origin[1]) &&
+                        std::isfinite(box.origin[2]) && std::isfinite(box.range);
+    if (!finite || !(box.range > 0)) {
+      return absl::InvalidArgumentError(absl::StrCat(
+          "the quantization box (origin ", box.origin[0], " ", box.origin[1], " ", box.origin[2],
+          ", range ", box.range, ") must be finite with a positive range"));
+    }
   }
   return absl::OkStatus();
 }

@@ -6,12 +6,14 @@
 #ifndef MEMBRANE_CORE_IO_DRACO_CODEC_H_
 #define MEMBRANE_CORE_IO_DRACO_CODEC_H_
 
+#include <optional>
 #include <string>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "core/geometry/point_cloud.h"
+#include "core/geometry/position_grid.h"
 #include "core/geometry/triangle_mesh.h"
 
 namespace membrane {
@@ -24,18 +26,34 @@ struct DracoOptions {
   // 0 (fastest, largest) .. 10 (slowest, smallest); Draco's encoding and decoding speed is
   // 10 - level. 7 is draco_encoder's default.
   int compression_level = 7;
+  // When set (and position_quantization_bits > 0): the quantization box instead of the
+  // positions' bounding box, so that positions snapped by PositionGrid{bits, *box}.Snap are
+  // stored exactly. Every position must lie inside it.
+  std::optional<PositionBox> box = std::nullopt;
 };
 
-// OK when position_quantization_bits is 0 or in 1..30 and compression_level is in 0..10;
-// otherwise InvalidArgument naming the field, its value and the valid range.
+// The options that store positions snapped to `grid` exactly: its bits and box (no box when
+// lossless), at `compression_level`.
+inline DracoOptions DracoOptionsOnGrid(const PositionGrid& grid, int compression_level) {
+  DracoOptions options;
+  options.position_quantization_bits = grid.bits;
+  options.compression_level = compression_level;
+  if (!grid.lossless()) options.box = grid.box;
+  return options;
+}
+
+// OK when position_quantization_bits is 0 or in 1..30, compression_level is in 0..10 and the
+// box, if any, is finite with a positive range; otherwise InvalidArgument naming the field, its
+// value and the valid range.
 absl::Status ValidateDracoOptions(const DracoOptions& options);
 
 struct DracoEncoding {
   std::string bytes;
   // A bound, in model units, on |decoded - original| for every coordinate of every position:
   // 0 when lossless; otherwise computed from the quantization grid, not by decoding: half a
-  // grid step, range / (2^bits - 1) / 2 with range the largest bounding-box side, plus a few
-  // float32 rounding units of the coordinates' magnitude (Draco dequantizes in float32).
+  // grid step, range / (2^bits - 1) / 2 with range the largest bounding-box side (or the
+  // box's), plus a few float32 rounding units of the coordinates' magnitude (Draco dequantizes
+  // in float32). Positions already on the box's grid are stored exactly.
   // The Euclidean error is at most sqrt(3) times this.
   double max_position_error = 0;
 };

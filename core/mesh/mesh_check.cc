@@ -8,6 +8,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "core/mesh/self_intersection.h"
+#include "core/mesh/triangle_intersection.h"
 #include "core/mesh/vec3.h"
 
 namespace membrane {
@@ -52,11 +53,13 @@ Rows BuildRows(int64_t keys, EachFn each) {
 
 bool IsDegenerate(const TriangleMesh& mesh, const std::array<int32_t, 3>& f) {
   if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) return true;
-  const Vec3d a = ToVec3d(mesh.vertices[f[0]]), b = ToVec3d(mesh.vertices[f[1]]),
-              c = ToVec3d(mesh.vertices[f[2]]);
-  const double e = std::max({SquaredNorm(b - a), SquaredNorm(c - b), SquaredNorm(a - c)});
-  // Relative test: sin(angle) below 1e-12 is zero area at double precision.
-  return SquaredNorm(TriangleNormal(a, b, c)) <= 1e-24 * e * e;
+  const Triangle3d t{ToVec3d(mesh.vertices[f[0]]), ToVec3d(mesh.vertices[f[1]]),
+                     ToVec3d(mesh.vertices[f[2]])};
+  const double e =
+      std::max({SquaredNorm(t[1] - t[0]), SquaredNorm(t[2] - t[1]), SquaredNorm(t[0] - t[2])});
+  // Relative test: sin(angle) below 1e-12 is zero area at double precision. On the canonical
+  // normal, so that the answer does not depend on which vertex the face lists first.
+  return SquaredNorm(CanonicalNormal(t)) <= 1e-24 * e * e;
 }
 
 // One fan or cycle: the link edges (a, b) of the faces around a vertex form a connected graph

@@ -32,6 +32,7 @@ class Fitter {
         l_(voxel_size),
         options_(options),
         fallback_(fallback),
+        grid_(options.output_grid),
         rest_(mesh.vertices),
         fans_(mesh),
         // Cells of half the search radius: a query reads 5x5 rows of 5 cells, a box little
@@ -51,6 +52,9 @@ class Fitter {
       const Triangle3d t = Tri(f);
       rest_normal_[f] = TriangleNormal(t[0], t[1], t[2]);
     }
+    // Snapped after the input normals are taken: a face the grid flattens or flips is then
+    // refused by FaceOk like any other, and its vertices can only move out of it.
+    for (Point3f& p : mesh.vertices) p = grid_.Snap(p);
     if (fallback_ != nullptr) repair_level_.assign(nv, 0);
     // "Non-zero area": twice the area above a tiny fraction of a voxel face, so that no later
     // float32 rounding can flip a sliver.
@@ -81,13 +85,16 @@ class Fitter {
         FitVertex(v, round, stats);
       }
     }
-    // With a fallback the input is not known to be clean: the first search covers it all.
-    Verify(/*search_all=*/fallback_ != nullptr, stats);
+    // With a fallback or after snapping the input is not known to be clean: the first search
+    // covers it all.
+    Verify(/*search_all=*/fallback_ != nullptr || !grid_.lossless(), stats);
     return absl::OkStatus();
   }
 
  private:
   Vec3d Pos(int32_t v) const { return ToVec3d(mesh_.vertices[v]); }
+  // The written position nearest `x`: float32, on the output grid.
+  Point3f Place(const Vec3d& x) const { return grid_.Snap(ToPoint3f(x)); }
   Triangle3d Tri(int32_t f) const {
     const auto& t = mesh_.faces[f];
     return {Pos(t[0]), Pos(t[1]), Pos(t[2])};
@@ -211,7 +218,7 @@ class Fitter {
       return;
     }
     for (int level = 0; level < kFullyBackedOff; ++level) {
-      const Point3f candidate = ToPoint3f(x + kStepFractions[level] * delta);
+      const Point3f candidate = Place(x + kStepFractions[level] * delta);
       if (candidate == mesh_.vertices[v]) break;
       if (StarOk(v, candidate)) {
         if (!in_round_[v]) {
@@ -305,11 +312,11 @@ class Fitter {
     moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
     size_t kept = 0;
     for (int32_t v : moved) {
-      const Point3f& safe = (*fallback_)[v];
+      const Point3f safe = grid_.Snap((*fallback_)[v]);
       if (mesh_.vertices[v] == safe) continue;
       const double keep = repair_level_[v]++ < kRepairHalvings ? 0.5 : 0.0;
       const Vec3d s = ToVec3d(safe);
-      const Point3f p = ToPoint3f(s + keep * (Pos(v) - s));
+      const Point3f p = Place(s + keep * (Pos(v) - s));
       Set(v, p);
       rest_[v] = p;
       start_[v] = p;
@@ -329,13 +336,14 @@ class Fitter {
     ++level_[v];
     const Vec3d s = ToVec3d(start_[v]);
     const double f = level_[v] < kFullyBackedOff ? kStepFractions[level_[v]] : 0.0;
-    Set(v, f > 0 ? ToPoint3f(s + f * (target_[v] - s)) : start_[v]);
+    Set(v, f > 0 ? Place(s + f * (target_[v] - s)) : start_[v]);
   }
 
   TriangleMesh& mesh_;
   const double l_;
   const FitOptions options_;
   const std::vector<Point3f>* fallback_;
+  const PositionGrid grid_;
   // Input positions (the clamp's centre); they move only when repaired toward the fallback.
   std::vector<Point3f> rest_;
   const MeshFans fans_;
@@ -365,12 +373,14 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
     return absl::InvalidArgumentError(absl::StrCat("voxel size ", voxel_size, " is not positive"));
   if (o.rounds < 0 || !(o.search_radius > 0) || !(o.sigma > 0) || !(o.normal_sigma > 0) ||
       o.min_points < 3 || !(o.umbrella_step >= 0 && o.umbrella_step <= 1) || !(o.max_offset >= 0) ||
-      !(o.min_move >= 0))
+      !(o.min_move >= 0) || o.output_grid.bits < 0 || o.output_grid.bits > 30 ||
+      !(o.output_grid.box.range > 0) || !std::isfinite(o.output_grid.box.range))
     return absl::InvalidArgumentError(
         absl::StrCat("fit options out of range: rounds ", o.rounds, ", search_radius ",
                      o.search_radius, ", sigma ", o.sigma, ", normal_sigma ", o.normal_sigma,
                      ", min_points ", o.min_points, ", umbrella_step ", o.umbrella_step,
-                     ", max_offset ", o.max_offset, ", min_move ", o.min_move));
+                     ", max_offset ", o.max_offset, ", min_move ", o.min_move,
+                     ", output grid bits ", o.output_grid.bits, " range ", o.output_grid.box.range));
   return absl::OkStatus();
 }
 

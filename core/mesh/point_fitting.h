@@ -11,6 +11,7 @@
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
 #include "core/geometry/point_cloud.h"
+#include "core/geometry/position_grid.h"
 #include "core/geometry/triangle_mesh.h"
 #include "core/mesh/cancel_fn.h"
 
@@ -28,6 +29,10 @@ struct FitOptions {
   double umbrella_step = 0.5;  // fraction of the way to the 1-ring mean
   double max_offset = 1.5;     // a vertex never moves farther from its surface-nets position
   double min_move = 1e-3;      // smaller moves are not worth a check
+  // The positions that will be delivered (in model units, not voxels): every position the fit
+  // writes is snapped to this grid first, so that its checks judge the positions a decoder
+  // gets back. Lossless (bits 0): float32.
+  PositionGrid output_grid;
 };
 
 struct FitStats {
@@ -49,7 +54,8 @@ struct FitStats {
 // is tried at 1, 1/2, 1/4 of the way and taken at the first where every triangle of the vertex
 // keeps a non-zero area and a positive dot product with its input normal, and no two of them
 // overlap. Each pass ends with an intersection search around the faces it moved, on the
-// float32 positions that are written (so it is also recipe step 6's rounding check): the moved
+// float32 positions that are written, on output_grid (so it is also recipe step 6's rounding
+// check, and the check of the encoding's quantization): the moved
 // vertices of every crossing pair back off through 1/2, 1/4 of the way, then to where they
 // started, until nothing crosses. Checking once per pass instead of once per move costs one
 // linear search instead of a grid query per vertex, and gives the same guarantee.
@@ -58,8 +64,12 @@ struct FitStats {
 // pass searches every face, and crossings that no move explains are repaired toward
 // `fallback` (halfway up to 6 times, then all the way, as crossing_repair.h does); the
 // repaired positions then count as the vertices' input positions.
-// After: closed, manifold and oriented as before; no self-intersections if the input had none
-// or `fallback` was given; every vertex within max_offset * voxel_size of its input position.
+// With a quantizing output_grid every vertex is first snapped to it (the input normals stay
+// those of the unsnapped input) and the first pass searches every face.
+// After: closed, manifold and oriented as before; every vertex on output_grid; no
+// self-intersections if the input had none (lossless grid) or `fallback` was given, unless the
+// grid is too coarse for any repair (the caller's mesh check tells); every vertex within
+// max_offset * voxel_size of its input position, plus half a grid step per axis.
 // Errors: InvalidArgument for a non-positive voxel size, options out of range or a fallback of
 // the wrong size; Cancelled when `cancel` fired (the mesh then holds the last verified state:
 // the moves of the pass under way are undone).

@@ -183,8 +183,7 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
   for (size_t i = 0; i < n; ++i) {
     const CellCoord c = cells.CellOf(p.box[i].lo);
     low[i] = {static_cast<int32_t>(c[0]), static_cast<int32_t>(c[1]), static_cast<int32_t>(c[2])};
-    const Triangle3d t = triangle(static_cast<int32_t>(i));
-    normal[i] = TriangleNormal(t[0], t[1], t[2]);
+    normal[i] = CanonicalNormal(triangle(static_cast<int32_t>(i)));
   }
   const bool all = p.dirty.empty();
   // A cell's faces, copied side by side before its pairs are walked: the pair loop then reads

@@ -2,17 +2,166 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace membrane {
 namespace {
 
 using Vec2d = std::array<double, 2>;
 
-double Orient2d(const Vec2d& a, const Vec2d& b, const Vec2d& c) {
-  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-}
+// Shewchuk's error bounds for the first stage of his orient2d and orient3d ("Adaptive
+// Precision Floating-Point Arithmetic and Fast Robust Geometric Predicates", 1997): when the
+// determinant computed in double exceeds bound * permanent its sign is the exact sign. Every
+// sign below is exact, so every answer depends on the positions alone, not on the order of the
+// vertices in a face or of the faces in a mesh.
+constexpr double kEpsilon = 1.1102230246251565e-16;  // 2^-53
+constexpr double kOrient2dBound = (3.0 + 16.0 * kEpsilon) * kEpsilon;
+constexpr double kOrient3dBound = (7.0 + 56.0 * kEpsilon) * kEpsilon;
 
 int Sign(double v) { return (v > 0) - (v < 0); }
+
+// det[a - c, b - c]: positive when (a, b, c) turn counterclockwise.
+double Det2(const Vec2d& a, const Vec2d& b, const Vec2d& c, double* permanent) {
+  const double left = (a[0] - c[0]) * (b[1] - c[1]);
+  const double right = (a[1] - c[1]) * (b[0] - c[0]);
+  *permanent = std::fabs(left) + std::fabs(right);
+  return left - right;
+}
+
+// det[a - d, b - d, c - d]: negative when d is on the side (b - a) x (c - a) points to.
+double Det3(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d, double* permanent) {
+  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  const double bc = bdx * cdy - bdy * cdx, ca = cdx * ady - cdy * adx, ab = adx * bdy - ady * bdx;
+  *permanent = (std::fabs(bdx * cdy) + std::fabs(bdy * cdx)) * std::fabs(adz) +
+               (std::fabs(cdx * ady) + std::fabs(cdy * adx)) * std::fabs(bdz) +
+               (std::fabs(adx * bdy) + std::fabs(ady * bdx)) * std::fabs(cdz);
+  return adz * bc + bdz * ca + cdz * ab;
+}
+
+// Exact arithmetic on expansions (Shewchuk, same paper): a number held as a sum of doubles
+// of increasing magnitude that do not overlap. Used only where the filters above cannot decide,
+// that is on (nearly) degenerate configurations, which grids make common.
+class Expansion {
+ public:
+  void Add(double b) {
+    int n = 0;
+    double q = b;
+    for (int i = 0; i < size_; ++i) {
+      double sum, err;
+      TwoSum(q, terms_[i], sum, err);
+      q = sum;
+      if (err != 0) terms_[n++] = err;
+    }
+    if (q != 0 || n == 0) terms_[n++] = q;
+    size_ = n;
+  }
+  // Adds sign * x * y * z exactly.
+  void AddProduct(double sign, double x, double y, double z) {
+    double p1, p0, q1, q0, r1, r0;
+    TwoProduct(x, y, p1, p0);
+    TwoProduct(p1, z, q1, q0);
+    TwoProduct(p0, z, r1, r0);
+    Add(sign * r0);
+    Add(sign * q0);
+    Add(sign * r1);
+    Add(sign * q1);
+  }
+  void AddProduct(double sign, double x, double y) {
+    double p1, p0;
+    TwoProduct(x, y, p1, p0);
+    Add(sign * p0);
+    Add(sign * p1);
+  }
+  int Sign() const { return size_ == 0 ? 0 : (terms_[size_ - 1] > 0) - (terms_[size_ - 1] < 0); }
+
+ private:
+  static void TwoSum(double a, double b, double& x, double& y) {
+    x = a + b;
+    const double bv = x - a, av = x - bv;
+    y = (a - av) + (b - bv);
+  }
+  static void TwoProduct(double a, double b, double& x, double& y) {
+    x = a * b;
+    y = std::fma(a, b, -x);
+  }
+  // At most one term per Add, and at most 4 * 24 Adds.
+  std::array<double, 100> terms_{};
+  int size_ = 0;
+};
+
+// a - b as a double when that is exact.
+bool ExactDifference(double a, double b, double& d) {
+  d = a - b;
+  return (a - d) == b && (d + b) == a;
+}
+
+// The exact sign of det[a - c, b - c].
+int ExactDet2Sign(const Vec2d& a, const Vec2d& b, const Vec2d& c) {
+  double acx, acy, bcx, bcy;
+  Expansion e;
+  if (ExactDifference(a[0], c[0], acx) && ExactDifference(a[1], c[1], acy) &&
+      ExactDifference(b[0], c[0], bcx) && ExactDifference(b[1], c[1], bcy)) {
+    e.AddProduct(1, acx, bcy);
+    e.AddProduct(-1, acy, bcx);
+  } else {  // det [[ax ay 1] [bx by 1] [cx cy 1]]
+    e.AddProduct(1, a[0], b[1]);
+    e.AddProduct(-1, a[1], b[0]);
+    e.AddProduct(-1, a[0], c[1]);
+    e.AddProduct(1, a[1], c[0]);
+    e.AddProduct(1, b[0], c[1]);
+    e.AddProduct(-1, b[1], c[0]);
+  }
+  return e.Sign();
+}
+
+// The exact sign of det[a - d, b - d, c - d].
+int ExactDet3Sign(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+  std::array<Vec3d, 3> r;
+  bool exact = true;
+  const Vec3d* rows[3] = {&a, &b, &c};
+  for (int i = 0; i < 3 && exact; ++i)
+    for (int k = 0; k < 3 && exact; ++k) exact = ExactDifference((*rows[i])[k], d[k], r[i][k]);
+  Expansion e;
+  // det[x; y; z] of three rows, times sign, into e.
+  auto add_det = [&e](double sign, const Vec3d& x, const Vec3d& y, const Vec3d& z) {
+    e.AddProduct(sign, x[0], y[1], z[2]);
+    e.AddProduct(-sign, x[0], y[2], z[1]);
+    e.AddProduct(-sign, x[1], y[0], z[2]);
+    e.AddProduct(sign, x[1], y[2], z[0]);
+    e.AddProduct(sign, x[2], y[0], z[1]);
+    e.AddProduct(-sign, x[2], y[1], z[0]);
+  };
+  if (exact) {
+    add_det(1, r[0], r[1], r[2]);
+  } else {  // det [[a 1] [b 1] [c 1] [d 1]], along the column of ones
+    add_det(-1, b, c, d);
+    add_det(1, a, c, d);
+    add_det(-1, a, b, d);
+    add_det(1, a, b, c);
+  }
+  return e.Sign();
+}
+
+// The sign of (b - a) x (c - a) in the plane: the filter's when it decides, else exact.
+int Orient2dSign(const Vec2d& a, const Vec2d& b, const Vec2d& c) {
+  double permanent;
+  const double det = Det2(a, b, c, &permanent);
+  if (std::fabs(det) > kOrient2dBound * permanent) return Sign(det);
+  return ExactDet2Sign(a, b, c);
+}
+
+// The sign of ((b - a) x (c - a)) . (d - a): which side of plane (a, b, c) d lies on; the
+// filter's when it decides, else exact.
+int Orient3dSign(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+  double permanent;
+  const double det = Det3(a, b, c, d, &permanent);
+  if (std::fabs(det) > kOrient3dBound * permanent) return -Sign(det);
+  return -ExactDet3Sign(a, b, c, d);
+}
+
+int PlaneSide(const Triangle3d& t, const Vec3d& p) { return Orient3dSign(t[0], t[1], t[2], p); }
 
 // Drops the coordinate along which `normal` is largest: the projection that keeps a planar
 // figure least distorted (and non-degenerate when the normal is non-zero).
@@ -34,6 +183,12 @@ struct Projector {
   Vec2d operator()(const Vec3d& p) const { return {p[u], p[v]}; }
 };
 
+// The projection for two coplanar faces, the same whichever comes first.
+Projector PairProjector(const Vec3d& na, const Vec3d& nb) {
+  return Projector({std::fabs(na[0]) + std::fabs(nb[0]), std::fabs(na[1]) + std::fabs(nb[1]),
+                    std::fabs(na[2]) + std::fabs(nb[2])});
+}
+
 bool OnSegment2d(const Vec2d& a, const Vec2d& b, const Vec2d& p) {
   return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
          std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
@@ -41,8 +196,8 @@ bool OnSegment2d(const Vec2d& a, const Vec2d& b, const Vec2d& p) {
 
 // Closed segments [a, b] and [c, d] in the plane share a point.
 bool SegmentsIntersect2d(const Vec2d& a, const Vec2d& b, const Vec2d& c, const Vec2d& d) {
-  const int o1 = Sign(Orient2d(a, b, c)), o2 = Sign(Orient2d(a, b, d));
-  const int o3 = Sign(Orient2d(c, d, a)), o4 = Sign(Orient2d(c, d, b));
+  const int o1 = Orient2dSign(a, b, c), o2 = Orient2dSign(a, b, d);
+  const int o3 = Orient2dSign(c, d, a), o4 = Orient2dSign(c, d, b);
   if (o1 * o2 < 0 && o3 * o4 < 0) return true;
   if (o1 == 0 && OnSegment2d(a, b, c)) return true;
   if (o2 == 0 && OnSegment2d(a, b, d)) return true;
@@ -53,23 +208,21 @@ bool SegmentsIntersect2d(const Vec2d& a, const Vec2d& b, const Vec2d& c, const V
 
 // Closed triangle (a, b, c), non-degenerate, contains p.
 bool PointInTriangle2d(const Vec2d& p, const Vec2d& a, const Vec2d& b, const Vec2d& c) {
-  const double d1 = Orient2d(a, b, p), d2 = Orient2d(b, c, p), d3 = Orient2d(c, a, p);
+  const int d1 = Orient2dSign(a, b, p), d2 = Orient2dSign(b, c, p), d3 = Orient2dSign(c, a, p);
   const bool has_neg = d1 < 0 || d2 < 0 || d3 < 0;
   const bool has_pos = d1 > 0 || d2 > 0 || d3 > 0;
   return !(has_neg && has_pos);
 }
 
 bool CoplanarSegmentTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d& t,
-                             const Vec3d& normal) {
-  const Projector proj(normal);
+                             const Projector& proj) {
   const Vec2d a = proj(t[0]), b = proj(t[1]), c = proj(t[2]);
   const Vec2d p2 = proj(p), q2 = proj(q);
   return PointInTriangle2d(p2, a, b, c) || SegmentsIntersect2d(p2, q2, a, b) ||
          SegmentsIntersect2d(p2, q2, b, c) || SegmentsIntersect2d(p2, q2, c, a);
 }
 
-bool CoplanarTriangles(const Triangle3d& s, const Triangle3d& t, const Vec3d& normal) {
-  const Projector proj(normal);
+bool CoplanarTriangles(const Triangle3d& s, const Triangle3d& t, const Projector& proj) {
   const Vec2d s0 = proj(s[0]), s1 = proj(s[1]), s2 = proj(s[2]);
   const Vec2d t0 = proj(t[0]), t1 = proj(t[1]), t2 = proj(t[2]);
   const Vec2d se[3][2] = {{s0, s1}, {s1, s2}, {s2, s0}};
@@ -80,26 +233,51 @@ bool CoplanarTriangles(const Triangle3d& s, const Triangle3d& t, const Vec3d& no
   return PointInTriangle2d(s0, t0, t1, t2) || PointInTriangle2d(t0, s0, s1, s2);
 }
 
-// Segment [p, q] against triangle t, given the orientations op, oq of p and q against t's
-// plane (not both zero, not strictly of one sign): the line crosses the plane inside the
-// segment, so it is enough to know whether the line passes through the closed triangle.
+// Segment [p, q] against triangle t, given the sides op, oq of p and q of t's plane (not both
+// zero, not of one strict sign): the line crosses the plane inside the segment, so it is
+// enough to know whether the line passes through the closed triangle.
 bool CrossingSegmentHitsTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d& t) {
-  const int s0 = Sign(Orient3d(p, q, t[0], t[1]));
-  const int s1 = Sign(Orient3d(p, q, t[1], t[2]));
-  const int s2 = Sign(Orient3d(p, q, t[2], t[0]));
+  const int s0 = Orient3dSign(p, q, t[0], t[1]);
+  const int s1 = Orient3dSign(p, q, t[1], t[2]);
+  const int s2 = Orient3dSign(p, q, t[2], t[0]);
   const bool has_neg = s0 < 0 || s1 < 0 || s2 < 0;
   const bool has_pos = s0 > 0 || s1 > 0 || s2 > 0;
   return !(has_neg && has_pos);
 }
 
-bool SegmentTriangleWithOrientations(const Vec3d& p, const Vec3d& q, double op, double oq,
-                                     const Triangle3d& t, const Vec3d& normal) {
-  if ((op > 0 && oq > 0) || (op < 0 && oq < 0)) return false;
-  if (op == 0 && oq == 0) return CoplanarSegmentTriangle(p, q, t, normal);
+bool SegmentTriangleWithSides(const Vec3d& p, const Vec3d& q, int op, int oq,
+                              const Triangle3d& t, const Vec3d& normal) {
+  if (op * oq > 0) return false;
+  if (op == 0 && oq == 0) return CoplanarSegmentTriangle(p, q, t, Projector(normal));
   return CrossingSegmentHitsTriangle(p, q, t);
 }
 
 bool IsZero(const Vec3d& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; }
+
+bool SegmentHitsTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d& t, const Vec3d& n) {
+  if (IsZero(n)) return false;
+  return SegmentTriangleWithSides(p, q, PlaneSide(t, p), PlaneSide(t, q), t, n);
+}
+
+bool TrianglesIntersectWithNormals(const Triangle3d& a, const Vec3d& na, const Triangle3d& b,
+                                   const Vec3d& nb) {
+  if (IsZero(nb) || IsZero(na)) return false;
+  int da[3];
+  for (int i = 0; i < 3; ++i) da[i] = PlaneSide(b, a[i]);
+  if ((da[0] > 0 && da[1] > 0 && da[2] > 0) || (da[0] < 0 && da[1] < 0 && da[2] < 0)) return false;
+  int db[3];
+  for (int i = 0; i < 3; ++i) db[i] = PlaneSide(a, b[i]);
+  if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0)) return false;
+  if (da[0] == 0 && da[1] == 0 && da[2] == 0) return CoplanarTriangles(a, b, PairProjector(na, nb));
+  // Not coplanar: the triangles meet iff an edge of one meets the other (the overlap of the
+  // two chords on the planes' common line ends on an edge of one of them).
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (SegmentTriangleWithSides(a[i], a[j], da[i], da[j], b, nb)) return true;
+    if (SegmentTriangleWithSides(b[i], b[j], db[i], db[j], a, na)) return true;
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -107,45 +285,29 @@ double Orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) 
   return Dot(Cross(b - a, c - a), d - a);
 }
 
+Vec3d CanonicalNormal(const Triangle3d& t) {
+  // Sorted, with the parity of the permutation: the normal's sign is the face's orientation.
+  std::array<const Vec3d*, 3> p{&t[0], &t[1], &t[2]};
+  double parity = 1;
+  for (int i = 1; i < 3; ++i)
+    for (int j = i; j > 0 && *p[j] < *p[j - 1]; --j) {
+      std::swap(p[j], p[j - 1]);
+      parity = -parity;
+    }
+  return parity * TriangleNormal(*p[0], *p[1], *p[2]);
+}
+
 bool SegmentIntersectsTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d& t) {
-  const Vec3d n = TriangleNormal(t[0], t[1], t[2]);
-  if (IsZero(n)) return false;
-  return SegmentTriangleWithOrientations(p, q, Dot(n, p - t[0]), Dot(n, q - t[0]), t, n);
+  return SegmentHitsTriangle(p, q, t, CanonicalNormal(t));
 }
-
-namespace {
-
-bool TrianglesIntersectWithNormals(const Triangle3d& a, const Vec3d& na, const Triangle3d& b,
-                                   const Vec3d& nb) {
-  if (IsZero(nb) || IsZero(na)) return false;
-  double da[3];
-  for (int i = 0; i < 3; ++i) da[i] = Dot(nb, a[i] - b[0]);
-  if ((da[0] > 0 && da[1] > 0 && da[2] > 0) || (da[0] < 0 && da[1] < 0 && da[2] < 0)) return false;
-  double db[3];
-  for (int i = 0; i < 3; ++i) db[i] = Dot(na, b[i] - a[0]);
-  if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0)) return false;
-  if (da[0] == 0 && da[1] == 0 && da[2] == 0) return CoplanarTriangles(a, b, nb);
-  // Not coplanar: the triangles meet iff an edge of one meets the other (the overlap of the
-  // two chords on the planes' common line ends on an edge of one of them).
-  for (int i = 0; i < 3; ++i) {
-    const int j = (i + 1) % 3;
-    if (SegmentTriangleWithOrientations(a[i], a[j], da[i], da[j], b, nb)) return true;
-    if (SegmentTriangleWithOrientations(b[i], b[j], db[i], db[j], a, na)) return true;
-  }
-  return false;
-}
-
-}  // namespace
 
 bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b) {
-  return TrianglesIntersectWithNormals(a, TriangleNormal(a[0], a[1], a[2]), b,
-                                       TriangleNormal(b[0], b[1], b[2]));
+  return TrianglesIntersectWithNormals(a, CanonicalNormal(a), b, CanonicalNormal(b));
 }
 
 bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a,
                             const std::array<int32_t, 3>& ib, const Triangle3d& b) {
-  return MeshTrianglesIntersect(ia, a, TriangleNormal(a[0], a[1], a[2]), ib, b,
-                                TriangleNormal(b[0], b[1], b[2]));
+  return MeshTrianglesIntersect(ia, a, CanonicalNormal(a), ib, b, CanonicalNormal(b));
 }
 
 bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a, const Vec3d& na,
@@ -168,13 +330,14 @@ bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& 
     // edge meets the other face. The same holds for coplanar sectors.
     // Fast exit, the common case on a smooth surface: b's other two vertices strictly on one
     // side of a's plane, so b meets that plane only at the shared vertex (or vice versa).
-    const Vec3d& v = a[sa];
-    const double b1 = Dot(na, b[(sb + 1) % 3] - v), b2 = Dot(na, b[(sb + 2) % 3] - v);
-    if ((b1 > 0 && b2 > 0) || (b1 < 0 && b2 < 0)) return false;
-    const double a1 = Dot(nb, a[(sa + 1) % 3] - v), a2 = Dot(nb, a[(sa + 2) % 3] - v);
-    if ((a1 > 0 && a2 > 0) || (a1 < 0 && a2 < 0)) return false;
-    return SegmentIntersectsTriangle(a[(sa + 1) % 3], a[(sa + 2) % 3], b) ||
-           SegmentIntersectsTriangle(b[(sb + 1) % 3], b[(sb + 2) % 3], a);
+    const Vec3d &b1 = b[(sb + 1) % 3], &b2 = b[(sb + 2) % 3];
+    const int s1 = PlaneSide(a, b1), s2 = PlaneSide(a, b2);
+    if (s1 * s2 > 0) return false;
+    const Vec3d &a1 = a[(sa + 1) % 3], &a2 = a[(sa + 2) % 3];
+    const int t1 = PlaneSide(b, a1), t2 = PlaneSide(b, a2);
+    if (t1 * t2 > 0) return false;
+    return SegmentTriangleWithSides(a1, a2, t1, t2, b, nb) ||
+           SegmentTriangleWithSides(b1, b2, s1, s2, a, na);
   }
   // Shared edge: the faces overlap only when coplanar and folded (apexes on one side).
   int apex_a = 0, apex_b = 0;
@@ -182,10 +345,13 @@ bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& 
     if (ia[i] != ib[0] && ia[i] != ib[1] && ia[i] != ib[2]) apex_a = i;
     if (ib[i] != ia[0] && ib[i] != ia[1] && ib[i] != ia[2]) apex_b = i;
   }
-  if (Dot(na, b[apex_b] - a[apex_a]) != 0) return false;
-  const Vec3d& u = a[(apex_a + 1) % 3];
-  const Vec3d& w = a[(apex_a + 2) % 3];
-  return Dot(Cross(w - u, a[apex_a] - u), Cross(w - u, b[apex_b] - u)) > 0;
+  if (PlaneSide(a, b[apex_b]) != 0) return false;
+  // Coplanar: folded when both apexes lie strictly on one side of the shared edge's line.
+  const Projector proj = PairProjector(na, nb);
+  const Vec2d u = proj(a[(apex_a + 1) % 3]), w = proj(a[(apex_a + 2) % 3]);
+  const int side_a = Orient2dSign(u, w, proj(a[apex_a]));
+  const int side_b = Orient2dSign(u, w, proj(b[apex_b]));
+  return side_a != 0 && side_a == side_b;
 }
 
 }  // namespace membrane

@@ -3,9 +3,15 @@
 // itself; membrane-quality.md recipe 3 steps 5-6).
 //
 // All tests run in double on coordinates that are usually float32 values. Signs come from
-// orientation determinants (no epsilons, no divisions), so touching counts as intersecting and
-// axis-aligned coplanar configurations (cuberille) are decided exactly. Degenerate (zero-area)
-// triangles never intersect anything here; the mesh check counts them separately.
+// orientation determinants (no epsilons, no divisions), so touching counts as intersecting.
+// Every sign is exact: a floating-point filter (Shewchuk's first stage) decides most, exact
+// expansion arithmetic the rest (nearly degenerate configurations: coplanar, collinear,
+// touching). So every answer is a function of the positions alone, never of the order of the
+// vertices in a face or of the faces in a mesh. That matters on a quantization grid, where
+// such configurations are common: the same mesh decoded with another vertex order must check
+// the same (with rounded signs, 1 to 3 crossings appeared or vanished that way on 3 of the 10
+// real clouds). Degenerate (zero-area) triangles never intersect
+// anything here; the mesh check counts them separately.
 #ifndef MEMBRANE_CORE_MESH_TRIANGLE_INTERSECTION_H_
 #define MEMBRANE_CORE_MESH_TRIANGLE_INTERSECTION_H_
 
@@ -21,6 +27,11 @@ using Triangle3d = std::array<Vec3d, 3>;
 // Orientation of d against the plane of (a, b, c): positive on the side (b-a)x(c-a) points to,
 // zero when coplanar (up to double rounding).
 double Orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
+
+// The triangle's normal (twice its area vector, CCW) computed from its vertices in sorted
+// order: the same bits whichever vertex comes first. The normals the tests below take are
+// these (they choose the plane a coplanar pair is projected to, and tell degenerate faces).
+Vec3d CanonicalNormal(const Triangle3d& t);
 
 // True when the closed segment [p, q] and the closed triangle `t` share a point.
 // A degenerate triangle gives false.
@@ -41,7 +52,7 @@ bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b);
 bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a,
                             const std::array<int32_t, 3>& ib, const Triangle3d& b);
 
-// The same with the faces' normals given (TriangleNormal of a and b): a search that tests
+// The same with the faces' normals given (CanonicalNormal of a and b): a search that tests
 // each face against its dozen neighbours computes them once.
 bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a, const Vec3d& na,
                             const std::array<int32_t, 3>& ib, const Triangle3d& b, const Vec3d& nb);

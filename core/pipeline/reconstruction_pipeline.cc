@@ -78,13 +78,18 @@ absl::Status RelaxMembrane(const CancelToken& cancel, VoxelGrid& grid,
 
 absl::StatusOr<TriangleMesh> Surface(const ReconstructionOptions& options,
                                      const CancelToken& cancel, const VoxelGrid& grid,
-                                     const PointCloud& cloud, ReconstructionReport& report,
+                                     const PointCloud& cloud, const PositionGrid& output_grid,
+                                     ReconstructionReport& report,
                                      ReconstructionObserver& observer) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kSurface, report);
-  absl::StatusOr<TriangleMesh> mesh = BuildSurface(grid, cloud, options.surface, &cancel);
+  absl::StatusOr<TriangleMesh> mesh =
+      BuildSurface(grid, cloud, options.surface, output_grid, &cancel);
   if (!mesh.ok()) return mesh.status();
-  report.seconds.surface = watch.Seconds();
+  report.quantization.bits = output_grid.bits;
+  report.quantization.step = output_grid.step();
+  // A second build (see MeshDelivery) adds to the first.
+  report.seconds.surface += watch.Seconds();
   // Known now; the check repeats them with the rest of its findings.
   report.mesh.vertices = static_cast<int64_t>(mesh->vertices.size());
   report.mesh.faces = static_cast<int64_t>(mesh->faces.size());
@@ -92,12 +97,13 @@ absl::StatusOr<TriangleMesh> Surface(const ReconstructionOptions& options,
   return mesh;
 }
 
-// Checks `mesh` into `report` while `alongside` runs on the calling thread (nothing when
-// null): the check has its own thread, so that the delivery, which encodes, allocates from the
-// calling thread's malloc arena, whose pages earlier stages have already faulted in (a fresh
-// arena made Draco's encode twice as slow, most of it in page faults).
-void Check(const TriangleMesh& mesh, const CancelToken& cancel, ReconstructionReport& report,
-           ReconstructionObserver& observer, const std::function<void()>& alongside = nullptr) {
+// Checks `mesh` into `report` while `deliver` (if any) runs on the calling thread: the check
+// has its own thread, so that the delivery, which encodes, allocates from the calling thread's
+// malloc arena, whose pages earlier stages have already faulted in (a fresh arena made Draco's
+// encode twice as slow, most of it in page faults).
+absl::Status CheckAndDeliver(const TriangleMesh& mesh, const PositionGrid& grid,
+                             const CancelToken& cancel, const MeshDelivery& deliver,
+                             ReconstructionReport& report, ReconstructionObserver& observer) {
   observer.StageStarted(PipelineStage::kCheck, report);
   MeshReport checked;
   double seconds = 0;
@@ -106,9 +112,13 @@ void Check(const TriangleMesh& mesh, const CancelToken& cancel, ReconstructionRe
     checked = CheckMesh(mesh, [&cancel] { return cancel.cancelled(); });
     seconds = watch.Seconds();
   };
-  if (alongside) {
+  absl::Status delivered;
+  double deliver_seconds = 0;
+  if (deliver) {
     std::thread checker(check);
-    alongside();
+    const Stopwatch watch;
+    delivered = deliver(mesh, grid);
+    deliver_seconds = watch.Seconds();
     checker.join();
   } else {
     check();
@@ -116,6 +126,12 @@ void Check(const TriangleMesh& mesh, const CancelToken& cancel, ReconstructionRe
   report.mesh = checked;
   report.seconds.check = seconds;
   observer.StageFinished(PipelineStage::kCheck, report.seconds.check, report);
+  if (deliver) {
+    observer.StageStarted(PipelineStage::kEncode, report);
+    report.seconds.encode = deliver_seconds;
+    observer.StageFinished(PipelineStage::kEncode, report.seconds.encode, report);
+  }
+  return delivered;
 }
 
 }  // namespace
@@ -126,6 +142,11 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
                                                       ReconstructionObserver& observer,
                                                       const MeshDelivery& deliver) {
   const Stopwatch total;
+  if (options.output_quantization_bits < 0 || options.output_quantization_bits > 30) {
+    return absl::InvalidArgumentError(absl::StrCat("output quantization is ",
+                                                   options.output_quantization_bits,
+                                                   " bits; it must be 0 (lossless) or 1..30"));
+  }
   ReconstructionResult result;
   ReconstructionReport& report = result.report;
   report.points = static_cast<int64_t>(cloud.points.size());
@@ -145,24 +166,20 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
     if (absl::Status s = RelaxMembrane(cancel, grid, report, observer); !s.ok()) return s;
   }
 
-  absl::StatusOr<TriangleMesh> mesh = Surface(options, cancel, grid, cloud, report, observer);
-  if (!mesh.ok()) return mesh.status();
-  if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
-
-  if (deliver) {
-    absl::Status delivered;
-    double deliver_seconds = 0;
-    Check(*mesh, cancel, report, observer, [&] {
-      const Stopwatch watch;
-      delivered = deliver(*mesh);
-      deliver_seconds = watch.Seconds();
-    });
-    observer.StageStarted(PipelineStage::kEncode, report);
-    report.seconds.encode = deliver_seconds;
-    observer.StageFinished(PipelineStage::kEncode, report.seconds.encode, report);
-    if (!delivered.ok()) return delivered;
-  } else {
-    Check(*mesh, cancel, report, observer);
+  report.quantization.requested_bits = options.output_quantization_bits;
+  PositionGrid output_grid = OutputGrid(grid, options.output_quantization_bits);
+  absl::StatusOr<TriangleMesh> mesh;
+  for (;;) {
+    mesh = Surface(options, cancel, grid, cloud, output_grid, report, observer);
+    if (!mesh.ok()) return mesh.status();
+    if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
+    if (absl::Status s = CheckAndDeliver(*mesh, output_grid, cancel, deliver, report, observer);
+        !s.ok())
+      return s;
+    const bool broken = report.mesh.self_intersections > 0 || report.mesh.degenerate_faces > 0;
+    if (output_grid.lossless() || !broken) break;
+    // The grid is too coarse for this surface: no position on it keeps the faces apart.
+    output_grid = OutputGrid(grid, 0);
   }
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kCheck); !s.ok()) return s;
 

@@ -24,6 +24,10 @@ struct ReconstructionOptions {
   ShrinkOptions shrink;
   bool relax = true;
   SurfaceKind surface = SurfaceKind::kSmooth;
+  // The grid the delivery quantizes positions to (Draco position bits, 0..30; 0: float32 as
+  // they are). The surface is built on that grid and checked there, so the report describes
+  // the positions delivered, not positions the encoding then moves.
+  int output_quantization_bits = 0;
 };
 
 struct ReconstructionResult {
@@ -43,12 +47,16 @@ struct ReconstructionResult {
 // when `cancel` fires (polled within the shrink, the relaxation and the smooth surface, and
 // between stages, so a cancel takes effect within milliseconds).
 //
-// `deliver`, when given, is the caller's encoding or writing of the mesh: it runs on a thread
-// of its own while the check runs on this one (both only read the mesh), so that neither waits
-// for the other; then the encode stage is reported to `observer` with its own wall seconds in
-// report.seconds.encode (which overlap seconds.check). A non-OK status from it is the
-// reconstruction's.
-using MeshDelivery = std::function<absl::Status(const TriangleMesh& mesh)>;
+// `deliver`, when given, is the caller's encoding or writing of the mesh, given the grid its
+// positions lie on (report.quantization): it runs on this thread while the check runs on a
+// thread of its own (both only read the mesh), so that neither waits for the other; then the
+// encode stage is reported to `observer` with its own wall seconds in report.seconds.encode
+// (which overlap seconds.check). A non-OK status from it is the reconstruction's.
+// When the check finds crossing or flattened faces on a quantizing grid, the surface is built
+// again in float32 and checked and delivered again (report.quantization.bits 0; the delivery
+// is then called twice, and the second call's output is the one to keep).
+using MeshDelivery =
+    std::function<absl::Status(const TriangleMesh& mesh, const PositionGrid& grid)>;
 absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
                                                       const ReconstructionOptions& options,
                                                       const CancelToken& cancel,

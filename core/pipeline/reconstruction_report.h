@@ -28,6 +28,15 @@ struct StageSeconds {
   double total = 0;
 };
 
+// The grid the delivered positions lie on (ReconstructionOptions::output_quantization_bits).
+struct QuantizationReport {
+  int requested_bits = 0;  // 0: float32 asked for
+  // The grid the mesh was built, checked and delivered on: the requested one, or 0 (float32)
+  // when on it the check found crossing or flattened faces.
+  int bits = 0;
+  double step = 0;  // model units between grid positions along an axis; 0 for float32
+};
+
 struct ReconstructionReport {
   int64_t points = 0;
   double voxel_size = 0;                     // model units
@@ -45,6 +54,7 @@ struct ReconstructionReport {
   MembraneCounts membrane;     // the final DMS, before relaxation
   RelaxationStats relaxation;  // all 0 with --no-relax
   MeshReport mesh;             // CheckMesh of the surface (vertices and faces set before it)
+  QuantizationReport quantization;
   StageSeconds seconds;
   int64_t peak_rss_bytes = 0;  // getrusage ru_maxrss, in bytes
 };

@@ -85,6 +85,11 @@ std::string SecondsJson(const StageSeconds& s) {
       ", \"total\": ", JsonNumber(s.total), ", \"check\": ", JsonNumber(s.check), "}");
 }
 
+std::string QuantizationJson(const QuantizationReport& q) {
+  return absl::StrCat("{\"requested_bits\": ", q.requested_bits, ", \"bits\": ", q.bits,
+                      ", \"step\": ", JsonNumber(q.step), "}");
+}
+
 }  // namespace
 
 std::string StatsJson(const ReconstructionReport& r) {
@@ -99,7 +104,8 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"surface\": ", JsonString(r.surface), ",\n  \"relaxed\": ", JsonBool(r.relaxed),
       ",\n  \"post_process\": ", PostProcessJson(r.post_process),
       ",\n  \"handle_retry\": ", HandleRetryJson(r.handle_retry),
-      ",\n  \"relaxation\": ", RelaxationJson(r.relaxation), "\n}\n");
+      ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
+      ",\n  \"quantization\": ", QuantizationJson(r.quantization), "\n}\n");
 }
 
 }  // namespace membrane

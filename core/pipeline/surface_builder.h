@@ -8,6 +8,7 @@
 #include "core/engine/cancel_token.h"
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/point_cloud.h"
+#include "core/geometry/position_grid.h"
 #include "core/geometry/triangle_mesh.h"
 
 namespace membrane {
@@ -24,11 +25,19 @@ absl::StatusOr<SurfaceKind> ParseSurfaceKind(absl::string_view name);
 const char* SurfaceKindName(SurfaceKind kind);
 
 // The closed, manifold, outward surface of `membrane` (a final DMS, its outer layer outside),
-// vertices in model units; `cloud` is what the smooth surface is fitted to (SmoothSurface of
-// core/mesh with its default options; Cuberille ignores it). Cancelled when `cancel` (may be
-// null) fires during the smooth surface.
+// vertices in model units on `grid` (OutputGrid's; lossless: float32); `cloud` is what the
+// smooth surface is fitted to (SmoothSurface of core/mesh with its default options, fitting on
+// `grid`; Cuberille ignores it and is snapped to `grid`). A coarse grid can flatten or cross
+// faces: the caller's mesh check tells. Cancelled when `cancel` (may be null) fires during the
+// smooth surface.
 absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
-                                          SurfaceKind kind, const CancelToken* cancel);
+                                          SurfaceKind kind, const PositionGrid& grid,
+                                          const CancelToken* cancel);
+
+// The grid of `bits` (0: lossless) whose box is `membrane`'s: every surface vertex lies in the
+// grid's voxels, and the box is known before the surface is built (the mesh's own bounding box
+// is not, and a grid taken from it would move under the fit).
+PositionGrid OutputGrid(const VoxelGrid& membrane, int bits);
 
 }  // namespace membrane
 

@@ -1,7 +1,11 @@
 #include "core/mesh/triangle_intersection.h"
 
 #include <algorithm>
+#include <bit>
+#include <climits>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <utility>
 
 namespace membrane {
@@ -82,9 +86,18 @@ class Expansion {
     const double bv = x - a, av = x - bv;
     y = (a - av) + (b - bv);
   }
+  // Dekker's product: std::fma is a library call on the baseline x86-64 this builds for.
+  static void Split(double a, double& hi, double& lo) {
+    const double c = 134217729.0 * a;  // 2^27 + 1
+    hi = c - (c - a);
+    lo = a - hi;
+  }
   static void TwoProduct(double a, double b, double& x, double& y) {
     x = a * b;
-    y = std::fma(a, b, -x);
+    double ahi, alo, bhi, blo;
+    Split(a, ahi, alo);
+    Split(b, bhi, blo);
+    y = alo * blo - (((x - ahi * bhi) - alo * bhi) - ahi * blo);
   }
   // At most one term per Add, and at most 4 * 24 Adds.
   std::array<double, 100> terms_{};
@@ -116,8 +129,62 @@ int ExactDet2Sign(const Vec2d& a, const Vec2d& b, const Vec2d& c) {
   return e.Sign();
 }
 
+// v as an odd integer times a power of two (m = 0 for v = 0), from its bits.
+struct Dyadic {
+  int64_t m = 0;
+  int e = 0;
+};
+Dyadic Decompose(double v) {
+  const uint64_t bits = std::bit_cast<uint64_t>(v);
+  const int field = static_cast<int>((bits >> 52) & 0x7ff);
+  uint64_t mantissa = bits & ((uint64_t{1} << 52) - 1);
+  if (field != 0) mantissa |= uint64_t{1} << 52;
+  if (mantissa == 0) return {};
+  const int zeros = std::countr_zero(mantissa);
+  Dyadic d;
+  d.m = static_cast<int64_t>(mantissa >> zeros);
+  if (bits >> 63) d.m = -d.m;
+  d.e = (field == 0 ? -1074 : field - 1075) + zeros;
+  return d;
+}
+
+// The exact sign of det[a - d, b - d, c - d] in 128-bit integers, when every coordinate of
+// an axis is a multiple of that axis's smallest power of two with at most 40 bits (the case of
+// float32 positions in a mesh of similar magnitudes): each axis scaled by a power of two, the
+// determinant's terms are products of three 41-bit differences. nullopt otherwise.
+std::optional<int> IntegerDet3Sign(const Vec3d& a, const Vec3d& b, const Vec3d& c,
+                                   const Vec3d& d) {
+  const Vec3d* points[4] = {&a, &b, &c, &d};
+  __int128 r[3][3];
+  for (int k = 0; k < 3; ++k) {
+    Dyadic v[4];
+    int low = INT32_MAX;
+    for (int i = 0; i < 4; ++i) {
+      v[i] = Decompose((*points[i])[k]);
+      if (v[i].m != 0) low = std::min(low, v[i].e);
+    }
+    __int128 value[4];
+    for (int i = 0; i < 4; ++i) {
+      if (v[i].m == 0) {
+        value[i] = 0;
+        continue;
+      }
+      const int shift = v[i].e - low;
+      const uint64_t magnitude = static_cast<uint64_t>(v[i].m < 0 ? -v[i].m : v[i].m);
+      if (shift > 40 || std::bit_width(magnitude) + shift > 40) return std::nullopt;
+      value[i] = static_cast<__int128>(v[i].m) << shift;
+    }
+    for (int i = 0; i < 3; ++i) r[i][k] = value[i] - value[3];
+  }
+  const __int128 det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -
+                       r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
+                       r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+  return (det > 0) - (det < 0);
+}
+
 // The exact sign of det[a - d, b - d, c - d].
 int ExactDet3Sign(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+  if (const std::optional<int> sign = IntegerDet3Sign(a, b, c, d)) return *sign;
   std::array<Vec3d, 3> r;
   bool exact = true;
   const Vec3d* rows[3] = {&a, &b, &c};
@@ -149,6 +216,11 @@ int Orient2dSign(const Vec2d& a, const Vec2d& b, const Vec2d& c) {
   double permanent;
   const double det = Det2(a, b, c, &permanent);
   if (std::fabs(det) > kOrient2dBound * permanent) return Sign(det);
+  // Every product has an exactly zero factor (a zero difference is exact): the determinant is
+  // exactly zero. Axis-aligned degenerate cases, the common ones on grids, end here.
+  if (permanent == 0) return 0;
+  // Two equal points: exactly zero too (segments ending at a shared vertex ask this often).
+  if (a == b || b == c || a == c) return 0;
   return ExactDet2Sign(a, b, c);
 }
 
@@ -158,6 +230,8 @@ int Orient3dSign(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d)
   double permanent;
   const double det = Det3(a, b, c, d, &permanent);
   if (std::fabs(det) > kOrient3dBound * permanent) return -Sign(det);
+  if (permanent == 0) return 0;  // as in Orient2dSign
+  if (a == b || a == c || a == d || b == c || b == d || c == d) return 0;
   return -ExactDet3Sign(a, b, c, d);
 }
 

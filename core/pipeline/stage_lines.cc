@@ -49,16 +49,28 @@ std::string StageFinishedLine(PipelineStage stage, const ReconstructionReport& r
           "relax: %d dents filled, %d bumps shaved, %d steps refused to keep the topology in "
           "%.3f s",
           r.relaxation.phase1_moves, r.relaxation.phase2_moves, r.relaxation.not_simple, s.relax);
-    case PipelineStage::kSurface:
-      return absl::StrFormat("surface: %s, %d vertices, %d faces in %.3f s", r.surface,
-                             r.mesh.vertices, r.mesh.faces, s.surface);
+    case PipelineStage::kSurface: {
+      const QuantizationReport& q = r.quantization;
+      std::string grid;
+      if (q.bits > 0) {
+        grid = absl::StrFormat(" on the output's %d-bit grid (step %.3g)", q.bits, q.step);
+      } else if (q.requested_bits > 0) {
+        grid = absl::StrFormat(" in float32 (on the %d-bit grid asked for, faces crossed)",
+                               q.requested_bits);
+      }
+      return absl::StrFormat("surface: %s, %d vertices, %d faces%s in %.3f s", r.surface,
+                             r.mesh.vertices, r.mesh.faces, grid, s.surface);
+    }
     case PipelineStage::kCheck: {
       const MeshReport& m = r.mesh;
       return absl::StrFormat(
-          "check: %s, %s, %s, %d shell(s), genus [%s], %d self-intersections in %.3f s",
+          "check: %s, %s, %s, %d shell(s), genus [%s], %d self-intersections%s in %.3f s",
           m.closed ? "closed" : "NOT closed", m.manifold ? "manifold" : "NOT manifold",
           m.oriented ? "oriented" : "NOT oriented", m.shells, absl::StrJoin(m.genus, ", "),
-          m.self_intersections, s.check);
+          m.self_intersections,
+          m.degenerate_faces > 0 ? absl::StrFormat(", %d degenerate faces", m.degenerate_faces)
+                                 : "",
+          s.check);
     }
     case PipelineStage::kEncode: return absl::StrFormat("encode: done in %.3f s", s.encode);
   }

@@ -74,7 +74,8 @@ std::string MeshJson(const MeshReport& m) {
       ", \"manifold\": ", JsonBool(m.manifold), ", \"oriented\": ", JsonBool(m.oriented),
       ", \"shells\": ", m.shells, ", \"genus\": ", IntArray(m.genus),
       ", \"self_intersections\": ", m.self_intersections,
-      ", \"positive_volume\": ", JsonBool(m.positive_volume), "}");
+      ", \"positive_volume\": ", JsonBool(m.positive_volume),
+      ", \"degenerate_faces\": ", m.degenerate_faces, "}");
 }
 
 std::string SecondsJson(const StageSeconds& s) {

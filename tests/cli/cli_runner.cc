@@ -11,7 +11,6 @@
 #include "absl/strings/str_split.h"
 
 namespace membrane::testing {
-namespace {
 
 std::string ReadWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -19,8 +18,6 @@ std::string ReadWholeFile(const std::string& path) {
   buffer << in.rdbuf();
   return buffer.str();
 }
-
-}  // namespace
 
 CliResult RunMembrane(const std::vector<std::string>& args, const std::string& scratch_dir) {
   const std::string out_path = scratch_dir + "/stdout.txt";

@@ -17,6 +17,9 @@ struct CliResult {
 // /dev/null, stdout and stderr captured through files in `scratch_dir`. Waits for it to end.
 CliResult RunMembrane(const std::vector<std::string>& args, const std::string& scratch_dir);
 
+// The bytes of the file at `path`; empty when it cannot be read.
+std::string ReadWholeFile(const std::string& path);
+
 // The lines of `text` that start with "membrane: " (the error lines of the contract).
 std::vector<std::string> ErrorLines(const std::string& text);
 

@@ -87,5 +87,56 @@ TEST_F(ReconstructTest, CuberilleSurfaceToDracoIsClosed) {
   EXPECT_THAT(check.out, HasSubstr("closed: yes"));
 }
 
+// The .drc file holds positions on an 11-bit grid. Before the surface was built on that grid,
+// the check judged the float positions and the file held others: this cloud's file then had 57
+// crossing face pairs while the statistics said 0.
+TEST_F(ReconstructTest, DracoFileChecksAsTheStatisticsSay) {
+  const std::string cloud = dir_.File("cube.ply");
+  ASSERT_EQ(Run({"synth", "cube-pinholes", "-o", cloud, "--points", "20000"}).exit_code, 0);
+  const std::string mesh = dir_.File("cube.drc"), stats = dir_.File("cube.json");
+  const CliResult r = Run({"reconstruct", cloud, "-o", mesh, "--local", "--stats-json", stats});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("on the output's 11-bit grid"));
+  const CliResult check = Run({"check", mesh, "--json"});
+  ASSERT_EQ(check.exit_code, 0) << check.err;
+  const std::optional<JsonValue> file = ParseJson(check.out);
+  ASSERT_TRUE(file.has_value()) << check.out;
+  EXPECT_TRUE(Flag(*file, "closed"));
+  EXPECT_TRUE(Flag(*file, "manifold"));
+  ASSERT_NE(file->Find("self_intersections"), nullptr);
+  EXPECT_EQ(file->Find("self_intersections")->number, 0);
+  EXPECT_EQ(file->Find("degenerate_faces")->number, 0);
+  const std::optional<JsonValue> json = ParseJson(ReadWholeFile(stats));
+  ASSERT_TRUE(json.has_value());
+  const JsonValue* q = json->Find("quantization");
+  ASSERT_NE(q, nullptr);
+  EXPECT_EQ(q->Find("requested_bits")->number, 11);
+  EXPECT_EQ(q->Find("bits")->number, 11);
+  EXPECT_GT(q->Find("step")->number, 0);
+  EXPECT_EQ(json->Find("mesh")->Find("self_intersections")->number, 0);
+}
+
+// A grid too coarse for any surface (3 bits: 7 steps across the box): the file is written
+// lossless rather than crossed, and the statistics say so.
+TEST_F(ReconstructTest, TooCoarseAGridGivesALosslessFileAndSaysSo) {
+  const std::string cloud = dir_.File("sphere.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "5000"}).exit_code, 0);
+  const std::string mesh = dir_.File("sphere.drc"), stats = dir_.File("sphere.json");
+  const CliResult r = Run({"reconstruct", cloud, "-o", mesh, "--local", "--quantization", "3",
+                           "--stats-json", stats});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("in float32 (on the 3-bit grid asked for, faces crossed)"));
+  const std::optional<JsonValue> json = ParseJson(ReadWholeFile(stats));
+  ASSERT_TRUE(json.has_value());
+  EXPECT_EQ(json->Find("quantization")->Find("requested_bits")->number, 3);
+  EXPECT_EQ(json->Find("quantization")->Find("bits")->number, 0);
+  const CliResult check = Run({"check", mesh, "--json"});
+  const std::optional<JsonValue> file = ParseJson(check.out);
+  ASSERT_TRUE(file.has_value()) << check.out;
+  EXPECT_EQ(file->Find("self_intersections")->number, 0);
+  EXPECT_EQ(file->Find("degenerate_faces")->number, 0);
+  EXPECT_TRUE(Flag(*file, "closed"));
+}
+
 }  // namespace
 }  // namespace membrane::testing

@@ -10,11 +10,13 @@
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_replace.h"
 #include "core/engine/voxel_topology.h"
+#include "core/io/draco_codec.h"
 #include "core/io/point_cloud_io.h"
 #include "core/mesh/cuberille.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/relaxation.h"
 #include "core/mesh/smooth_surface.h"
+#include "core/pipeline/surface_builder.h"
 #include "gtest/gtest.h"
 #include "tests/engine/shrink_fixture.h"
 #include "tests/support/shared_data.h"
@@ -22,7 +24,18 @@
 namespace membrane {
 namespace {
 
-enum class Surface { kSmooth, kCuberille };
+// kSmoothDracoFile: the smooth surface built on the grid of an 11-bit .drc file (the default
+// output), encoded and decoded: the check then judges what a user's file holds.
+enum class Surface { kSmooth, kCuberille, kSmoothDracoFile };
+
+std::string SurfaceName(Surface surface) {
+  switch (surface) {
+    case Surface::kSmooth: return "smooth";
+    case Surface::kCuberille: return "cuberille";
+    case Surface::kSmoothDracoFile: return "smooth_drc";
+  }
+  return "";
+}
 
 // Relaxes the final membrane, builds the surface and checks it against the membrane.
 void ExpectSurfaceMatchesMembrane(const PointCloud& cloud, Surface surface, const std::string& what) {
@@ -35,12 +48,22 @@ void ExpectSurfaceMatchesMembrane(const PointCloud& cloud, Surface surface, cons
   EXPECT_EQ(membrane.shells, run->topology.shells) << what;
   EXPECT_EQ(membrane.genus, run->topology.genus) << what;
   TriangleMesh mesh;
-  if (surface == Surface::kSmooth) {
+  if (surface == Surface::kCuberille) {
+    mesh = Cuberille(grid);
+  } else if (surface == Surface::kSmooth) {
     absl::StatusOr<TriangleMesh> smooth = SmoothSurface(grid, cloud.points);
     ASSERT_TRUE(smooth.ok()) << smooth.status();
     mesh = *std::move(smooth);
   } else {
-    mesh = Cuberille(grid);
+    const PositionGrid file_grid = OutputGrid(grid, 11);
+    absl::StatusOr<TriangleMesh> smooth =
+        BuildSurface(grid, cloud, SurfaceKind::kSmooth, file_grid, nullptr);
+    ASSERT_TRUE(smooth.ok()) << smooth.status();
+    absl::StatusOr<DracoEncoding> file = EncodeDracoMesh(*smooth, DracoOptionsOnGrid(file_grid, 7));
+    ASSERT_TRUE(file.ok()) << file.status();
+    absl::StatusOr<TriangleMesh> decoded = DecodeDracoMesh(file->bytes);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    mesh = *std::move(decoded);
   }
   const MeshReport r = CheckMesh(mesh);
   const std::string description =
@@ -54,6 +77,7 @@ void ExpectSurfaceMatchesMembrane(const PointCloud& cloud, Surface surface, cons
   EXPECT_TRUE(r.vertex_manifold && r.edge_manifold) << description;
   EXPECT_TRUE(r.oriented && r.positive_volume) << description;
   EXPECT_EQ(r.self_intersections, 0) << description;
+  EXPECT_EQ(r.degenerate_faces, 0) << description;
   EXPECT_EQ(r.shells, membrane.shells) << description;
   // Shells may come in another order: compare the genus lists as multisets.
   std::vector<int> a = r.genus, b = membrane.genus;
@@ -75,11 +99,12 @@ INSTANTIATE_TEST_SUITE_P(
     Shapes, ShapeSurfaceTest,
     ::testing::Combine(::testing::Values("sphere", "two-spheres", "torus", "capped-sphere"),
                        ::testing::Values(1.0, 30.0),
-                       ::testing::Values(Surface::kSmooth, Surface::kCuberille)),
+                       ::testing::Values(Surface::kSmooth, Surface::kCuberille,
+                                         Surface::kSmoothDracoFile)),
     [](const auto& info) {
       return absl::StrReplaceAll(
           absl::StrCat(std::get<0>(info.param), "_density", std::get<1>(info.param), "_",
-                       std::get<2>(info.param) == Surface::kSmooth ? "smooth" : "cuberille"),
+                       SurfaceName(std::get<2>(info.param))),
           {{"-", "_"}, {".", "p"}});
     });
 
@@ -100,11 +125,12 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Combine(::testing::Values("stanford-bunny", "rocker-arm", "fandisk", "spot",
                                          "teapot"),
                        ::testing::Values("scan", "variable"),
-                       ::testing::Values(Surface::kSmooth, Surface::kCuberille)),
+                       ::testing::Values(Surface::kSmooth, Surface::kCuberille,
+                                         Surface::kSmoothDracoFile)),
     [](const auto& info) {
       return absl::StrReplaceAll(
           absl::StrCat(std::get<0>(info.param), "_", std::get<1>(info.param), "_",
-                       std::get<2>(info.param) == Surface::kSmooth ? "smooth" : "cuberille"),
+                       SurfaceName(std::get<2>(info.param))),
           {{"-", "_"}});
     });
 

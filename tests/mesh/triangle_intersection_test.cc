@@ -1,5 +1,6 @@
 #include "core/mesh/triangle_intersection.h"
 
+#include <cmath>
 #include <random>
 
 #include "gtest/gtest.h"
@@ -70,6 +71,81 @@ TEST(TriangleIntersection, AgreesWithSeparatingAxesOnSmallIntegerTriangles) {
         << b[1][0] << b[1][1] << b[1][2] << "," << b[2][0] << b[2][1] << b[2][2] << ")";
   }
   EXPECT_GT(hits, 10000);
+}
+
+// Small integer triangles placed at `offset` with `step` between integers, in double: the
+// coordinates of a quantization grid rather than integers. Touching, coplanar and collinear
+// cases stay as frequent, so the filters fail often and the exact arithmetic decides.
+struct Lattice {
+  double offset, step;
+  Triangle3d Place(const std::array<I3, 3>& t) const {
+    Triangle3d out;
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) out[i][k] = offset + step * static_cast<double>(t[i][k]);
+    return out;
+  }
+};
+
+TEST(TriangleIntersection, IsExactAndOrderFreeOnGridCoordinates) {
+  // 128-bit integer path (2.75 + k/64, 1000.5 + k/64) and expansion path (1e6 + k 2^-30, a
+  // 50-bit spread per axis); every place is exact in double, so the integer reference holds.
+  const Lattice lattices[] = {{2.75, 1.0 / 64}, {1000.5, 1.0 / 64}, {1e6, std::ldexp(1.0, -30)}};
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> coord(0, 3);
+  for (const Lattice& lattice : lattices) {
+    int tested = 0, hits = 0;
+    while (tested < 40000) {
+      std::array<I3, 3> a, b;
+      for (auto& p : a) p = {coord(rng), coord(rng), coord(rng)};
+      for (auto& p : b) p = {coord(rng), coord(rng), coord(rng)};
+      if (IsZeroI(CrossI(Sub(a[1], a[0]), Sub(a[2], a[0]))) ||
+          IsZeroI(CrossI(Sub(b[1], b[0]), Sub(b[2], b[0]))))
+        continue;
+      ++tested;
+      const bool expected = SeparatingAxisIntersect(a, b);
+      hits += expected;
+      const Triangle3d ta = lattice.Place(a), tb = lattice.Place(b);
+      ASSERT_EQ(TrianglesIntersect(ta, tb), expected) << "offset " << lattice.offset;
+      // The same pair listed another way: other first vertices, faces swapped.
+      const Triangle3d ra = {ta[1], ta[2], ta[0]}, rb = {tb[2], tb[0], tb[1]};
+      ASSERT_EQ(MeshTrianglesIntersect({3, 4, 5}, rb, {0, 1, 2}, ra), expected);
+    }
+    EXPECT_GT(hits, 2000);
+  }
+}
+
+TEST(TriangleIntersection, SharedVertexAnswersDoNotDependOnTheOrderOfTheFaces) {
+  // Faces around one shared vertex on a grid, as a fitted surface snapped to a file's
+  // quantization grid has them: the answer must be the same whichever face and vertex come
+  // first (a decoder lists them in another order than the mesh that was checked).
+  std::mt19937 rng(13);
+  std::uniform_int_distribution<int> coord(-2, 2);
+  // A real cloud's grid (not dyadic) around zero, where coordinates span binades and
+  // rounded determinants lose their sign.
+  const Lattice lattice{-0.0641599968, 0.0263004307};
+  int tested = 0, hits = 0;
+  while (tested < 40000) {
+    std::array<I3, 3> a, b;
+    a[0] = b[0] = {0, 0, 0};
+    for (int i = 1; i < 3; ++i) {
+      a[i] = {coord(rng), coord(rng), coord(rng)};
+      b[i] = {coord(rng), coord(rng), coord(rng)};
+    }
+    if (IsZeroI(CrossI(Sub(a[1], a[0]), Sub(a[2], a[0]))) ||
+        IsZeroI(CrossI(Sub(b[1], b[0]), Sub(b[2], b[0]))))
+      continue;
+    ++tested;
+    Triangle3d ta = lattice.Place(a), tb = lattice.Place(b);
+    for (Triangle3d* t : {&ta, &tb})  // float32 positions, as a mesh holds
+      for (Vec3d& p : *t)
+        for (double& x : p) x = static_cast<float>(x);
+    const bool first = MeshTrianglesIntersect({0, 1, 2}, ta, {0, 3, 4}, tb);
+    hits += first;
+    const Triangle3d ra = {ta[2], ta[0], ta[1]}, rb = {tb[1], tb[2], tb[0]};
+    ASSERT_EQ(MeshTrianglesIntersect({3, 4, 0}, rb, {2, 0, 1}, ra), first);
+    ASSERT_EQ(MeshTrianglesIntersect({0, 3, 4}, tb, {0, 1, 2}, ta), first);
+  }
+  EXPECT_GT(hits, 1000);
 }
 
 TEST(TriangleIntersection, TouchingAtAPointCounts) {

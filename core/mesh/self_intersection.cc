@@ -171,7 +171,7 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
   const SortedFaceCells cells(p.box);
   const size_t n = p.face.size();
   // Lowest cell of each box: the lowest cell of two boxes' overlap is the per-axis maximum of
-  // theirs, so each pair is tested once, in that cell. Normals are computed once per face:
+  // theirs, so each pair is tested once, in that cell. Face planes are computed once per face:
   // each face meets a dozen neighbours.
   auto triangle = [&](int32_t i) {
     const auto& idx = mesh.faces[p.face[i]];
@@ -179,11 +179,11 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
                       ToVec3d(mesh.vertices[idx[2]])};
   };
   BigVector<std::array<int32_t, 3>> low(n);
-  BigVector<Vec3d> normal(n);
+  BigVector<FacePlane> plane(n);
   for (size_t i = 0; i < n; ++i) {
     const CellCoord c = cells.CellOf(p.box[i].lo);
     low[i] = {static_cast<int32_t>(c[0]), static_cast<int32_t>(c[1]), static_cast<int32_t>(c[2])};
-    normal[i] = CanonicalNormal(triangle(static_cast<int32_t>(i)));
+    plane[i] = MakeFacePlane(triangle(static_cast<int32_t>(i)));
   }
   const bool all = p.dirty.empty();
   // A cell's faces, copied side by side before its pairs are walked: the pair loop then reads
@@ -228,8 +228,8 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
         const int32_t j = mj.position;
         const int32_t fi = p.face[i], fj = p.face[j];
         if (!ti) ti = triangle(i);
-        if (MeshTrianglesIntersect(mesh.faces[fi], *ti, normal[i], mesh.faces[fj], triangle(j),
-                                   normal[j]))
+        if (MeshTrianglesIntersect(mesh.faces[fi], *ti, plane[i], mesh.faces[fj], triangle(j),
+                                   plane[j]))
           pairs.emplace_back(std::min(fi, fj), std::max(fi, fj));
       }
     }

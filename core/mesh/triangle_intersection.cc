@@ -182,8 +182,25 @@ std::optional<int> IntegerDet3Sign(const Vec3d& a, const Vec3d& b, const Vec3d& 
   return (det > 0) - (det < 0);
 }
 
+int Orient2dSign(const Vec2d& a, const Vec2d& b, const Vec2d& c);
+
 // The exact sign of det[a - d, b - d, c - d].
 int ExactDet3Sign(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+  // Four points on a plane parallel to an axis (their projections along it collinear) give
+  // zero: the common undecided case on a grid (faces of a flat part of a surface that is
+  // parallel to an axis, as CAD parts often are), and cheaper to see than to compute.
+  const Vec3d* points[4] = {&a, &b, &c, &d};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    Vec2d q[4];
+    for (int i = 0; i < 4; ++i) q[i] = {(*points[i])[u], (*points[i])[w]};
+    int other = 1;
+    while (other < 4 && q[other] == q[0]) ++other;
+    bool collinear = true;
+    for (int i = other + 1; i < 4 && collinear; ++i)
+      collinear = Orient2dSign(q[0], q[other], q[i]) == 0;
+    if (collinear) return 0;
+  }
   if (const std::optional<int> sign = IntegerDet3Sign(a, b, c, d)) return *sign;
   std::array<Vec3d, 3> r;
   bool exact = true;
@@ -235,7 +252,19 @@ int Orient3dSign(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d)
   return -ExactDet3Sign(a, b, c, d);
 }
 
-int PlaneSide(const Triangle3d& t, const Vec3d& p) { return Orient3dSign(t[0], t[1], t[2], p); }
+// Which side of face t's plane p lies on, as Orient3dSign(t[0], t[1], t[2], p), with the
+// filter on the face's precomputed plane: the same cofactor expansion as Det3's (along the
+// point's row), so the same bound holds; taken a little wider.
+constexpr double kPlaneSideBound = (8.0 + 64.0 * kEpsilon) * kEpsilon;
+int PlaneSide(const FacePlane& plane, const Triangle3d& t, const Vec3d& p) {
+  const Vec3d w = p - plane.base;
+  const double det = Dot(plane.normal, w);
+  const double permanent = plane.bound[0] * std::fabs(w[0]) + plane.bound[1] * std::fabs(w[1]) +
+                           plane.bound[2] * std::fabs(w[2]);
+  if (std::fabs(det) > kPlaneSideBound * permanent) return Sign(det);
+  if (permanent == 0) return 0;  // every product has an exactly zero factor
+  return Orient3dSign(t[0], t[1], t[2], p);
+}
 
 // Drops the coordinate along which `normal` is largest: the projection that keeps a planar
 // figure least distorted (and non-degenerate when the normal is non-zero).
@@ -320,35 +349,49 @@ bool CrossingSegmentHitsTriangle(const Vec3d& p, const Vec3d& q, const Triangle3
 }
 
 bool SegmentTriangleWithSides(const Vec3d& p, const Vec3d& q, int op, int oq,
-                              const Triangle3d& t, const Vec3d& normal) {
+                              const Triangle3d& t, const FacePlane& plane) {
   if (op * oq > 0) return false;
-  if (op == 0 && oq == 0) return CoplanarSegmentTriangle(p, q, t, Projector(normal));
+  if (op == 0 && oq == 0) return CoplanarSegmentTriangle(p, q, t, Projector(plane.normal));
   return CrossingSegmentHitsTriangle(p, q, t);
+}
+
+// Coplanar faces (v, a1, a2) and (v, b1, b2) with a common vertex v meet beyond it iff their
+// angles at v share a ray, i.e. iff one angle (closed, under 180 degrees) holds an edge ray of
+// the other: 8 orientations instead of the general coplanar test's 30 or so (fitted surfaces
+// on a quantization grid have many exactly coplanar neighbours).
+bool CoplanarSectorsOverlap(const Vec3d& v, const Vec3d& a1, const Vec3d& a2, const Vec3d& b1,
+                            const Vec3d& b2, const Projector& proj) {
+  const Vec2d o = proj(v);
+  Vec2d p1 = proj(a1), p2 = proj(a2), q1 = proj(b1), q2 = proj(b2);
+  if (Orient2dSign(o, p1, p2) < 0) std::swap(p1, p2);
+  if (Orient2dSign(o, q1, q2) < 0) std::swap(q1, q2);
+  // Ray o->r lies in the closed angle from o->lo counterclockwise to o->hi.
+  auto in_angle = [&o](const Vec2d& lo, const Vec2d& hi, const Vec2d& r) {
+    return Orient2dSign(o, lo, r) >= 0 && Orient2dSign(o, r, hi) >= 0;
+  };
+  return in_angle(p1, p2, q1) || in_angle(p1, p2, q2) || in_angle(q1, q2, p1) ||
+         in_angle(q1, q2, p2);
 }
 
 bool IsZero(const Vec3d& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; }
 
-bool SegmentHitsTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d& t, const Vec3d& n) {
-  if (IsZero(n)) return false;
-  return SegmentTriangleWithSides(p, q, PlaneSide(t, p), PlaneSide(t, q), t, n);
-}
-
-bool TrianglesIntersectWithNormals(const Triangle3d& a, const Vec3d& na, const Triangle3d& b,
-                                   const Vec3d& nb) {
-  if (IsZero(nb) || IsZero(na)) return false;
+bool TrianglesIntersectWithPlanes(const Triangle3d& a, const FacePlane& pa, const Triangle3d& b,
+                                  const FacePlane& pb) {
+  if (IsZero(pb.normal) || IsZero(pa.normal)) return false;
   int da[3];
-  for (int i = 0; i < 3; ++i) da[i] = PlaneSide(b, a[i]);
+  for (int i = 0; i < 3; ++i) da[i] = PlaneSide(pb, b, a[i]);
   if ((da[0] > 0 && da[1] > 0 && da[2] > 0) || (da[0] < 0 && da[1] < 0 && da[2] < 0)) return false;
   int db[3];
-  for (int i = 0; i < 3; ++i) db[i] = PlaneSide(a, b[i]);
+  for (int i = 0; i < 3; ++i) db[i] = PlaneSide(pa, a, b[i]);
   if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0)) return false;
-  if (da[0] == 0 && da[1] == 0 && da[2] == 0) return CoplanarTriangles(a, b, PairProjector(na, nb));
+  if (da[0] == 0 && da[1] == 0 && da[2] == 0)
+    return CoplanarTriangles(a, b, PairProjector(pa.normal, pb.normal));
   // Not coplanar: the triangles meet iff an edge of one meets the other (the overlap of the
   // two chords on the planes' common line ends on an edge of one of them).
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
-    if (SegmentTriangleWithSides(a[i], a[j], da[i], da[j], b, nb)) return true;
-    if (SegmentTriangleWithSides(b[i], b[j], db[i], db[j], a, na)) return true;
+    if (SegmentTriangleWithSides(a[i], a[j], da[i], da[j], b, pb)) return true;
+    if (SegmentTriangleWithSides(b[i], b[j], db[i], db[j], a, pa)) return true;
   }
   return false;
 }
@@ -359,8 +402,8 @@ double Orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) 
   return Dot(Cross(b - a, c - a), d - a);
 }
 
-Vec3d CanonicalNormal(const Triangle3d& t) {
-  // Sorted, with the parity of the permutation: the normal's sign is the face's orientation.
+
+FacePlane MakeFacePlane(const Triangle3d& t) {
   std::array<const Vec3d*, 3> p{&t[0], &t[1], &t[2]};
   double parity = 1;
   for (int i = 1; i < 3; ++i)
@@ -368,25 +411,36 @@ Vec3d CanonicalNormal(const Triangle3d& t) {
       std::swap(p[j], p[j - 1]);
       parity = -parity;
     }
-  return parity * TriangleNormal(*p[0], *p[1], *p[2]);
+  FacePlane plane;
+  plane.base = *p[0];
+  const Vec3d e1 = *p[1] - *p[0], e2 = *p[2] - *p[0];
+  plane.normal = parity * Cross(e1, e2);
+  plane.bound = {std::fabs(e1[1] * e2[2]) + std::fabs(e1[2] * e2[1]),
+                 std::fabs(e1[2] * e2[0]) + std::fabs(e1[0] * e2[2]),
+                 std::fabs(e1[0] * e2[1]) + std::fabs(e1[1] * e2[0])};
+  return plane;
 }
 
+Vec3d CanonicalNormal(const Triangle3d& t) { return MakeFacePlane(t).normal; }
+
 bool SegmentIntersectsTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d& t) {
-  return SegmentHitsTriangle(p, q, t, CanonicalNormal(t));
+  const FacePlane plane = MakeFacePlane(t);
+  if (IsZero(plane.normal)) return false;
+  return SegmentTriangleWithSides(p, q, PlaneSide(plane, t, p), PlaneSide(plane, t, q), t, plane);
 }
 
 bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b) {
-  return TrianglesIntersectWithNormals(a, CanonicalNormal(a), b, CanonicalNormal(b));
+  return TrianglesIntersectWithPlanes(a, MakeFacePlane(a), b, MakeFacePlane(b));
 }
 
 bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a,
                             const std::array<int32_t, 3>& ib, const Triangle3d& b) {
-  return MeshTrianglesIntersect(ia, a, CanonicalNormal(a), ib, b, CanonicalNormal(b));
+  return MeshTrianglesIntersect(ia, a, MakeFacePlane(a), ib, b, MakeFacePlane(b));
 }
 
-bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a, const Vec3d& na,
-                            const std::array<int32_t, 3>& ib, const Triangle3d& b,
-                            const Vec3d& nb) {
+bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a,
+                            const FacePlane& pa, const std::array<int32_t, 3>& ib,
+                            const Triangle3d& b, const FacePlane& pb) {
   int shared = 0, sa = -1, sb = -1;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
@@ -395,23 +449,27 @@ bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& 
         sa = i;
         sb = j;
       }
-  if (shared == 0) return TrianglesIntersectWithNormals(a, na, b, nb);
+  if (shared == 0) return TrianglesIntersectWithPlanes(a, pa, b, pb);
   if (shared == 3) return true;
-  if (IsZero(na) || IsZero(nb)) return false;
+  if (IsZero(pa.normal) || IsZero(pb.normal)) return false;
   if (shared == 1) {
     // Non-coplanar faces through a common vertex meet along one ray from it; they overlap
     // beyond the vertex iff the shorter chord ends on the other face, i.e. iff an opposite
     // edge meets the other face. The same holds for coplanar sectors.
     // Fast exit, the common case on a smooth surface: b's other two vertices strictly on one
     // side of a's plane, so b meets that plane only at the shared vertex (or vice versa).
+    const Vec3d& v = a[sa];
     const Vec3d &b1 = b[(sb + 1) % 3], &b2 = b[(sb + 2) % 3];
-    const int s1 = PlaneSide(a, b1), s2 = PlaneSide(a, b2);
+    const int s1 = PlaneSide(pa, a, b1), s2 = PlaneSide(pa, a, b2);
     if (s1 * s2 > 0) return false;
     const Vec3d &a1 = a[(sa + 1) % 3], &a2 = a[(sa + 2) % 3];
-    const int t1 = PlaneSide(b, a1), t2 = PlaneSide(b, a2);
+    const int t1 = PlaneSide(pb, b, a1), t2 = PlaneSide(pb, b, a2);
     if (t1 * t2 > 0) return false;
-    return SegmentTriangleWithSides(a1, a2, t1, t2, b, nb) ||
-           SegmentTriangleWithSides(b1, b2, s1, s2, a, na);
+    if (s1 == 0 && s2 == 0 && t1 == 0 && t2 == 0) {
+      return CoplanarSectorsOverlap(v, a1, a2, b1, b2, PairProjector(pa.normal, pb.normal));
+    }
+    return SegmentTriangleWithSides(a1, a2, t1, t2, b, pb) ||
+           SegmentTriangleWithSides(b1, b2, s1, s2, a, pa);
   }
   // Shared edge: the faces overlap only when coplanar and folded (apexes on one side).
   int apex_a = 0, apex_b = 0;
@@ -419,9 +477,9 @@ bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& 
     if (ia[i] != ib[0] && ia[i] != ib[1] && ia[i] != ib[2]) apex_a = i;
     if (ib[i] != ia[0] && ib[i] != ia[1] && ib[i] != ia[2]) apex_b = i;
   }
-  if (PlaneSide(a, b[apex_b]) != 0) return false;
+  if (PlaneSide(pa, a, b[apex_b]) != 0) return false;
   // Coplanar: folded when both apexes lie strictly on one side of the shared edge's line.
-  const Projector proj = PairProjector(na, nb);
+  const Projector proj = PairProjector(pa.normal, pb.normal);
   const Vec2d u = proj(a[(apex_a + 1) % 3]), w = proj(a[(apex_a + 2) % 3]);
   const int side_a = Orient2dSign(u, w, proj(a[apex_a]));
   const int side_b = Orient2dSign(u, w, proj(b[apex_b]));

@@ -29,9 +29,19 @@ using Triangle3d = std::array<Vec3d, 3>;
 double Orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
 
 // The triangle's normal (twice its area vector, CCW) computed from its vertices in sorted
-// order: the same bits whichever vertex comes first. The normals the tests below take are
-// these (they choose the plane a coplanar pair is projected to, and tell degenerate faces).
+// order: the same bits whichever vertex comes first.
 Vec3d CanonicalNormal(const Triangle3d& t);
+
+// What the tests need of a face, computed once per face: its plane through its smallest
+// vertex, with the canonical normal (which also chooses the plane a coplanar pair is projected
+// to, and tells degenerate faces) and the magnitudes that bound the rounding of a point's
+// side of it.
+struct FacePlane {
+  Vec3d base;    // the smallest vertex (lexicographic order)
+  Vec3d normal;  // CanonicalNormal
+  Vec3d bound;   // per axis, the sum of the magnitudes of the two products of its component
+};
+FacePlane MakeFacePlane(const Triangle3d& t);
 
 // True when the closed segment [p, q] and the closed triangle `t` share a point.
 // A degenerate triangle gives false.
@@ -52,10 +62,11 @@ bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b);
 bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a,
                             const std::array<int32_t, 3>& ib, const Triangle3d& b);
 
-// The same with the faces' normals given (CanonicalNormal of a and b): a search that tests
-// each face against its dozen neighbours computes them once.
-bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a, const Vec3d& na,
-                            const std::array<int32_t, 3>& ib, const Triangle3d& b, const Vec3d& nb);
+// The same with the faces' planes given (MakeFacePlane of a and b): a search that tests each
+// face against its dozen neighbours computes them once.
+bool MeshTrianglesIntersect(const std::array<int32_t, 3>& ia, const Triangle3d& a,
+                            const FacePlane& pa, const std::array<int32_t, 3>& ib,
+                            const Triangle3d& b, const FacePlane& pb);
 
 }  // namespace membrane
 

@@ -9,6 +9,7 @@
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/position_grid.h"
+#include "core/mesh/output_grid.h"
 #include "core/geometry/triangle_mesh.h"
 
 namespace membrane {
@@ -33,11 +34,6 @@ const char* SurfaceKindName(SurfaceKind kind);
 absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken* cancel);
-
-// The grid of `bits` (0: lossless) whose box is `membrane`'s: every surface vertex lies in the
-// grid's voxels, and the box is known before the surface is built (the mesh's own bounding box
-// is not, and a grid taken from it would move under the fit).
-PositionGrid OutputGrid(const VoxelGrid& membrane, int bits);
 
 }  // namespace membrane
 

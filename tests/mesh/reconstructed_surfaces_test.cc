@@ -16,6 +16,7 @@
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/relaxation.h"
 #include "core/mesh/smooth_surface.h"
+#include "core/mesh/output_grid.h"
 #include "core/pipeline/surface_builder.h"
 #include "gtest/gtest.h"
 #include "tests/engine/shrink_fixture.h"

@@ -50,19 +50,25 @@ Triangle3d ToTriangle(const std::array<I3, 3>& t) {
   return out;
 }
 
-TEST(TriangleIntersection, AgreesWithSeparatingAxesOnSmallIntegerTriangles) {
-  // Coordinates in [0, 3]: touching, coplanar and edge-on-edge cases are frequent.
-  std::mt19937 rng(7);
+// Two random triangles with non-zero area and coordinates in [0, 3]: touching, coplanar and
+// edge-on-edge cases are frequent.
+std::array<std::array<I3, 3>, 2> RandomTrianglePair(std::mt19937& rng) {
   std::uniform_int_distribution<int> coord(0, 3);
-  int tested = 0, hits = 0;
-  while (tested < 200000) {
-    std::array<I3, 3> a, b;
-    for (auto& p : a) p = {coord(rng), coord(rng), coord(rng)};
-    for (auto& p : b) p = {coord(rng), coord(rng), coord(rng)};
-    if (IsZeroI(CrossI(Sub(a[1], a[0]), Sub(a[2], a[0]))) ||
-        IsZeroI(CrossI(Sub(b[1], b[0]), Sub(b[2], b[0]))))
-      continue;
-    ++tested;
+  for (;;) {
+    std::array<std::array<I3, 3>, 2> pair;
+    for (auto& t : pair)
+      for (auto& p : t) p = {coord(rng), coord(rng), coord(rng)};
+    if (!IsZeroI(CrossI(Sub(pair[0][1], pair[0][0]), Sub(pair[0][2], pair[0][0]))) &&
+        !IsZeroI(CrossI(Sub(pair[1][1], pair[1][0]), Sub(pair[1][2], pair[1][0]))))
+      return pair;
+  }
+}
+
+TEST(TriangleIntersection, AgreesWithSeparatingAxesOnSmallIntegerTriangles) {
+  std::mt19937 rng(7);
+  int hits = 0;
+  for (int tested = 0; tested < 200000; ++tested) {
+    const auto [a, b] = RandomTrianglePair(rng);
     const bool expected = SeparatingAxisIntersect(a, b);
     hits += expected;
     ASSERT_EQ(TrianglesIntersect(ToTriangle(a), ToTriangle(b)), expected)
@@ -91,17 +97,10 @@ TEST(TriangleIntersection, IsExactAndOrderFreeOnGridCoordinates) {
   // 50-bit spread per axis); every place is exact in double, so the integer reference holds.
   const Lattice lattices[] = {{2.75, 1.0 / 64}, {1000.5, 1.0 / 64}, {1e6, std::ldexp(1.0, -30)}};
   std::mt19937 rng(11);
-  std::uniform_int_distribution<int> coord(0, 3);
   for (const Lattice& lattice : lattices) {
-    int tested = 0, hits = 0;
-    while (tested < 40000) {
-      std::array<I3, 3> a, b;
-      for (auto& p : a) p = {coord(rng), coord(rng), coord(rng)};
-      for (auto& p : b) p = {coord(rng), coord(rng), coord(rng)};
-      if (IsZeroI(CrossI(Sub(a[1], a[0]), Sub(a[2], a[0]))) ||
-          IsZeroI(CrossI(Sub(b[1], b[0]), Sub(b[2], b[0]))))
-        continue;
-      ++tested;
+    int hits = 0;
+    for (int tested = 0; tested < 40000; ++tested) {
+      const auto [a, b] = RandomTrianglePair(rng);
       const bool expected = SeparatingAxisIntersect(a, b);
       hits += expected;
       const Triangle3d ta = lattice.Place(a), tb = lattice.Place(b);

@@ -159,13 +159,21 @@ int LabelShells(const VoxelGrid& grid, std::vector<int32_t>& label) {
 }
 
 VoxelTopology ComputeVoxelTopology(const VoxelGrid& grid) {
+  return *ComputeVoxelTopology(grid, CancelToken());
+}
+
+std::optional<VoxelTopology> ComputeVoxelTopology(const VoxelGrid& grid,
+                                                  const CancelToken& cancel) {
   VoxelTopology topo;
   VoxelRuns shells = NonOutsideRuns(grid);
+  if (cancel.cancelled()) return std::nullopt;
   topo.shells = LabelRunComponents(shells, RunAdjacency::kVertex);
+  if (cancel.cancelled()) return std::nullopt;
   topo.voxels.assign(static_cast<size_t>(topo.shells), 0);
   for (const VoxelRun& run : shells.runs) topo.voxels[static_cast<size_t>(run.component)] += run.end - run.begin;
   std::vector<int64_t> chi8(static_cast<size_t>(topo.shells), 0);
   AddEulerCharacteristics(shells, chi8);
+  if (cancel.cancelled()) return std::nullopt;
   for (int64_t c : chi8) topo.genus.push_back(static_cast<int>(1 - c / 8));
   topo.cavities = CountCavities(shells);
   return topo;

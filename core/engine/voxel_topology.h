@@ -4,8 +4,10 @@
 #define MEMBRANE_CORE_ENGINE_VOXEL_TOPOLOGY_H_
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "core/engine/cancel_token.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {
@@ -23,6 +25,11 @@ struct VoxelTopology {
 // shrink never makes one: every outside voxel has an outside face neighbour of an older or
 // equal generation). The array border layer must be outside.
 VoxelTopology ComputeVoxelTopology(const VoxelGrid& grid);
+
+// The same, polling `cancel` between its four passes (each under 0.1 s on a 70 M voxel grid):
+// nullopt once it fired.
+std::optional<VoxelTopology> ComputeVoxelTopology(const VoxelGrid& grid,
+                                                  const CancelToken& cancel);
 
 // Labels the 26-components of non-outside voxels: label[i] = shell index (0-based, ordered by
 // lowest voxel index) or -1 for outside voxels. Returns the number of components. Costs one

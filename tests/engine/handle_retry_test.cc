@@ -5,6 +5,7 @@
 // shows the mechanism on a shape the test makes.
 #include "absl/status/status.h"
 #include "core/engine/membrane_shrinker.h"
+#include "core/engine/plate_schedule.h"
 #include "core/engine/voxelization.h"
 #include "gtest/gtest.h"
 #include "tests/engine/shrink_fixture.h"
@@ -83,6 +84,28 @@ TEST(HandleRetryTest, ReportsTheKeptRowsAfterTheFirstRunsRows) {
     EXPECT_EQ(kept.started_contractions, seen[i].started_contractions);
   }
   for (int g = 0; g < from - 1; ++g) EXPECT_FALSE(result->generations[g].handle_retry);
+}
+
+TEST(HandleRetryTest, ACancelBeforeTheRetryStopsIt) {
+  // Cancelled as the first run's last generation is reported: the retry's topology count and
+  // copies poll the token, so the shrink ends Cancelled before running anything again.
+  absl::StatusOr<Voxelization> vox = Voxelize(SynthCloud("torus", kRetryPoints).points, {});
+  ASSERT_TRUE(vox.ok()) << vox.status();
+  CancelToken cancel;
+  int reported = 0;
+  absl::StatusOr<ShrinkResult> result = ShrinkMembrane(
+      vox->grid, NoTunnelRetry(),
+      [&](const GenerationStats& g) {
+        ++reported;
+        if (g.plate_size == 1) cancel.Cancel();
+      },
+      &cancel);
+  EXPECT_EQ(result.status().code(), absl::StatusCode::kCancelled) << result.status();
+  EXPECT_NE(result.status().message().find("handle retry"), std::string::npos)
+      << result.status();
+  // No retry row was reported.
+  const size_t planned = PlateSizes(vox->data_dims, PlateSchedule::kHalving, 0).size();
+  EXPECT_EQ(reported, static_cast<int>(planned));
 }
 
 TEST(HandleRetryTest, KeepsAScannedHoleOpen) {

@@ -124,12 +124,13 @@ absl::Status CheckAndDeliver(const TriangleMesh& mesh, const PositionGrid& grid,
     check();
   }
   report.mesh = checked;
-  report.seconds.check = seconds;
-  observer.StageFinished(PipelineStage::kCheck, report.seconds.check, report);
+  // A second round (see MeshDelivery) adds to the first, as the surface's does.
+  report.seconds.check += seconds;
+  observer.StageFinished(PipelineStage::kCheck, seconds, report);
   if (deliver) {
     observer.StageStarted(PipelineStage::kEncode, report);
-    report.seconds.encode = deliver_seconds;
-    observer.StageFinished(PipelineStage::kEncode, report.seconds.encode, report);
+    report.seconds.encode += deliver_seconds;
+    observer.StageFinished(PipelineStage::kEncode, deliver_seconds, report);
   }
   return delivered;
 }

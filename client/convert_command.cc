@@ -15,6 +15,7 @@
 #include "core/io/file_format.h"
 #include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
+#include "core/mesh/mesh_check.h"
 
 namespace membrane::client {
 namespace {
@@ -65,6 +66,31 @@ absl::StatusOr<TriangleMesh> ReadGeometry(const std::string& path, FileFormat fo
   return points_only;
 }
 
+// The Draco options for writing `mesh`: 11-bit positions, snapped here first (on a grid that
+// stores them exactly), unless that makes more faces cross or flatten than the input has;
+// then float32, with a line saying why. `mesh` keeps its snapped positions when they are kept.
+DracoOptions CheckedDracoOptions(TriangleMesh& mesh) {
+  const DracoOptions defaults;
+  const PositionGrid grid = BoundingGrid(mesh.vertices, defaults.position_quantization_bits);
+  TriangleMesh snapped = mesh;
+  for (Point3f& p : snapped.vertices) p = grid.Snap(p);
+  const MeshReport before = CheckMesh(mesh), after = CheckMesh(snapped);
+  if (after.self_intersections > before.self_intersections ||
+      after.degenerate_faces > before.degenerate_faces) {
+    std::printf("%d-bit positions would give %lld crossing face pairs and %lld flat faces "
+                "(the input has %lld and %lld): writing float32 positions\n",
+                grid.bits, static_cast<long long>(after.self_intersections),
+                static_cast<long long>(after.degenerate_faces),
+                static_cast<long long>(before.self_intersections),
+                static_cast<long long>(before.degenerate_faces));
+    DracoOptions lossless = defaults;
+    lossless.position_quantization_bits = 0;
+    return lossless;
+  }
+  mesh = std::move(snapped);
+  return DracoOptionsOnGrid(grid, defaults.compression_level);
+}
+
 absl::Status RunConvert(const ConvertFlags& flags) {
   // Both extensions are checked before any reading.
   absl::StatusOr<FileFormat> in_format =
@@ -79,7 +105,9 @@ absl::Status RunConvert(const ConvertFlags& flags) {
   const bool keep_faces =
       !geometry->faces.empty() && FormatFromPath(flags.output, FileUse::kWriteMesh).ok();
   if (keep_faces) {
-    if (absl::Status s = WriteMesh(*geometry, flags.output); !s.ok()) {
+    DracoOptions draco;
+    if (*out_format == FileFormat::kDrc) draco = CheckedDracoOptions(*geometry);
+    if (absl::Status s = WriteMesh(*geometry, flags.output, draco); !s.ok()) {
       return FileErrorAsInvalidInput(s);
     }
     std::printf("wrote a mesh of %zu vertices and %zu faces to %s\n", geometry->vertices.size(),

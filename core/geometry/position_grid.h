@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "core/geometry/point_cloud.h"
 
@@ -82,6 +83,28 @@ struct PositionGrid {
     return out;
   }
 };
+
+// The grid of `bits` over the bounding box of `points` (non-empty, finite), as Draco would
+// choose it (the largest side as the range) but with box values that survive Draco's option
+// text (DecimalSafeBound), so that Snap gives what a decoder returns.
+inline PositionGrid BoundingGrid(const std::vector<Point3f>& points, int bits) {
+  PositionGrid grid;
+  grid.bits = bits;
+  std::array<float, 3> low = points.front(), high = points.front();
+  for (const Point3f& p : points)
+    for (int k = 0; k < 3; ++k) {
+      low[k] = std::min(low[k], p[k]);
+      high[k] = std::max(high[k], p[k]);
+    }
+  double side = 0;
+  for (int k = 0; k < 3; ++k) {
+    grid.box.origin[k] = DecimalSafeBound(low[k], /*lower=*/true);
+    side = std::max(side, static_cast<double>(high[k]) - grid.box.origin[k]);
+  }
+  // A flat or single-point box still needs a positive range.
+  grid.box.range = DecimalSafeBound(std::max(side, 1e-6), /*lower=*/false);
+  return grid;
+}
 
 }  // namespace membrane
 

@@ -263,7 +263,10 @@ int PlaneSide(const FacePlane& plane, const Triangle3d& t, const Vec3d& p) {
                            plane.bound[2] * std::fabs(w[2]);
   if (std::fabs(det) > kPlaneSideBound * permanent) return Sign(det);
   if (permanent == 0) return 0;  // every product has an exactly zero factor
-  return Orient3dSign(t[0], t[1], t[2], p);
+  // Undecided here means Orient3dSign's own filter would fail too: straight to exact.
+  if (p == t[0] || p == t[1] || p == t[2] || t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+    return 0;
+  return -ExactDet3Sign(t[0], t[1], t[2], p);
 }
 
 // Drops the coordinate along which `normal` is largest: the projection that keeps a planar
@@ -292,48 +295,45 @@ Projector PairProjector(const Vec3d& na, const Vec3d& nb) {
                     std::fabs(na[2]) + std::fabs(nb[2])});
 }
 
-bool OnSegment2d(const Vec2d& a, const Vec2d& b, const Vec2d& p) {
-  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
-         std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
-}
-
-// Closed segments [a, b] and [c, d] in the plane share a point.
-bool SegmentsIntersect2d(const Vec2d& a, const Vec2d& b, const Vec2d& c, const Vec2d& d) {
-  const int o1 = Orient2dSign(a, b, c), o2 = Orient2dSign(a, b, d);
-  const int o3 = Orient2dSign(c, d, a), o4 = Orient2dSign(c, d, b);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  if (o1 == 0 && OnSegment2d(a, b, c)) return true;
-  if (o2 == 0 && OnSegment2d(a, b, d)) return true;
-  if (o3 == 0 && OnSegment2d(c, d, a)) return true;
-  if (o4 == 0 && OnSegment2d(c, d, b)) return true;
+// True when the line of an edge of convex polygon `poly` (n = 3: a triangle, its third vertex
+// gives the inside; n = 2: a segment, either side) has all m points of `other` strictly
+// outside. Two closed convex figures in the plane are disjoint iff some edge line of one
+// separates them so (separating axes: the edges' normals): with exact signs, exact.
+bool EdgeSeparates(const Vec2d* poly, int n, const Vec2d* other, int m) {
+  for (int i = 0; i < (n == 3 ? 3 : 1); ++i) {
+    const Vec2d& e0 = poly[i];
+    const Vec2d& e1 = poly[(i + 1) % n];
+    // A segment has no inside: all of `other` on either side separates.
+    const int inside = n == 3 ? Orient2dSign(e0, e1, poly[(i + 2) % 3]) : 0;
+    if (n == 3 && inside == 0) continue;
+    if (n == 2 && e0 == e1) continue;
+    int first = 0;
+    bool separated = true;
+    for (int j = 0; j < m && separated; ++j) {
+      const int side = Orient2dSign(e0, e1, other[j]);
+      if (n == 3) {
+        separated = side * inside < 0;
+      } else {
+        if (j == 0) first = side;
+        separated = side != 0 && side == first;
+      }
+    }
+    if (separated) return true;
+  }
   return false;
-}
-
-// Closed triangle (a, b, c), non-degenerate, contains p.
-bool PointInTriangle2d(const Vec2d& p, const Vec2d& a, const Vec2d& b, const Vec2d& c) {
-  const int d1 = Orient2dSign(a, b, p), d2 = Orient2dSign(b, c, p), d3 = Orient2dSign(c, a, p);
-  const bool has_neg = d1 < 0 || d2 < 0 || d3 < 0;
-  const bool has_pos = d1 > 0 || d2 > 0 || d3 > 0;
-  return !(has_neg && has_pos);
 }
 
 bool CoplanarSegmentTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d& t,
                              const Projector& proj) {
-  const Vec2d a = proj(t[0]), b = proj(t[1]), c = proj(t[2]);
-  const Vec2d p2 = proj(p), q2 = proj(q);
-  return PointInTriangle2d(p2, a, b, c) || SegmentsIntersect2d(p2, q2, a, b) ||
-         SegmentsIntersect2d(p2, q2, b, c) || SegmentsIntersect2d(p2, q2, c, a);
+  const Vec2d tri[3] = {proj(t[0]), proj(t[1]), proj(t[2])};
+  const Vec2d seg[2] = {proj(p), proj(q)};
+  return !EdgeSeparates(tri, 3, seg, 2) && !EdgeSeparates(seg, 2, tri, 3);
 }
 
 bool CoplanarTriangles(const Triangle3d& s, const Triangle3d& t, const Projector& proj) {
-  const Vec2d s0 = proj(s[0]), s1 = proj(s[1]), s2 = proj(s[2]);
-  const Vec2d t0 = proj(t[0]), t1 = proj(t[1]), t2 = proj(t[2]);
-  const Vec2d se[3][2] = {{s0, s1}, {s1, s2}, {s2, s0}};
-  const Vec2d te[3][2] = {{t0, t1}, {t1, t2}, {t2, t0}};
-  for (const auto& e : se)
-    for (const auto& f : te)
-      if (SegmentsIntersect2d(e[0], e[1], f[0], f[1])) return true;
-  return PointInTriangle2d(s0, t0, t1, t2) || PointInTriangle2d(t0, s0, s1, s2);
+  const Vec2d a[3] = {proj(s[0]), proj(s[1]), proj(s[2])};
+  const Vec2d b[3] = {proj(t[0]), proj(t[1]), proj(t[2])};
+  return !EdgeSeparates(a, 3, b, 3) && !EdgeSeparates(b, 3, a, 3);
 }
 
 // Segment [p, q] against triangle t, given the sides op, oq of p and q of t's plane (not both

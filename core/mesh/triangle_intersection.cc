@@ -104,10 +104,12 @@ class Expansion {
   int size_ = 0;
 };
 
-// a - b as a double when that is exact.
+// d = a - b in double; true when that is exact (the error term of Shewchuk's Two-Diff is 0).
 bool ExactDifference(double a, double b, double& d) {
   d = a - b;
-  return (a - d) == b && (d + b) == a;
+  const double b_virtual = a - d;
+  const double a_virtual = d + b_virtual;
+  return (a - a_virtual) + (b_virtual - b) == 0;
 }
 
 // The exact sign of det[a - c, b - c].

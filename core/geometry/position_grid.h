@@ -18,9 +18,7 @@
 
 namespace membrane {
 
-// bits == 0: no grid, positions are kept as float32 (lossless). Otherwise each coordinate c is
-// stored as an integer q in [0, 2^bits - 1] and decoded as box.origin[c] + q * step, step =
-// box.range / (2^bits - 1), the same range on every axis (as Draco does).
+// The box a grid spans: [origin, origin + range] on every axis.
 struct PositionBox {
   std::array<float, 3> origin{0, 0, 0};
   float range = 1;  // the side of the (cubic) box
@@ -32,8 +30,8 @@ struct PositionBox {
 // every decoded vertex off the grid the mesh was checked on, and made faces cross.)
 inline float DecimalRoundTrip(float v) { return std::strtof(std::to_string(v).c_str(), nullptr); }
 
-// The float nearest `x` on the side asked for (at or below it when `lower`, else at or above)
-// that DecimalRoundTrip keeps.
+// A float within a millionth (and a float step) of `x`, on the side asked for (at or below it
+// when `lower`, else at or above), that DecimalRoundTrip keeps.
 inline float DecimalSafeBound(double x, bool lower) {
   const double dir = lower ? -1 : 1;
   double decimal = (lower ? std::floor(x * 1e6) : std::ceil(x * 1e6)) / 1e6;
@@ -53,6 +51,9 @@ inline float DecimalSafeBound(double x, bool lower) {
   return f;  // not reached for finite x
 }
 
+// bits == 0: no grid, positions are kept as float32 (lossless). Otherwise each coordinate c is
+// stored as an integer q in [0, 2^bits - 1] and decoded as box.origin[c] + q * step, step =
+// box.range / (2^bits - 1), the same range on every axis (as Draco does).
 struct PositionGrid {
   int bits = 0;
   PositionBox box;

@@ -400,11 +400,6 @@ bool TrianglesIntersectWithPlanes(const Triangle3d& a, const FacePlane& pa, cons
 
 }  // namespace
 
-double Orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
-  return Dot(Cross(b - a, c - a), d - a);
-}
-
-
 FacePlane MakeFacePlane(const Triangle3d& t) {
   std::array<const Vec3d*, 3> p{&t[0], &t[1], &t[2]};
   double parity = 1;
@@ -424,12 +419,6 @@ FacePlane MakeFacePlane(const Triangle3d& t) {
 }
 
 Vec3d CanonicalNormal(const Triangle3d& t) { return MakeFacePlane(t).normal; }
-
-bool SegmentIntersectsTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d& t) {
-  const FacePlane plane = MakeFacePlane(t);
-  if (IsZero(plane.normal)) return false;
-  return SegmentTriangleWithSides(p, q, PlaneSide(plane, t, p), PlaneSide(plane, t, q), t, plane);
-}
 
 bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b) {
   return TrianglesIntersectWithPlanes(a, MakeFacePlane(a), b, MakeFacePlane(b));

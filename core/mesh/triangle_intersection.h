@@ -24,10 +24,6 @@ namespace membrane {
 
 using Triangle3d = std::array<Vec3d, 3>;
 
-// Orientation of d against the plane of (a, b, c): positive on the side (b-a)x(c-a) points to,
-// zero when coplanar (up to double rounding).
-double Orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
-
 // The triangle's normal (twice its area vector, CCW) computed from its vertices in sorted
 // order: the same bits whichever vertex comes first.
 Vec3d CanonicalNormal(const Triangle3d& t);
@@ -42,10 +38,6 @@ struct FacePlane {
   Vec3d bound;   // per axis, the sum of the magnitudes of the two products of its component
 };
 FacePlane MakeFacePlane(const Triangle3d& t);
-
-// True when the closed segment [p, q] and the closed triangle `t` share a point.
-// A degenerate triangle gives false.
-bool SegmentIntersectsTriangle(const Vec3d& p, const Vec3d& q, const Triangle3d& t);
 
 // True when two closed triangles share a point (touching included). Degenerate triangles give
 // false. Meant for triangles with no vertex in common.

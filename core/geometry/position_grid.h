@@ -62,6 +62,17 @@ struct PositionGrid {
   int32_t max_quantized() const { return static_cast<int32_t>((int64_t{1} << bits) - 1); }
   double step() const { return lossless() ? 0.0 : static_cast<double>(box.range) / max_quantized(); }
 
+  // Draco's quantizer scale, max_quantized / range, in float (Quantizer::Init).
+  float InverseDelta() const { return static_cast<float>(max_quantized()) / box.range; }
+
+  // What Draco rounds (floor(x + 0.5)) to the integer of coordinate `v` on `axis`: the offset
+  // from the origin times `inverse_delta` (InverseDelta()), in Draco's float operations.
+  float Scaled(float v, int axis, float inverse_delta) const {
+    float offset = v - box.origin[axis];
+    offset *= inverse_delta;
+    return offset;
+  }
+
   // The position a Draco decoder returns for `p` encoded on this grid (`p` itself when
   // lossless). The float operations are Draco's own (Quantizer and Dequantizer of
   // draco/core/quantization_utils.h and AttributeQuantizationTransform), in the same order;
@@ -69,12 +80,11 @@ struct PositionGrid {
   Point3f Snap(const Point3f& p) const {
     if (lossless()) return p;
     const int32_t max_q = max_quantized();
-    const float inverse_delta = static_cast<float>(max_q) / box.range;
+    const float inverse_delta = InverseDelta();
     const float delta = box.range / static_cast<float>(max_q);
     Point3f out;
     for (int c = 0; c < 3; ++c) {
-      float v = p[c] - box.origin[c];
-      v *= inverse_delta;
+      float v = Scaled(p[c], c, inverse_delta);
       // Clamped before the conversion (which a value out of int32's range would make
       // undefined); inside the box this changes nothing.
       v = v > 0 ? std::min(v, static_cast<float>(max_q)) : 0.0f;
@@ -85,26 +95,33 @@ struct PositionGrid {
   }
 };
 
-// The grid of `bits` over the bounding box of `points` (non-empty, finite), as Draco would
-// choose it (the largest side as the range) but with box values that survive Draco's option
-// text (DecimalSafeBound), so that Snap gives what a decoder returns.
-inline PositionGrid BoundingGrid(const std::vector<Point3f>& points, int bits) {
+// The grid of `bits` whose box holds [low, high] on every axis, its range widened by
+// `margin` (relative) and at least 1e-6, with box values that survive Draco's option text
+// (DecimalSafeBound), so that Snap gives what a decoder returns.
+inline PositionGrid GridOverBox(int bits, const std::array<double, 3>& low,
+                                const std::array<double, 3>& high, double margin) {
   PositionGrid grid;
   grid.bits = bits;
+  double side = 0;
+  for (int k = 0; k < 3; ++k) {
+    grid.box.origin[k] = DecimalSafeBound(low[k], /*lower=*/true);
+    side = std::max(side, high[k] - grid.box.origin[k]);
+  }
+  // A flat or single-point box still needs a positive range.
+  grid.box.range = DecimalSafeBound(std::max(side * (1 + margin), 1e-6), /*lower=*/false);
+  return grid;
+}
+
+// The grid of `bits` over the bounding box of `points` (non-empty, finite), as Draco would
+// choose it (the largest side as the range) but text-safe (GridOverBox).
+inline PositionGrid BoundingGrid(const std::vector<Point3f>& points, int bits) {
   std::array<float, 3> low = points.front(), high = points.front();
   for (const Point3f& p : points)
     for (int k = 0; k < 3; ++k) {
       low[k] = std::min(low[k], p[k]);
       high[k] = std::max(high[k], p[k]);
     }
-  double side = 0;
-  for (int k = 0; k < 3; ++k) {
-    grid.box.origin[k] = DecimalSafeBound(low[k], /*lower=*/true);
-    side = std::max(side, static_cast<double>(high[k]) - grid.box.origin[k]);
-  }
-  // A flat or single-point box still needs a positive range.
-  grid.box.range = DecimalSafeBound(std::max(side, 1e-6), /*lower=*/false);
-  return grid;
+  return GridOverBox(bits, {low[0], low[1], low[2]}, {high[0], high[1], high[2]}, 0.0);
 }
 
 }  // namespace membrane

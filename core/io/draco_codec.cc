@@ -98,10 +98,10 @@ absl::Status CheckEncodable(const std::vector<Point3f>& positions, const DracoOp
   // Tested on the integer Draco computes (PositionGrid::Snap's float operations).
   const PositionBox& box = *options.box;
   const PositionGrid grid{options.position_quantization_bits, box};
-  const float inverse_delta = static_cast<float>(grid.max_quantized()) / box.range;
+  const float inverse_delta = grid.InverseDelta();
   for (size_t i = 0; i < positions.size(); ++i)
     for (int axis = 0; axis < 3; ++axis) {
-      const float q = std::floor((positions[i][axis] - box.origin[axis]) * inverse_delta + 0.5f);
+      const float q = std::floor(grid.Scaled(positions[i][axis], axis, inverse_delta) + 0.5f);
       if (!(q >= 0 && q <= static_cast<float>(grid.max_quantized()))) {
         return absl::InvalidArgumentError(absl::StrCat(
             "cannot Draco-encode the ", what, ": position ", i, " lies outside the quantization "

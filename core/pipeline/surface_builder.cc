@@ -22,19 +22,16 @@ const char* SurfaceKindName(SurfaceKind kind) {
 absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken* cancel) {
-  absl::StatusOr<TriangleMesh> mesh;
   if (kind == SurfaceKind::kCuberille) {
-    mesh = Cuberille(membrane);
-  } else {
-    const CancelFn cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
-    SmoothSurfaceOptions options;
-    options.fit_options.output_grid = grid;
-    mesh = SmoothSurface(membrane, cloud.points, options, nullptr, cancelled);
+    TriangleMesh mesh = Cuberille(membrane);
+    for (Point3f& p : mesh.vertices) p = grid.Snap(p);
+    return mesh;
   }
-  // The fit's vertices are on the grid already (snapping is idempotent).
-  if (mesh.ok() && !grid.lossless())
-    for (Point3f& p : mesh->vertices) p = grid.Snap(p);
-  return mesh;
+  // The fit writes every position on the grid itself.
+  const CancelFn cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
+  SmoothSurfaceOptions options;
+  options.fit_options.output_grid = grid;
+  return SmoothSurface(membrane, cloud.points, options, nullptr, cancelled);
 }
 
 

@@ -112,30 +112,36 @@ void MeasureWeb(const VoxelGrid& grid, const StateCopy& first, HandleRetry& r) {
   r.web_hard_rim = rim > 0 ? static_cast<double>(hard) / rim : 0.0;
 }
 
-// Copies `from` into `to` (filled: overwritten; empty: appended, without zero-filling first)
-// in slices of 16 MB, a few milliseconds each, polling `cancel` between them: a 70 M voxel
-// copy takes about 0.1 s, the whole cancellation budget. False when cancelled (then the
-// reconstruction is abandoned, and `to` with it).
-constexpr size_t kCopySlice = size_t{16} << 20;
-
-bool CopyStates(const VoxelState* from, size_t count, StateCopy& to, const CancelToken* cancel) {
-  to.clear();
-  to.reserve(count);
-  for (size_t done = 0; done < count; done += kCopySlice) {
+// Calls copy(begin, end) for consecutive slices of [0, count), 16 MB each (a few milliseconds),
+// polling `cancel` between them: a 70 M voxel copy takes about 0.1 s, the whole cancellation
+// budget. False when cancelled (the reconstruction is then abandoned, half-copied states with
+// it).
+template <typename CopySlice>
+bool CopyInSlices(size_t count, const CancelToken* cancel, CopySlice copy) {
+  constexpr size_t kSlice = size_t{16} << 20;
+  for (size_t begin = 0; begin < count; begin += kSlice) {
     if (cancel != nullptr && cancel->cancelled()) return false;
-    to.insert(to.end(), from + done, from + std::min(count, done + kCopySlice));
+    copy(begin, std::min(count, begin + kSlice));
   }
   return true;
 }
 
+// `to` becomes a copy of the grid's states (appended slice by slice: no zero fill first).
+bool CopyStates(const VoxelGrid& grid, StateCopy& to, const CancelToken* cancel) {
+  const VoxelState* from = grid.states().data();
+  to.clear();
+  to.reserve(grid.states().size());
+  return CopyInSlices(grid.states().size(), cancel, [&](size_t begin, size_t end) {
+    to.insert(to.end(), from + begin, from + end);
+  });
+}
+
+// The grid's states become `from`.
 bool CopyStates(const StateCopy& from, VoxelGrid& grid, const CancelToken* cancel) {
   VoxelState* to = grid.mutable_states().data();
-  for (size_t done = 0; done < from.size(); done += kCopySlice) {
-    if (cancel != nullptr && cancel->cancelled()) return false;
-    std::copy(from.begin() + done, from.begin() + std::min(from.size(), done + kCopySlice),
-              to + done);
-  }
-  return true;
+  return CopyInSlices(from.size(), cancel, [&](size_t begin, size_t end) {
+    std::copy(from.begin() + begin, from.begin() + end, to + begin);
+  });
 }
 
 absl::Status RetryCancelled() {
@@ -178,7 +184,7 @@ absl::Status RetryHandles(VoxelGrid& grid, const StateCopy& before, double max_h
   if (r.genus_before > 0) {
     r.ran = true;
     StateCopy finished;
-    if (!CopyStates(grid.states().data(), grid.states().size(), finished, cancel) ||
+    if (!CopyStates(grid, finished, cancel) ||
         !CopyStates(before, grid, cancel))
       return RetryCancelled();
     const StateCounts counts_finished = counts;
@@ -343,7 +349,7 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
   StateCounts counts_before_retry;
   for (size_t g = 0; g < sizes.size(); ++g) {
     if (g == retry_from) {
-      if (!CopyStates(grid.states().data(), grid.states().size(), before_retry, cancel)) {
+      if (!CopyStates(grid, before_retry, cancel)) {
         return RetryCancelled();
       }
       counts_before_retry = counts;

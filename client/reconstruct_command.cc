@@ -1,10 +1,12 @@
 #include "client/reconstruct_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "CLI/CLI.hpp"
 #include "absl/status/status.h"
@@ -51,6 +53,7 @@ struct ReconstructFlags {
   std::string stats_json;
   double timeout = 0;
   bool quiet = false;
+  int64_t threads = 0;
   int64_t drop_after_events = 0;  // test hook of --server; see RemoteParams
 };
 
@@ -84,6 +87,11 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   app.add_option("--timeout", f.timeout, "give up after this many seconds (exit 4); 0 = never")
       ->capture_default_str();
   app.add_flag("-q,--quiet", f.quiet, "no progress lines on stderr");
+  app.add_option("--threads", f.threads,
+                 "with --local: threads of the surface fit and the mesh check, [0, 256]; 0 = the "
+                 "cores of this machine (the mesh is the same for any value)")
+      ->capture_default_str()
+      ->needs(local);
   // Hidden (empty group): lets the tests drop a --server call midway to exercise re-attaching.
   app.add_option("--drop-after-events", f.drop_after_events)->group("");
 }
@@ -107,6 +115,7 @@ absl::Status CheckFlagValues(const ReconstructFlags& f) {
       CheckIntRange("--voxel-budget", f.voxel_budget, 1, kMaxVoxelBudget),
       f.stats_json.empty() ? absl::OkStatus() : CheckOutputDirectory("--stats-json", f.stats_json),
       CheckRealRange("--timeout", f.timeout, 0, kMaxTimeoutSeconds, "seconds; 0 = no limit"),
+      CheckIntRange("--threads", f.threads, 0, kMaxReconstructionThreads, "0 = the cores"),
   };
   for (const absl::Status& s : checks) {
     if (!s.ok()) return s;
@@ -132,6 +141,10 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   p.options.shrink.schedule = *schedule;
   p.options.relax = !f.no_relax;
   p.options.surface = *surface;
+  p.options.threads = f.threads > 0 ? static_cast<int>(f.threads)
+                                    : static_cast<int>(std::clamp<unsigned>(
+                                          std::thread::hardware_concurrency(), 1,
+                                          kMaxReconstructionThreads));
   p.draco.position_quantization_bits = static_cast<int>(f.quantization);
   p.draco.compression_level = static_cast<int>(f.compression_level);
   // Only .drc quantizes; the surface is then built and checked on the file's grid.

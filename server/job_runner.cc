@@ -125,6 +125,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job) const {
     mesh = std::move(encoded->bytes);
     return absl::OkStatus();
   };
+  settings->reconstruction.threads = options_.job_threads;
   absl::StatusOr<ReconstructionResult> result = ReconstructCloud(
       *cloud, settings->reconstruction, job->cancel_token(), observer, encode);
   if (!result.ok()) return fail(WithParameterHint(result.status()));

@@ -17,11 +17,15 @@
 #include "absl/strings/str_cat.h"
 #include "core/io/file_bytes.h"
 #include "core/io/token_file.h"
+#include "core/pipeline/reconstruction_pipeline.h"
 #include "server/membrane_server.h"
 #include "server/server_options.h"
 
 ABSL_FLAG(std::string, listen, "127.0.0.1:50051", "address to listen on (HOST:PORT; port 0 = any)");
 ABSL_FLAG(int, workers, 0, "jobs running at once; 0 = the number of cores");
+ABSL_FLAG(int, job_threads, 0,
+          "threads of one job's surface fit and mesh check; 0 = the cores shared among the "
+          "workers (at least 1)");
 ABSL_FLAG(int, queue, 16, "jobs waiting beyond the running ones; more get RESOURCE_EXHAUSTED");
 ABSL_FLAG(int64_t, max_upload_bytes, 512LL << 20, "largest Draco upload, bytes");
 ABSL_FLAG(int64_t, max_points, 50'000'000, "largest decoded cloud, points");
@@ -87,7 +91,15 @@ bool ReadSecrets(ServerOptions& o) {
 // The options from the flags; an error line and false when a value is out of range.
 bool OptionsFromFlags(ServerOptions& o) {
   o.workers = absl::GetFlag(FLAGS_workers);
-  if (o.workers <= 0) o.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (o.workers <= 0) o.workers = cores;
+  o.job_threads = absl::GetFlag(FLAGS_job_threads);
+  if (o.job_threads == 0) o.job_threads = std::max(1, cores / o.workers);
+  if (o.job_threads < 0 || o.job_threads > kMaxReconstructionThreads) {
+    std::fprintf(stderr, "membraned: --job-threads %d is not in 0..%d\n", o.job_threads,
+                 kMaxReconstructionThreads);
+    return false;
+  }
   o.queue = absl::GetFlag(FLAGS_queue);
   o.max_upload_bytes = absl::GetFlag(FLAGS_max_upload_bytes);
   o.max_points = absl::GetFlag(FLAGS_max_points);

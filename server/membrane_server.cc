@@ -56,6 +56,7 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   LogEvent("server_started", {{"address", address},
                               {"port", absl::StrCat(port)},
                               {"workers", absl::StrCat(options_.workers)},
+                              {"job_threads", absl::StrCat(options_.job_threads)},
                               {"queue", absl::StrCat(options_.queue)},
                               {"tls", options_.tls_cert_pem.empty() ? "off" : "on"},
                               {"token", options_.bearer_token.empty() ? "off" : "on"}});

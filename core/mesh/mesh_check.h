@@ -49,8 +49,9 @@ struct MeshReport {
 // Never fails: malformed input shows up in the counts. O(F) plus a uniform-grid broad phase
 // for self-intersections (about a second for 1M faces). `cancel` is polled during the
 // self-intersection search; once it fires the search stops early and the report is
-// incomplete (the caller, having cancelled, discards it).
-MeshReport CheckMesh(const TriangleMesh& mesh, const CancelFn& cancel = nullptr);
+// incomplete (the caller, having cancelled, discards it). `threads` (<= 1: the calling thread
+// alone) share that search; the report does not depend on it.
+MeshReport CheckMesh(const TriangleMesh& mesh, const CancelFn& cancel = nullptr, int threads = 1);
 
 // The report as one JSON object with snake_case keys ("closed", "manifold", "oriented",
 // "shells", "genus": [...], ...), for `membrane check --json` and the statistics JSON.

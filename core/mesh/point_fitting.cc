@@ -1,6 +1,8 @@
 #include "core/mesh/point_fitting.h"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -8,6 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/mesh/fan_embedding.h"
 #include "core/mesh/near_point_sums.h"
+#include "core/mesh/parallel_tasks.h"
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_row_grid.h"
 #include "core/mesh/self_intersection.h"
@@ -23,6 +26,10 @@ constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
 constexpr int kFullyBackedOff = 3;
 constexpr int kRepairHalvings = 6;
 constexpr int kCancelPollVertices = 4096;
+// Slab thickness in voxels. A face's vertices lie in neighbouring surface-nets cells, so their
+// input positions are less than 2 voxels apart along any axis: with slabs of 4, a vertex's ring
+// lies in its own slab or the next ones (checked, not assumed).
+constexpr double kSlabVoxels = 4;
 
 class Fitter {
  public:
@@ -67,24 +74,17 @@ class Fitter {
     start_.resize(nv);
     target_.resize(nv);
     dirty_.assign(nf, 0);
+    AssignSlabs();
   }
 
   absl::Status Run(const CancelFn& cancel, FitStats& stats) {
-    const int32_t nv = static_cast<int32_t>(mesh_.vertices.size());
-    for (int round = 0; round < options_.rounds; ++round) {
-      for (int32_t v = 0; v < nv; ++v) {
-        if (v % kCancelPollVertices == 0 && Cancelled(cancel)) {
+    for (int round = 0; round < options_.rounds; ++round)
+      for (int parity = 0; parity < 2; ++parity)
+        if (!RunPhase(round, parity, cancel, stats)) {
           // Leave a valid mesh: nothing is verified before the end, so undo every move.
-          for (int32_t u : moved_) Set(u, start_[u]);
+          for (int32_t u : moved_) Set(u, start_[u], clock_);
           return absl::CancelledError("fitting cancelled");
         }
-        // The weights change between the first round and the others; after that a vertex
-        // whose target was already reached, and around which nothing moved since, would
-        // compute the same target again.
-        if (round >= 2 && Settled(v)) continue;
-        FitVertex(v, round, stats);
-      }
-    }
     // With a fallback or after snapping the input is not known to be clean: the first search
     // covers it all.
     Verify(/*search_all=*/fallback_ != nullptr || !grid_.lossless(), stats);
@@ -99,9 +99,99 @@ class Fitter {
     const auto& t = mesh_.faces[f];
     return {Pos(t[0]), Pos(t[1]), Pos(t[2])};
   }
-  void Set(int32_t v, const Point3f& p) {
+  // `clock` is the move clock of the slab being fitted, or clock_ outside the rounds.
+  void Set(int32_t v, const Point3f& p, int64_t& clock) {
     mesh_.vertices[v] = p;
-    changed_at_[v] = ++clock_;
+    changed_at_[v] = ++clock;
+  }
+
+  // What fitting one slab in one phase writes besides the slab's own vertices: every slab of a
+  // phase has its own, so that slabs can be fitted side by side.
+  struct SlabWork {
+    int64_t clock = 0;
+    FitStats stats;
+    std::vector<int32_t> moved;
+    std::vector<Vec3d> ring_pos;       // scratch of FanEmbeddedAt
+    std::vector<Triangle3d> new_tri;  // scratch of StarOk
+  };
+
+  // Slabs across the longest axis of the input, by input position, each listing its vertices in
+  // index order. The rounds fit the even slabs, then the odd ones: two slabs of one parity are
+  // never neighbours, and every read and write of fitting a vertex stays within its ring, so
+  // the slabs of a phase are independent and the result is the same for any thread count.
+  // Should a face span more than two slabs (never seen), everything is one slab.
+  void AssignSlabs() {
+    const int32_t nv = static_cast<int32_t>(rest_.size());
+    std::array<float, 3> lo = rest_[0], hi = rest_[0];
+    for (const Point3f& p : rest_)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+    const double thickness = kSlabVoxels * l_;
+    std::vector<int32_t> slab(nv);
+    int32_t slabs = 1;
+    for (int32_t v = 0; v < nv; ++v) {
+      const double t = std::floor((static_cast<double>(rest_[v][axis]) - lo[axis]) / thickness);
+      slab[v] = static_cast<int32_t>(std::clamp(t, 0.0, 1e6));
+      slabs = std::max(slabs, slab[v] + 1);
+    }
+    for (const auto& f : mesh_.faces) {
+      const auto [a, b] = std::minmax({slab[f[0]], slab[f[1]], slab[f[2]]});
+      if (b - a > 1) {
+        std::fill(slab.begin(), slab.end(), 0);
+        slabs = 1;
+        break;
+      }
+    }
+    slab_start_.assign(slabs + 1, 0);
+    for (int32_t v = 0; v < nv; ++v) ++slab_start_[slab[v] + 1];
+    for (int32_t k = 0; k < slabs; ++k) slab_start_[k + 1] += slab_start_[k];
+    slab_vertices_.resize(nv);
+    std::vector<int32_t> fill(slab_start_.begin(), slab_start_.end() - 1);
+    for (int32_t v = 0; v < nv; ++v) slab_vertices_[fill[slab[v]]++] = v;
+  }
+
+  // Fits the slabs of one parity in one round, side by side on options_.threads. Returns false
+  // when `cancel` fired (polled on the calling thread only); the phase's moves are then in
+  // moved_ like the others.
+  bool RunPhase(int round, int parity, const CancelFn& cancel, FitStats& stats) {
+    const int32_t slabs = static_cast<int32_t>(slab_start_.size()) - 1;
+    const int32_t count = (slabs - parity + 1) / 2;
+    if (Cancelled(cancel)) return false;
+    if (count <= 0) return true;
+    std::vector<SlabWork> work(count);
+    for (SlabWork& w : work) w.clock = clock_;
+    std::atomic<bool> stop{false};
+    std::vector<int> since_poll(std::max(options_.threads, 1), 0);  // per worker
+    RunTasks(options_.threads, count, [&](int worker, int64_t task) {
+      const int32_t s = parity + 2 * static_cast<int32_t>(task);
+      SlabWork& w = work[task];
+      for (int32_t i = slab_start_[s]; i < slab_start_[s + 1]; ++i) {
+        if (++since_poll[worker] == kCancelPollVertices) {
+          since_poll[worker] = 0;
+          if (worker == 0 && Cancelled(cancel)) stop.store(true, std::memory_order_relaxed);
+          if (stop.load(std::memory_order_relaxed)) return;
+        }
+        const int32_t v = slab_vertices_[i];
+        // The weights change between the first round and the others; after that a vertex
+        // whose target was already reached, and around which nothing moved since, would
+        // compute the same target again.
+        if (round >= 2 && Settled(v)) continue;
+        FitVertex(v, round, w);
+      }
+    });
+    for (SlabWork& w : work) {
+      clock_ = std::max(clock_, w.clock);
+      stats.plane_targets += w.stats.plane_targets;
+      stats.umbrella_targets += w.stats.umbrella_targets;
+      stats.refused += w.stats.refused;
+      moved_.insert(moved_.end(), w.moved.begin(), w.moved.end());
+    }
+    return !stop.load() && !Cancelled(cancel);
   }
 
   bool Settled(int32_t v) const {
@@ -167,36 +257,37 @@ class Fitter {
 
   // The checks that need only the vertex's own triangles: non-zero area, normal on the side of
   // the surface-nets normal, and no two of them overlapping.
-  bool StarOk(int32_t v, const Point3f& candidate) {
+  bool StarOk(int32_t v, const Point3f& candidate, SlabWork& w) const {
     const Vec3d c = ToVec3d(candidate);
     const int32_t begin = star_start_[v], end = star_start_[v + 1];
-    new_tri_.clear();
+    std::vector<Triangle3d>& new_tri = w.new_tri;
+    new_tri.clear();
     for (int32_t i = begin; i < end; ++i) {
       const int32_t f = star_[i];
       Triangle3d t = Tri(f);
       for (int k = 0; k < 3; ++k)
         if (mesh_.faces[f][k] == v) t[k] = c;
       if (!FaceOk(f, t)) return false;
-      new_tri_.push_back(t);
+      new_tri.push_back(t);
     }
     // The fast proof first; the pairs one by one only where it does not conclude.
-    if (FanEmbeddedAt(v, c)) return true;
+    if (FanEmbeddedAt(v, c, w.ring_pos)) return true;
     const int32_t n = end - begin;
     for (int32_t i = 0; i < n; ++i)
       for (int32_t j = i + 1; j < n; ++j)
-        if (MeshTrianglesIntersect(mesh_.faces[star_[begin + i]], new_tri_[i],
-                                   mesh_.faces[star_[begin + j]], new_tri_[j]))
+        if (MeshTrianglesIntersect(mesh_.faces[star_[begin + i]], new_tri[i],
+                                   mesh_.faces[star_[begin + j]], new_tri[j]))
           return false;
     return true;
   }
 
   // FanIsEmbedded for v's fan with v at `centre`.
-  bool FanEmbeddedAt(int32_t v, const Vec3d& centre) {
+  bool FanEmbeddedAt(int32_t v, const Vec3d& centre, std::vector<Vec3d>& ring_pos) const {
     const absl::Span<const int32_t> ring = fans_.ring(v);
     if (ring.empty()) return false;
-    ring_pos_.clear();
-    for (int32_t u : ring) ring_pos_.push_back(Pos(u));
-    return FanIsEmbedded(centre, ring_pos_);
+    ring_pos.clear();
+    for (int32_t u : ring) ring_pos.push_back(Pos(u));
+    return FanIsEmbedded(centre, ring_pos);
   }
 
   bool FaceOk(int32_t f, const Triangle3d& t) const {
@@ -204,37 +295,37 @@ class Fitter {
     return Norm(n) > min_double_area_ && Dot(n, rest_normal_[f]) > 0;
   }
 
-  void FitVertex(int32_t v, int round, FitStats& stats) {
+  void FitVertex(int32_t v, int round, SlabWork& w) {
     settled_at_[v] = -1;
     const Vec3d x = Pos(v);
-    Vec3d target = Target(v, round, stats);
+    Vec3d target = Target(v, round, w.stats);
     const Vec3d rest = ToVec3d(rest_[v]);
     const Vec3d off = target - rest;
     const double max_off = options_.max_offset * l_;
     if (SquaredNorm(off) > max_off * max_off) target = rest + (max_off / Norm(off)) * off;
     const Vec3d delta = target - x;
     if (SquaredNorm(delta) < options_.min_move * options_.min_move * l_ * l_) {
-      settled_at_[v] = clock_;
+      settled_at_[v] = w.clock;
       return;
     }
     for (int level = 0; level < kFullyBackedOff; ++level) {
       const Point3f candidate = Place(x + kStepFractions[level] * delta);
       if (candidate == mesh_.vertices[v]) break;
-      if (StarOk(v, candidate)) {
+      if (StarOk(v, candidate, w)) {
         if (!in_round_[v]) {
           start_[v] = mesh_.vertices[v];
           in_round_[v] = 1;
-          moved_.push_back(v);
+          w.moved.push_back(v);
         }
         target_[v] = ToVec3d(candidate);
         level_[v] = 0;
         backed_off_[v] = level > 0;
-        Set(v, candidate);
+        Set(v, candidate, w.clock);
         return;
       }
     }
-    settled_at_[v] = clock_;
-    ++stats.refused;
+    settled_at_[v] = w.clock;
+    ++w.stats.refused;
   }
 
   // Ends the fit: searches the faces around the moved vertices for pairs that intersect (on the
@@ -252,7 +343,7 @@ class Fitter {
       std::fill(dirty_.begin(), dirty_.end(), first && search_all ? 1 : 0);
       for (int32_t v : changed)
         for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) dirty_[star_[i]] = 1;
-      const auto pairs = FindIntersectingFacesNear(mesh_, dirty_);
+      const auto pairs = FindIntersectingFacesNear(mesh_, dirty_, options_.threads);
       if (pairs.empty()) break;
       changed.clear();
       for (const auto& [a, b] : pairs)
@@ -278,7 +369,7 @@ class Fitter {
           for (int32_t u : mesh_.faces[f])
             if (IsMoved(u) && mesh_.vertices[u] != start_[u]) {
               level_[u] = kFullyBackedOff;
-              Set(u, start_[u]);
+              Set(u, start_[u], clock_);
               changed.push_back(u);
             }
         }
@@ -317,7 +408,7 @@ class Fitter {
       const double keep = repair_level_[v]++ < kRepairHalvings ? 0.5 : 0.0;
       const Vec3d s = ToVec3d(safe);
       const Point3f p = Place(s + keep * (Pos(v) - s));
-      Set(v, p);
+      Set(v, p, clock_);
       rest_[v] = p;
       start_[v] = p;
       moved[kept++] = v;
@@ -336,7 +427,7 @@ class Fitter {
     ++level_[v];
     const Vec3d s = ToVec3d(start_[v]);
     const double f = level_[v] < kFullyBackedOff ? kStepFractions[level_[v]] : 0.0;
-    Set(v, f > 0 ? Place(s + f * (target_[v] - s)) : start_[v]);
+    Set(v, f > 0 ? Place(s + f * (target_[v] - s)) : start_[v], clock_);
   }
 
   TriangleMesh& mesh_;
@@ -347,14 +438,15 @@ class Fitter {
   // Input positions (the clamp's centre); they move only when repaired toward the fallback.
   std::vector<Point3f> rest_;
   const MeshFans fans_;
-  std::vector<Vec3d> ring_pos_;  // scratch of FanEmbeddedAt
   std::vector<uint8_t> repair_level_;
   const PointRowGrid points_;
   std::vector<int32_t> star_start_, star_;
   std::vector<Vec3d> rest_normal_;
   double min_double_area_ = 0;
   // Move clock: changed_at_[v] = clock value of v's last change; settled_at_[v] = clock value
-  // when v last found its target already reached or refused (-1: not settled).
+  // when v last found its target already reached or refused (-1: not settled). Each slab of a
+  // phase counts from clock_ on its own (a vertex's ring is in its slab or in slabs of the
+  // other parity, fitted in another phase); clock_ then moves past them all.
   int64_t clock_ = 0;
   std::vector<int64_t> changed_at_, settled_at_;
   // The moved vertices: position before their first move, last applied position, back-off
@@ -365,7 +457,8 @@ class Fitter {
   std::vector<Vec3d> target_;  // last applied position
   std::vector<int> level_;
   std::vector<char> dirty_;
-  std::vector<Triangle3d> new_tri_;
+  // The slabs' vertices, slab by slab (AssignSlabs).
+  std::vector<int32_t> slab_start_, slab_vertices_;
 };
 
 absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {

@@ -33,6 +33,9 @@ struct FitOptions {
   // writes is snapped to this grid first, so that its checks judge the positions a decoder
   // gets back. Lossless (bits 0): float32.
   PositionGrid output_grid;
+  // Threads fitting slabs side by side and sharing the crossing search (<= 1: the calling
+  // thread alone). The mesh is the same for any value.
+  int threads = 1;
 };
 
 struct FitStats {
@@ -47,32 +50,35 @@ struct FitStats {
 // Input: `mesh` as SurfaceNets() makes it (closed, manifold, outward, no self-intersections),
 // in model units; `voxel_size` > 0 the membrane's voxel edge; `points` the input cloud (model
 // units). `cancel` is polled every few thousand vertices.
-// Effect: moves vertices only (faces unchanged), in `rounds` passes over the vertices (in
-// index order; SurfaceNets numbers them along a space-filling curve): target = projection on
+// Effect: moves vertices only (faces unchanged), in `rounds` passes over the vertices (each
+// pass fits slabs 4 voxels thick across the longest axis, the even ones and then the odd ones,
+// each in vertex index order; SurfaceNets numbers vertices along a space-filling curve; the
+// slabs of one parity run side by side on options.threads): target = projection on
 // the weighted PCA plane of the points near the vertex (>= min_points of them), else an
 // umbrella step; the target is clamped to max_offset from the vertex's input position; the move
 // is tried at 1, 1/2, 1/4 of the way and taken at the first where every triangle of the vertex
 // keeps a non-zero area and a positive dot product with its input normal, and no two of them
-// overlap. Each pass ends with an intersection search around the faces it moved, on the
-// float32 positions that are written, on output_grid (so it is also recipe step 6's rounding
-// check, and the check of the encoding's quantization): the moved
-// vertices of every crossing pair back off through 1/2, 1/4 of the way, then to where they
-// started, until nothing crosses. Checking once per pass instead of once per move costs one
-// linear search instead of a grid query per vertex, and gives the same guarantee.
+// overlap. The last pass ends with an intersection search around the faces the passes moved,
+// on the float32 positions that are written, on output_grid (so it is also recipe step 6's
+// rounding check, and the check of the encoding's quantization): the moved vertices of every
+// crossing pair back off through 1/2, 1/4 of the way, then to where they
+// started, until nothing crosses. Checking once at the end instead of once per move costs one
+// linear search instead of a grid query per vertex, and gives the same guarantee. The result
+// does not depend on options.threads.
 // `fallback`, if not null, holds one position per vertex at which the mesh is known free of
-// self-intersections (SurfaceNetsBeforeRepair's); the input may then cross itself: the first
-// pass searches every face, and crossings that no move explains are repaired toward
+// self-intersections (SurfaceNetsBeforeRepair's); the input may then cross itself: that
+// search covers every face, and crossings that no move explains are repaired toward
 // `fallback` (halfway up to 6 times, then all the way, as crossing_repair.h does); the
 // repaired positions then count as the vertices' input positions.
 // With a quantizing output_grid every vertex is first snapped to it (the input normals stay
-// those of the unsnapped input) and the first pass searches every face.
+// those of the unsnapped input) and that search covers every face.
 // After: closed, manifold and oriented as before; every vertex on output_grid; no
 // self-intersections if the input had none (lossless grid) or `fallback` was given, unless the
 // grid is too coarse for any repair (the caller's mesh check tells); every vertex within
 // max_offset * voxel_size of its input position, plus half a grid step per axis.
 // Errors: InvalidArgument for a non-positive voxel size, options out of range or a fallback of
 // the wrong size; Cancelled when `cancel` fired (the mesh then holds the last verified state:
-// the moves of the pass under way are undone).
+// every move is undone).
 absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
                                      absl::Span<const Point3f> points,
                                      const FitOptions& options = {},

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <optional>
 
 #include "core/engine/huge_page_allocator.h"
+#include "core/mesh/parallel_tasks.h"
 #include "core/mesh/triangle_intersection.h"
 
 namespace membrane {
@@ -164,7 +166,7 @@ class SortedFaceCells {
 };
 
 std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
-                                                     const Participants& p,
+                                                     const Participants& p, int threads,
                                                      const CancelFn& cancel = nullptr) {
   std::vector<std::pair<int32_t, int32_t>> pairs;
   if (p.face.empty()) return pairs;
@@ -180,11 +182,17 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
   };
   BigVector<std::array<int32_t, 3>> low(n);
   BigVector<FacePlane> plane(n);
-  for (size_t i = 0; i < n; ++i) {
-    const CellCoord c = cells.CellOf(p.box[i].lo);
-    low[i] = {static_cast<int32_t>(c[0]), static_cast<int32_t>(c[1]), static_cast<int32_t>(c[2])};
-    plane[i] = MakeFacePlane(triangle(static_cast<int32_t>(i)));
-  }
+  constexpr int64_t kFacesPerTask = 16384;
+  RunTasks(threads, (static_cast<int64_t>(n) + kFacesPerTask - 1) / kFacesPerTask,
+           [&](int, int64_t task) {
+             const size_t end = std::min(n, static_cast<size_t>((task + 1) * kFacesPerTask));
+             for (size_t i = static_cast<size_t>(task * kFacesPerTask); i < end; ++i) {
+               const CellCoord c = cells.CellOf(p.box[i].lo);
+               low[i] = {static_cast<int32_t>(c[0]), static_cast<int32_t>(c[1]),
+                         static_cast<int32_t>(c[2])};
+               plane[i] = MakeFacePlane(triangle(static_cast<int32_t>(i)));
+             }
+           });
   const bool all = p.dirty.empty();
   // A cell's faces, copied side by side before its pairs are walked: the pair loop then reads
   // contiguous memory instead of jumping through the per-face arrays a dozen times per face.
@@ -198,43 +206,64 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
     uint8_t at_low;
     Box box;
   };
-  std::vector<Member> members;
-  constexpr int kCellsPerPoll = 4096;
-  int cells_since_poll = 0;
-  for (size_t begin = 0; begin < cells.size();) {
-    if (++cells_since_poll == kCellsPerPoll) {
-      cells_since_poll = 0;
-      if (Cancelled(cancel)) break;
-    }
-    size_t end = begin + 1;
-    while (end < cells.size() && cells.key(end) == cells.key(begin)) ++end;
-    const CellCoord c = cells.Decode(cells.key(begin));
-    members.clear();
-    for (size_t e = begin; e < end; ++e) {
-      const int32_t i = cells.position(e);
-      uint8_t at_low = 0;
-      for (int k = 0; k < 3; ++k) at_low |= (low[i][k] == c[k] ? 1 : 0) << k;
-      members.push_back({i, all || p.dirty[i] != 0, at_low, p.box[i]});
-    }
-    for (size_t a = 0; a < members.size(); ++a) {
-      const Member& mi = members[a];
-      const int32_t i = mi.position;
-      std::optional<Triangle3d> ti;  // made once, at the first pair that needs it
-      for (size_t b = a + 1; b < members.size(); ++b) {
-        const Member& mj = members[b];
-        if (!mi.dirty && !mj.dirty) continue;
-        if ((mi.at_low | mj.at_low) != 7) continue;
-        if (!Overlap(mi.box, mj.box)) continue;
-        const int32_t j = mj.position;
-        const int32_t fi = p.face[i], fj = p.face[j];
-        if (!ti) ti = triangle(i);
-        if (MeshTrianglesIntersect(mesh.faces[fi], *ti, plane[i], mesh.faces[fj], triangle(j),
-                                   plane[j]))
-          pairs.emplace_back(std::min(fi, fj), std::max(fi, fj));
-      }
-    }
-    begin = end;
+  // Cells are independent: runs of whole cells go to the workers (several runs per worker, so
+  // that a run of crowded cells does not leave the others idle), each run's pairs to a list
+  // of its own; the sort at the end makes the result independent of the split.
+  const int workers = std::max(threads, 1);
+  const int64_t runs = workers == 1 ? 1 : 8 * workers;
+  std::vector<size_t> run_start(runs + 1, cells.size());
+  run_start[0] = 0;
+  for (int64_t r = 1; r < runs; ++r) {
+    size_t e = std::max(run_start[r - 1], cells.size() * r / runs);
+    while (e > 0 && e < cells.size() && cells.key(e) == cells.key(e - 1)) ++e;
+    run_start[r] = e;
   }
+  std::vector<std::vector<std::pair<int32_t, int32_t>>> found(runs);
+  std::vector<std::vector<Member>> scratch(workers);
+  std::atomic<bool> stop{false};
+  RunTasks(workers, runs, [&](int worker, int64_t run) {
+    std::vector<Member>& members = scratch[worker];
+    std::vector<std::pair<int32_t, int32_t>>& out = found[run];
+    // The caller's cancel callback is only ever called from the calling thread.
+    constexpr int kCellsPerPoll = 4096;
+    int cells_since_poll = 0;
+    for (size_t begin = run_start[run]; begin < run_start[run + 1];) {
+      if (++cells_since_poll == kCellsPerPoll) {
+        cells_since_poll = 0;
+        if (worker == 0 && Cancelled(cancel)) stop.store(true, std::memory_order_relaxed);
+        if (stop.load(std::memory_order_relaxed)) break;
+      }
+      size_t end = begin + 1;
+      while (end < cells.size() && cells.key(end) == cells.key(begin)) ++end;
+      const CellCoord c = cells.Decode(cells.key(begin));
+      members.clear();
+      for (size_t e = begin; e < end; ++e) {
+        const int32_t i = cells.position(e);
+        uint8_t at_low = 0;
+        for (int k = 0; k < 3; ++k) at_low |= (low[i][k] == c[k] ? 1 : 0) << k;
+        members.push_back({i, all || p.dirty[i] != 0, at_low, p.box[i]});
+      }
+      for (size_t a = 0; a < members.size(); ++a) {
+        const Member& mi = members[a];
+        const int32_t i = mi.position;
+        std::optional<Triangle3d> ti;  // made once, at the first pair that needs it
+        for (size_t b = a + 1; b < members.size(); ++b) {
+          const Member& mj = members[b];
+          if (!mi.dirty && !mj.dirty) continue;
+          if ((mi.at_low | mj.at_low) != 7) continue;
+          if (!Overlap(mi.box, mj.box)) continue;
+          const int32_t j = mj.position;
+          const int32_t fi = p.face[i], fj = p.face[j];
+          if (!ti) ti = triangle(i);
+          if (MeshTrianglesIntersect(mesh.faces[fi], *ti, plane[i], mesh.faces[fj],
+                                     triangle(j), plane[j]))
+            out.emplace_back(std::min(fi, fj), std::max(fi, fj));
+        }
+      }
+      begin = end;
+    }
+  });
+  for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
@@ -242,7 +271,8 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
 }  // namespace
 
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh,
-                                                               const CancelFn& cancel) {
+                                                               const CancelFn& cancel,
+                                                               int threads) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
   Participants p;
@@ -253,11 +283,12 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMes
     p.face.push_back(f);
     p.box.push_back(FaceBox(mesh, f));
   }
-  return SearchPairs(mesh, p, cancel);
+  return SearchPairs(mesh, p, threads, cancel);
 }
 
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const TriangleMesh& mesh,
-                                                                   const std::vector<char>& dirty) {
+                                                                   const std::vector<char>& dirty,
+                                                                   int threads) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
   // Boxes of the dirty faces, and the coarse cells they touch (cells twice the largest dirty
@@ -266,7 +297,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
   for (int32_t f = 0; f < nf; ++f) n_dirty += dirty[f] != 0;
   // Mostly dirty: selecting the neighbourhood would cost more than searching everything.
   if (4 * n_dirty > nf) {
-    std::vector<std::pair<int32_t, int32_t>> pairs = FindIntersectingFaces(mesh);
+    std::vector<std::pair<int32_t, int32_t>> pairs = FindIntersectingFaces(mesh, nullptr, threads);
     std::erase_if(pairs, [&](const auto& p) { return !dirty[p.first] && !dirty[p.second]; });
     return pairs;
   }
@@ -328,7 +359,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
     p.box.push_back(b);
     p.dirty.push_back(0);
   }
-  return SearchPairs(mesh, p);
+  return SearchPairs(mesh, p, threads);
 }
 
 }  // namespace membrane

@@ -19,16 +19,19 @@ namespace membrane {
 // skipped. Sorted by (i, j). Each pair is reported once.
 // Cost: O(F) cells and entries; the cell size follows the mean face size, and the cell count is
 // bounded by a few times F, so huge faces cost more entries, never quadratic memory.
-// `cancel` is polled every few thousand cells; once it fires the pairs found so far are
-// returned.
+// `cancel` is polled every few thousand cells, on the calling thread only; once it fires the
+// pairs found so far are returned. `threads` (<= 1: the calling thread alone) share the cells;
+// the result does not depend on it.
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh,
-                                                               const CancelFn& cancel = nullptr);
+                                                               const CancelFn& cancel = nullptr,
+                                                               int threads = 1);
 
 // The same, restricted to pairs with at least one face marked in `dirty` (one flag per face):
 // after moving a few vertices, the pairs that may have changed. Costs a linear scan of the
 // faces plus the pair search around the dirty ones.
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const TriangleMesh& mesh,
-                                                                   const std::vector<char>& dirty);
+                                                                   const std::vector<char>& dirty,
+                                                                   int threads = 1);
 
 }  // namespace membrane
 

@@ -1,5 +1,6 @@
 #include "core/pipeline/reconstruction_pipeline.h"
 
+#include <algorithm>
 #include <functional>
 #include <thread>
 #include <utility>
@@ -84,7 +85,7 @@ absl::StatusOr<TriangleMesh> Surface(const ReconstructionOptions& options,
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kSurface, report);
   absl::StatusOr<TriangleMesh> mesh =
-      BuildSurface(grid, cloud, options.surface, output_grid, &cancel);
+      BuildSurface(grid, cloud, options.surface, output_grid, &cancel, options.threads);
   if (!mesh.ok()) return mesh.status();
   report.quantization.bits = output_grid.bits;
   report.quantization.step = output_grid.step();
@@ -100,16 +101,18 @@ absl::StatusOr<TriangleMesh> Surface(const ReconstructionOptions& options,
 // Checks `mesh` into `report` while `deliver` (if any) runs on the calling thread: the check
 // has its own thread, so that the delivery, which encodes, allocates from the calling thread's
 // malloc arena, whose pages earlier stages have already faulted in (a fresh arena made Draco's
-// encode twice as slow, most of it in page faults).
-absl::Status CheckAndDeliver(const TriangleMesh& mesh, const PositionGrid& grid,
+// encode twice as slow, most of it in page faults). The check gets the threads the delivery
+// leaves.
+absl::Status CheckAndDeliver(const TriangleMesh& mesh, const PositionGrid& grid, int threads,
                              const CancelToken& cancel, const MeshDelivery& deliver,
                              ReconstructionReport& report, ReconstructionObserver& observer) {
+  const int check_threads = deliver ? std::max(1, threads - 1) : threads;
   observer.StageStarted(PipelineStage::kCheck, report);
   MeshReport checked;
   double seconds = 0;
   auto check = [&] {
     const Stopwatch watch;
-    checked = CheckMesh(mesh, [&cancel] { return cancel.cancelled(); });
+    checked = CheckMesh(mesh, [&cancel] { return cancel.cancelled(); }, check_threads);
     seconds = watch.Seconds();
   };
   absl::Status delivered;
@@ -148,6 +151,11 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
                                                    options.output_quantization_bits,
                                                    " bits; it must be 0 (lossless) or 1..30"));
   }
+  if (options.threads < 1 || options.threads > kMaxReconstructionThreads) {
+    return absl::InvalidArgumentError(absl::StrCat("threads is ", options.threads,
+                                                   "; it must be in 1..",
+                                                   kMaxReconstructionThreads));
+  }
   ReconstructionResult result;
   ReconstructionReport& report = result.report;
   report.points = static_cast<int64_t>(cloud.points.size());
@@ -174,7 +182,8 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
     mesh = Surface(options, cancel, grid, cloud, output_grid, report, observer);
     if (!mesh.ok()) return mesh.status();
     if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
-    if (absl::Status s = CheckAndDeliver(*mesh, output_grid, cancel, deliver, report, observer);
+    if (absl::Status s = CheckAndDeliver(*mesh, output_grid, options.threads, cancel, deliver,
+                                         report, observer);
         !s.ok())
       return s;
     const bool broken = report.mesh.self_intersections > 0 || report.mesh.degenerate_faces > 0;

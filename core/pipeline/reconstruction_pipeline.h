@@ -28,7 +28,12 @@ struct ReconstructionOptions {
   // they are). The surface is built on that grid and checked there, so the report describes
   // the positions delivered, not positions the encoding then moves.
   int output_quantization_bits = 0;
+  // Threads of the smooth surface's fit and of the mesh check, 1..kMaxReconstructionThreads;
+  // the other stages use the calling thread. The mesh is the same for any value.
+  int threads = 1;
 };
+
+inline constexpr int kMaxReconstructionThreads = 256;
 
 struct ReconstructionResult {
   TriangleMesh mesh;  // model units, outward faces

@@ -21,7 +21,7 @@ const char* SurfaceKindName(SurfaceKind kind) {
 
 absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
-                                          const CancelToken* cancel) {
+                                          const CancelToken* cancel, int threads) {
   if (kind == SurfaceKind::kCuberille) {
     TriangleMesh mesh = Cuberille(membrane);
     for (Point3f& p : mesh.vertices) p = grid.Snap(p);
@@ -31,6 +31,7 @@ absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const Point
   const CancelFn cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
   SmoothSurfaceOptions options;
   options.fit_options.output_grid = grid;
+  options.fit_options.threads = threads;
   return SmoothSurface(membrane, cloud.points, options, nullptr, cancelled);
 }
 

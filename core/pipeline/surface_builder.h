@@ -30,10 +30,11 @@ const char* SurfaceKindName(SurfaceKind kind);
 // smooth surface is fitted to (SmoothSurface of core/mesh with its default options, fitting on
 // `grid`; Cuberille ignores it and is snapped to `grid`). A coarse grid can flatten or cross
 // faces: the caller's mesh check tells. Cancelled when `cancel` (may be null) fires during the
-// smooth surface.
+// smooth surface. `threads` (<= 1: the calling thread) share the smooth surface's fit; the
+// mesh does not depend on it.
 absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
-                                          const CancelToken* cancel);
+                                          const CancelToken* cancel, int threads = 1);
 
 }  // namespace membrane
 

@@ -53,13 +53,14 @@ struct BenchOptions {
   bool open3d = true;
   bool open3d_variable = false;  // also run Open3D on the *-variable clouds
   int64_t samples = 100'000;
+  int threads = 1;  // of the smooth surface's fit
   Open3dPeer peer;
 };
 
 constexpr char kUsage[] =
     "usage: bench_surface [--quick] [--models NAME,...] [--shared DIR] [--samples N]\n"
     "                     [--no-open3d] [--open3d-variable] [--python PATH]\n"
-    "                     [--open3d-threads N] [--open3d-timeout S]\n"
+    "                     [--open3d-threads N] [--open3d-timeout S] [--threads N]\n"
     "  --quick            one small cloud, 20k samples, no Open3D (the ctest smoke)\n"
     "  --models LIST      clouds whose name contains one of these (e.g. bunny,spot-scan)\n"
     "  --shared DIR       folder holding data/clouds and data/models (default:\n"
@@ -69,7 +70,9 @@ constexpr char kUsage[] =
     "  --open3d-variable  run Open3D on the *-variable clouds too (fandisk-variable: 700+ s)\n"
     "  --python PATH      interpreter with open3d (default /usr/bin/python3)\n"
     "  --open3d-threads N threads for Open3D (default 1, like the one-core membrane)\n"
-    "  --open3d-timeout S stop Open3D after S seconds per cloud (default 0: never)\n";
+    "  --open3d-timeout S stop Open3D after S seconds per cloud (default 0: never)\n"
+    "  --threads N        threads of the smooth surface's fit, 1..256 (default 1; the mesh is\n"
+    "                     the same for any N)\n";
 
 std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
   BenchOptions o;
@@ -101,6 +104,10 @@ std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
       auto v = value();
       if (!v || !absl::SimpleAtoi(*v, &o.samples) || o.samples < 100) return std::nullopt;
       samples_given = true;
+    } else if (arg == "--threads") {
+      auto v = value();
+      if (!v || !absl::SimpleAtoi(*v, &o.threads) || o.threads < 1 || o.threads > 256)
+        return std::nullopt;
     } else if (std::optional<bool> peer_flag = ParseOpen3dFlag(arg, value, o.peer)) {
       if (!*peer_flag) return std::nullopt;
     } else {
@@ -296,6 +303,7 @@ std::vector<Row> RunCloud(const BenchOptions& o, const fs::path& file, bool run_
     if (kind == "smooth") {
       SmoothSurfaceOptions smooth;
       smooth.fit_options.output_grid = file_grid;
+      smooth.fit_options.threads = o.threads;
       absl::StatusOr<TriangleMesh> m = SmoothSurface(grid, cloud->points, smooth);
       r.surface_s = Now() - t;
       if (!m.ok()) {
@@ -382,11 +390,11 @@ int Main(int argc, char** argv) {
   std::printf("bench_surface%s: %s, %ld online CPUs, load average %s\n", o.quick ? " --quick" : "",
               date, sysconf(_SC_NPROCESSORS_ONLN), LoadAverage().c_str());
   std::printf("formula-(1) voxel size, default shrink, relaxation on (threshold 13), one "
-              "thread; surfaces on the 11-bit grid of the .drc output, encode = Draco 11 bits, "
+              "thread (the smooth surface's fit: %d); surfaces on the 11-bit grid of the .drc output, encode = Draco 11 bits, "
               "level 7; checks and distances on the decoded file, distances on %lld "
               "area-uniform samples per mesh, %% of the reference mesh's bounding-box diagonal; "
               "shared dir %s\n",
-              static_cast<long long>(o.samples), o.shared_dir.c_str());
+              o.threads, static_cast<long long>(o.samples), o.shared_dir.c_str());
 
   const fs::path clouds = fs::path(o.shared_dir) / "data" / "clouds";
   std::error_code ec;
@@ -456,9 +464,10 @@ int Main(int argc, char** argv) {
     std::fflush(stdout);
   }
 
-  std::printf("\n== summary (seconds wall, one thread; distances %% of the reference diagonal; "
-              "r+s+e< = relax + surface + encode < shrink; =memb? = shells and genus of the mesh "
-              "equal the relaxed membrane's)\n");
+  std::printf("\n== summary (seconds wall, one thread, the smooth fit %d; distances %% of the "
+              "reference diagonal; r+s+e< = relax + surface + encode < shrink; =memb? = shells and "
+              "genus of the mesh equal the relaxed membrane's)\n",
+              o.threads);
   PrintHeader();
   for (const Row& r : all) PrintRow(r);
   if (std::any_of(all.begin(), all.end(), [](const Row& r) { return r.kind == "open3d"; })) {

@@ -138,5 +138,33 @@ TEST_F(ReconstructTest, TooCoarseAGridGivesALosslessFileAndSaysSo) {
   EXPECT_TRUE(Flag(*file, "closed"));
 }
 
+TEST_F(ReconstructTest, ThreadsGiveTheSameFile) {
+  // The fit's slabs and the check's cells are shared among the threads: the output file must
+  // not depend on how many there are.
+  const std::string cloud = dir_.File("torus.ply");
+  ASSERT_EQ(Run({"synth", "torus", "-o", cloud, "--points", "20000"}).exit_code, 0);
+  std::vector<std::string> files;
+  for (const char* threads : {"1", "3"}) {
+    const std::string mesh = dir_.File(std::string("torus-") + threads + ".drc");
+    const CliResult r = Run({"reconstruct", cloud, "-o", mesh, "--local", "--threads", threads});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    files.push_back(ReadWholeFile(mesh));
+  }
+  ASSERT_FALSE(files[0].empty());
+  EXPECT_TRUE(files[0] == files[1]) << "the .drc files differ";
+}
+
+TEST_F(ReconstructTest, ThreadsOutOfRangeOrWithoutLocalAreRefused) {
+  const std::string cloud = dir_.File("sphere.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "2000"}).exit_code, 0);
+  const std::string mesh = dir_.File("sphere.ply.out.ply");
+  const CliResult many = Run({"reconstruct", cloud, "-o", mesh, "--local", "--threads", "300"});
+  EXPECT_EQ(many.exit_code, 3);
+  EXPECT_THAT(many.err, HasSubstr("--threads"));
+  const CliResult remote = Run({"reconstruct", cloud, "-o", mesh, "--threads", "2"});
+  EXPECT_EQ(remote.exit_code, 2);
+  EXPECT_THAT(remote.err, HasSubstr("--local"));
+}
+
 }  // namespace
 }  // namespace membrane::testing

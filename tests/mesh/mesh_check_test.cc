@@ -1,7 +1,10 @@
 #include "core/mesh/mesh_check.h"
 
+#include <algorithm>
+
 #include <iostream>
 
+#include "core/mesh/self_intersection.h"
 #include "gtest/gtest.h"
 #include "tests/mesh/mesh_builders.h"
 
@@ -74,6 +77,31 @@ TEST(MeshCheck, CancelStopsTheSelfIntersectionSearchEarly) {
   const MeshReport cancelled = CheckMesh(both, [&polls] { return ++polls >= 1; });
   EXPECT_GE(polls, 1);
   EXPECT_LT(cancelled.self_intersections, full.self_intersections);
+}
+
+TEST(MeshCheck, SearchFindsTheSamePairsOnAnyThreadCount) {
+  // Two tori crossing along a ring, and a third touching the second: the cells are shared out
+  // among the threads, and the pairs must come back the same, each once, in order.
+  TriangleMesh a = TorusMesh(200, 100, 1.0f, 0.3f);
+  TriangleMesh b = TorusMesh(200, 100, 1.0f, 0.3f);
+  TriangleMesh c = TorusMesh(60, 30, 0.5f, 0.2f);
+  for (auto& v : b.vertices) v[0] += 0.3f;
+  for (auto& v : c.vertices) v[2] += 0.5f;
+  const TriangleMesh all = Concat(Concat(a, b), c);
+  const auto one = FindIntersectingFaces(all, nullptr, 1);
+  ASSERT_GT(one.size(), 100u);
+  EXPECT_TRUE(std::is_sorted(one.begin(), one.end()));
+  EXPECT_TRUE(std::adjacent_find(one.begin(), one.end()) == one.end());
+  for (int threads : {2, 3, 7}) {
+    EXPECT_EQ(FindIntersectingFaces(all, nullptr, threads), one) << threads << " threads";
+    EXPECT_EQ(CheckMesh(all, nullptr, threads).self_intersections,
+              static_cast<int64_t>(one.size()));
+  }
+  // The search around a few marked faces, the fit's, splits the same way.
+  std::vector<char> dirty(all.faces.size(), 0);
+  for (size_t f = 0; f < dirty.size(); f += 97) dirty[f] = 1;
+  const auto near_one = FindIntersectingFacesNear(all, dirty, 1);
+  EXPECT_EQ(FindIntersectingFacesNear(all, dirty, 4), near_one);
 }
 
 TEST(MeshCheck, CountsTouchingShellsAsIntersecting) {

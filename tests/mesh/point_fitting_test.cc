@@ -165,6 +165,55 @@ TEST(PointFitting, StopsWhenCancelled) {
   EXPECT_EQ(r.self_intersections, 0);
 }
 
+TEST(PointFitting, MeshIsTheSameForAnyThreadCount) {
+  // The slabs of a phase are independent, so the result must not depend on how many run side
+  // by side: bit for bit, on a sphere with its points and on a torus without (umbrella steps).
+  const SphereCase s;
+  struct Case {
+    VoxelGrid grid;
+    std::vector<Point3f> points;
+  };
+  const Case cases[] = {{s.grid, s.points}, {SolidTorusGrid(48, 14.0, 5.0), {}}};
+  for (const Case& c : cases) {
+    std::vector<TriangleMesh> meshes;
+    std::vector<FitStats> stats;
+    for (int threads : {1, 2, 3, 8}) {
+      SmoothSurfaceOptions options;
+      options.fit_options.threads = threads;
+      SmoothSurfaceStats st;
+      absl::StatusOr<TriangleMesh> m = SmoothSurface(c.grid, c.points, options, &st);
+      ASSERT_TRUE(m.ok()) << m.status();
+      meshes.push_back(*std::move(m));
+      stats.push_back(st.fit);
+    }
+    ASSERT_GT(stats[0].moves, 100);
+    for (size_t i = 1; i < meshes.size(); ++i) {
+      EXPECT_EQ(meshes[i].faces, meshes[0].faces);
+      EXPECT_TRUE(meshes[i].vertices == meshes[0].vertices) << "run " << i;
+      EXPECT_EQ(stats[i].moves, stats[0].moves);
+      EXPECT_EQ(stats[i].refused, stats[0].refused);
+      EXPECT_EQ(stats[i].plane_targets, stats[0].plane_targets);
+    }
+    ExpectValidSurface(meshes.back(), 1, {c.points.empty() ? 1 : 0});
+  }
+}
+
+TEST(PointFitting, StopsWhenCancelledMidwayOnSeveralThreads) {
+  // A ball of about 20k vertices, cancelled at the sixth poll, inside a phase while slabs are
+  // fitted side by side: every move is undone and the mesh is its clean input again.
+  UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(BallGrid(72, 32.3));
+  ASSERT_GT(nets.mesh.vertices.size(), 15000u);
+  const TriangleMesh input = nets.mesh;
+  FitOptions options;
+  options.threads = 4;
+  int polls = 0;  // called on the calling thread only
+  const absl::StatusOr<FitStats> stats =
+      FitToPoints(nets.mesh, 1.0, {}, options, [&polls] { return ++polls >= 6; });
+  EXPECT_EQ(stats.status().code(), absl::StatusCode::kCancelled);
+  EXPECT_GE(polls, 6);
+  EXPECT_TRUE(nets.mesh.vertices == input.vertices);
+}
+
 // Its speed is measured in tests/bench; here, that a 150k-point ball gives a clean surface.
 TEST(PointFitting, SmoothSurfaceOfA200CubedBallWith150kPointsIsClean) {
   const double l = 1.0, radius = 92;

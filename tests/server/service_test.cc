@@ -76,6 +76,24 @@ TEST_F(ServiceTest, QuantizedMeshDecodesFreeOfCrossings) {
       << json;
 }
 
+// A job's fit and check may use several threads (--job-threads); the mesh is the same.
+TEST_F(ServiceTest, JobThreadsGiveTheSameMesh) {
+  const std::string upload = DracoCloud("torus", 20000);
+  std::vector<std::string> meshes;
+  for (int threads : {1, 3}) {
+    options_.job_threads = threads;
+    StartServer();
+    const CallResult r = Reconstruct(upload, {});
+    ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+    ASSERT_EQ(r.FinalState(), v1::SUCCEEDED);
+    meshes.push_back(r.Mesh());
+    server_->Shutdown(absl::ZeroDuration());
+    server_.reset();
+  }
+  ASSERT_FALSE(meshes[0].empty());
+  EXPECT_TRUE(meshes[0] == meshes[1]) << "the meshes differ";
+}
+
 TEST_F(ServiceTest, ResultCarriesTheStatisticsJson) {
   StartServer();
   const CallResult r = Reconstruct(DracoCloud("sphere", 5000), {});

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test: the Release suite, then the engine,
 # synth, io, mesh and in-process server suites again under AddressSanitizer and
-# UndefinedBehaviorSanitizer, then the libFuzzer smoke of the readers (clang).
+# UndefinedBehaviorSanitizer, the thread tests of the mesh suite under ThreadSanitizer, then
+# the libFuzzer smoke of the readers (clang).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS="${JOBS:-$(nproc)}"
@@ -30,6 +31,17 @@ cmake --build build-asan -j "$JOBS" --target test_engine test_shrink test_real_s
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$JOBS" --timeout 1800
 phase_done "ASan/UBSan build and suites"
+
+echo "== ThreadSanitizer: the threaded surface fit and crossing search"
+# Only the mesh suite's thread tests: the fit's slabs and the search's cells run side by side,
+# and their independence is what keeps the mesh the same for any thread count.
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DMEMBRANE_TSAN=ON -DMEMBRANE_BENCH=OFF \
+  -DMEMBRANE_TEST_DIRS="mesh" >/dev/null
+cmake --build build-tsan -j "$JOBS" --target test_mesh
+TSAN_OPTIONS=halt_on_error=1 ctest --test-dir build-tsan --output-on-failure -j "$JOBS" \
+  -R 'ParallelTasks|AnyThreadCount|CancelledMidwayOnSeveralThreads'
+phase_done "ThreadSanitizer build and thread tests"
 
 echo "== libFuzzer smoke of the point cloud readers (clang, ASan/UBSan)"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \

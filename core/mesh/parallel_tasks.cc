@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -21,7 +22,15 @@ void RunTasks(int threads, int64_t tasks, absl::FunctionRef<void(int worker, int
   };
   std::vector<std::thread> started;
   started.reserve(workers - 1);
-  for (int w = 1; w < workers; ++w) started.emplace_back(work, w);
+  for (int w = 1; w < workers; ++w) {
+    // A process out of threads (RLIMIT_NPROC, memory) gets fewer workers, not a crash: the
+    // workers that exist take every task.
+    try {
+      started.emplace_back(work, w);
+    } catch (const std::system_error&) {
+      break;
+    }
+  }
   work(0);
   for (std::thread& t : started) t.join();
 }

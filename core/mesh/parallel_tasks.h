@@ -15,7 +15,8 @@ namespace membrane {
 // which task is not fixed: `task` must write only what task t owns (plus per-worker scratch
 // indexed by `worker`, which is < max(threads, 1)), and a caller that wants the same result
 // for any thread count must make it independent of that assignment. threads <= 1 runs every
-// task on the calling thread, in order.
+// task on the calling thread, in order. When the system refuses a thread, the call goes on
+// with the workers it has.
 void RunTasks(int threads, int64_t tasks, absl::FunctionRef<void(int worker, int64_t task)> task);
 
 }  // namespace membrane

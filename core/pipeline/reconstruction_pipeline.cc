@@ -171,6 +171,7 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
   report.points = static_cast<int64_t>(cloud.points.size());
   report.schedule = PlateScheduleName(options.shrink.schedule);
   report.surface = SurfaceKindName(options.surface);
+  report.threads = options.threads;
 
   absl::StatusOr<Voxelization> voxelization = VoxelizeCloud(options, cloud, report, observer);
   if (!voxelization.ok()) return voxelization.status();

@@ -47,6 +47,7 @@ struct ReconstructionReport {
   std::string schedule;                      // "halving" or "linear"
   std::string surface;                       // "smooth" or "cuberille"
   bool relaxed = false;                      // false with --no-relax
+  int threads = 1;                           // ReconstructionOptions::threads
   int planned_generations = 0;               // plate sizes of the schedule, known before shrinking
   std::vector<GenerationStats> generations;  // one per plate size, the last has plate size 1
   PostProcessStats post_process;

@@ -103,6 +103,7 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"seconds\": ", SecondsJson(r.seconds), ",\n  \"peak_rss_bytes\": ", r.peak_rss_bytes,
       ",\n  \"data_grid\": ", IntArray(r.data_grid), ",\n  \"schedule\": ", JsonString(r.schedule),
       ",\n  \"surface\": ", JsonString(r.surface), ",\n  \"relaxed\": ", JsonBool(r.relaxed),
+      ",\n  \"threads\": ", r.threads,
       ",\n  \"post_process\": ", PostProcessJson(r.post_process),
       ",\n  \"handle_retry\": ", HandleRetryJson(r.handle_retry),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),

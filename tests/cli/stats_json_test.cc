@@ -121,5 +121,12 @@ TEST(StatsJsonTest, NoRelaxLeavesRelaxationOut) {
   EXPECT_TRUE(s.Find("mesh")->Find("closed")->boolean);
 }
 
+TEST(StatsJsonTest, ThreadsSaysHowManyRan) {
+  const ScratchDir dir;
+  const JsonValue s = SphereStats(dir, {"--threads", "3"});
+  ASSERT_NE(s.Find("threads"), nullptr);
+  EXPECT_EQ(s.Find("threads")->number, 3);
+}
+
 }  // namespace
 }  // namespace membrane::testing

@@ -13,6 +13,7 @@
 #include "core/engine/voxelization.h"
 #include "core/io/draco_codec.h"
 #include "core/pipeline/peak_memory.h"
+#include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/stats_json.h"
 #include "core/pipeline/stopwatch.h"
 #include "server/decode_subprocess.h"
@@ -73,7 +74,12 @@ class Reservation {
 
 }  // namespace
 
-void JobRunner::Run(const std::shared_ptr<Job>& job) const {
+int JobThreads(const ServerOptions& options, int running_jobs) {
+  if (options.job_threads > 0) return options.job_threads;
+  return std::clamp(options.cores / std::max(running_jobs, 1), 1, kMaxReconstructionThreads);
+}
+
+void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   if (!job->Start()) return;  // cancelled while queued
   LogEvent("job_started", {{"job", job->id()}, {"peer", job->peer()}});
   const Stopwatch total;
@@ -125,7 +131,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job) const {
     mesh = std::move(encoded->bytes);
     return absl::OkStatus();
   };
-  settings->reconstruction.threads = options_.job_threads;
+  settings->reconstruction.threads = threads;
   absl::StatusOr<ReconstructionResult> result = ReconstructCloud(
       *cloud, settings->reconstruction, job->cancel_token(), observer, encode);
   if (!result.ok()) return fail(WithParameterHint(result.status()));

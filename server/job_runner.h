@@ -12,6 +12,11 @@
 
 namespace membrane::server {
 
+// The threads of a job that starts while `running_jobs` jobs run (itself included): the
+// fixed options.job_threads, or with 0, options.cores divided among the running jobs (at least
+// 1). The mesh does not depend on it, so an idle server can give a lone job every core.
+int JobThreads(const ServerOptions& options, int running_jobs);
+
 class JobRunner {
  public:
   // `options` and `memory` (not owned) must outlive the runner.
@@ -23,7 +28,8 @@ class JobRunner {
   // can end with: InvalidArgument (bad parameters, an upload the decoder rejects or dies on,
   // a degenerate cloud), ResourceExhausted (points, voxels or memory over the server's
   // limits), Cancelled (with the reason given to Job::RequestCancel), Internal.
-  void Run(const std::shared_ptr<Job>& job) const;
+  // `threads` is the job's ReconstructionOptions::threads (JobThreads).
+  void Run(const std::shared_ptr<Job>& job, int threads) const;
 
  private:
   const ServerOptions& options_;

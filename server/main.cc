@@ -24,8 +24,8 @@
 ABSL_FLAG(std::string, listen, "127.0.0.1:50051", "address to listen on (HOST:PORT; port 0 = any)");
 ABSL_FLAG(int, workers, 0, "jobs running at once; 0 = the number of cores");
 ABSL_FLAG(int, job_threads, 0,
-          "threads of one job's surface fit and mesh check; 0 = the cores shared among the "
-          "workers (at least 1)");
+          "threads of one job's surface fit and mesh check; 0 = the cores shared among the jobs "
+          "running when it starts (at least 1)");
 ABSL_FLAG(int, queue, 16, "jobs waiting beyond the running ones; more get RESOURCE_EXHAUSTED");
 ABSL_FLAG(int64_t, max_upload_bytes, 512LL << 20, "largest Draco upload, bytes");
 ABSL_FLAG(int64_t, max_points, 50'000'000, "largest decoded cloud, points");
@@ -93,8 +93,8 @@ bool OptionsFromFlags(ServerOptions& o) {
   o.workers = absl::GetFlag(FLAGS_workers);
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (o.workers <= 0) o.workers = cores;
+  o.cores = cores;
   o.job_threads = absl::GetFlag(FLAGS_job_threads);
-  if (o.job_threads == 0) o.job_threads = std::max(1, cores / o.workers);
   if (o.job_threads < 0 || o.job_threads > kMaxReconstructionThreads) {
     std::fprintf(stderr, "membraned: --job-threads %d is not in 0..%d\n", o.job_threads,
                  kMaxReconstructionThreads);

@@ -26,7 +26,9 @@ MembraneServer::MembraneServer(ServerOptions options)
       memory_(options_.memory_budget_bytes),
       runner_(options_, memory_),
       scheduler_(options_.workers, options_.queue,
-                 [this](const std::shared_ptr<Job>& job) { runner_.Run(job); }),
+                 [this](const std::shared_ptr<Job>& job) {
+                   runner_.Run(job, JobThreads(options_, scheduler_.running()));
+                 }),
       service_(options_, store_, scheduler_) {}
 
 MembraneServer::~MembraneServer() { Shutdown(absl::ZeroDuration()); }
@@ -56,7 +58,10 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   LogEvent("server_started", {{"address", address},
                               {"port", absl::StrCat(port)},
                               {"workers", absl::StrCat(options_.workers)},
-                              {"job_threads", absl::StrCat(options_.job_threads)},
+                              {"job_threads", options_.job_threads > 0
+                                                  ? absl::StrCat(options_.job_threads)
+                                                  : absl::StrCat("auto (", options_.cores,
+                                                                 " cores)")},
                               {"queue", absl::StrCat(options_.queue)},
                               {"tls", options_.tls_cert_pem.empty() ? "off" : "on"},
                               {"token", options_.bearer_token.empty() ? "off" : "on"}});

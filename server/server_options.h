@@ -14,7 +14,10 @@ enum class DisconnectPolicy {
 
 struct ServerOptions {
   int workers = 1;                          // jobs running at once
-  int job_threads = 1;                      // threads of one job's surface fit and mesh check
+  // Threads of one job's surface fit and mesh check; 0: the cores shared among the jobs
+  // running when it starts (JobThreads).
+  int job_threads = 1;
+  int cores = 1;                            // this machine's, for job_threads 0
   int queue = 16;                           // jobs waiting beyond those; more: RESOURCE_EXHAUSTED
   int64_t max_upload_bytes = 512 << 20;     // Draco bytes of one upload
   int64_t max_points = 50'000'000;          // points of one decoded cloud

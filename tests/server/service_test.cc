@@ -10,6 +10,7 @@
 #include "core/mesh/mesh_check.h"
 #include "google/rpc/error_details.pb.h"
 #include "google/rpc/status.pb.h"
+#include "server/job_runner.h"
 #include "tests/server/service_fixture.h"
 
 namespace membrane::testing {
@@ -92,6 +93,34 @@ TEST_F(ServiceTest, JobThreadsGiveTheSameMesh) {
   }
   ASSERT_FALSE(meshes[0].empty());
   EXPECT_TRUE(meshes[0] == meshes[1]) << "the meshes differ";
+}
+
+TEST(JobThreadsTest, FixedOrTheCoresSharedAmongTheRunningJobs) {
+  server::ServerOptions o;
+  o.cores = 8;
+  o.job_threads = 3;
+  EXPECT_EQ(server::JobThreads(o, 1), 3);
+  EXPECT_EQ(server::JobThreads(o, 5), 3);
+  o.job_threads = 0;
+  EXPECT_EQ(server::JobThreads(o, 1), 8);
+  EXPECT_EQ(server::JobThreads(o, 2), 4);
+  EXPECT_EQ(server::JobThreads(o, 3), 2);
+  EXPECT_EQ(server::JobThreads(o, 9), 1);
+  EXPECT_EQ(server::JobThreads(o, 0), 8);
+}
+
+// With --job-threads 0 a lone job gets every core; its statistics say how many threads ran.
+TEST_F(ServiceTest, LoneJobGetsEveryCoreWithAutomaticThreads) {
+  options_.job_threads = 0;
+  options_.cores = 3;
+  StartServer();
+  const CallResult r = Reconstruct(DracoCloud("sphere", 5000), {});
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  std::string json;
+  for (const v1::JobEvent& e : r.events) {
+    if (e.has_result()) json = e.result().statistics_json();
+  }
+  EXPECT_NE(json.find("\"threads\": 3"), std::string::npos) << json;
 }
 
 TEST_F(ServiceTest, ResultCarriesTheStatisticsJson) {

@@ -1,6 +1,5 @@
 #include "core/pipeline/reconstruction_pipeline.h"
 
-#include <algorithm>
 #include <functional>
 #include <system_error>
 #include <thread>

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <numeric>
 #include <utility>
 #include <vector>
@@ -177,24 +176,28 @@ struct CornerEntry {
 }  // namespace
 
 std::array<Coord, 4> QuadCornerCoords(const VoxelBoundary::Quad& quad) {
-  const int a = quad.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  // Axis a, then u = a + 1 and v = a + 2 (mod 3) take the two offsets. Spelled out per axis:
+  // Coord's run-time operator[] kept the corners in memory, a quarter of Cuberille's time.
   const auto& offsets = quad.positive ? kPositiveOffsets : kNegativeOffsets;
+  const int lift = quad.positive ? 1 : 0;
+  const Coord s = quad.solid;
   std::array<Coord, 4> corners;
   for (int k = 0; k < 4; ++k) {
-    Coord c = quad.solid;
-    c[a] += quad.positive ? 1 : 0;
-    c[u] += offsets[k][0];
-    c[v] += offsets[k][1];
-    corners[k] = c;
+    const int du = offsets[k][0], dv = offsets[k][1];
+    switch (quad.axis) {
+      case 0: corners[k] = {s.x + lift, s.y + du, s.z + dv}; break;
+      case 1: corners[k] = {s.x + dv, s.y + lift, s.z + du}; break;
+      default: corners[k] = {s.x + du, s.y + dv, s.z + lift}; break;
+    }
   }
   return corners;
 }
 
 int NumFans(int config) { return Table()[config].num_fans; }
 bool IsCornerContact(int config) {
-  return std::popcount(static_cast<unsigned>(config)) == 2 &&
-         ((config & 0x81) == 0x81 || (config & 0x42) == 0x42 || (config & 0x24) == 0x24 ||
-          (config & 0x18) == 0x18);
+  // Exactly two solid octants, opposite through the corner (std::popcount is a library call
+  // on the baseline x86-64 target, 4% of Cuberille).
+  return config == 0x81 || config == 0x42 || config == 0x24 || config == 0x18;
 }
 Vec3d FanCentroid(int config, int fan) { return Table()[config].centroid[fan]; }
 Vec3d FanOutsideDirection(int config, int fan) { return Table()[config].outside_direction[fan]; }

@@ -215,6 +215,9 @@ VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
   const int64_t plane_size = int64_t{grid.dim(0)} * grid.dim(1);
   std::array<std::vector<CornerEntry>, 2> corners = {std::vector<CornerEntry>(plane_size),
                                                      std::vector<CornerEntry>(plane_size)};
+  // The entries of each plane made so far: a new layer resets only those (clearing the whole
+  // plane per layer wrote 8 bytes per voxel of the grid).
+  std::array<std::vector<int64_t>, 2> made;
   absl::flat_hash_map<std::pair<int64_t, int64_t>, int32_t> midpoint_ids;
 
   auto corner_config = [&](const Coord& c) {
@@ -227,8 +230,10 @@ VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
     return config;
   };
   auto corner_entry = [&](const Coord& c) -> CornerEntry {
-    CornerEntry& entry = corners[c.z & 1][c.x + int64_t{grid.dim(0)} * c.y];
+    const int64_t at = c.x + int64_t{grid.dim(0)} * c.y;
+    CornerEntry& entry = corners[c.z & 1][at];
     if (entry.base < 0) {
+      made[c.z & 1].push_back(at);
       const int config = corner_config(c);
       entry.config = static_cast<uint8_t>(config);
       entry.base = static_cast<int32_t>(out.fan_vertices.size());
@@ -242,7 +247,8 @@ VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
   const auto& dims = grid.dims();
   for (int z = 1; z < dims[2] - 1; ++z) {
     // Lattice layer z + 1 is new; its plane held layer z - 1, which no later quad touches.
-    std::fill(corners[(z + 1) & 1].begin(), corners[(z + 1) & 1].end(), CornerEntry{});
+    for (int64_t at : made[(z + 1) & 1]) corners[(z + 1) & 1][at] = CornerEntry{};
+    made[(z + 1) & 1].clear();
     for (int y = 1; y < dims[1] - 1; ++y)
       for (int x = 1; x < dims[0] - 1; ++x) {
         const int64_t i = grid.Index(x, y, z);

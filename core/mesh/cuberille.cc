@@ -30,6 +30,7 @@ class CuberilleBuilder {
  public:
   explicit CuberilleBuilder(const VoxelBoundary& b) : b_(b) {
     positions_.reserve(b.num_vertices());
+    triangles_.reserve(2 * b.quads.size());  // plain quads; split ones add a few more
     for (const auto& v : b.fan_vertices) {
       Vec3d p = ToVec(v.corner);
       if (NumFans(v.config) > 1 && !IsCornerContact(v.config))
@@ -126,6 +127,7 @@ class CuberilleBuilder {
   // lattice units to model units.
   TriangleMesh Compact(const VoxelGrid& grid) {
     TriangleMesh mesh;
+    mesh.vertices.reserve(positions_.size());
     std::vector<int32_t> remap(positions_.size(), -1);
     const double l = grid.voxel_size();
     const auto& o = grid.origin();

@@ -8,6 +8,7 @@
 #include "core/mesh/smooth_surface.h"
 #include "core/mesh/surface_nets.h"
 #include "gtest/gtest.h"
+#include "tests/mesh/mesh_builders.h"
 #include "tests/mesh/surface_expectations.h"
 #include "tests/mesh/test_grids.h"
 
@@ -196,6 +197,25 @@ TEST(PointFitting, MeshIsTheSameForAnyThreadCount) {
     }
     ExpectValidSurface(meshes.back(), 1, {c.points.empty() ? 1 : 0});
   }
+}
+
+TEST(PointFitting, FacesLongerThanASlabFitAsOneSlabOnAnyThreadCount) {
+  // A coarse torus whose faces span many 4-voxel slabs at this voxel size: the slabs would not
+  // be independent, so the fit takes the whole mesh as one slab, and threads change nothing.
+  std::vector<TriangleMesh> meshes;
+  for (int threads : {1, 4}) {
+    TriangleMesh m = TorusMesh(24, 12, 1.0f, 0.35f);
+    FitOptions options;
+    options.threads = threads;
+    const absl::StatusOr<FitStats> stats = FitToPoints(m, 0.02, {}, options);
+    ASSERT_TRUE(stats.ok()) << stats.status();
+    EXPECT_GT(stats->moves, 0);
+    meshes.push_back(std::move(m));
+  }
+  EXPECT_TRUE(meshes[0].vertices == meshes[1].vertices);
+  const MeshReport r = CheckMesh(meshes[1]);
+  EXPECT_TRUE(r.closed && r.manifold && r.oriented) << MeshReportToJson(r);
+  EXPECT_EQ(r.self_intersections, 0);
 }
 
 TEST(PointFitting, StopsWhenCancelledMidwayOnSeveralThreads) {

@@ -3,9 +3,13 @@
 #ifndef MEMBRANE_CORE_MESH_PARALLEL_TASKS_H_
 #define MEMBRANE_CORE_MESH_PARALLEL_TASKS_H_
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <vector>
 
 #include "absl/functional/function_ref.h"
+#include "core/mesh/cancel_fn.h"
 
 namespace membrane {
 
@@ -18,6 +22,31 @@ namespace membrane {
 // task on the calling thread, in order. When the system refuses a thread, the call goes on
 // with the workers it has.
 void RunTasks(int threads, int64_t tasks, absl::FunctionRef<void(int worker, int64_t task)> task);
+
+// Cancellation inside RunTasks: the caller's `cancel` is called from worker 0 (the calling
+// thread) only, so callbacks need not be thread-safe, and every worker sees the answer through
+// a shared flag. `cancel` must outlive this object.
+class TaskCancel {
+ public:
+  TaskCancel(const CancelFn& cancel, int threads, int period)
+      : cancel_(cancel), period_(period), since_poll_(std::max(threads, 1), 0) {}
+  // Counts one unit of `worker`'s work; every `period` units, worker 0 asks `cancel`. True
+  // once it has fired.
+  bool Poll(int worker) {
+    if (++since_poll_[worker] == period_) {
+      since_poll_[worker] = 0;
+      if (worker == 0 && Cancelled(cancel_)) fired_.store(true, std::memory_order_relaxed);
+    }
+    return fired();
+  }
+  bool fired() const { return fired_.load(std::memory_order_relaxed); }
+
+ private:
+  const CancelFn& cancel_;
+  const int period_;
+  std::vector<int> since_poll_;  // per worker
+  std::atomic<bool> fired_{false};
+};
 
 }  // namespace membrane
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -165,17 +164,12 @@ class Fitter {
     if (count <= 0) return true;
     std::vector<SlabWork> work(count);
     for (SlabWork& w : work) w.clock = clock_;
-    std::atomic<bool> stop{false};
-    std::vector<int> since_poll(std::max(options_.threads, 1), 0);  // per worker
+    TaskCancel stop(cancel, options_.threads, kCancelPollVertices);
     RunTasks(options_.threads, count, [&](int worker, int64_t task) {
       const int32_t s = parity + 2 * static_cast<int32_t>(task);
       SlabWork& w = work[task];
       for (int32_t i = slab_start_[s]; i < slab_start_[s + 1]; ++i) {
-        if (++since_poll[worker] == kCancelPollVertices) {
-          since_poll[worker] = 0;
-          if (worker == 0 && Cancelled(cancel)) stop.store(true, std::memory_order_relaxed);
-          if (stop.load(std::memory_order_relaxed)) return;
-        }
+        if (stop.Poll(worker)) return;
         const int32_t v = slab_vertices_[i];
         // The weights change between the first round and the others; after that a vertex
         // whose target was already reached, and around which nothing moved since, would
@@ -191,7 +185,7 @@ class Fitter {
       stats.refused += w.stats.refused;
       moved_.insert(moved_.end(), w.moved.begin(), w.moved.end());
     }
-    return !stop.load() && !Cancelled(cancel);
+    return !stop.fired() && !Cancelled(cancel);
   }
 
   bool Settled(int32_t v) const {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <optional>
@@ -220,19 +219,13 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
   }
   std::vector<std::vector<std::pair<int32_t, int32_t>>> found(runs);
   std::vector<std::vector<Member>> scratch(workers);
-  std::atomic<bool> stop{false};
+  constexpr int kCellsPerPoll = 4096;
+  TaskCancel stop(cancel, workers, kCellsPerPoll);
   RunTasks(workers, runs, [&](int worker, int64_t run) {
     std::vector<Member>& members = scratch[worker];
     std::vector<std::pair<int32_t, int32_t>>& out = found[run];
-    // The caller's cancel callback is only ever called from the calling thread.
-    constexpr int kCellsPerPoll = 4096;
-    int cells_since_poll = 0;
     for (size_t begin = run_start[run]; begin < run_start[run + 1];) {
-      if (++cells_since_poll == kCellsPerPoll) {
-        cells_since_poll = 0;
-        if (worker == 0 && Cancelled(cancel)) stop.store(true, std::memory_order_relaxed);
-        if (stop.load(std::memory_order_relaxed)) break;
-      }
+      if (stop.Poll(worker)) break;
       size_t end = begin + 1;
       while (end < cells.size() && cells.key(end) == cells.key(begin)) ++end;
       const CellCoord c = cells.Decode(cells.key(begin));

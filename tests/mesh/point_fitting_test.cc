@@ -219,8 +219,9 @@ TEST(PointFitting, FacesLongerThanASlabFitAsOneSlabOnAnyThreadCount) {
 }
 
 TEST(PointFitting, StopsWhenCancelledMidwayOnSeveralThreads) {
-  // A ball of about 20k vertices, cancelled at the sixth poll, inside a phase while slabs are
-  // fitted side by side: every move is undone and the mesh is its clean input again.
+  // A ball of about 20k vertices fitted on 4 threads, cancelled at the sixth poll (between
+  // phases or inside one, where the calling thread polls every 4096 vertices): every move is
+  // undone and the mesh is its clean input again.
   UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(BallGrid(72, 32.3));
   ASSERT_GT(nets.mesh.vertices.size(), 15000u);
   const TriangleMesh input = nets.mesh;

@@ -98,7 +98,8 @@ bool SingleFan(const std::vector<std::pair<int32_t, int32_t>>& link, std::vector
 
 }  // namespace
 
-MeshReport CheckMesh(const TriangleMesh& mesh, const CancelFn& cancel, int threads) {
+MeshReport CheckMesh(const TriangleMesh& mesh, const CancelFn& cancel, int threads,
+                     const std::vector<std::pair<int32_t, int32_t>>* known_crossings) {
   MeshReport r;
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int64_t nf = static_cast<int64_t>(mesh.faces.size());
@@ -235,7 +236,10 @@ MeshReport CheckMesh(const TriangleMesh& mesh, const CancelFn& cancel, int threa
     const int64_t chi = shell_v[s] - shell_e[s] + shell_f[s];
     r.genus.push_back(shell_good[s] && chi % 2 == 0 ? static_cast<int>((2 - chi) / 2) : -1);
   }
-  r.self_intersections = static_cast<int64_t>(FindIntersectingFaces(mesh, cancel, threads).size());
+  r.self_intersections =
+      static_cast<int64_t>(known_crossings != nullptr
+                               ? known_crossings->size()
+                               : FindIntersectingFaces(mesh, cancel, threads).size());
   return r;
 }
 

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/geometry/triangle_mesh.h"
@@ -50,8 +51,11 @@ struct MeshReport {
 // for self-intersections (about a second for 1M faces). `cancel` is polled during the
 // self-intersection search; once it fires the search stops early and the report is
 // incomplete (the caller, having cancelled, discards it). `threads` (<= 1: the calling thread
-// alone) share that search; the report does not depend on it.
-MeshReport CheckMesh(const TriangleMesh& mesh, const CancelFn& cancel = nullptr, int threads = 1);
+// alone) share that search; the report does not depend on it. `known_crossings`, if not null,
+// must be FindIntersectingFaces(mesh) as found by whoever searched this very mesh last (the
+// smooth surface's fit: FitStats::crossings): the check counts it instead of searching again.
+MeshReport CheckMesh(const TriangleMesh& mesh, const CancelFn& cancel = nullptr, int threads = 1,
+                     const std::vector<std::pair<int32_t, int32_t>>* known_crossings = nullptr);
 
 // The report as one JSON object with snake_case keys ("closed", "manifold", "oriented",
 // "shells", "genus": [...], ...), for `membrane check --json` and the statistics JSON.

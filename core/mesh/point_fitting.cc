@@ -330,14 +330,22 @@ class Fitter {
   // their start too. One search after all rounds instead of one per move: a linear pass rather
   // than a grid query per vertex, with the same guarantee; crossings are rare (tens of pairs
   // per 300k faces), so backing off whole moves loses little.
+  //
+  // Each search covers every pair with a face around a vertex changed since the last one, and
+  // the pairs that last one found: so after each search `pairs` lists every crossing of the
+  // mesh once the first search covered it all. Without the carried pairs a crossing whose
+  // vertices cannot move (the input's, found beside crossings of moves) would drop out of the
+  // search unrepaired.
   void Verify(bool search_all, FitStats& stats) {
     if (moved_.empty() && !search_all) return;
     std::vector<int32_t> changed = moved_;
+    std::vector<std::pair<int32_t, int32_t>> pairs;
     for (bool first = true;; first = false) {
       std::fill(dirty_.begin(), dirty_.end(), first && search_all ? 1 : 0);
       for (int32_t v : changed)
         for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) dirty_[star_[i]] = 1;
-      const auto pairs = FindIntersectingFacesNear(mesh_, dirty_, options_.threads);
+      for (const auto& [a, b] : pairs) dirty_[a] = dirty_[b] = 1;
+      pairs = FindIntersectingFacesNear(mesh_, dirty_, options_.threads);
       if (pairs.empty()) break;
       changed.clear();
       for (const auto& [a, b] : pairs)
@@ -379,6 +387,10 @@ class Fitter {
     }
     for (int32_t v : moved_) in_round_[v] = 0;
     moved_.clear();
+    if (search_all) {
+      stats.crossings_known = true;
+      stats.crossings = std::move(pairs);
+    }
   }
 
   bool IsMoved(int32_t v) const { return in_round_[v] != 0; }

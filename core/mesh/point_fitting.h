@@ -6,6 +6,7 @@
 #define MEMBRANE_CORE_MESH_POINT_FITTING_H_
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -45,6 +46,12 @@ struct FitStats {
   int64_t refused = 0;            // targets not taken even at 1/4 of the way
   int64_t backed_off = 0;         // moves kept at 1/2 or 1/4 of the way
   int64_t repaired_vertices = 0;  // vertex moves toward the fallback (input crossings)
+  // True when the final search started from every face (a fallback or a quantizing grid):
+  // `crossings` is then every pair of faces of the returned mesh that intersect, as
+  // FindIntersectingFaces() lists them (sorted, as (lower, higher) face index), so a mesh
+  // check need not search again. Empty otherwise.
+  bool crossings_known = false;
+  std::vector<std::pair<int32_t, int32_t>> crossings;
 };
 
 // Input: `mesh` as SurfaceNets() makes it (closed, manifold, outward, no self-intersections),

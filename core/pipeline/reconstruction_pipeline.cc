@@ -77,35 +77,37 @@ absl::Status RelaxMembrane(const CancelToken& cancel, VoxelGrid& grid,
   return absl::OkStatus();
 }
 
-absl::StatusOr<TriangleMesh> Surface(const ReconstructionOptions& options,
+absl::StatusOr<BuiltSurface> Surface(const ReconstructionOptions& options,
                                      const CancelToken& cancel, const VoxelGrid& grid,
                                      const PointCloud& cloud, const PositionGrid& output_grid,
                                      ReconstructionReport& report,
                                      ReconstructionObserver& observer) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kSurface, report);
-  absl::StatusOr<TriangleMesh> mesh =
+  absl::StatusOr<BuiltSurface> built =
       BuildSurface(grid, cloud, options.surface, output_grid, &cancel, options.threads);
-  if (!mesh.ok()) return mesh.status();
+  if (!built.ok()) return built.status();
   report.quantization.bits = output_grid.bits;
   report.quantization.step = output_grid.step();
   // A second build (see MeshDelivery) adds to the first.
   report.seconds.surface += watch.Seconds();
   // Known now; the check repeats them with the rest of its findings.
-  report.mesh.vertices = static_cast<int64_t>(mesh->vertices.size());
-  report.mesh.faces = static_cast<int64_t>(mesh->faces.size());
+  report.mesh.vertices = static_cast<int64_t>(built->mesh.vertices.size());
+  report.mesh.faces = static_cast<int64_t>(built->mesh.faces.size());
   observer.StageFinished(PipelineStage::kSurface, report.seconds.surface, report);
-  return mesh;
+  return built;
 }
 
-// Checks `mesh` into `report` while `deliver` (if any) runs on the calling thread: the check
+// Checks `surface` into `report` while `deliver` (if any) runs on the calling thread: the check
 // has its own thread, so that the delivery, which encodes, allocates from the calling thread's
 // malloc arena, whose pages earlier stages have already faulted in (a fresh arena made Draco's
 // encode twice as slow, most of it in page faults). The check's search gets all `threads`:
 // the encode is the shorter of the two (0.03 s against 0.1 s of search on fandisk-variable),
 // and leaving it a core of its own made the whole run slower (wall 0.366 -> 0.336 s with all
-// threads, 2 cores).
-absl::Status CheckAndDeliver(const TriangleMesh& mesh, const PositionGrid& grid, int threads,
+// threads, 2 cores). Crossings the surface step already searched for are taken, not searched
+// again: the smooth surface's fit ends with a search of the whole mesh on its final positions,
+// and repeating it was most of the check (0.071 -> 0.020 s on fandisk-variable, 2 threads).
+absl::Status CheckAndDeliver(const BuiltSurface& surface, const PositionGrid& grid, int threads,
                              const CancelToken& cancel, const MeshDelivery& deliver,
                              ReconstructionReport& report, ReconstructionObserver& observer) {
   observer.StageStarted(PipelineStage::kCheck, report);
@@ -113,7 +115,8 @@ absl::Status CheckAndDeliver(const TriangleMesh& mesh, const PositionGrid& grid,
   double seconds = 0;
   auto check = [&] {
     const Stopwatch watch;
-    checked = CheckMesh(mesh, [&cancel] { return cancel.cancelled(); }, threads);
+    checked = CheckMesh(surface.mesh, [&cancel] { return cancel.cancelled(); }, threads,
+                        surface.crossings ? &*surface.crossings : nullptr);
     seconds = watch.Seconds();
   };
   absl::Status delivered;
@@ -126,7 +129,7 @@ absl::Status CheckAndDeliver(const TriangleMesh& mesh, const PositionGrid& grid,
     } catch (const std::system_error&) {
     }
     const Stopwatch watch;
-    delivered = deliver(mesh, grid);
+    delivered = deliver(surface.mesh, grid);
     deliver_seconds = watch.Seconds();
     if (checker.joinable()) {
       checker.join();
@@ -188,7 +191,7 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
 
   report.quantization.requested_bits = options.output_quantization_bits;
   PositionGrid output_grid = OutputGrid(grid, options.output_quantization_bits);
-  absl::StatusOr<TriangleMesh> mesh;
+  absl::StatusOr<BuiltSurface> mesh;
   for (;;) {
     mesh = Surface(options, cancel, grid, cloud, output_grid, report, observer);
     if (!mesh.ok()) return mesh.status();
@@ -204,7 +207,7 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
   }
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kCheck); !s.ok()) return s;
 
-  result.mesh = *std::move(mesh);
+  result.mesh = std::move(mesh->mesh);
   report.seconds.total = total.Seconds();
   report.peak_rss_bytes = PeakRssBytes();
   return result;

@@ -1,5 +1,7 @@
 #include "core/pipeline/surface_builder.h"
 
+#include <utility>
+
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "core/mesh/cancel_fn.h"
@@ -19,20 +21,27 @@ const char* SurfaceKindName(SurfaceKind kind) {
   return kind == SurfaceKind::kSmooth ? "smooth" : "cuberille";
 }
 
-absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
+absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken* cancel, int threads) {
+  BuiltSurface built;
   if (kind == SurfaceKind::kCuberille) {
-    TriangleMesh mesh = Cuberille(membrane);
-    for (Point3f& p : mesh.vertices) p = grid.Snap(p);
-    return mesh;
+    built.mesh = Cuberille(membrane);
+    for (Point3f& p : built.mesh.vertices) p = grid.Snap(p);
+    return built;
   }
   // The fit writes every position on the grid itself.
   const CancelFn cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
   SmoothSurfaceOptions options;
   options.fit_options.output_grid = grid;
   options.fit_options.threads = threads;
-  return SmoothSurface(membrane, cloud.points, options, nullptr, cancelled);
+  SmoothSurfaceStats stats;
+  absl::StatusOr<TriangleMesh> mesh =
+      SmoothSurface(membrane, cloud.points, options, &stats, cancelled);
+  if (!mesh.ok()) return mesh.status();
+  built.mesh = *std::move(mesh);
+  if (stats.fit.crossings_known) built.crossings = std::move(stats.fit.crossings);
+  return built;
 }
 
 

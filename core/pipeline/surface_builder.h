@@ -3,6 +3,11 @@
 #ifndef MEMBRANE_CORE_PIPELINE_SURFACE_BUILDER_H_
 #define MEMBRANE_CORE_PIPELINE_SURFACE_BUILDER_H_
 
+#include <cstdint>
+#include <optional>
+#include <utility>
+#include <vector>
+
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "core/engine/cancel_token.h"
@@ -25,6 +30,15 @@ absl::StatusOr<SurfaceKind> ParseSurfaceKind(absl::string_view name);
 // The --surface name of `kind`.
 const char* SurfaceKindName(SurfaceKind kind);
 
+// A surface, and what building it found out about it on the way.
+struct BuiltSurface {
+  TriangleMesh mesh;
+  // Every pair of faces of `mesh` that intersect (as FindIntersectingFaces lists them), when
+  // the build searched all of the mesh on exactly these positions: the smooth surface's fit
+  // does. nullopt otherwise (cuberille): a mesh check must search.
+  std::optional<std::vector<std::pair<int32_t, int32_t>>> crossings;
+};
+
 // The closed, manifold, outward surface of `membrane` (a final DMS, its outer layer outside),
 // vertices in model units on `grid` (OutputGrid's; lossless: float32); `cloud` is what the
 // smooth surface is fitted to (SmoothSurface of core/mesh with its default options, fitting on
@@ -32,7 +46,7 @@ const char* SurfaceKindName(SurfaceKind kind);
 // faces: the caller's mesh check tells. Cancelled when `cancel` (may be null) fires during the
 // smooth surface. `threads` (<= 1: the calling thread) share the smooth surface's fit; the
 // mesh does not depend on it.
-absl::StatusOr<TriangleMesh> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
+absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken* cancel, int threads = 1);
 

@@ -147,6 +147,25 @@ TEST(PointFitting, RepairsInputCrossingsTowardTheFallback) {
   EXPECT_TRUE(r.closed && r.manifold && r.oriented) << MeshReportToJson(r);
   EXPECT_EQ(r.self_intersections, 0);
   EXPECT_EQ(r.degenerate_faces, 0);
+  EXPECT_TRUE(stats->crossings_known);
+  EXPECT_TRUE(stats->crossings.empty());
+}
+
+TEST(PointFitting, ListsTheCrossingsThatAGridTooCoarseLeaves) {
+  // On a 4-bit grid (a step of about 1.1 voxels) no repair keeps every face apart: the fit's
+  // list of what still crosses is what a mesh check relies on, so it must be exactly what a
+  // search of the whole mesh finds; and with nothing left to repair, an empty list.
+  for (int bits : {4, 16}) {
+    UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(BallGrid(16, 5.3));
+    FitOptions options;
+    options.output_grid = GridOverBox(bits, {0, 0, 0}, {16, 16, 16}, 1e-6);
+    const absl::StatusOr<FitStats> stats =
+        FitToPoints(nets.mesh, 1.0, {}, options, nullptr, &nets.fallback);
+    ASSERT_TRUE(stats.ok()) << stats.status();
+    EXPECT_TRUE(stats->crossings_known);
+    EXPECT_EQ(stats->crossings, FindIntersectingFaces(nets.mesh)) << bits << " bits";
+    EXPECT_EQ(stats->crossings.empty(), bits == 16) << bits << " bits";
+  }
 }
 
 TEST(PointFitting, RejectsNonPositiveVoxelSize) {

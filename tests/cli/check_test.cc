@@ -7,7 +7,7 @@
 #include "gtest/gtest.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/json_value.h"
-#include "tests/cli/scratch_dir.h"
+#include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
 namespace {

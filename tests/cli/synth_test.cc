@@ -6,7 +6,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/cli/cli_runner.h"
-#include "tests/cli/scratch_dir.h"
+#include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
 namespace {

@@ -10,6 +10,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/io/io_test_util.h"
+#include "tests/support/scratch_dir.h"
 
 namespace membrane {
 namespace {
@@ -29,12 +30,13 @@ std::string BinaryPlyHeader(const std::string& vertex_count) {
 }
 
 TEST(HostileInput, TruncatedBinaryPlyNamesFileAndByteOffset) {
+  const ScratchDir scratch;
   const std::string header = BinaryPlyHeader("100");
   std::string ply = header;
   for (int i = 0; i < 100; ++i)
     ply += LittleEndianFloat(i) + LittleEndianFloat(i) + LittleEndianFloat(i);
   ply.resize(header.size() + 57 * 12 + 7);  // vertex 57 is cut after 7 of its 12 bytes
-  const std::string path = ScratchDir() + "/truncated.ply";
+  const std::string path = scratch.path() + "/truncated.ply";
   WriteTestFile(path, ply);
   absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
   EXPECT_EQ(cloud.status().code(), kInvalid);
@@ -110,7 +112,8 @@ TEST(HostileInput, NanAndInfinitePointsAreCountedInTheMessage) {
 }
 
 TEST(HostileInput, EmptyFileIsInvalidArgumentForEveryFormat) {
-  const std::string dir = ScratchDir();
+  const ScratchDir scratch;
+  const std::string dir = scratch.path();
   for (const char* extension : {".ply", ".obj", ".xyz", ".pts", ".pcd", ".drc"}) {
     const std::string path = dir + "/empty" + extension;
     WriteTestFile(path, "");
@@ -131,21 +134,24 @@ TEST(HostileInput, UnknownExtensionListsTheSupportedOnes) {
 }
 
 TEST(HostileInput, MissingFileIsNotFoundNamingThePath) {
-  const std::string path = ScratchDir() + "/does_not_exist.ply";
+  const ScratchDir scratch;
+  const std::string path = scratch.path() + "/does_not_exist.ply";
   absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kNotFound);
   EXPECT_THAT(cloud.status().ToString(), HasSubstr(path));
-  EXPECT_EQ(ReadMesh(ScratchDir() + "/gone.obj").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(ReadMesh(scratch.path() + "/gone.obj").status().code(), absl::StatusCode::kNotFound);
 }
 
 TEST(HostileInput, DirectoryNamedLikeACloudIsInvalidArgument) {
-  const std::string path = ScratchDir() + "/folder.ply";
+  const ScratchDir scratch;
+  const std::string path = scratch.path() + "/folder.ply";
   std::filesystem::create_directory(path);
   EXPECT_EQ(ReadPointCloud(path).status().code(), kInvalid);
 }
 
 TEST(HostileInput, GarbageBytesAsDrcAreInvalidArgument) {
-  const std::string path = ScratchDir() + "/garbage.drc";
+  const ScratchDir scratch;
+  const std::string path = scratch.path() + "/garbage.drc";
   std::string garbage;
   for (int i = 0; i < 4096; ++i) garbage.push_back(static_cast<char>((i * 7919) >> 3));
   WriteTestFile(path, garbage);

@@ -5,11 +5,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 
-#include "absl/strings/str_cat.h"
 #include "gtest/gtest.h"
 
 namespace membrane::testing {
@@ -26,16 +24,6 @@ std::string Bytes(T value, bool big_endian) {
 }
 
 }  // namespace
-
-std::string ScratchDir() {
-  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) /
-      absl::StrCat("membrane_io_", info->test_suite_name(), "_", info->name());
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
-}
 
 void WriteTestFile(const std::string& path, absl::string_view bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);

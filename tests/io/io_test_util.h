@@ -12,9 +12,6 @@
 
 namespace membrane::testing {
 
-// A fresh empty directory under the gtest temp dir, unique to the running test.
-std::string ScratchDir();
-
 // Writes `bytes` to `path`, failing the test on error.
 void WriteTestFile(const std::string& path, absl::string_view bytes);
 

@@ -6,6 +6,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/io/io_test_util.h"
+#include "tests/support/scratch_dir.h"
 
 namespace membrane {
 namespace {
@@ -22,8 +23,9 @@ using ::testing::UnorderedElementsAreArray;
 class PointCloudRoundTrip : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(PointCloudRoundTrip, LosslessFormatsReadBackExactlyInOrder) {
+  const ScratchDir scratch;
   const PointCloud cloud = SampleCloud(1000);
-  const std::string path = ScratchDir() + "/cloud" + GetParam();
+  const std::string path = scratch.path() + "/cloud" + GetParam();
   ASSERT_TRUE(WritePointCloud(cloud, path, {.position_quantization_bits = 0}).ok());
   absl::StatusOr<PointCloud> read = ReadPointCloud(path);
   ASSERT_TRUE(read.ok()) << read.status();
@@ -39,8 +41,9 @@ INSTANTIATE_TEST_SUITE_P(EveryPointCloudWriter, PointCloudRoundTrip,
                          [](const auto& info) { return info.param.substr(1); });
 
 TEST(PointCloudRoundTrip, QuantizedDracoFileIsWithinTheGridStep) {
+  const ScratchDir scratch;
   const PointCloud cloud = SampleCloud(300, 1.0f);
-  const std::string path = ScratchDir() + "/q.drc";
+  const std::string path = scratch.path() + "/q.drc";
   ASSERT_TRUE(WritePointCloud(cloud, path, {.position_quantization_bits = 14}).ok());
   absl::StatusOr<PointCloud> read = ReadPointCloud(path);
   ASSERT_TRUE(read.ok()) << read.status();
@@ -52,8 +55,9 @@ TEST(PointCloudRoundTrip, QuantizedDracoFileIsWithinTheGridStep) {
 class MeshRoundTrip : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(MeshRoundTrip, TrianglesReadBackWithTheirOrientation) {
+  const ScratchDir scratch;
   for (const TriangleMesh& mesh : {Octahedron(), SphereMesh(8, 12)}) {
-    const std::string path = ScratchDir() + "/mesh" + GetParam();
+    const std::string path = scratch.path() + "/mesh" + GetParam();
     ASSERT_TRUE(WriteMesh(mesh, path, {.position_quantization_bits = 0}).ok());
     absl::StatusOr<TriangleMesh> read = ReadMesh(path);
     ASSERT_TRUE(read.ok()) << read.status();
@@ -67,9 +71,10 @@ INSTANTIATE_TEST_SUITE_P(EveryMeshWriter, MeshRoundTrip,
                          [](const auto& info) { return info.param.substr(1); });
 
 TEST(MeshRoundTrip, PlyAndObjKeepVertexAndFaceOrderExactly) {
+  const ScratchDir scratch;
   const TriangleMesh mesh = SphereMesh(5, 7);
   for (const char* extension : {".ply", ".obj"}) {
-    const std::string path = ScratchDir() + "/ordered" + extension;
+    const std::string path = scratch.path() + "/ordered" + extension;
     ASSERT_TRUE(WriteMesh(mesh, path).ok());
     absl::StatusOr<TriangleMesh> read = ReadMesh(path);
     ASSERT_TRUE(read.ok()) << read.status();
@@ -79,15 +84,17 @@ TEST(MeshRoundTrip, PlyAndObjKeepVertexAndFaceOrderExactly) {
 }
 
 TEST(MeshRoundTrip, WritingDanglingFaceIndicesFails) {
+  const ScratchDir scratch;
   TriangleMesh mesh = Octahedron();
   mesh.faces[3][1] = 6;
-  const absl::Status status = WriteMesh(mesh, ScratchDir() + "/bad.ply");
+  const absl::Status status = WriteMesh(mesh, scratch.path() + "/bad.ply");
   EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
 }
 
 TEST(MeshRoundTrip, PointCloudFileOfAWrittenMeshGivesItsVertices) {
+  const ScratchDir scratch;
   const TriangleMesh mesh = Octahedron();
-  const std::string path = ScratchDir() + "/as_cloud.ply";
+  const std::string path = scratch.path() + "/as_cloud.ply";
   ASSERT_TRUE(WriteMesh(mesh, path).ok());
   absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
   ASSERT_TRUE(cloud.ok()) << cloud.status();

@@ -1,5 +1,6 @@
 // The real scans and reference meshes in ../shared/data: they read whole. Skipped when
 // the directory is absent (CI).
+#include "tests/support/scratch_dir.h"
 #include "tests/support/shared_data.h"
 
 #include <algorithm>
@@ -58,12 +59,12 @@ TEST(SharedDataReading, ScanSurvivesDracoRoundTripThroughAFile) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
   absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
   ASSERT_TRUE(cloud.ok()) << cloud.status();
-  const std::string out = ::testing::TempDir() + "/membrane_io_spot_scan.drc";
+  const testing::ScratchDir scratch;
+  const std::string out = scratch.File("spot_scan.drc");
   ASSERT_TRUE(WritePointCloud(*cloud, out, {.position_quantization_bits = 0}).ok());
   absl::StatusOr<PointCloud> back = ReadPointCloud(out);
   ASSERT_TRUE(back.ok()) << back.status();
   EXPECT_EQ(back->points.size(), cloud->points.size());
-  std::filesystem::remove(out);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/io/io_test_util.h"
+#include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
 namespace {
@@ -12,7 +13,8 @@ namespace {
 using ::testing::HasSubstr;
 
 TEST(TokenFileTest, FirstLineWithoutSurroundingWhitespace) {
-  const std::string path = ScratchDir() + "/token";
+  const ScratchDir scratch;
+  const std::string path = scratch.path() + "/token";
   WriteTestFile(path, "  s3cr3t-TOKEN_1\t\r\nsecond line ignored\n");
   absl::StatusOr<std::string> token = ReadTokenFile(path);
   ASSERT_TRUE(token.ok()) << token.status();
@@ -20,7 +22,8 @@ TEST(TokenFileTest, FirstLineWithoutSurroundingWhitespace) {
 }
 
 TEST(TokenFileTest, EmptyOrBlankFirstLineIsRefused) {
-  const std::string path = ScratchDir() + "/token";
+  const ScratchDir scratch;
+  const std::string path = scratch.path() + "/token";
   WriteTestFile(path, " \nnot-the-first-line\n");
   absl::StatusOr<std::string> token = ReadTokenFile(path);
   EXPECT_EQ(token.status().code(), absl::StatusCode::kInvalidArgument);
@@ -28,7 +31,8 @@ TEST(TokenFileTest, EmptyOrBlankFirstLineIsRefused) {
 }
 
 TEST(TokenFileTest, InnerSpaceOrControlByteIsRefused) {
-  const std::string dir = ScratchDir();
+  const ScratchDir scratch;
+  const std::string dir = scratch.path();
   WriteTestFile(dir + "/space", "two words\n");
   WriteTestFile(dir + "/control", std::string("a\x01" "b\n"));
   WriteTestFile(dir + "/utf8", "caf\xc3\xa9\n");
@@ -40,7 +44,8 @@ TEST(TokenFileTest, InnerSpaceOrControlByteIsRefused) {
 }
 
 TEST(TokenFileTest, MissingFileIsInvalidArgumentNamingIt) {
-  const std::string path = ScratchDir() + "/absent";
+  const ScratchDir scratch;
+  const std::string path = scratch.path() + "/absent";
   absl::StatusOr<std::string> token = ReadTokenFile(path);
   EXPECT_EQ(token.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(std::string(token.status().message()), HasSubstr(path));

@@ -13,7 +13,7 @@
 #include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
 #include "tests/cli/cli_runner.h"
-#include "tests/cli/scratch_dir.h"
+#include "tests/support/scratch_dir.h"
 #include "tests/server/subprocess.h"
 #include "tests/support/shared_data.h"
 

@@ -1,6 +1,6 @@
 // A fresh temporary directory per test, removed with everything in it at the end.
-#ifndef MEMBRANE_TESTS_CLI_SCRATCH_DIR_H_
-#define MEMBRANE_TESTS_CLI_SCRATCH_DIR_H_
+#ifndef MEMBRANE_TESTS_SUPPORT_SCRATCH_DIR_H_
+#define MEMBRANE_TESTS_SUPPORT_SCRATCH_DIR_H_
 
 #include <string>
 
@@ -25,4 +25,4 @@ class ScratchDir {
 
 }  // namespace membrane::testing
 
-#endif  // MEMBRANE_TESTS_CLI_SCRATCH_DIR_H_
+#endif  // MEMBRANE_TESTS_SUPPORT_SCRATCH_DIR_H_

@@ -1,4 +1,4 @@
-#include "tests/cli/scratch_dir.h"
+#include "tests/support/scratch_dir.h"
 
 #include <stdlib.h>
 
@@ -13,7 +13,7 @@ namespace membrane::testing {
 ScratchDir::ScratchDir() {
   const char* tmp = std::getenv("TMPDIR");
   std::string pattern =
-      std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/membrane_cli_test_XXXXXX";
+      std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/membrane_test_XXXXXX";
   std::vector<char> buffer(pattern.begin(), pattern.end());
   buffer.push_back('\0');
   if (mkdtemp(buffer.data()) == nullptr) {

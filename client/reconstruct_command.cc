@@ -1,12 +1,10 @@
 #include "client/reconstruct_command.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
-#include <thread>
 
 #include "CLI/CLI.hpp"
 #include "absl/status/status.h"
@@ -27,6 +25,7 @@
 #include "core/io/file_bytes.h"
 #include "core/io/file_format.h"
 #include "core/pipeline/stats_json.h"
+#include "core/pipeline/thread_limits.h"
 
 namespace membrane::client {
 namespace {
@@ -141,10 +140,7 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   p.options.shrink.schedule = *schedule;
   p.options.relax = !f.no_relax;
   p.options.surface = *surface;
-  p.options.threads = f.threads > 0 ? static_cast<int>(f.threads)
-                                    : static_cast<int>(std::clamp<unsigned>(
-                                          std::thread::hardware_concurrency(), 1,
-                                          kMaxReconstructionThreads));
+  p.options.threads = f.threads > 0 ? static_cast<int>(f.threads) : MachineThreads();
   p.draco.position_quantization_bits = static_cast<int>(f.quantization);
   p.draco.compression_level = static_cast<int>(f.compression_level);
   // Only .drc quantizes; the surface is then built and checked on the file's grid.

@@ -7,7 +7,6 @@
 #include <climits>
 #include <cstdio>
 #include <string>
-#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -18,6 +17,7 @@
 #include "core/io/file_bytes.h"
 #include "core/io/token_file.h"
 #include "core/pipeline/reconstruction_pipeline.h"
+#include "core/pipeline/thread_limits.h"
 #include "server/membrane_server.h"
 #include "server/server_options.h"
 
@@ -91,7 +91,7 @@ bool ReadSecrets(ServerOptions& o) {
 // The options from the flags; an error line and false when a value is out of range.
 bool OptionsFromFlags(ServerOptions& o) {
   o.workers = absl::GetFlag(FLAGS_workers);
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int cores = MachineThreads();
   if (o.workers <= 0) o.workers = cores;
   o.cores = cores;
   o.job_threads = absl::GetFlag(FLAGS_job_threads);

@@ -16,6 +16,7 @@
 #include "core/pipeline/reconstruction_observer.h"
 #include "core/pipeline/reconstruction_report.h"
 #include "core/pipeline/surface_builder.h"
+#include "core/pipeline/thread_limits.h"
 
 namespace membrane {
 
@@ -32,8 +33,6 @@ struct ReconstructionOptions {
   // the other stages use the calling thread. The mesh is the same for any value.
   int threads = 1;
 };
-
-inline constexpr int kMaxReconstructionThreads = 256;
 
 struct ReconstructionResult {
   TriangleMesh mesh;  // model units, outward faces

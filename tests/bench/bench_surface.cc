@@ -36,6 +36,7 @@
 #include "core/mesh/output_grid.h"
 #include "core/mesh/relaxation.h"
 #include "core/mesh/smooth_surface.h"
+#include "core/pipeline/thread_limits.h"
 #include "tests/bench/bench_util.h"
 #include "tests/bench/open3d_mesh_peer.h"
 #include "tests/bench/open3d_peer.h"
@@ -106,7 +107,8 @@ std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
       samples_given = true;
     } else if (arg == "--threads") {
       auto v = value();
-      if (!v || !absl::SimpleAtoi(*v, &o.threads) || o.threads < 1 || o.threads > 256)
+      if (!v || !absl::SimpleAtoi(*v, &o.threads) || o.threads < 1 ||
+          o.threads > kMaxReconstructionThreads)
         return std::nullopt;
     } else if (std::optional<bool> peer_flag = ParseOpen3dFlag(arg, value, o.peer)) {
       if (!*peer_flag) return std::nullopt;

@@ -101,12 +101,13 @@ absl::StatusOr<BuiltSurface> Surface(const ReconstructionOptions& options,
 // Checks `surface` into `report` while `deliver` (if any) runs on the calling thread: the check
 // has its own thread, so that the delivery, which encodes, allocates from the calling thread's
 // malloc arena, whose pages earlier stages have already faulted in (a fresh arena made Draco's
-// encode twice as slow, most of it in page faults). The check's search gets all `threads`:
-// the encode is the shorter of the two (0.03 s against 0.1 s of search on fandisk-variable),
-// and leaving it a core of its own made the whole run slower (wall 0.366 -> 0.336 s with all
-// threads, 2 cores). Crossings the surface step already searched for are taken, not searched
-// again: the smooth surface's fit ends with a search of the whole mesh on its final positions,
-// and repeating it was most of the check (0.071 -> 0.020 s on fandisk-variable, 2 threads).
+// encode twice as slow, most of it in page faults).
+// Crossings the surface step already searched for are taken, not searched again: the smooth
+// surface's fit ends with a search of the whole mesh on its final positions, and repeating it
+// was most of the check (0.071 -> 0.020 s on fandisk-variable, 2 threads). Where the check
+// does search (cuberille), the search gets all `threads`: it is longer than the encode (0.1 s
+// against 0.03 s on a mesh of fandisk-variable's size), and leaving the encode a core of its
+// own made the whole run slower (wall 0.366 -> 0.336 s with all threads, 2 cores).
 absl::Status CheckAndDeliver(const BuiltSurface& surface, const PositionGrid& grid, int threads,
                              const CancelToken& cancel, const MeshDelivery& deliver,
                              ReconstructionReport& report, ReconstructionObserver& observer) {
@@ -191,12 +192,12 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
 
   report.quantization.requested_bits = options.output_quantization_bits;
   PositionGrid output_grid = OutputGrid(grid, options.output_quantization_bits);
-  absl::StatusOr<BuiltSurface> mesh;
+  absl::StatusOr<BuiltSurface> surface;
   for (;;) {
-    mesh = Surface(options, cancel, grid, cloud, output_grid, report, observer);
-    if (!mesh.ok()) return mesh.status();
+    surface = Surface(options, cancel, grid, cloud, output_grid, report, observer);
+    if (!surface.ok()) return surface.status();
     if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
-    if (absl::Status s = CheckAndDeliver(*mesh, output_grid, options.threads, cancel, deliver,
+    if (absl::Status s = CheckAndDeliver(*surface, output_grid, options.threads, cancel, deliver,
                                          report, observer);
         !s.ok())
       return s;
@@ -207,7 +208,7 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
   }
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kCheck); !s.ok()) return s;
 
-  result.mesh = std::move(mesh->mesh);
+  result.mesh = std::move(surface->mesh);
   report.seconds.total = total.Seconds();
   report.peak_rss_bytes = PeakRssBytes();
   return result;

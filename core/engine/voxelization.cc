@@ -40,8 +40,11 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points) {
         "all %d points are equal (%g, %g, %g): a point bounds no solid", points.size(),
         box.min[0], box.min[1], box.min[2]));
   }
-  // Coplanar: the covariance matrix is singular. Compare its determinant with the cube of its
-  // mean eigenvalue, so the test does not depend on the model's scale.
+  // Coplanar (or collinear): the covariance matrix's smallest eigenvalue is zero next to its
+  // largest. With l1 >= l2 >= l3, det / (sum of the principal 2x2 minors) is about l3 when l3
+  // is small, and the trace about l1, so the test does not depend on the model's scale, nor
+  // on how elongated it is: comparing det with the cube of the mean eigenvalue, as before, also
+  // called a round blob with one stray point far away "coplanar".
   double mean[3] = {0, 0, 0};
   for (const Point3f& p : points)
     for (int d = 0; d < 3; ++d) mean[d] += p[d];
@@ -55,8 +58,10 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points) {
   const double det = c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) -
                      c[0][1] * (c[1][0] * c[2][2] - c[1][2] * c[2][0]) +
                      c[0][2] * (c[1][0] * c[2][1] - c[1][1] * c[2][0]);
-  const double mean_eig = (c[0][0] + c[1][1] + c[2][2]) / 3.0;
-  if (det <= 1e-9 * mean_eig * mean_eig * mean_eig) {
+  const double minors = c[0][0] * c[1][1] - c[0][1] * c[1][0] + c[1][1] * c[2][2] -
+                        c[1][2] * c[2][1] + c[0][0] * c[2][2] - c[0][2] * c[2][0];
+  const double trace = c[0][0] + c[1][1] + c[2][2];
+  if (det <= 1e-9 * minors * trace) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "the %d points are coplanar (or collinear): a plane bounds no solid", points.size()));
   }

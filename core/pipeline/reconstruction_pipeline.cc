@@ -7,6 +7,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "core/engine/plate_schedule.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/relaxation.h"
@@ -96,6 +97,18 @@ absl::StatusOr<BuiltSurface> Surface(const ReconstructionOptions& options,
   report.mesh.faces = static_cast<int64_t>(built->mesh.faces.size());
   observer.StageFinished(PipelineStage::kSurface, report.seconds.surface, report);
   return built;
+}
+
+// Why a cloud gave no surface at all: at this voxel size its points are too few, or too far
+// apart, to hold the membrane (a handful of points, or a stray point far away that stretches
+// the box and so the formula-(1) voxel size). An empty mesh is no answer: say so.
+absl::Status EmptySurfaceError(const ReconstructionReport& report) {
+  return absl::InvalidArgumentError(absl::StrFormat(
+      "no surface: at voxel size %g (a %dx%dx%d grid) the %d points fill only %d voxel%s, too "
+      "few to enclose a solid; give a denser cloud, remove stray points far from the object, "
+      "or ask for a smaller voxel size",
+      report.voxel_size, report.data_grid[0], report.data_grid[1], report.data_grid[2],
+      report.points, report.hard_voxels, report.hard_voxels == 1 ? "" : "s"));
 }
 
 // Checks `surface` into `report` while `deliver` (if any) runs on the calling thread: the check
@@ -197,6 +210,7 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
     surface = Surface(options, cancel, grid, cloud, output_grid, report, observer);
     if (!surface.ok()) return surface.status();
     if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
+    if (surface->mesh.faces.empty()) return EmptySurfaceError(report);
     if (absl::Status s = CheckAndDeliver(*surface, output_grid, options.threads, cancel, deliver,
                                          report, observer);
         !s.ok())

@@ -105,6 +105,22 @@ TEST_F(ErrorsTest, TinyVoxelSizeExceedsTheVoxelBudget) {
   EXPECT_THAT(ErrorLines(r.err).back(), HasSubstr("--voxel-size"));
 }
 
+TEST_F(ErrorsTest, CloudThatEnclosesNoSolidIsInvalidInputAndWritesNothing) {
+  // Four corners of a tetrahedron fall in one voxel at the formula-(1) size, and the membrane
+  // shrinks away: an empty mesh is no answer, in any format.
+  const std::string path = dir_.File("tetrahedron.xyz");
+  std::ofstream(path) << "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  for (const char* out : {"out.ply", "out.drc"}) {
+    const CliResult r = Run({"reconstruct", path, "-o", dir_.File(out), "--local", "--quiet"});
+    EXPECT_EQ(r.exit_code, 3) << out;
+    EXPECT_THAT(ErrorLines(r.err), ElementsAre(AllOf(HasSubstr("tetrahedron.xyz"),
+                                                     HasSubstr("no surface"),
+                                                     HasSubstr("4 points fill only 1 voxel"))))
+        << out;
+    EXPECT_FALSE(std::ifstream(dir_.File(out)).good()) << out << " was written";
+  }
+}
+
 TEST_F(ErrorsTest, QuietLeavesOnlyTheErrorLine) {
   const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"), "--local",
                            "--quiet", "--voxel-size", "1e-6"});

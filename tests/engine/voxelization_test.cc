@@ -91,6 +91,22 @@ TEST(Voxelization, CoplanarPointsAreInvalidArgument) {
   EXPECT_THAT(v.status().message(), HasSubstr("coplanar"));
 }
 
+TEST(Voxelization, ElongatedCloudsAreNotCoplanar) {
+  // A round blob with one stray point 10^5 radii away, and a rod 1000 times longer than it is
+  // wide: their covariances are far from singular, only very unequal.
+  std::vector<Point3f> blob;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (int k = 0; k < 20; ++k) blob.push_back({float(i), float(j), float(k)});
+  blob.push_back({1e6f, 0, 0});
+  EXPECT_TRUE(CheckedBounds(blob).ok()) << CheckedBounds(blob).status();
+  std::vector<Point3f> rod;
+  for (int i = 0; i < 4000; ++i)
+    for (int a = 0; a < 8; ++a)
+      rod.push_back({float(i), float(std::cos(a * 0.785398)), float(std::sin(a * 0.785398))});
+  EXPECT_TRUE(CheckedBounds(rod).ok()) << CheckedBounds(rod).status();
+}
+
 TEST(Voxelization, NanAndInfiniteCoordinatesAreCounted) {
   PointCloud c = Cube8();
   c.points.push_back({std::numeric_limits<float>::quiet_NaN(), 0, 0});

@@ -149,5 +149,14 @@ TEST_F(BadUploadTest, CoplanarCloudIsInvalidArgument) {
   ExpectStatus(encoded->bytes, grpc::StatusCode::INVALID_ARGUMENT, "coplanar");
 }
 
+TEST_F(BadUploadTest, CloudThatEnclosesNoSolidIsInvalidArgument) {
+  PointCloud corners;
+  corners.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(corners, DracoOptions{});
+  ASSERT_TRUE(encoded.ok());
+  ExpectStatus(encoded->bytes, grpc::StatusCode::INVALID_ARGUMENT, "no surface");
+  EXPECT_EQ(Health(), "SERVING");
+}
+
 }  // namespace
 }  // namespace membrane::testing

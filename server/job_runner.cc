@@ -29,9 +29,7 @@ namespace {
 absl::StatusOr<int64_t> PlannedVoxels(const PointCloud& cloud, double voxel_size) {
   absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
   if (!bounds.ok()) return bounds.status();
-  const double l = voxel_size > 0
-                       ? voxel_size
-                       : EstimateVoxelSize(*bounds, static_cast<int64_t>(cloud.points.size()));
+  const double l = voxel_size > 0 ? voxel_size : FormulaVoxelSize(*bounds, cloud.points);
   double voxels = 1;
   for (const double side : bounds->Extent()) {
     voxels *= std::floor(side / l) + 1 + 2 * VoxelGrid::kPadding;

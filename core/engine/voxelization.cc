@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
 
@@ -12,6 +13,17 @@ double EstimateVoxelSize(const Box3d& bounds, int64_t points) {
   const auto e = bounds.Extent();
   const double area2 = 2.0 * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
   return std::sqrt(area2 / static_cast<double>(std::max<int64_t>(points, 1)));
+}
+
+int64_t DistinctPointCount(absl::Span<const Point3f> points) {
+  absl::flat_hash_set<Point3f> seen;
+  seen.reserve(points.size());
+  for (const Point3f& p : points) seen.insert(p);
+  return static_cast<int64_t>(seen.size());
+}
+
+double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points) {
+  return EstimateVoxelSize(bounds, DistinctPointCount(points));
 }
 
 absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points) {
@@ -77,7 +89,7 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
         absl::StrFormat("voxel budget %d must be positive", options.voxel_budget));
   }
   double l = options.voxel_size;
-  if (l == 0.0) l = EstimateVoxelSize(*bounds, static_cast<int64_t>(points.size()));
+  if (l == 0.0) l = FormulaVoxelSize(*bounds, points);
   if (!std::isfinite(l) || l <= 0.0) {
     return absl::InvalidArgumentError(
         absl::StrFormat("voxel size %g must be finite and positive", l));

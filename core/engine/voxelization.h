@@ -41,6 +41,15 @@ struct Voxelization {
 // box `bounds` of `points` points.
 double EstimateVoxelSize(const Box3d& bounds, int64_t points);
 
+// How many different points `points` holds (equal coordinates counted once): formula (1)'s
+// n, since a point given twice samples the surface once (a file concatenated with itself, a
+// scanner repeating its points). Linear expected time, one hash set of the points.
+int64_t DistinctPointCount(absl::Span<const Point3f> points);
+
+// Formula (1) for `points`, whose box is `bounds` (CheckedBounds'): EstimateVoxelSize over
+// their distinct count. What Voxelize uses when no voxel size is given.
+double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points);
+
 // Bounding box of `points`. InvalidArgument when there are no points, when some coordinates
 // are NaN or infinite (with their count), when all points are equal, or when they are
 // coplanar (a plane bounds no solid).

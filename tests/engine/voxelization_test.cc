@@ -24,6 +24,26 @@ TEST(Voxelization, FormulaOneMatchesThePaper) {
   EXPECT_DOUBLE_EQ(EstimateVoxelSize(box, 52), 1.0);
 }
 
+TEST(Voxelization, FormulaOneCountsEachPointOnce) {
+  // A cloud given three times over samples its surface no more densely: the formula-(1) voxel
+  // (and so the grid and the hard voxels) is the one of the cloud given once.
+  std::vector<Point3f> once;
+  for (int i = 0; i < 2000; ++i) {
+    const double t = 0.37 * i, z = 1.0 - 2.0 * (i + 0.5) / 2000;
+    const double r = std::sqrt(1 - z * z);
+    once.push_back({float(r * std::cos(t)), float(r * std::sin(t)), float(z)});
+  }
+  std::vector<Point3f> thrice;
+  for (int copy = 0; copy < 3; ++copy) thrice.insert(thrice.end(), once.begin(), once.end());
+  EXPECT_EQ(DistinctPointCount(thrice), 2000);
+  auto a = Voxelize(once, {});
+  auto b = Voxelize(thrice, {});
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(a->grid.voxel_size(), b->grid.voxel_size());
+  EXPECT_EQ(a->grid.dims(), b->grid.dims());
+  EXPECT_EQ(a->hard_voxels, b->hard_voxels);
+}
+
 TEST(Voxelization, GridHasPaddingAndInitialMembraneOnExteriorFaces) {
   VoxelizeOptions o;
   o.voxel_size = 0.25;

@@ -12,6 +12,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/io/binary_scalar.h"
+#include "core/io/draco_header.h"
 #include "core/io/geometry_checks.h"
 #include "draco/compression/decode.h"
 #include "draco/compression/encode.h"
@@ -24,15 +25,6 @@ namespace {
 constexpr int kMaxQuantizationBits = 30;
 constexpr int kMaxCompressionLevel = 10;
 constexpr absl::string_view kSource = "Draco data";
-
-// Draco 1.5.5 trusts the int32 point count at the start of a point cloud and allocates and
-// loops over that many points before reading any of them: a 20-byte input can ask for 2^31.
-// Scans compress to a few points per byte; only massively duplicated points (measured: 1M
-// copies of one point, 58 bytes) compress far beyond this, and those are useless anyway.
-constexpr uint64_t kMaxDracoPointsPerByte = 1024;
-constexpr size_t kDracoHeaderBytes = 11;  // "DRACO", 2 version bytes, type, method, flags
-constexpr size_t kDracoFlagsOffset = 9;   // uint16, little endian
-constexpr uint16_t kDracoMetadataFlag = 0x8000;
 
 static_assert(sizeof(Point3f) == 3 * sizeof(float), "positions are copied to Draco in bulk");
 
@@ -123,26 +115,6 @@ void Configure(const DracoOptions& options, draco::Encoder* encoder) {
     encoder->SetAttributeQuantization(draco::GeometryAttribute::POSITION,
                                       options.position_quantization_bits);
   }
-}
-
-// InvalidArgument when the point count in the header of a Draco point cloud is impossible
-// for the size of `bytes` (see kMaxDracoPointsPerByte). A count behind metadata cannot be
-// located without decoding the metadata; those inputs are left to Draco's own checks.
-absl::Status CheckDracoPointCount(absl::string_view bytes) {
-  if (bytes.size() < kDracoHeaderBytes + sizeof(int32_t)) return absl::OkStatus();
-  const auto flags = static_cast<uint16_t>(DecodeScalar(
-      bytes.data() + kDracoFlagsOffset, ScalarType::kUint16, ByteOrder::kLittleEndian));
-  if ((flags & kDracoMetadataFlag) != 0) return absl::OkStatus();
-  const auto count = static_cast<int64_t>(
-      DecodeScalar(bytes.data() + kDracoHeaderBytes, ScalarType::kInt32, ByteOrder::kLittleEndian));
-  if (count > 0 && static_cast<uint64_t>(count) > kMaxDracoPointsPerByte * bytes.size()) {
-    return absl::InvalidArgumentError(absl::StrCat("the Draco header declares ", count,
-                                                   " points, more than ", kMaxDracoPointsPerByte,
-                                                   " per byte of its ", bytes.size(),
-                                                   " bytes: the data is corrupt (or its points are "
-                                                   "massively duplicated)"));
-  }
-  return absl::OkStatus();
 }
 
 DracoEncoding Finish(const draco::EncoderBuffer& buffer, const std::vector<Point3f>& positions,

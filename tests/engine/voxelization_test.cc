@@ -127,6 +127,28 @@ TEST(Voxelization, ElongatedCloudsAreNotCoplanar) {
   EXPECT_TRUE(CheckedBounds(rod).ok()) << CheckedBounds(rod).status();
 }
 
+TEST(Voxelization, CoordinatesTooFarForFloatPrecisionAreInvalidArgument) {
+  // A unit sphere of 50k points: at 1e6 from the origin floats are 0.0625 apart, coarser than
+  // its formula-(1) voxel (about 0.02); at 1e3 they are 6e-5 apart.
+  for (const double offset : {1e3, 1e6}) {
+    std::vector<Point3f> sphere;
+    for (int i = 0; i < 50000; ++i) {
+      const double t = 2.399963 * i, z = 1.0 - 2.0 * (i + 0.5) / 50000;
+      const double r = std::sqrt(1 - z * z);
+      sphere.push_back({float(offset + r * std::cos(t)), float(offset + r * std::sin(t)),
+                        float(offset + z)});
+    }
+    auto v = Voxelize(sphere, {});
+    if (offset == 1e3) {
+      EXPECT_TRUE(v.ok()) << v.status();
+    } else {
+      ASSERT_EQ(v.status().code(), absl::StatusCode::kInvalidArgument);
+      EXPECT_THAT(v.status().message(), HasSubstr("float32 positions are 0.0625 apart"));
+      EXPECT_THAT(v.status().message(), HasSubstr("move the cloud near the origin"));
+    }
+  }
+}
+
 TEST(Voxelization, NanAndInfiniteCoordinatesAreCounted) {
   PointCloud c = Cube8();
   c.points.push_back({std::numeric_limits<float>::quiet_NaN(), 0, 0});

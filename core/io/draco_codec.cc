@@ -282,7 +282,7 @@ absl::StatusOr<DecodedDracoCloud> DecodeDracoPointCloud(absl::string_view bytes,
         "the Draco data holds a mesh where a point cloud is required");
   }
   if (*geometry == DracoGeometry::kPointCloud) {
-    absl::Status count = CheckDracoPointCount(bytes);
+    absl::Status count = CheckDracoPointCloudHeader(bytes);
     if (!count.ok()) return count;
   }
   draco::DecoderBuffer buffer;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "absl/strings/escaping.h"
 #include "core/io/draco_codec.h"
 #include "draco/compression/encode.h"
 #include "draco/metadata/geometry_metadata.h"
@@ -69,7 +70,7 @@ size_t CountOffset(const std::string& bytes) {
 TEST(DracoHeader, MetadataWrittenByDracoIsWalkedToThePointCount) {
   for (int speed : {10, 6}) {
     const std::string bytes = PointCloudWithMetadata(speed);
-    EXPECT_TRUE(CheckDracoPointCount(bytes).ok()) << CheckDracoPointCount(bytes);
+    EXPECT_TRUE(CheckDracoPointCloudHeader(bytes).ok()) << CheckDracoPointCloudHeader(bytes);
     absl::StatusOr<DecodedDracoCloud> decoded = DecodeDracoPointCloud(bytes);
     ASSERT_TRUE(decoded.ok()) << decoded.status();
     EXPECT_EQ(decoded->cloud.points.size(), static_cast<size_t>(kPoints));
@@ -77,7 +78,7 @@ TEST(DracoHeader, MetadataWrittenByDracoIsWalkedToThePointCount) {
     std::string lying = bytes;
     const int32_t huge = 1 << 30;
     std::memcpy(&lying[CountOffset(bytes)], &huge, 4);
-    const absl::Status status = CheckDracoPointCount(lying);
+    const absl::Status status = CheckDracoPointCloudHeader(lying);
     EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << speed;
     EXPECT_THAT(status.message(), HasSubstr("declares 1073741824 points"));
     EXPECT_EQ(DecodeDracoPointCloud(lying).status().code(), absl::StatusCode::kInvalidArgument);
@@ -89,9 +90,20 @@ TEST(DracoHeader, FuzzedCountBehindEmptyMetadataIsRefused) {
   // fixed offset; Draco 1.5.5 then allocated 2.4 GB for 151 million points.
   std::string bytes("DRACO\x02\x03\x00\x00\xff\xff\x00\x00\x00\x06\x00\x00\x09", 18);
   bytes += std::string(101, '\xff');
-  const absl::Status status = CheckDracoPointCount(bytes);
+  const absl::Status status = CheckDracoPointCloudHeader(bytes);
   EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(status.message(), HasSubstr("declares 150994950 points"));
+}
+
+TEST(DracoHeader, FuzzedAttributesOutgrowingTheCountAreRefused) {
+  // Found by fuzz_io_drc: 67 bytes declaring 67080 points (within 1024 per byte) whose
+  // attributes take 27 bytes each; Draco 1.5.5 then took 51 s and 19 GB to give up.
+  const std::string bytes = absl::HexStringToBytes(
+      "445241434f02020001000008060100020402010402010401020004030404030405020104010200040304"
+      "04030403020101000901434f02000000000000020402010400");
+  const absl::Status status = CheckDracoPointCloudHeader(bytes);
+  EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(status.message(), HasSubstr("67080 points of 27 bytes each"));
 }
 
 TEST(DracoHeader, MetadataEntryLargerThanTheDataIsRefused) {
@@ -100,14 +112,14 @@ TEST(DracoHeader, MetadataEntryLargerThanTheDataIsRefused) {
   std::string bytes("DRACO\x02\x02\x00\x00\x00\x80", 11);
   bytes += std::string("\x00\x01\x01k\xff\xff\xff\xff\x07", 9);
   bytes += std::string(64, '\x01');
-  const absl::Status status = CheckDracoPointCount(bytes);
+  const absl::Status status = CheckDracoPointCloudHeader(bytes);
   EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(status.message(), HasSubstr("metadata"));
 }
 
 TEST(DracoHeader, DataEndingBeforeTheCountIsLeftToDraco) {
-  EXPECT_TRUE(CheckDracoPointCount(std::string("DRACO\x02\x02\x00\x00\x00\x00\x05", 12)).ok());
-  EXPECT_TRUE(CheckDracoPointCount("DRA").ok());
+  EXPECT_TRUE(CheckDracoPointCloudHeader(std::string("DRACO\x02\x02\x00\x00\x00\x00\x05", 12)).ok());
+  EXPECT_TRUE(CheckDracoPointCloudHeader("DRA").ok());
 }
 
 }  // namespace

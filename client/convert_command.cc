@@ -9,6 +9,7 @@
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
+#include "client/input_cloud.h"
 #include "client/io_errors.h"
 #include "core/io/draco_codec.h"
 #include "core/io/file_bytes.h"
@@ -59,7 +60,8 @@ absl::StatusOr<TriangleMesh> ReadGeometry(const std::string& path, FileFormat fo
   absl::StatusOr<bool> holds_mesh = HoldsMesh(format, *bytes, path);
   if (!holds_mesh.ok()) return holds_mesh.status();
   if (*holds_mesh) return ReadMeshFromBuffer(*bytes, format, path);
-  absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(*bytes, format, path);
+  const CancelToken not_cancelled;
+  absl::StatusOr<PointCloud> cloud = ParseInputCloud(*bytes, format, path, not_cancelled);
   if (!cloud.ok()) return cloud.status();
   TriangleMesh points_only;
   points_only.vertices = std::move(cloud->points);

@@ -5,9 +5,9 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "client/input_cloud.h"
 #include "client/io_errors.h"
 #include "core/io/mesh_io.h"
-#include "core/io/point_cloud_io.h"
 #include "core/pipeline/peak_memory.h"
 #include "core/pipeline/stopwatch.h"
 
@@ -31,7 +31,7 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
   const Stopwatch total;
   const Stopwatch decode;
   progress.Begin(absl::StrCat("decode: reading ", params.input));
-  absl::StatusOr<PointCloud> cloud = ReadPointCloud(params.input);
+  absl::StatusOr<PointCloud> cloud = ReadInputCloud(params.input, cancel);
   if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
   const double decode_seconds = decode.Seconds();
   progress.Finish(absl::StrFormat("decode: %d points in %.3f s", cloud->points.size(),

@@ -18,9 +18,11 @@
 #include "client/convert_command.h"
 #include "client/exit_codes.h"
 #include "client/health_command.h"
+#include "client/input_cloud.h"
 #include "client/jobs_command.h"
 #include "client/reconstruct_command.h"
 #include "client/synth_command.h"
+#include "core/io/decode_helper.h"
 
 namespace membrane::client {
 namespace {
@@ -106,6 +108,10 @@ int main(int argc, char** argv) {
   // hardly contend for one arena.
   // The server keeps glibc's default: its workers allocate in parallel.
   mallopt(M_ARENA_MAX, 1);
+  // Run by ReadInputCloud on itself to decode a Draco file under resource limits.
+  if (argc >= 2 && std::string(argv[1]) == membrane::client::kDecodeHelperFlag) {
+    return membrane::RunDecodeHelper(std::vector<std::string>(argv + 2, argv + argc));
+  }
   // Nothing may escape as an exception: a crash is not one readable line.
   try {
     return membrane::client::Main(argc, argv);

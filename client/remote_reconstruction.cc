@@ -12,11 +12,11 @@
 #include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
 #include "client/backoff.h"
+#include "client/input_cloud.h"
 #include "client/io_errors.h"
 #include "client/rpc_errors.h"
 #include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
-#include "core/io/point_cloud_io.h"
 #include "core/pipeline/stopwatch.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
 #include "proto/crc32c.h"
@@ -82,7 +82,8 @@ absl::StatusOr<std::string> ReadAndEncode(const RemoteParams& params, RemoteOutc
                                           ProgressPrinter& progress) {
   const Stopwatch watch;
   progress.Begin(absl::StrCat("decode: reading ", params.input));
-  absl::StatusOr<PointCloud> cloud = ReadPointCloud(params.input);
+  const CancelToken not_cancelled;  // the job does not exist yet: nothing to cancel
+  absl::StatusOr<PointCloud> cloud = ReadInputCloud(params.input, not_cancelled);
   if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
   absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, params.upload);
   if (!encoded.ok()) {

@@ -11,12 +11,12 @@
 #include "absl/strings/str_format.h"
 #include "core/engine/voxel_grid.h"
 #include "core/engine/voxelization.h"
+#include "core/io/decode_subprocess.h"
 #include "core/io/draco_codec.h"
 #include "core/pipeline/peak_memory.h"
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/stats_json.h"
 #include "core/pipeline/stopwatch.h"
-#include "server/decode_subprocess.h"
 #include "server/job_event_observer.h"
 #include "server/parameter_checks.h"
 #include "server/server_log.h"
@@ -102,8 +102,12 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   ReconstructionReport decode_report;
   const Stopwatch decode_watch;
   observer.StageStarted(PipelineStage::kDecode, decode_report);
-  const DecodeLimits limits{options_.decoder_path, options_.decoder_timeout_seconds,
-                            options_.decoder_memory_bytes, options_.max_points};
+  DecodeLimits limits;
+  limits.helper = {options_.decoder_path};
+  limits.timeout_seconds = options_.decoder_timeout_seconds;
+  limits.memory_bytes = options_.decoder_memory_bytes;
+  limits.max_points = options_.max_points;
+  limits.subject = "the upload";
   absl::StatusOr<PointCloud> cloud =
       DecodeInSubprocess(job->TakeUpload(), limits, job->cancel_token());
   if (!cloud.ok()) return fail(cloud.status());

@@ -1,4 +1,4 @@
-#include "server/decode_subprocess.h"
+#include "core/io/decode_subprocess.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -19,8 +19,9 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/strip.h"
+#include "core/io/decode_helper.h"
 
-namespace membrane::server {
+namespace membrane {
 namespace {
 
 constexpr int kPollMillis = 50;  // how often the timeout and the cancel token are looked at
@@ -62,6 +63,10 @@ std::vector<std::string> HelperEnvironment(int64_t memory_bytes) {
   return env;
 }
 
+std::string HelperName(const DecodeLimits& limits) {
+  return limits.helper.empty() ? std::string("(none given)") : limits.helper.front();
+}
+
 // Pipe ends owned by the parent; closed on destruction.
 struct ChildPipes {
   int to_stdin = -1;
@@ -76,6 +81,7 @@ struct ChildPipes {
 
 // Starts the helper with its limits; fills `pipes`. Returns the child's pid or -1.
 pid_t StartHelper(const DecodeLimits& limits, ChildPipes& pipes) {
+  if (limits.helper.empty()) return -1;
   int in[2], out[2], err[2];
   if (pipe2(in, O_CLOEXEC) != 0) return -1;
   if (pipe2(out, O_CLOEXEC) != 0) {
@@ -88,9 +94,12 @@ pid_t StartHelper(const DecodeLimits& limits, ChildPipes& pipes) {
     return -1;
   }
   // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
-  const std::string max_points = std::to_string(limits.max_points);
-  std::vector<char*> argv = {const_cast<char*>(limits.helper_path.c_str()),
-                             const_cast<char*>(max_points.c_str()), nullptr};
+  std::vector<std::string> args = limits.helper;
+  args.push_back(std::to_string(limits.max_points));
+  if (limits.accept_mesh) args.push_back(kAcceptMeshArgument);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
   const rlim_t cpu = static_cast<rlim_t>(std::ceil(std::max(1.0, limits.timeout_seconds)));
   const rlimit cpu_limit{cpu, cpu + 1};
   const rlimit memory_limit{static_cast<rlim_t>(limits.memory_bytes),
@@ -196,8 +205,8 @@ absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const Dec
   ChildPipes pipes;
   const pid_t pid = StartHelper(limits, pipes);
   if (pid < 0) {
-    return absl::InternalError(
-        absl::StrCat("cannot start the decoder ", limits.helper_path, ": ", strerror(errno)));
+    return absl::InternalError(absl::StrCat("cannot start the decoder ", HelperName(limits), ": ",
+                                            strerror(errno)));
   }
   std::string out, err;
   const Exchange exchange = Communicate(bytes, limits, cancel, pipes, out, err);
@@ -208,28 +217,28 @@ absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const Dec
   if (exchange == Exchange::kCancelled) return absl::CancelledError("cancelled while decoding");
   if (exchange == Exchange::kTimedOut) {
     return absl::InvalidArgumentError(absl::StrFormat(
-        "the upload could not be decoded: the Draco decoder took over %g s",
+        "%s could not be decoded: the Draco decoder took over %g s", limits.subject,
         limits.timeout_seconds));
   }
   if (WIFSIGNALED(wait_status)) {
     const int sig = WTERMSIG(wait_status);
     // SIGXCPU: over RLIMIT_CPU; SIGABRT/SIGSEGV with RLIMIT_AS: usually a failed allocation.
     return absl::InvalidArgumentError(absl::StrFormat(
-        "the upload could not be decoded: the Draco decoder died of signal %d (%s)%s", sig,
-        strsignal(sig), sig == SIGXCPU ? ", out of CPU time" : ""));
+        "%s could not be decoded: the Draco decoder died of signal %d (%s)%s", limits.subject,
+        sig, strsignal(sig), sig == SIGXCPU ? ", out of CPU time" : ""));
   }
   const int code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
   if (code == 127) {
-    return absl::InternalError(absl::StrCat("cannot run the decoder ", limits.helper_path));
+    return absl::InternalError(absl::StrCat("cannot run the decoder ", HelperName(limits)));
   }
-  if (code == 4) {  // membrane-decode's "over --max-points"
+  if (code == kDecodeHelperOverLimit) {
     return absl::ResourceExhaustedError(absl::StripTrailingAsciiWhitespace(err));
   }
   if (code != 0) {
-    return absl::InvalidArgumentError(absl::StrCat(
-        "the upload could not be decoded: ", absl::StripTrailingAsciiWhitespace(err)));
+    return absl::InvalidArgumentError(absl::StrCat(limits.subject, " could not be decoded: ",
+                                                   absl::StripTrailingAsciiWhitespace(err)));
   }
   return ParsePoints(out);
 }
 
-}  // namespace membrane::server
+}  // namespace membrane

@@ -1,0 +1,35 @@
+// Reading the cloud `membrane reconstruct` works on. Draco input is decoded in a child process
+// under resource limits, as membraned decodes uploads: fuzzing found Draco files of 30 to 67
+// bytes that made Debian's Draco 1.5.5 allocate gigabytes (one: 19 GB and 51 s) from counts
+// no header check can see.
+#ifndef MEMBRANE_CLIENT_INPUT_CLOUD_H_
+#define MEMBRANE_CLIENT_INPUT_CLOUD_H_
+
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "core/engine/cancel_token.h"
+#include "core/geometry/point_cloud.h"
+#include "core/io/file_format.h"
+
+namespace membrane::client {
+
+// The first argument that makes `membrane` the decode helper (core/io/decode_helper.h) of
+// another `membrane` process; not a subcommand users see.
+inline constexpr char kDecodeHelperFlag[] = "--decode-helper";
+
+// The points of the cloud file at `path`, as ReadPointCloud reads them, except that a .drc
+// file is decoded by this executable run as its own decode helper, in a child with a 30 s
+// wall and CPU limit and an address-space limit of 1 GiB plus 32 bytes per byte of the file.
+// Where no child can be started (no /proc), the file is decoded in this process. Errors as
+// ReadPointCloud's, and InvalidArgument "PATH could not be decoded: ..." for a child that
+// fails, crashes or runs out of its limits; Cancelled when `cancel` fires.
+absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, const CancelToken& cancel);
+
+// The same for a file already read: `bytes` in `format`, named `path` in messages.
+absl::StatusOr<PointCloud> ParseInputCloud(const std::string& bytes, FileFormat format,
+                                           const std::string& path, const CancelToken& cancel);
+
+}  // namespace membrane::client
+
+#endif  // MEMBRANE_CLIENT_INPUT_CLOUD_H_

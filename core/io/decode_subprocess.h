@@ -1,0 +1,43 @@
+// Decoding untrusted Draco point clouds in a child process. Debian's Draco 1.5.5 decoder has
+// crashes and allocation blowups on crafted input (fuzzing found 30 bytes that make it allocate
+// 2.8 GB from a count inside the coded data); in a child with RLIMIT_AS, RLIMIT_CPU and a
+// wall-clock timeout, such input costs one refused file instead of the server's memory or the
+// user's machine. The child runs RunDecodeHelper (decode_helper.h).
+#ifndef MEMBRANE_CORE_IO_DECODE_SUBPROCESS_H_
+#define MEMBRANE_CORE_IO_DECODE_SUBPROCESS_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "core/engine/cancel_token.h"
+#include "core/geometry/point_cloud.h"
+
+namespace membrane {
+
+struct DecodeLimits {
+  // The helper's command line before the arguments RunDecodeHelper takes: a membrane-decode
+  // binary, or a program that passes its remaining arguments to RunDecodeHelper.
+  std::vector<std::string> helper;
+  double timeout_seconds = 30;       // wall clock; also RLIMIT_CPU (rounded up)
+  int64_t memory_bytes = 4LL << 30;  // RLIMIT_AS of the child
+  int64_t max_points = 50'000'000;   // the helper refuses larger clouds before decoding them
+  bool accept_mesh = false;          // a Draco mesh gives its vertices instead of an error
+  std::string subject = "the data";  // messages say "<subject> could not be decoded: ..."
+};
+
+// The point cloud in Draco `bytes`, decoded by `limits.helper` in a child process (bytes on
+// its stdin, points on its stdout). A Draco mesh is refused unless limits.accept_mesh.
+// Errors: InvalidArgument naming the cause for bytes the helper rejects (not Draco, a mesh,
+// non-finite coordinates, no points); ResourceExhausted for more than max_points;
+// InvalidArgument also for a child that crashes (with the signal), runs out of memory or CPU,
+// or exceeds the timeout; Cancelled when `cancel` fires (the child is killed within 50 ms);
+// Internal when the helper cannot be started or run (exit status 127).
+absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const DecodeLimits& limits,
+                                              const CancelToken& cancel);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_IO_DECODE_SUBPROCESS_H_

@@ -59,9 +59,11 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points);
 // n_d = floor(L_d / l) + 1 voxels (so the largest coordinate falls inside the grid) plus
 // VoxelGrid::kPadding outside layers on every side. Point p lies in voxel
 // floor((p - bounds.min) / l) + kPadding.
-// Errors: InvalidArgument for degenerate points (see CheckedBounds) or a voxel size that is
-// not finite and positive; ResourceExhausted, naming the grid and the budget, when the grid
-// would exceed options.voxel_budget. Nothing is allocated before the budget check.
+// Errors: InvalidArgument for degenerate points (see CheckedBounds), a voxel size that is not
+// finite and positive, or coordinates so far from the origin that float32 positions there are
+// more than a quarter of a voxel apart (naming both); ResourceExhausted, naming the grid and
+// the budget, when the grid would exceed options.voxel_budget. Nothing is allocated before the
+// budget check.
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
                                       const VoxelizeOptions& options);
 

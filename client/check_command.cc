@@ -11,8 +11,8 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
+#include "client/input_files.h"
 #include "client/io_errors.h"
-#include "core/io/mesh_io.h"
 #include "core/mesh/mesh_check.h"
 
 namespace membrane::client {
@@ -53,7 +53,8 @@ absl::Status Verdict(const std::string& path, const MeshReport& r) {
 }
 
 absl::Status RunCheck(const CheckFlags& flags) {
-  absl::StatusOr<TriangleMesh> mesh = ReadMesh(flags.mesh);
+  const CancelToken not_cancelled;
+  absl::StatusOr<TriangleMesh> mesh = ReadInputMesh(flags.mesh, not_cancelled);
   if (!mesh.ok()) return FileErrorAsInvalidInput(mesh.status());
   // A face-less file is a point cloud; calling it "closed" (no edge is open) would mislead.
   if (mesh->faces.empty()) {

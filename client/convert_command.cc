@@ -9,7 +9,7 @@
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
-#include "client/input_cloud.h"
+#include "client/input_files.h"
 #include "client/io_errors.h"
 #include "core/io/draco_codec.h"
 #include "core/io/file_bytes.h"
@@ -59,8 +59,8 @@ absl::StatusOr<TriangleMesh> ReadGeometry(const std::string& path, FileFormat fo
   if (!bytes.ok()) return FileErrorAsInvalidInput(bytes.status());
   absl::StatusOr<bool> holds_mesh = HoldsMesh(format, *bytes, path);
   if (!holds_mesh.ok()) return holds_mesh.status();
-  if (*holds_mesh) return ReadMeshFromBuffer(*bytes, format, path);
   const CancelToken not_cancelled;
+  if (*holds_mesh) return ParseInputMesh(*bytes, format, path, not_cancelled);
   absl::StatusOr<PointCloud> cloud = ParseInputCloud(*bytes, format, path, not_cancelled);
   if (!cloud.ok()) return cloud.status();
   TriangleMesh points_only;

@@ -5,7 +5,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "client/input_cloud.h"
+#include "client/input_files.h"
 #include "client/io_errors.h"
 #include "core/io/mesh_io.h"
 #include "core/pipeline/peak_memory.h"

@@ -18,7 +18,7 @@
 #include "client/convert_command.h"
 #include "client/exit_codes.h"
 #include "client/health_command.h"
-#include "client/input_cloud.h"
+#include "client/input_files.h"
 #include "client/jobs_command.h"
 #include "client/reconstruct_command.h"
 #include "client/synth_command.h"

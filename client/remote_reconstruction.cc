@@ -12,7 +12,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
 #include "client/backoff.h"
-#include "client/input_cloud.h"
+#include "client/input_files.h"
 #include "client/io_errors.h"
 #include "client/rpc_errors.h"
 #include "core/io/file_bytes.h"

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <new>
+#include <utility>
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
@@ -14,6 +15,14 @@ namespace {
 int Reject(const std::string& message, int code = kDecodeHelperRejected) {
   std::fprintf(stderr, "%s\n", message.c_str());
   return code;
+}
+
+// A count as a uint64, then the records, on stdout.
+template <typename T>
+bool WriteRecords(const std::vector<T>& records) {
+  const uint64_t count = records.size();
+  return std::fwrite(&count, sizeof count, 1, stdout) == 1 &&
+         std::fwrite(records.data(), sizeof(T), records.size(), stdout) == records.size();
 }
 
 std::string ReadAll(std::FILE* in) {
@@ -28,36 +37,43 @@ std::string ReadAll(std::FILE* in) {
 
 int RunDecodeHelper(const std::vector<std::string>& args) {
   int64_t max_points = 0;
-  const bool accept_mesh = args.size() == 2 && args[1] == kAcceptMeshArgument;
-  if ((args.size() != 1 && !accept_mesh) || !absl::SimpleAtoi(args[0], &max_points)) {
-    return Reject(absl::StrCat("usage: membrane-decode MAX_POINTS [", kAcceptMeshArgument, "]"));
+  const std::string mode = args.size() == 2 ? args[1] : "";
+  if (args.empty() || args.size() > 2 || !absl::SimpleAtoi(args[0], &max_points) ||
+      (!mode.empty() && mode != kAcceptMeshArgument && mode != kMeshArgument)) {
+    return Reject(absl::StrCat("usage: membrane-decode MAX_POINTS [", kAcceptMeshArgument, " | ",
+                               kMeshArgument, "]"));
   }
   const std::string bytes = ReadAll(stdin);
   if (bytes.empty()) return Reject("the Draco data is empty");
-  absl::StatusOr<DecodedDracoCloud> decoded = absl::InternalError("not decoded");
+  TriangleMesh mesh;  // a cloud is a mesh without faces here
   // Draco allocates what crafted counts ask for; under the parent's RLIMIT_AS that ends in
   // bad_alloc, which deserves a line of its own rather than an abort.
   try {
-    decoded = DecodeDracoPointCloud(
-        bytes, accept_mesh ? DracoMeshPolicy::kAcceptMeshVertices : DracoMeshPolicy::kRejectMesh);
+    if (mode == kMeshArgument) {
+      absl::StatusOr<TriangleMesh> decoded = DecodeDracoMesh(bytes);
+      if (!decoded.ok()) return Reject(std::string(decoded.status().message()));
+      mesh = *std::move(decoded);
+    } else {
+      absl::StatusOr<DecodedDracoCloud> decoded = DecodeDracoPointCloud(
+          bytes, mode == kAcceptMeshArgument ? DracoMeshPolicy::kAcceptMeshVertices
+                                             : DracoMeshPolicy::kRejectMesh);
+      if (!decoded.ok()) return Reject(std::string(decoded.status().message()));
+      if (decoded->cloud.points.empty()) return Reject("the cloud has no points");
+      mesh.vertices = std::move(decoded->cloud.points);
+    }
   } catch (const std::bad_alloc&) {
     return Reject("the Draco decoder asked for more memory than its limit: the data is corrupt");
   }
-  if (!decoded.ok()) return Reject(std::string(decoded.status().message()));
-  const std::vector<Point3f>& points = decoded->cloud.points;
-  if (points.empty()) return Reject("the cloud has no points");
-  if (static_cast<int64_t>(points.size()) > max_points) {
-    return Reject(absl::StrCat("the cloud has ", points.size(), " points, over the limit of ",
-                               max_points, " (--max-points)"),
+  if (static_cast<int64_t>(mesh.vertices.size()) > max_points) {
+    return Reject(absl::StrCat("the ", mode == kMeshArgument ? "mesh" : "cloud", " has ",
+                               mesh.vertices.size(), " points, over the limit of ", max_points,
+                               " (--max-points)"),
                   kDecodeHelperOverLimit);
   }
-  const uint64_t count = points.size();
   // x86-64 and aarch64 are little-endian; the parent reads the same layout.
-  if (std::fwrite(&count, sizeof count, 1, stdout) != 1 ||
-      std::fwrite(points.data(), sizeof(Point3f), points.size(), stdout) != points.size() ||
-      std::fflush(stdout) != 0) {
-    return Reject("cannot write the points");
-  }
+  const bool written =
+      WriteRecords(mesh.vertices) && (mode != kMeshArgument || WriteRecords(mesh.faces));
+  if (!written || std::fflush(stdout) != 0) return Reject("cannot write the result");
   return 0;
 }
 

@@ -14,11 +14,16 @@ inline constexpr int kDecodeHelperRejected = 3;   // not an acceptable cloud; on
 inline constexpr int kDecodeHelperOverLimit = 4;  // more points than MAX_POINTS
 // The argument after MAX_POINTS that makes a Draco mesh give its vertices.
 inline constexpr char kAcceptMeshArgument[] = "--accept-mesh";
+// The argument after MAX_POINTS that decodes a mesh, faces and all.
+inline constexpr char kMeshArgument[] = "--mesh";
 
-// `args`: MAX_POINTS, then optionally kAcceptMeshArgument. Reads all of stdin, decodes it with
-// DecodeDracoPointCloud and writes the point count as a little-endian uint64, then x y z
-// float32 per point, to stdout. Returns the process exit status: 0, or kDecodeHelperRejected
-// (also for bad arguments) or kDecodeHelperOverLimit with one line on stderr naming the problem.
+// `args`: MAX_POINTS, then optionally kAcceptMeshArgument or kMeshArgument. Reads all of stdin
+// and decodes it: with DecodeDracoPointCloud it writes the point count as a little-endian
+// uint64, then x y z float32 per point, to stdout; with kMeshArgument, DecodeDracoMesh, and it
+// writes the vertices so, then the face count and three int32 indices per face. MAX_POINTS
+// bounds the points or the vertices. Returns the process exit status: 0, or
+// kDecodeHelperRejected (also for bad arguments) or kDecodeHelperOverLimit with one line on
+// stderr naming the problem.
 int RunDecodeHelper(const std::vector<std::string>& args);
 
 }  // namespace membrane

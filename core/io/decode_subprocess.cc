@@ -79,8 +79,9 @@ struct ChildPipes {
   }
 };
 
-// Starts the helper with its limits; fills `pipes`. Returns the child's pid or -1.
-pid_t StartHelper(const DecodeLimits& limits, ChildPipes& pipes) {
+// Starts the helper with its limits and `mode` (if any) after MAX_POINTS; fills `pipes`.
+// Returns the child's pid or -1.
+pid_t StartHelper(const DecodeLimits& limits, const std::string& mode, ChildPipes& pipes) {
   if (limits.helper.empty()) return -1;
   int in[2], out[2], err[2];
   if (pipe2(in, O_CLOEXEC) != 0) return -1;
@@ -96,7 +97,7 @@ pid_t StartHelper(const DecodeLimits& limits, ChildPipes& pipes) {
   // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
   std::vector<std::string> args = limits.helper;
   args.push_back(std::to_string(limits.max_points));
-  if (limits.accept_mesh) args.push_back(kAcceptMeshArgument);
+  if (!mode.empty()) args.push_back(mode);
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -183,27 +184,56 @@ Exchange Communicate(absl::string_view bytes, const DecodeLimits& limits,
   return Exchange::kDone;
 }
 
-absl::StatusOr<PointCloud> ParsePoints(const std::string& out) {
-  uint64_t count = 0;
-  if (out.size() < sizeof count) {
-    return absl::InvalidArgumentError("the Draco decoder returned no points");
+// Reads the helper's output: little-endian uint64 counts, each followed by that many records.
+class HelperOutput {
+ public:
+  explicit HelperOutput(const std::string& out) : out_(out) {}
+
+  // The next count and that many records of type T, into `items`; false when the output ends
+  // before them (a count past the output's end is refused before anything is allocated).
+  template <typename T>
+  bool Read(std::vector<T>& items) {
+    uint64_t count = 0;
+    if (out_.size() - at_ < sizeof count) return false;
+    std::memcpy(&count, out_.data() + at_, sizeof count);
+    at_ += sizeof count;
+    if (count > (out_.size() - at_) / sizeof(T)) return false;
+    items.resize(count);
+    std::memcpy(items.data(), out_.data() + at_, count * sizeof(T));
+    at_ += count * sizeof(T);
+    return true;
   }
-  std::memcpy(&count, out.data(), sizeof count);
-  if (out.size() != sizeof count + count * sizeof(Point3f)) {
+  bool AtEnd() const { return at_ == out_.size(); }
+
+ private:
+  const std::string& out_;
+  size_t at_ = 0;
+};
+
+absl::StatusOr<PointCloud> ParsePoints(const std::string& out) {
+  HelperOutput reader(out);
+  PointCloud cloud;
+  if (!reader.Read(cloud.points) || !reader.AtEnd()) {
     return absl::InvalidArgumentError("the Draco decoder returned a truncated point list");
   }
-  PointCloud cloud;
-  cloud.points.resize(count);
-  std::memcpy(cloud.points.data(), out.data() + sizeof count, count * sizeof(Point3f));
   return cloud;
 }
 
-}  // namespace
+absl::StatusOr<TriangleMesh> ParseMesh(const std::string& out) {
+  HelperOutput reader(out);
+  TriangleMesh mesh;
+  if (!reader.Read(mesh.vertices) || !reader.Read(mesh.faces) || !reader.AtEnd()) {
+    return absl::InvalidArgumentError("the Draco decoder returned a truncated mesh");
+  }
+  return mesh;
+}
 
-absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const DecodeLimits& limits,
-                                              const CancelToken& cancel) {
+// Runs the helper on `bytes` with `mode` (an argument after MAX_POINTS, or empty); its standard
+// output when it succeeds.
+absl::StatusOr<std::string> RunHelper(absl::string_view bytes, const DecodeLimits& limits,
+                                      const std::string& mode, const CancelToken& cancel) {
   ChildPipes pipes;
-  const pid_t pid = StartHelper(limits, pipes);
+  const pid_t pid = StartHelper(limits, mode, pipes);
   if (pid < 0) {
     return absl::InternalError(absl::StrCat("cannot start the decoder ", HelperName(limits), ": ",
                                             strerror(errno)));
@@ -238,7 +268,25 @@ absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const Dec
     return absl::InvalidArgumentError(absl::StrCat(limits.subject, " could not be decoded: ",
                                                    absl::StripTrailingAsciiWhitespace(err)));
   }
-  return ParsePoints(out);
+  return out;
+}
+
+}  // namespace
+
+absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const DecodeLimits& limits,
+                                              const CancelToken& cancel) {
+  absl::StatusOr<std::string> out =
+      RunHelper(bytes, limits, limits.accept_mesh ? kAcceptMeshArgument : "", cancel);
+  if (!out.ok()) return out.status();
+  return ParsePoints(*out);
+}
+
+absl::StatusOr<TriangleMesh> DecodeMeshInSubprocess(absl::string_view bytes,
+                                                    const DecodeLimits& limits,
+                                                    const CancelToken& cancel) {
+  absl::StatusOr<std::string> out = RunHelper(bytes, limits, kMeshArgument, cancel);
+  if (!out.ok()) return out.status();
+  return ParseMesh(*out);
 }
 
 }  // namespace membrane

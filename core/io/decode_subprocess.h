@@ -14,6 +14,7 @@
 #include "absl/strings/string_view.h"
 #include "core/engine/cancel_token.h"
 #include "core/geometry/point_cloud.h"
+#include "core/geometry/triangle_mesh.h"
 
 namespace membrane {
 
@@ -37,6 +38,13 @@ struct DecodeLimits {
 // Internal when the helper cannot be started or run (exit status 127).
 absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const DecodeLimits& limits,
                                               const CancelToken& cancel);
+
+// The triangle mesh in Draco `bytes` (as DecodeDracoMesh gives it), decoded the same way;
+// limits.max_points bounds its vertices and limits.accept_mesh is not used. Errors as
+// DecodeInSubprocess's, with "a Draco point cloud" among the rejected inputs.
+absl::StatusOr<TriangleMesh> DecodeMeshInSubprocess(absl::string_view bytes,
+                                                    const DecodeLimits& limits,
+                                                    const CancelToken& cancel);
 
 }  // namespace membrane
 

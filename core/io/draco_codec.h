@@ -1,8 +1,9 @@
 // Draco compression of point clouds and triangle meshes, to and from bytes in memory.
 //
 // Debian's Draco 1.5.5 decoder has known crashes (and unbounded allocations) on crafted
-// input. Decoding here is in-process all the same -- it is what this library offers; a
-// server that decodes untrusted uploads should run these decoders in a subprocess.
+// input. Decoding here is in-process all the same -- it is what this library offers; callers
+// that decode untrusted bytes (membraned's uploads, the membrane client's .drc input) run
+// these decoders in a child: decode_subprocess.h.
 #ifndef MEMBRANE_CORE_IO_DRACO_CODEC_H_
 #define MEMBRANE_CORE_IO_DRACO_CODEC_H_
 
@@ -89,9 +90,11 @@ struct DecodedDracoCloud {
 // The positions in Draco `bytes`: one point per Draco point for a point cloud, one per
 // distinct vertex position for a mesh (faces dropped). InvalidArgument when the bytes are
 // not valid Draco data, hold no 3-component numeric position attribute, hold non-finite
-// positions, or hold a mesh under kRejectMesh; also when a point cloud's header declares more
-// than 1024 points per input byte (checked before Draco allocates for them; real scans
-// compress to a few points per byte). See the file comment on crafted input.
+// positions, or hold a mesh under kRejectMesh; also when a point cloud's header fails
+// CheckDracoPointCloudHeader (draco_header.h: impossible point counts and attribute sizes,
+// malformed metadata), checked before Draco allocates anything for them. Draco can still
+// blow up on counts inside its coded data: untrusted bytes belong in DecodeInSubprocess
+// (decode_subprocess.h). See the file comment on crafted input.
 absl::StatusOr<DecodedDracoCloud> DecodeDracoPointCloud(
     absl::string_view bytes, DracoMeshPolicy policy = DracoMeshPolicy::kAcceptMeshVertices);
 

@@ -72,5 +72,37 @@ TEST_F(CheckTest, GarbageFileIsInvalidInput) {
   EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("garbage.ply")));
 }
 
+TEST_F(CheckTest, DracoMeshIsDecodedInAChildWithEveryFace) {
+  // A .drc mesh reaches the check through the decode helper's faces protocol: the report must
+  // be that of the .ply written from the same reconstruction.
+  const std::string cloud = dir_.File("torus.ply");
+  ASSERT_EQ(Run({"synth", "torus", "-o", cloud, "--points", "8000"}).exit_code, 0);
+  for (const char* out : {"torus.drc", "torus-out.ply"}) {
+    ASSERT_EQ(Run({"reconstruct", cloud, "-o", dir_.File(out), "--local", "--quantization", "0",
+                   "--quiet"})
+                  .exit_code,
+              0);
+  }
+  const CliResult drc = Run({"check", dir_.File("torus.drc"), "--json"});
+  const CliResult ply = Run({"check", dir_.File("torus-out.ply"), "--json"});
+  ASSERT_EQ(drc.exit_code, 0) << drc.err;
+  ASSERT_EQ(ply.exit_code, 0) << ply.err;
+  std::optional<JsonValue> a = ParseJson(drc.out), b = ParseJson(ply.out);
+  ASSERT_TRUE(a.has_value() && b.has_value()) << drc.out << ply.out;
+  for (const char* key : {"vertices", "faces", "shells", "self_intersections"}) {
+    EXPECT_EQ(a->Find(key)->number, b->Find(key)->number) << key;
+  }
+  EXPECT_GT(a->Find("faces")->number, 1000);
+}
+
+TEST_F(CheckTest, DracoPointCloudIsInvalidInputInOneLine) {
+  const std::string path = dir_.File("points.drc");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", path, "--points", "100"}).exit_code, 0);
+  const CliResult r = Run({"check", path});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(AllOf(HasSubstr("points.drc"),
+                                                   HasSubstr("a point cloud, not a mesh"))));
+}
+
 }  // namespace
 }  // namespace membrane::testing

@@ -1,15 +1,16 @@
-// Reading the cloud `membrane reconstruct` works on. Draco input is decoded in a child process
-// under resource limits, as membraned decodes uploads: fuzzing found Draco files of 30 to 67
-// bytes that made Debian's Draco 1.5.5 allocate gigabytes (one: 19 GB and 51 s) from counts
-// no header check can see.
-#ifndef MEMBRANE_CLIENT_INPUT_CLOUD_H_
-#define MEMBRANE_CLIENT_INPUT_CLOUD_H_
+// Reading the clouds and meshes the commands take as input. Draco input is decoded in a child
+// process under resource limits, as membraned decodes uploads: fuzzing found Draco files of 30
+// to 119 bytes that made Debian's Draco 1.5.5 allocate gigabytes (one: 19 GB and 51 s), one
+// of them from a count no header check can see.
+#ifndef MEMBRANE_CLIENT_INPUT_FILES_H_
+#define MEMBRANE_CLIENT_INPUT_FILES_H_
 
 #include <string>
 
 #include "absl/status/statusor.h"
 #include "core/engine/cancel_token.h"
 #include "core/geometry/point_cloud.h"
+#include "core/geometry/triangle_mesh.h"
 #include "core/io/file_format.h"
 
 namespace membrane::client {
@@ -30,6 +31,15 @@ absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, const CancelT
 absl::StatusOr<PointCloud> ParseInputCloud(const std::string& bytes, FileFormat format,
                                            const std::string& path, const CancelToken& cancel);
 
+// The mesh file at `path`, as ReadMesh reads it, except that a .drc file is decoded in a child
+// as above (DecodeDracoMesh there). Errors as ReadMesh's, and InvalidArgument "PATH could not
+// be decoded: ..." for a child that fails, crashes or runs out of its limits.
+absl::StatusOr<TriangleMesh> ReadInputMesh(const std::string& path, const CancelToken& cancel);
+
+// The same for a file already read.
+absl::StatusOr<TriangleMesh> ParseInputMesh(const std::string& bytes, FileFormat format,
+                                            const std::string& path, const CancelToken& cancel);
+
 }  // namespace membrane::client
 
-#endif  // MEMBRANE_CLIENT_INPUT_CLOUD_H_
+#endif  // MEMBRANE_CLIENT_INPUT_FILES_H_

@@ -4,7 +4,6 @@
 #include "core/io/decode_subprocess.h"
 #include "core/io/file_bytes.h"
 #include "core/io/file_format.h"
-#include "core/io/geometry_checks.h"
 #include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
 
@@ -53,9 +52,6 @@ absl::StatusOr<PointCloud> ParseInputCloud(const std::string& bytes, FileFormat 
   if (cloud.status().code() == absl::StatusCode::kInternal) {
     return ReadPointCloudFromBuffer(bytes, format, path);
   }
-  if (!cloud.ok()) return cloud.status();
-  // The child's output is checked as a file's would be.
-  if (absl::Status s = CheckFinitePoints(cloud->points, path); !s.ok()) return s;
   return cloud;
 }
 
@@ -76,10 +72,6 @@ absl::StatusOr<TriangleMesh> ParseInputMesh(const std::string& bytes, FileFormat
   if (mesh.status().code() == absl::StatusCode::kInternal) {
     return ReadMeshFromBuffer(bytes, format, path);
   }
-  if (!mesh.ok()) return mesh.status();
-  absl::Status s = CheckFinitePoints(mesh->vertices, path, /*is_mesh=*/true);
-  if (s.ok()) s = CheckFaceIndices(*mesh, path);
-  if (!s.ok()) return s;
   return mesh;
 }
 

@@ -20,6 +20,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/strings/strip.h"
 #include "core/io/decode_helper.h"
+#include "core/io/geometry_checks.h"
 
 namespace membrane {
 namespace {
@@ -210,21 +211,27 @@ class HelperOutput {
   size_t at_ = 0;
 };
 
-absl::StatusOr<PointCloud> ParsePoints(const std::string& out) {
+// The helper's points, checked as a file's would be: the child ran Draco on hostile bytes.
+absl::StatusOr<PointCloud> ParsePoints(const std::string& out, const std::string& subject) {
   HelperOutput reader(out);
   PointCloud cloud;
   if (!reader.Read(cloud.points) || !reader.AtEnd()) {
     return absl::InvalidArgumentError("the Draco decoder returned a truncated point list");
   }
+  if (absl::Status s = CheckFinitePoints(cloud.points, subject); !s.ok()) return s;
   return cloud;
 }
 
-absl::StatusOr<TriangleMesh> ParseMesh(const std::string& out) {
+// The helper's mesh, checked the same way, its face indices included.
+absl::StatusOr<TriangleMesh> ParseMesh(const std::string& out, const std::string& subject) {
   HelperOutput reader(out);
   TriangleMesh mesh;
   if (!reader.Read(mesh.vertices) || !reader.Read(mesh.faces) || !reader.AtEnd()) {
     return absl::InvalidArgumentError("the Draco decoder returned a truncated mesh");
   }
+  absl::Status s = CheckFinitePoints(mesh.vertices, subject, /*is_mesh=*/true);
+  if (s.ok()) s = CheckFaceIndices(mesh, subject);
+  if (!s.ok()) return s;
   return mesh;
 }
 
@@ -278,7 +285,7 @@ absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const Dec
   absl::StatusOr<std::string> out =
       RunHelper(bytes, limits, limits.accept_mesh ? kAcceptMeshArgument : "", cancel);
   if (!out.ok()) return out.status();
-  return ParsePoints(*out);
+  return ParsePoints(*out, limits.subject);
 }
 
 absl::StatusOr<TriangleMesh> DecodeMeshInSubprocess(absl::string_view bytes,
@@ -286,7 +293,7 @@ absl::StatusOr<TriangleMesh> DecodeMeshInSubprocess(absl::string_view bytes,
                                                     const CancelToken& cancel) {
   absl::StatusOr<std::string> out = RunHelper(bytes, limits, kMeshArgument, cancel);
   if (!out.ok()) return out.status();
-  return ParseMesh(*out);
+  return ParseMesh(*out, limits.subject);
 }
 
 }  // namespace membrane

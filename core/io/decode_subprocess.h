@@ -31,8 +31,8 @@ struct DecodeLimits {
 
 // The point cloud in Draco `bytes`, decoded by `limits.helper` in a child process (bytes on
 // its stdin, points on its stdout). A Draco mesh is refused unless limits.accept_mesh.
-// Errors: InvalidArgument naming the cause for bytes the helper rejects (not Draco, a mesh,
-// non-finite coordinates, no points); ResourceExhausted for more than max_points;
+// The child's output is checked as a file's would be (finite coordinates). Errors: InvalidArgument naming the cause for bytes the helper rejects
+// (not Draco, a mesh, non-finite coordinates, no points) or output that fails those checks; ResourceExhausted for more than max_points;
 // InvalidArgument also for a child that crashes (with the signal), runs out of memory or CPU,
 // or exceeds the timeout; Cancelled when `cancel` fires (the child is killed within 50 ms);
 // Internal when the helper cannot be started or run (exit status 127).
@@ -40,8 +40,9 @@ absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const Dec
                                               const CancelToken& cancel);
 
 // The triangle mesh in Draco `bytes` (as DecodeDracoMesh gives it), decoded the same way;
-// limits.max_points bounds its vertices and limits.accept_mesh is not used. Errors as
-// DecodeInSubprocess's, with "a Draco point cloud" among the rejected inputs.
+// limits.max_points bounds its vertices and limits.accept_mesh is not used; the output's face
+// indices are checked too. Errors as DecodeInSubprocess's, with "a Draco point cloud" among
+// the rejected inputs.
 absl::StatusOr<TriangleMesh> DecodeMeshInSubprocess(absl::string_view bytes,
                                                     const DecodeLimits& limits,
                                                     const CancelToken& cancel);

@@ -24,17 +24,24 @@
 namespace membrane::server {
 namespace {
 
-// The voxels Voxelize will allocate for `cloud` (padding included), computed the same way
-// before anything is allocated; InvalidArgument for a degenerate cloud.
-absl::StatusOr<int64_t> PlannedVoxels(const PointCloud& cloud, double voxel_size) {
+// The grid Voxelize will allocate for `cloud`, computed the same way before anything is
+// allocated: its voxel size (the given one, or formula (1)'s) and voxel count (padding
+// included). InvalidArgument for a degenerate cloud.
+struct PlannedGrid {
+  double voxel_size = 0;
+  int64_t voxels = 0;
+};
+absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, double voxel_size) {
   absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
   if (!bounds.ok()) return bounds.status();
-  const double l = voxel_size > 0 ? voxel_size : FormulaVoxelSize(*bounds, cloud.points);
+  PlannedGrid plan;
+  plan.voxel_size = voxel_size > 0 ? voxel_size : FormulaVoxelSize(*bounds, cloud.points);
   double voxels = 1;
   for (const double side : bounds->Extent()) {
-    voxels *= std::floor(side / l) + 1 + 2 * VoxelGrid::kPadding;
+    voxels *= std::floor(side / plan.voxel_size) + 1 + 2 * VoxelGrid::kPadding;
   }
-  return static_cast<int64_t>(std::min(voxels, 9e18));
+  plan.voxels = static_cast<int64_t>(std::min(voxels, 9e18));
+  return plan;
 }
 
 // A grid over the budget: the message says which job fields change it.
@@ -115,12 +122,15 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   decode_report.seconds.decode = decode_watch.Seconds();
   observer.StageFinished(PipelineStage::kDecode, decode_report.seconds.decode, decode_report);
 
-  absl::StatusOr<int64_t> voxels =
-      PlannedVoxels(*cloud, settings->reconstruction.voxelize.voxel_size);
-  if (!voxels.ok()) return fail(voxels.status());
+  absl::StatusOr<PlannedGrid> plan =
+      PlanGrid(*cloud, settings->reconstruction.voxelize.voxel_size);
+  if (!plan.ok()) return fail(plan.status());
+  // The pipeline takes the planned size rather than counting the points again for formula (1).
+  settings->reconstruction.voxelize.voxel_size = plan->voxel_size;
   // Over the voxel budget: Voxelize refuses it with the grid in its message; do not reserve.
   const int64_t bytes = EstimateJobBytes(
-      std::min(*voxels, settings->reconstruction.voxelize.voxel_budget), decode_report.points);
+      std::min(plan->voxels, settings->reconstruction.voxelize.voxel_budget),
+      decode_report.points);
   if (absl::Status s = memory_.Reserve(bytes, job->cancel_token()); !s.ok()) return fail(s);
   const Reservation reservation(memory_, bytes);
 

@@ -36,7 +36,7 @@ TEST(HostileInput, TruncatedBinaryPlyNamesFileAndByteOffset) {
   for (int i = 0; i < 100; ++i)
     ply += LittleEndianFloat(i) + LittleEndianFloat(i) + LittleEndianFloat(i);
   ply.resize(header.size() + 57 * 12 + 7);  // vertex 57 is cut after 7 of its 12 bytes
-  const std::string path = scratch.path() + "/truncated.ply";
+  const std::string path = scratch.File("truncated.ply");
   WriteTestFile(path, ply);
   absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
   EXPECT_EQ(cloud.status().code(), kInvalid);
@@ -135,23 +135,23 @@ TEST(HostileInput, UnknownExtensionListsTheSupportedOnes) {
 
 TEST(HostileInput, MissingFileIsNotFoundNamingThePath) {
   const ScratchDir scratch;
-  const std::string path = scratch.path() + "/does_not_exist.ply";
+  const std::string path = scratch.File("does_not_exist.ply");
   absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kNotFound);
   EXPECT_THAT(cloud.status().ToString(), HasSubstr(path));
-  EXPECT_EQ(ReadMesh(scratch.path() + "/gone.obj").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(ReadMesh(scratch.File("gone.obj")).status().code(), absl::StatusCode::kNotFound);
 }
 
 TEST(HostileInput, DirectoryNamedLikeACloudIsInvalidArgument) {
   const ScratchDir scratch;
-  const std::string path = scratch.path() + "/folder.ply";
+  const std::string path = scratch.File("folder.ply");
   std::filesystem::create_directory(path);
   EXPECT_EQ(ReadPointCloud(path).status().code(), kInvalid);
 }
 
 TEST(HostileInput, GarbageBytesAsDrcAreInvalidArgument) {
   const ScratchDir scratch;
-  const std::string path = scratch.path() + "/garbage.drc";
+  const std::string path = scratch.File("garbage.drc");
   std::string garbage;
   for (int i = 0; i < 4096; ++i) garbage.push_back(static_cast<char>((i * 7919) >> 3));
   WriteTestFile(path, garbage);

@@ -25,7 +25,7 @@ class PointCloudRoundTrip : public ::testing::TestWithParam<std::string> {};
 TEST_P(PointCloudRoundTrip, LosslessFormatsReadBackExactlyInOrder) {
   const ScratchDir scratch;
   const PointCloud cloud = SampleCloud(1000);
-  const std::string path = scratch.path() + "/cloud" + GetParam();
+  const std::string path = scratch.File(std::string("cloud") + GetParam());
   ASSERT_TRUE(WritePointCloud(cloud, path, {.position_quantization_bits = 0}).ok());
   absl::StatusOr<PointCloud> read = ReadPointCloud(path);
   ASSERT_TRUE(read.ok()) << read.status();
@@ -43,7 +43,7 @@ INSTANTIATE_TEST_SUITE_P(EveryPointCloudWriter, PointCloudRoundTrip,
 TEST(PointCloudRoundTrip, QuantizedDracoFileIsWithinTheGridStep) {
   const ScratchDir scratch;
   const PointCloud cloud = SampleCloud(300, 1.0f);
-  const std::string path = scratch.path() + "/q.drc";
+  const std::string path = scratch.File("q.drc");
   ASSERT_TRUE(WritePointCloud(cloud, path, {.position_quantization_bits = 14}).ok());
   absl::StatusOr<PointCloud> read = ReadPointCloud(path);
   ASSERT_TRUE(read.ok()) << read.status();
@@ -57,7 +57,7 @@ class MeshRoundTrip : public ::testing::TestWithParam<std::string> {};
 TEST_P(MeshRoundTrip, TrianglesReadBackWithTheirOrientation) {
   const ScratchDir scratch;
   for (const TriangleMesh& mesh : {Octahedron(), SphereMesh(8, 12)}) {
-    const std::string path = scratch.path() + "/mesh" + GetParam();
+    const std::string path = scratch.File(std::string("mesh") + GetParam());
     ASSERT_TRUE(WriteMesh(mesh, path, {.position_quantization_bits = 0}).ok());
     absl::StatusOr<TriangleMesh> read = ReadMesh(path);
     ASSERT_TRUE(read.ok()) << read.status();
@@ -74,7 +74,7 @@ TEST(MeshRoundTrip, PlyAndObjKeepVertexAndFaceOrderExactly) {
   const ScratchDir scratch;
   const TriangleMesh mesh = SphereMesh(5, 7);
   for (const char* extension : {".ply", ".obj"}) {
-    const std::string path = scratch.path() + "/ordered" + extension;
+    const std::string path = scratch.File(std::string("ordered") + extension);
     ASSERT_TRUE(WriteMesh(mesh, path).ok());
     absl::StatusOr<TriangleMesh> read = ReadMesh(path);
     ASSERT_TRUE(read.ok()) << read.status();
@@ -87,14 +87,14 @@ TEST(MeshRoundTrip, WritingDanglingFaceIndicesFails) {
   const ScratchDir scratch;
   TriangleMesh mesh = Octahedron();
   mesh.faces[3][1] = 6;
-  const absl::Status status = WriteMesh(mesh, scratch.path() + "/bad.ply");
+  const absl::Status status = WriteMesh(mesh, scratch.File("bad.ply"));
   EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
 }
 
 TEST(MeshRoundTrip, PointCloudFileOfAWrittenMeshGivesItsVertices) {
   const ScratchDir scratch;
   const TriangleMesh mesh = Octahedron();
-  const std::string path = scratch.path() + "/as_cloud.ply";
+  const std::string path = scratch.File("as_cloud.ply");
   ASSERT_TRUE(WriteMesh(mesh, path).ok());
   absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
   ASSERT_TRUE(cloud.ok()) << cloud.status();

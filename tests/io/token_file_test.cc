@@ -14,7 +14,7 @@ using ::testing::HasSubstr;
 
 TEST(TokenFileTest, FirstLineWithoutSurroundingWhitespace) {
   const ScratchDir scratch;
-  const std::string path = scratch.path() + "/token";
+  const std::string path = scratch.File("token");
   WriteTestFile(path, "  s3cr3t-TOKEN_1\t\r\nsecond line ignored\n");
   absl::StatusOr<std::string> token = ReadTokenFile(path);
   ASSERT_TRUE(token.ok()) << token.status();
@@ -23,7 +23,7 @@ TEST(TokenFileTest, FirstLineWithoutSurroundingWhitespace) {
 
 TEST(TokenFileTest, EmptyOrBlankFirstLineIsRefused) {
   const ScratchDir scratch;
-  const std::string path = scratch.path() + "/token";
+  const std::string path = scratch.File("token");
   WriteTestFile(path, " \nnot-the-first-line\n");
   absl::StatusOr<std::string> token = ReadTokenFile(path);
   EXPECT_EQ(token.status().code(), absl::StatusCode::kInvalidArgument);
@@ -45,7 +45,7 @@ TEST(TokenFileTest, InnerSpaceOrControlByteIsRefused) {
 
 TEST(TokenFileTest, MissingFileIsInvalidArgumentNamingIt) {
   const ScratchDir scratch;
-  const std::string path = scratch.path() + "/absent";
+  const std::string path = scratch.File("absent");
   absl::StatusOr<std::string> token = ReadTokenFile(path);
   EXPECT_EQ(token.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(std::string(token.status().message()), HasSubstr(path));

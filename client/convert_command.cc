@@ -65,6 +65,7 @@ absl::StatusOr<TriangleMesh> ReadGeometry(const std::string& path, FileFormat fo
   if (!cloud.ok()) return cloud.status();
   TriangleMesh points_only;
   points_only.vertices = std::move(cloud->points);
+  points_only.origin = cloud->origin;
   return points_only;
 }
 
@@ -122,6 +123,7 @@ absl::Status RunConvert(const ConvertFlags& flags) {
   }
   PointCloud cloud;
   cloud.points = std::move(geometry->vertices);
+  cloud.origin = geometry->origin;
   if (absl::Status s = WritePointCloud(cloud, flags.output); !s.ok()) {
     return FileErrorAsInvalidInput(s);
   }

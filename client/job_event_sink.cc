@@ -18,6 +18,9 @@ void JobEventSink::Consume(const v1::JobEvent& event) {
     case v1::JobEvent::kSnapshot:
       // WatchJob starts over from the job's first event.
       job_id_ = event.snapshot().id();
+      if (event.snapshot().parameters().origin_size() == 3) {
+        for (int k = 0; k < 3; ++k) origin_[k] = event.snapshot().parameters().origin(k);
+      }
       replay_index_ = 0;
       events_in_call_ = 0;
       break;

@@ -10,6 +10,7 @@
 #include "absl/status/status.h"
 #include "client/progress_printer.h"
 #include "core/engine/membrane_shrinker.h"
+#include "core/geometry/point_cloud.h"
 #include "membrane/v1/reconstruction.pb.h"
 
 namespace membrane::client {
@@ -36,6 +37,8 @@ class JobEventSink {
   // The server's check of the mesh.
   const v1::MeshSummary& mesh_summary() const { return mesh_summary_; }
   const std::string& mesh() const { return mesh_; }
+  // The job's Parameters.origin, from WatchJob's snapshot (zero before one, or without one).
+  const Origin3d& origin() const { return origin_; }
 
  private:
   void ConsumeProgress(const v1::JobEvent& event);
@@ -53,6 +56,7 @@ class JobEventSink {
   std::string mesh_;
   bool done_ = false;
   v1::JobDone final_;
+  Origin3d origin_{0, 0, 0};
 };
 
 }  // namespace membrane::client

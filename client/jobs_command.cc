@@ -88,12 +88,14 @@ absl::Status RunWatch(const JobsFlags& flags) {
       flags.timeout > 0 ? absl::Now() + absl::Seconds(flags.timeout) : absl::InfiniteFuture();
   absl::Status outcome;
   std::string mesh, statistics;
+  Origin3d origin;
   {
     ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
     JobEventSink sink(progress);
     outcome = WatchUntilDone(flags.server, flags.job_id, deadline, sink);
     mesh = sink.mesh();
     statistics = sink.statistics_json();
+    origin = sink.origin();
   }
   if (!outcome.ok()) return outcome;
   if (!flags.stats_json.empty()) {
@@ -102,7 +104,7 @@ absl::Status RunWatch(const JobsFlags& flags) {
     }
   }
   if (flags.output.empty()) return absl::OkStatus();
-  return WriteReceivedMesh(mesh, flags.output);
+  return WriteReceivedMesh(mesh, origin, flags.output);
 }
 
 // Adds `name` with its flags to `jobs`; `run` gets the parsed values.

@@ -5,6 +5,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "client/cloud_origin.h"
 #include "client/input_files.h"
 #include "client/io_errors.h"
 #include "core/io/mesh_io.h"
@@ -34,8 +35,9 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
   absl::StatusOr<PointCloud> cloud = ReadInputCloud(params.input, cancel);
   if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
   const double decode_seconds = decode.Seconds();
-  progress.Finish(absl::StrFormat("decode: %d points in %.3f s", cloud->points.size(),
-                                  decode_seconds));
+  progress.Finish(absl::StrFormat("decode: %d points%s in %.3f s", cloud->points.size(),
+                                  OriginNote(cloud->origin), decode_seconds));
+  if (absl::Status s = CheckOutputKeepsOrigin(cloud->origin, params.output); !s.ok()) return s;
   if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled after decode");
 
   // The output is written beside the mesh check (and kept whatever the check finds).

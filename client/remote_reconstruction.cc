@@ -12,6 +12,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
 #include "client/backoff.h"
+#include "client/cloud_origin.h"
 #include "client/input_files.h"
 #include "client/io_errors.h"
 #include "client/rpc_errors.h"
@@ -26,6 +27,12 @@ namespace {
 
 constexpr size_t kChunkBytes = 1 << 20;  // well under gRPC's 4 MB message limit
 constexpr int kMaxAttempts = 5;
+
+// The cloud as sent: Draco bytes of the positions, and their origin (PointCloud::origin).
+struct Upload {
+  std::string bytes;
+  Origin3d origin{0, 0, 0};
+};
 
 std::chrono::system_clock::time_point ToChrono(absl::Time t) {
   if (t == absl::InfiniteFuture()) return std::chrono::system_clock::time_point::max();
@@ -50,13 +57,19 @@ absl::Status DeadlineStatus(const RemoteParams& params) {
 
 // One Reconstruct call: the upload, then the events into `sink`.
 grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams& params,
-                             const std::string& upload, absl::Time deadline, JobEventSink& sink) {
+                             const Upload& upload_cloud, absl::Time deadline,
+                             JobEventSink& sink) {
+  const std::string& upload = upload_cloud.bytes;
   grpc::ClientContext context;
   SetDeadline(context, deadline);
   Authorize(context, params.server);
   auto stream = stub.Reconstruct(&context);
   v1::ReconstructRequest header;
-  *header.mutable_header()->mutable_parameters() = params.parameters;
+  v1::Parameters& parameters = *header.mutable_header()->mutable_parameters();
+  parameters = params.parameters;
+  if (upload_cloud.origin != Origin3d{0, 0, 0}) {
+    for (double v : upload_cloud.origin) parameters.add_origin(v);
+  }
   header.mutable_header()->set_upload_bytes(upload.size());
   header.mutable_header()->set_upload_crc32c(Crc32c(upload));
   bool sending = stream->Write(header);
@@ -78,13 +91,14 @@ grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams&
   return stream->Finish();
 }
 
-absl::StatusOr<std::string> ReadAndEncode(const RemoteParams& params, RemoteOutcome& outcome,
-                                          ProgressPrinter& progress) {
+absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& outcome,
+                                     ProgressPrinter& progress) {
   const Stopwatch watch;
   progress.Begin(absl::StrCat("decode: reading ", params.input));
   const CancelToken not_cancelled;  // the job does not exist yet: nothing to cancel
   absl::StatusOr<PointCloud> cloud = ReadInputCloud(params.input, not_cancelled);
   if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
+  if (absl::Status s = CheckOutputKeepsOrigin(cloud->origin, params.output); !s.ok()) return s;
   absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, params.upload);
   if (!encoded.ok()) {
     return absl::Status(encoded.status().code(),
@@ -93,11 +107,11 @@ absl::StatusOr<std::string> ReadAndEncode(const RemoteParams& params, RemoteOutc
   outcome.raw_bytes = cloud->points.size() * sizeof(Point3f);
   outcome.upload_bytes = encoded->bytes.size();
   progress.Finish(absl::StrFormat(
-      "decode: %d points, %d bytes as Draco (%.1f%% of %d raw float32 bytes) in %.3f s",
-      cloud->points.size(), outcome.upload_bytes,
+      "decode: %d points%s, %d bytes as Draco (%.1f%% of %d raw float32 bytes) in %.3f s",
+      cloud->points.size(), OriginNote(cloud->origin), outcome.upload_bytes,
       100.0 * outcome.upload_bytes / std::max<uint64_t>(1, outcome.raw_bytes),
       outcome.raw_bytes, watch.Seconds()));
-  return std::move(encoded->bytes);
+  return Upload{std::move(encoded->bytes), cloud->origin};
 }
 
 }  // namespace
@@ -127,14 +141,16 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
   }
 }
 
-absl::Status WriteReceivedMesh(const std::string& mesh, const std::string& output) {
-  if (absl::EndsWithIgnoreCase(output, ".drc")) {
+absl::Status WriteReceivedMesh(const std::string& mesh, const Origin3d& origin,
+                               const std::string& output) {
+  if (absl::EndsWithIgnoreCase(output, ".drc") && origin == Origin3d{0, 0, 0}) {
     return FileErrorAsInvalidInput(WriteFileBytes(output, mesh));
   }
   absl::StatusOr<TriangleMesh> decoded = DecodeDracoMesh(mesh);
   if (!decoded.ok()) {
     return absl::DataLossError(absl::StrCat("the server's mesh: ", decoded.status().message()));
   }
+  decoded->origin = origin;
   return FileErrorAsInvalidInput(WriteMesh(*decoded, output, DracoOptions{}));
 }
 
@@ -159,7 +175,7 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
                                                       ProgressPrinter& progress) {
   const absl::Time deadline = absl::Now() + params.timeout;
   RemoteOutcome outcome;
-  absl::StatusOr<std::string> upload = ReadAndEncode(params, outcome, progress);
+  absl::StatusOr<Upload> upload = ReadAndEncode(params, outcome, progress);
   if (!upload.ok()) return upload.status();
 
   auto stub = v1::Reconstruction::NewStub(Connect(params.server));
@@ -192,7 +208,8 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
 
   const Stopwatch watch;
   progress.Begin(absl::StrCat("encode: writing ", params.output));
-  if (absl::Status s = WriteReceivedMesh(sink.mesh(), params.output); !s.ok()) return s;
+  if (absl::Status s = WriteReceivedMesh(sink.mesh(), upload->origin, params.output); !s.ok())
+    return s;
   progress.Finish(absl::StrFormat("encode: %s (%d bytes received as Draco) in %.3f s",
                                   params.output, sink.mesh().size(), watch.Seconds()));
   outcome.job_id = sink.job_id();

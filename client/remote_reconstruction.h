@@ -56,7 +56,10 @@ struct RemoteOutcome {
 // RESOURCE_EXHAUSTED for its limits, ...) with a "server: " message; Unavailable when the
 // server stays unreachable or busy; DeadlineExceeded when the timeout expires; the job's
 // status (Cancelled, InvalidArgument, Internal, ...) when it failed; DataLoss for a mesh that
-// arrives damaged; InvalidArgument naming the output when it cannot be written.
+// arrives damaged; InvalidArgument naming the output when it cannot be written, or before the
+// upload when the cloud's reader moved it (CoordinateShift) and the output cannot hold its
+// origin (.stl, .drc). A moved cloud is sent in its moved positions with its origin in the
+// parameters, and the mesh written back at the input's coordinates.
 absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params,
                                                       ProgressPrinter& progress);
 
@@ -65,9 +68,12 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
 absl::Status WatchUntilDone(const ServerConnection& server, const std::string& job_id,
                             absl::Time deadline, JobEventSink& sink);
 
-// Writes the Draco `mesh` to `output` by its extension: the bytes as they are for .drc,
-// decoded and re-encoded otherwise. DataLoss when the bytes are not a Draco mesh.
-absl::Status WriteReceivedMesh(const std::string& mesh, const std::string& output);
+// Writes the Draco `mesh`, whose positions are relative to `origin` (the job's
+// Parameters.origin), to `output` by its extension: the bytes as they are for .drc without an
+// origin, decoded and written with the origin otherwise (refused for .drc and .stl with one,
+// CheckOriginFitsFormat). DataLoss when the bytes are not a Draco mesh.
+absl::Status WriteReceivedMesh(const std::string& mesh, const Origin3d& origin,
+                               const std::string& output);
 
 }  // namespace membrane::client
 

@@ -118,6 +118,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   absl::StatusOr<PointCloud> cloud =
       DecodeInSubprocess(job->TakeUpload(), limits, job->cancel_token());
   if (!cloud.ok()) return fail(cloud.status());
+  cloud->origin = settings->origin;
   decode_report.points = static_cast<int64_t>(cloud->points.size());
   decode_report.seconds.decode = decode_watch.Seconds();
   observer.StageFinished(PipelineStage::kDecode, decode_report.seconds.decode, decode_report);

@@ -6,6 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/engine/plate_schedule.h"
+#include "core/io/coordinate_shift.h"
 
 namespace membrane::server {
 namespace {
@@ -27,6 +28,16 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
         "formula (1)",
         p.voxel_size()));
   }
+  if (p.origin_size() != 0 && p.origin_size() != 3) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "origin has %d values; it must have none or 3 (x, y, z)", p.origin_size()));
+  }
+  for (double v : p.origin()) {
+    if (!std::isfinite(v) || std::fabs(v) > kShiftUpTo) {
+      return absl::InvalidArgumentError(absl::StrFormat(
+          "origin value %g is out of range: finite, magnitude at most 2^40", v));
+    }
+  }
   for (const absl::Status& s :
        {CheckRange("initial_plate", p.initial_plate(), 0, kMaxInitialPlate),
         CheckRange("quantization", p.quantization(), 0, 30),
@@ -35,6 +46,7 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
     if (!s.ok()) return s;
   }
   JobSettings settings;
+  for (int k = 0; k < p.origin_size(); ++k) settings.origin[k] = p.origin(k);
   ReconstructionOptions& r = settings.reconstruction;
   r.voxelize.voxel_size = p.voxel_size();
   r.voxelize.voxel_budget = p.voxel_budget() > 0 ? p.voxel_budget() : server_voxel_budget;

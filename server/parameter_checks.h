@@ -14,11 +14,13 @@ namespace membrane::server {
 struct JobSettings {
   ReconstructionOptions reconstruction;
   DracoOptions mesh_encoding;  // of the result mesh
+  Origin3d origin{0, 0, 0};    // the upload's origin (Parameters.origin), for the statistics
 };
 
 // The settings `parameters` ask for, defaults filled in, the voxel budget capped at
 // `server_voxel_budget`. InvalidArgument naming the field and its allowed range for the
-// first value out of range, e.g. "initial_plate 200000 is out of range [0, 100000]".
+// first value out of range, e.g. "initial_plate 200000 is out of range [0, 100000]", or for an
+// origin of other than 0 or 3 finite values of magnitude up to 2^40.
 absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& parameters,
                                             int64_t server_voxel_budget);
 

@@ -15,6 +15,7 @@ namespace membrane {
 struct TriangleMesh {
   std::vector<Point3f> vertices;
   std::vector<std::array<int32_t, 3>> faces;
+  Origin3d origin{0, 0, 0};  // file coordinates = vertex + origin (see point_cloud.h)
 };
 
 }  // namespace membrane

@@ -11,8 +11,10 @@ namespace membrane {
 // Appends the shortest decimal text that reads back as exactly `value` ("0.1", "1e+30").
 void AppendShortestFloat(float value, std::string* out);
 
-// Appends "<x> <y> <z>" with AppendShortestFloat.
-void AppendPointText(const Point3f& point, std::string* out);
+// Appends "<x> <y> <z>" of point + origin: with AppendShortestFloat on the axes where the
+// origin is 0, and elsewhere as the shortest text that reads back as exactly the double sum
+// ("500000.12345678912").
+void AppendPointText(const Point3f& point, const Origin3d& origin, std::string* out);
 
 }  // namespace membrane
 

@@ -96,6 +96,7 @@ float NarrowToFloat(double value) {
 }
 
 void AppendFloat32Le(float value, std::string* out) { AppendLe(value, out); }
+void AppendFloat64Le(double value, std::string* out) { AppendLe(value, out); }
 void AppendInt32Le(int32_t value, std::string* out) { AppendLe(value, out); }
 void AppendUint32Le(uint32_t value, std::string* out) { AppendLe(value, out); }
 

@@ -36,6 +36,7 @@ float NarrowToFloat(double value);
 
 // Appends `value` to *out as 4 little-endian bytes.
 void AppendFloat32Le(float value, std::string* out);
+void AppendFloat64Le(double value, std::string* out);
 void AppendInt32Le(int32_t value, std::string* out);
 void AppendUint32Le(uint32_t value, std::string* out);
 

@@ -59,13 +59,15 @@ struct DracoEncoding {
   double max_position_error = 0;
 };
 
-// `cloud` compressed by Draco. InvalidArgument for invalid options, an empty cloud or
+// `cloud` compressed by Draco: its float32 positions, not its origin (the client sends a moved
+// cloud's origin beside it). InvalidArgument for invalid options, an empty cloud or
 // non-finite coordinates (the quantizer's range would be meaningless); Internal when the
 // Draco encoder fails.
 absl::StatusOr<DracoEncoding> EncodeDracoPointCloud(const PointCloud& cloud,
                                                     const DracoOptions& options);
 
-// `mesh` compressed by Draco. Draco may reorder vertices and faces and, for non-manifold
+// `mesh` compressed by Draco: its float32 positions, not its origin, as for clouds. Draco may
+// reorder vertices and faces and, for non-manifold
 // input, duplicate vertices; positions and triangles (with their orientation) are kept.
 // InvalidArgument for invalid options, a mesh without vertices or faces, non-finite
 // coordinates or face indices out of range; Internal when the Draco encoder fails.

@@ -1,6 +1,7 @@
 #include "core/io/mesh_io.h"
 
 #include "absl/strings/str_cat.h"
+#include "core/io/coordinate_shift.h"
 #include "core/io/file_bytes.h"
 #include "core/io/geometry_checks.h"
 #include "core/io/obj_reader.h"
@@ -58,6 +59,7 @@ absl::StatusOr<std::string> WriteMeshToBuffer(const TriangleMesh& mesh, FileForm
   constexpr absl::string_view kWhat = "cannot write the mesh";
   absl::Status status = CheckFinitePoints(mesh.vertices, kWhat, /*is_mesh=*/true);
   if (status.ok()) status = CheckFaceIndices(mesh, kWhat);
+  if (status.ok()) status = CheckOriginFitsFormat(mesh.origin, format, FileUse::kWriteMesh);
   if (!status.ok()) return status;
   switch (format) {
     case FileFormat::kPly: return EncodePlyMesh(mesh);

@@ -24,13 +24,17 @@ absl::StatusOr<TriangleMesh> ReadMesh(const std::string& path);
 // faces gives a mesh without faces. InvalidArgument "<source>: ..." for empty input, XYZ or
 // PCD, malformed, truncated or lying input (with the byte offset where it went wrong), face
 // indices out of range, and "<source>: 3 vertices have NaN or infinite coordinates".
+// PLY, OBJ and STL coordinates from 10^4 on are moved near 0 (CoordinateShift), and the mesh's
+// origin says by how much; Draco's float32 positions are taken as they are.
 absl::StatusOr<TriangleMesh> ReadMeshFromBuffer(absl::string_view data, FileFormat format,
                                                 absl::string_view source = "<buffer>");
 
 // The bytes of `mesh` in `format`: binary little-endian PLY (float xyz, "property list uchar
-// int vertex_indices"), OBJ, binary STL, or Draco with `draco` options. InvalidArgument for
-// non-finite vertices, face indices out of range, XYZ or PCD, invalid Draco options, or a
-// mesh without faces for Draco; Internal when the Draco encoder fails.
+// int vertex_indices"), OBJ, binary STL, or Draco with `draco` options. A mesh with an origin
+// is written at vertex + origin, in double (PLY, OBJ). InvalidArgument for non-finite
+// vertices, face indices out of range, XYZ or PCD, invalid Draco options, a mesh without faces
+// for Draco, or an origin with STL or Draco (CheckOriginFitsFormat); Internal when the Draco
+// encoder fails.
 absl::StatusOr<std::string> WriteMeshToBuffer(const TriangleMesh& mesh, FileFormat format,
                                               const DracoOptions& draco = {});
 

@@ -8,7 +8,7 @@
 #include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
 #include "core/io/ascii_scan.h"
-#include "core/io/binary_scalar.h"
+#include "core/io/coordinate_shift.h"
 #include "core/io/geometry_checks.h"
 #include "core/io/parse_error.h"
 
@@ -31,6 +31,7 @@ std::optional<int32_t> ResolveReference(absl::string_view token, size_t vertices
 absl::StatusOr<TriangleMesh> ParseObj(absl::string_view data, absl::string_view source,
                                       bool want_faces) {
   TriangleMesh mesh;
+  CoordinateShift shift;
   std::vector<int32_t> polygon;
   LineScanner lines(data);
   absl::string_view line;
@@ -42,8 +43,8 @@ absl::StatusOr<TriangleMesh> ParseObj(absl::string_view data, absl::string_view 
       return LineError(source, lines.line_number(), tokens.token_offset(), what);
     };
     if (keyword == "v") {
-      Point3f point;
-      for (float& coordinate : point) {
+      double point[3];
+      for (double& coordinate : point) {
         absl::string_view token;
         if (!tokens.Next(&token)) return error("a \"v\" line needs three coordinates");
         const std::optional<double> value = ParseDouble(token);
@@ -51,9 +52,9 @@ absl::StatusOr<TriangleMesh> ParseObj(absl::string_view data, absl::string_view 
           return error(
               absl::StrCat("'", absl::CHexEscape(token.substr(0, 32)), "' is not a number"));
         }
-        coordinate = NarrowToFloat(*value);
+        coordinate = *value;
       }
-      mesh.vertices.push_back(point);
+      mesh.vertices.push_back(shift.Narrow(point[0], point[1], point[2]));
     } else if (keyword == "f" && want_faces) {
       polygon.clear();
       absl::string_view token;
@@ -70,6 +71,7 @@ absl::StatusOr<TriangleMesh> ParseObj(absl::string_view data, absl::string_view 
       }
     }
   }
+  mesh.origin = shift.origin();
   absl::Status indices = CheckFaceIndices(mesh, source);
   if (!indices.ok()) return indices;
   return mesh;
@@ -80,7 +82,7 @@ absl::StatusOr<TriangleMesh> ParseObj(absl::string_view data, absl::string_view 
 absl::StatusOr<PointCloud> ReadObjPointCloud(absl::string_view data, absl::string_view source) {
   absl::StatusOr<TriangleMesh> mesh = ParseObj(data, source, /*want_faces=*/false);
   if (!mesh.ok()) return mesh.status();
-  return PointCloud{std::move(mesh->vertices)};
+  return PointCloud{std::move(mesh->vertices), mesh->origin};
 }
 
 absl::StatusOr<TriangleMesh> ReadObjMesh(absl::string_view data, absl::string_view source) {

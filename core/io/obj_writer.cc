@@ -6,10 +6,11 @@
 namespace membrane {
 namespace {
 
-void AppendVertexLines(const std::vector<Point3f>& vertices, std::string* out) {
+void AppendVertexLines(const std::vector<Point3f>& vertices, const Origin3d& origin,
+                       std::string* out) {
   for (const Point3f& p : vertices) {
     out->append("v ");
-    AppendPointText(p, out);
+    AppendPointText(p, origin, out);
     out->push_back('\n');
   }
 }
@@ -18,13 +19,13 @@ void AppendVertexLines(const std::vector<Point3f>& vertices, std::string* out) {
 
 std::string EncodeObjPointCloud(const PointCloud& cloud) {
   std::string out = "# written by membrane\n";
-  AppendVertexLines(cloud.points, &out);
+  AppendVertexLines(cloud.points, cloud.origin, &out);
   return out;
 }
 
 std::string EncodeObjMesh(const TriangleMesh& mesh) {
   std::string out = "# written by membrane\n";
-  AppendVertexLines(mesh.vertices, &out);
+  AppendVertexLines(mesh.vertices, mesh.origin, &out);
   for (const std::array<int32_t, 3>& face : mesh.faces) {
     // OBJ indices are 1-based; int64 so the largest int32 index cannot overflow.
     absl::StrAppend(&out, "f ", int64_t{face[0]} + 1, " ", int64_t{face[1]} + 1, " ",

@@ -9,6 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/io/ascii_scan.h"
 #include "core/io/binary_scalar.h"
+#include "core/io/coordinate_shift.h"
 #include "core/io/parse_error.h"
 #include "core/io/pcd_header.h"
 
@@ -69,18 +70,21 @@ absl::StatusOr<PointCloud> ReadBinary(absl::string_view data, const PcdHeader& h
                                    "; only ", remaining, " bytes remain)"));
   }
   PointCloud cloud;
+  CoordinateShift shift;
   cloud.points.resize(header.points);
   const char* rows = data.data() + start;
   for (uint64_t i = 0; i < header.points; ++i) {
     const char* row = rows + i * layout.row_bytes;
+    double point[3];
     for (int axis = 0; axis < 3; ++axis) {
       const AxisSlot& slot = layout.axes[axis];
       // PCL writes binary data in host order, which is little endian on every platform PCL
       // is used on.
-      cloud.points[i][axis] =
-          NarrowToFloat(DecodeScalar(row + slot.byte_offset, slot.type, ByteOrder::kLittleEndian));
+      point[axis] = DecodeScalar(row + slot.byte_offset, slot.type, ByteOrder::kLittleEndian);
     }
+    cloud.points[i] = shift.Narrow(point[0], point[1], point[2]);
   }
+  cloud.origin = shift.origin();
   return cloud;
 }
 
@@ -96,6 +100,7 @@ absl::StatusOr<PointCloud> ReadAscii(absl::string_view data, const PcdHeader& he
                      " values, but only ", remaining, " bytes follow the header"));
   }
   PointCloud cloud;
+  CoordinateShift shift;
   cloud.points.reserve(header.points);
   LineScanner lines(data.substr(header.body_offset), header.body_offset);
   absl::string_view line;
@@ -110,7 +115,7 @@ absl::StatusOr<PointCloud> ReadAscii(absl::string_view data, const PcdHeader& he
                    absl::StrCat("more point lines than POINTS ", header.points));
     }
     TokenScanner tokens(line, lines.line_offset());
-    Point3f point = {0, 0, 0};
+    double point[3] = {0, 0, 0};
     uint64_t index = 0;
     absl::string_view token;
     while (tokens.Next(&token)) {
@@ -122,7 +127,7 @@ absl::StatusOr<PointCloud> ReadAscii(absl::string_view data, const PcdHeader& he
               tokens.token_offset(),
               absl::StrCat("'", absl::CHexEscape(token.substr(0, 32)), "' is not a number"));
         }
-        point[axis] = NarrowToFloat(*value);
+        point[axis] = *value;
       }
       ++index;
     }
@@ -130,8 +135,9 @@ absl::StatusOr<PointCloud> ReadAscii(absl::string_view data, const PcdHeader& he
       return error(lines.line_offset(),
                    absl::StrCat("expected ", layout.values_per_row, " values, found ", index));
     }
-    cloud.points.push_back(point);
+    cloud.points.push_back(shift.Narrow(point[0], point[1], point[2]));
   }
+  cloud.origin = shift.origin();
   if (cloud.points.size() != header.points) {
     return ParseError(source, data.size(),
                       absl::StrCat("the data ends after ", cloud.points.size(), " of ",

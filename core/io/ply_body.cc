@@ -10,6 +10,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/io/coordinate_shift.h"
 #include "core/io/parse_error.h"
 #include "core/io/ply_value_source.h"
 
@@ -67,7 +68,8 @@ absl::StatusOr<ElementPlan> PlanFace(const PlyElement& element, absl::string_vie
 // Binary elements without lists have fixed-size rows: the vertex block of a scan is read
 // with one bounds check instead of one per value.
 absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
-                           absl::string_view source, PlyBinarySource& in, TriangleMesh* out) {
+                           absl::string_view source, PlyBinarySource& in, CoordinateShift& shift,
+                           TriangleMesh* out) {
   std::vector<size_t> offsets;
   size_t row_bytes = 0;
   for (const PlyProperty& property : element.properties) {
@@ -102,13 +104,14 @@ absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
       std::memcpy(&p[1], row + offsets[plan.y], sizeof(float));
       std::memcpy(&p[2], row + offsets[plan.z], sizeof(float));
     }
+    shift.ShiftInPlace(out->vertices);
     return absl::OkStatus();
   }
   for (uint64_t r = 0; r < element.count; ++r) {
     const char* row = rows + r * row_bytes;
-    out->vertices[r] = {NarrowToFloat(DecodeScalar(row + offsets[plan.x], px.type, order)),
-                        NarrowToFloat(DecodeScalar(row + offsets[plan.y], py.type, order)),
-                        NarrowToFloat(DecodeScalar(row + offsets[plan.z], pz.type, order))};
+    out->vertices[r] = shift.Narrow(DecodeScalar(row + offsets[plan.x], px.type, order),
+                                    DecodeScalar(row + offsets[plan.y], py.type, order),
+                                    DecodeScalar(row + offsets[plan.z], pz.type, order));
   }
   return absl::OkStatus();
 }
@@ -140,11 +143,12 @@ absl::Status ReadPolygon(uint64_t length, const PlyProperty& property, uint64_t 
 
 template <typename Source>
 absl::Status ReadElement(const PlyElement& element, const ElementPlan& plan, uint64_t vertex_count,
-                         absl::string_view source, Source& in, TriangleMesh* out) {
+                         absl::string_view source, Source& in, CoordinateShift& shift,
+                         TriangleMesh* out) {
   // Rows without properties take no bytes: there is nothing to read, however many there are.
   if (element.properties.empty()) return absl::OkStatus();
   if constexpr (std::is_same_v<Source, PlyBinarySource>) {
-    if (!HasLists(element)) return ReadFixedRows(element, plan, source, in, out);
+    if (!HasLists(element)) return ReadFixedRows(element, plan, source, in, shift, out);
   }
   const size_t min_row = in.MinRowBytes(element);
   if (!in.MayHoldRows(element.count, min_row)) {
@@ -194,8 +198,7 @@ absl::Status ReadElement(const PlyElement& element, const ElementPlan& plan, uin
       }
     }
     if (plan.role == ElementPlan::Role::kVertex) {
-      out->vertices.push_back(
-          {NarrowToFloat(row[plan.x]), NarrowToFloat(row[plan.y]), NarrowToFloat(row[plan.z])});
+      out->vertices.push_back(shift.Narrow(row[plan.x], row[plan.y], row[plan.z]));
     }
   }
   return absl::OkStatus();
@@ -207,11 +210,13 @@ absl::StatusOr<TriangleMesh> ReadElements(const PlyHeader& header,
                                           uint64_t vertex_count, absl::string_view source,
                                           Source& in) {
   TriangleMesh mesh;
+  CoordinateShift shift;
   for (size_t e = 0; e < header.elements.size(); ++e) {
     absl::Status status =
-        ReadElement(header.elements[e], plans[e], vertex_count, source, in, &mesh);
+        ReadElement(header.elements[e], plans[e], vertex_count, source, in, shift, &mesh);
     if (!status.ok()) return status;
   }
+  mesh.origin = shift.origin();
   return mesh;
 }
 

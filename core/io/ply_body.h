@@ -10,7 +10,8 @@
 namespace membrane {
 
 // Reads the body of `data` described by `header`: x, y, z of the first element named
-// "vertex" (any scalar types, narrowed to float) and, when `want_faces`, the vertex index
+// "vertex" (any scalar types, moved near the origin by a CoordinateShift and narrowed to
+// float; the mesh's origin says by how much) and, when `want_faces`, the vertex index
 // list ("vertex_indices" or "vertex_index") of the first element named "face",
 // fan-triangulated; faces of fewer than 3 vertices are dropped. Every element is walked to
 // its end, so a file truncated anywhere fails. Element counts are checked against the bytes

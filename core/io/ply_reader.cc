@@ -12,7 +12,7 @@ absl::StatusOr<PointCloud> ReadPlyPointCloud(absl::string_view data, absl::strin
   if (!header.ok()) return header.status();
   absl::StatusOr<TriangleMesh> body = ReadPlyBody(data, *header, source, /*want_faces=*/false);
   if (!body.ok()) return body.status();
-  return PointCloud{std::move(body->vertices)};
+  return PointCloud{std::move(body->vertices), body->origin};
 }
 
 absl::StatusOr<TriangleMesh> ReadPlyMesh(absl::string_view data, absl::string_view source) {

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "core/io/coordinate_shift.h"
 #include "core/io/file_bytes.h"
 #include "core/io/geometry_checks.h"
 #include "core/io/obj_reader.h"
@@ -57,8 +58,9 @@ absl::StatusOr<PointCloud> ReadPointCloudFromBuffer(absl::string_view data, File
 
 absl::StatusOr<std::string> WritePointCloudToBuffer(const PointCloud& cloud, FileFormat format,
                                                     const DracoOptions& draco) {
-  absl::Status finite = CheckFinitePoints(cloud.points, "cannot write the point cloud");
-  if (!finite.ok()) return finite;
+  absl::Status status = CheckFinitePoints(cloud.points, "cannot write the point cloud");
+  if (status.ok()) status = CheckOriginFitsFormat(cloud.origin, format, FileUse::kWritePointCloud);
+  if (!status.ok()) return status;
   switch (format) {
     case FileFormat::kPly: return EncodePlyPointCloud(cloud);
     case FileFormat::kXyz: return EncodeXyzPointCloud(cloud);

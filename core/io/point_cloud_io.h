@@ -27,14 +27,17 @@ absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path);
 //     and "<source>: 12 points have NaN or infinite coordinates";
 //   Unimplemented for PCD binary_compressed.
 // Never allocates more than a small multiple of data.size(). Draco input is decoded in-process
-// (see draco_codec.h about crafted input).
+// (see draco_codec.h about crafted input). Coordinates from 10^4 on are moved near 0
+// (CoordinateShift), and the cloud's origin says by how much; Draco's float32 positions are
+// taken as they are.
 absl::StatusOr<PointCloud> ReadPointCloudFromBuffer(absl::string_view data, FileFormat format,
                                                     absl::string_view source = "<buffer>");
 
 // The bytes of `cloud` in `format`: binary little-endian PLY, XYZ text, OBJ "v" lines, or
-// Draco with `draco` options. InvalidArgument for non-finite coordinates, a format that
-// cannot be written (PCD, STL), invalid Draco options, or an empty cloud for Draco; Internal
-// when the Draco encoder fails.
+// Draco with `draco` options; with an origin, at position + origin in double (PLY, XYZ, OBJ).
+// InvalidArgument for non-finite coordinates, a format that cannot be written (PCD, STL),
+// invalid Draco options, an empty cloud for Draco, or an origin with Draco
+// (CheckOriginFitsFormat); Internal when the Draco encoder fails.
 absl::StatusOr<std::string> WritePointCloudToBuffer(const PointCloud& cloud, FileFormat format,
                                                     const DracoOptions& draco = {});
 

@@ -12,6 +12,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/io/ascii_scan.h"
 #include "core/io/binary_scalar.h"
+#include "core/io/coordinate_shift.h"
 #include "core/io/parse_error.h"
 
 namespace membrane {
@@ -64,11 +65,16 @@ TriangleMesh ReadBinary(absl::string_view data, uint64_t triangles) {
     }
     mesh.faces.push_back(face);
   }
+  // Welded first: the corners that were one float32 stay one vertex.
+  CoordinateShift shift;
+  shift.ShiftInPlace(mesh.vertices);
+  mesh.origin = shift.origin();
   return mesh;
 }
 
 absl::StatusOr<TriangleMesh> ReadAscii(absl::string_view data, absl::string_view source) {
   TriangleMesh mesh;
+  CoordinateShift shift;
   VertexWelder welder(&mesh);
   std::vector<int32_t> loop;
   bool ended = false;
@@ -76,16 +82,16 @@ absl::StatusOr<TriangleMesh> ReadAscii(absl::string_view data, absl::string_view
   absl::string_view token;
   while (!ended && tokens.Next(&token)) {
     if (token == "vertex") {
-      Point3f p;
-      for (float& coordinate : p) {
+      double p[3];
+      for (double& coordinate : p) {
         absl::string_view number;
         std::optional<double> value;
         if (!tokens.Next(&number) || !(value = ParseDouble(number))) {
           return ParseError(source, tokens.token_offset(), "a \"vertex\" needs three numbers");
         }
-        coordinate = NarrowToFloat(*value);
+        coordinate = *value;
       }
-      loop.push_back(welder.Add(p));
+      loop.push_back(welder.Add(shift.Narrow(p[0], p[1], p[2])));
     } else if (token == "endloop") {
       for (size_t i = 2; i < loop.size(); ++i) {
         mesh.faces.push_back({loop[0], loop[i - 1], loop[i]});
@@ -100,6 +106,7 @@ absl::StatusOr<TriangleMesh> ReadAscii(absl::string_view data, absl::string_view
   if (!ended || !loop.empty()) {
     return ParseError(source, tokens.token_offset(), "the text ends before \"endsolid\"");
   }
+  mesh.origin = shift.origin();
   return mesh;
 }
 

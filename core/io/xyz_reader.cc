@@ -8,7 +8,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "core/io/ascii_scan.h"
-#include "core/io/binary_scalar.h"
+#include "core/io/coordinate_shift.h"
 #include "core/io/parse_error.h"
 
 namespace membrane {
@@ -32,6 +32,7 @@ std::optional<uint64_t> CountLine(absl::string_view line) {
 
 absl::StatusOr<PointCloud> ReadXyzPointCloud(absl::string_view data, absl::string_view source) {
   PointCloud cloud;
+  CoordinateShift shift;
   std::optional<uint64_t> declared_count;
   bool first_data_line = true;
   LineScanner lines(data);
@@ -45,8 +46,8 @@ absl::StatusOr<PointCloud> ReadXyzPointCloud(absl::string_view data, absl::strin
       if (declared_count) continue;
     }
     TokenScanner tokens(line, lines.line_offset(), kSeparators);
-    Point3f point;
-    for (float& coordinate : point) {
+    double point[3];
+    for (double& coordinate : point) {
       absl::string_view token;
       if (!tokens.Next(&token)) {
         return LineError(source, lines.line_number(), tokens.token_offset(),
@@ -58,10 +59,11 @@ absl::StatusOr<PointCloud> ReadXyzPointCloud(absl::string_view data, absl::strin
             source, lines.line_number(), tokens.token_offset(),
             absl::StrCat("'", absl::CHexEscape(token.substr(0, 32)), "' is not a number"));
       }
-      coordinate = NarrowToFloat(*value);
+      coordinate = *value;
     }
-    cloud.points.push_back(point);
+    cloud.points.push_back(shift.Narrow(point[0], point[1], point[2]));
   }
+  cloud.origin = shift.origin();
   if (declared_count && *declared_count != cloud.points.size()) {
     return ParseError(source, data.size(),
                       absl::StrCat("the data ends after ", cloud.points.size(),

@@ -7,7 +7,7 @@ namespace membrane {
 std::string EncodeXyzPointCloud(const PointCloud& cloud) {
   std::string out;
   for (const Point3f& p : cloud.points) {
-    AppendPointText(p, &out);
+    AppendPointText(p, cloud.origin, &out);
     out.push_back('\n');
   }
   return out;

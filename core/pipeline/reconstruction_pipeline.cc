@@ -186,6 +186,7 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
   ReconstructionResult result;
   ReconstructionReport& report = result.report;
   report.points = static_cast<int64_t>(cloud.points.size());
+  report.origin = cloud.origin;
   report.schedule = PlateScheduleName(options.shrink.schedule);
   report.surface = SurfaceKindName(options.surface);
   report.threads = options.threads;
@@ -211,6 +212,7 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
     if (!surface.ok()) return surface.status();
     if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
     if (surface->mesh.faces.empty()) return EmptySurfaceError(report);
+    surface->mesh.origin = cloud.origin;  // the mesh is in the cloud's frame
     if (absl::Status s = CheckAndDeliver(*surface, output_grid, options.threads, cancel, deliver,
                                          report, observer);
         !s.ok())

@@ -35,7 +35,7 @@ struct ReconstructionOptions {
 };
 
 struct ReconstructionResult {
-  TriangleMesh mesh;  // model units, outward faces
+  TriangleMesh mesh;  // model units, outward faces, with the cloud's origin
   // Every measurement but seconds.decode and, without a MeshDelivery, seconds.encode (left 0
   // for the caller);
   // seconds.total spans the five stages here, peak_rss_bytes is this process's peak so far.

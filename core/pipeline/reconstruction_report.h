@@ -39,6 +39,9 @@ struct QuantizationReport {
 
 struct ReconstructionReport {
   int64_t points = 0;
+  // The cloud's origin (PointCloud::origin): where the positions' 0 lies in the input's
+  // coordinates; every other length here is the same in both.
+  std::array<double, 3> origin{0, 0, 0};
   double voxel_size = 0;                     // model units
   std::array<int, 3> grid{};                 // voxels per axis, VoxelGrid::kPadding layers included
   std::array<int, 3> data_grid{};            // voxels per axis covering the points (no padding)

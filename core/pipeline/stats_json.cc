@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "core/pipeline/json_text.h"
 
@@ -86,6 +87,12 @@ std::string SecondsJson(const StageSeconds& s) {
       ", \"total\": ", JsonNumber(s.total), ", \"check\": ", JsonNumber(s.check), "}");
 }
 
+// Whole units up to 2^40 (CoordinateShift): %.17g prints them exactly, where JsonNumber's 9
+// digits would not.
+std::string OriginJson(const std::array<double, 3>& o) {
+  return absl::StrFormat("[%.17g, %.17g, %.17g]", o[0], o[1], o[2]);
+}
+
 std::string QuantizationJson(const QuantizationReport& q) {
   return absl::StrCat("{\"requested_bits\": ", q.requested_bits, ", \"bits\": ", q.bits,
                       ", \"step\": ", JsonNumber(q.step), "}");
@@ -107,7 +114,8 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"post_process\": ", PostProcessJson(r.post_process),
       ",\n  \"handle_retry\": ", HandleRetryJson(r.handle_retry),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
-      ",\n  \"quantization\": ", QuantizationJson(r.quantization), "\n}\n");
+      ",\n  \"quantization\": ", QuantizationJson(r.quantization),
+      ",\n  \"origin\": ", OriginJson(r.origin), "\n}\n");
 }
 
 }  // namespace membrane

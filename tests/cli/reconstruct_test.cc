@@ -7,7 +7,9 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/cli/cli_runner.h"
+#include "core/io/mesh_io.h"
 #include "tests/cli/json_value.h"
+#include "tests/cli/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
@@ -66,6 +68,61 @@ TEST_F(ReconstructTest, SphereGivesOneClosedGenusZeroShell) {
   ASSERT_NE(report.Find("shells"), nullptr);
   EXPECT_EQ(report.Find("shells")->number, 1);
   EXPECT_EQ(Genus(report), std::vector<int>{0});
+}
+
+// A scan in UTM coordinates: read in double and moved near 0, reconstructed there, and written
+// back at its coordinates. As float32 (0.25 m apart at the northing) it was refused.
+TEST_F(ReconstructTest, GeoreferencedCloudComesBackAtItsCoordinates) {
+  const std::string sphere = dir_.File("sphere.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", sphere, "--points", "5000"}).exit_code, 0);
+  const std::string cloud = dir_.File("survey.xyz");
+  WriteSurveyCopy(sphere, cloud);
+  const std::string mesh = dir_.File("survey_mesh.ply");
+  const std::string stats = dir_.File("survey.json");
+  const CliResult r = Run({"reconstruct", cloud, "-o", mesh, "--local", "--stats-json", stats});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err,
+              ::testing::ContainsRegex("moved by -51234[5-7], -412345[6-8], 0 for float32"));
+  // The origin is the first point in whole units: within the unit sphere of the offset.
+  std::optional<JsonValue> json = ParseJson(ReadWholeFile(stats));
+  ASSERT_TRUE(json.has_value());
+  const JsonValue* origin = json->Find("origin");
+  ASSERT_NE(origin, nullptr);
+  ASSERT_EQ(origin->array.size(), 3u);
+  EXPECT_NEAR(origin->array[0].number, kSurveyOffset[0], 1.5);
+  EXPECT_NEAR(origin->array[1].number, kSurveyOffset[1], 1.5);
+  EXPECT_EQ(origin->array[2].number, 0);  // a height of 102.5 is left where it is
+  absl::StatusOr<TriangleMesh> read = ReadMesh(mesh);
+  ASSERT_TRUE(read.ok()) << read.status();
+  EXPECT_NE(read->origin, (Origin3d{0, 0, 0}));
+  // The unit sphere's mesh is centred where the scan is, to a fraction of a voxel (0.04 here).
+  const std::array<double, 3> centre = FileBoxCentre(*read);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(centre[k], kSurveyOffset[k], 0.02) << k;
+  const CliResult check = Run({"check", mesh, "--json"});
+  EXPECT_EQ(check.exit_code, 0) << check.err;
+  std::optional<JsonValue> report = ParseJson(check.out);
+  ASSERT_TRUE(report.has_value()) << check.out;
+  EXPECT_TRUE(Flag(*report, "closed"));
+  EXPECT_EQ(Genus(*report), std::vector<int>{0});
+  ASSERT_NE(report->Find("self_intersections"), nullptr);
+  EXPECT_EQ(report->Find("self_intersections")->number, 0);
+}
+
+// .stl and .drc hold float32 only: the input's coordinates cannot be kept there, and the
+// command says so before any work.
+TEST_F(ReconstructTest, GeoreferencedCloudToFloatOnlyFormatsIsRefusedBeforeWork) {
+  const std::string sphere = dir_.File("sphere.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", sphere, "--points", "2000"}).exit_code, 0);
+  const std::string cloud = dir_.File("survey.xyz");
+  WriteSurveyCopy(sphere, cloud);
+  for (const char* name : {"survey.stl", "survey.drc"}) {
+    const std::string mesh = dir_.File(name);
+    const CliResult r = Run({"reconstruct", cloud, "-o", mesh, "--local"});
+    EXPECT_EQ(r.exit_code, 3) << name;
+    EXPECT_THAT(ErrorLines(r.err), ::testing::ElementsAre(HasSubstr("write .ply or .obj")));
+    EXPECT_THAT(r.err, ::testing::Not(HasSubstr("shrink:")));
+    EXPECT_FALSE(std::filesystem::exists(mesh)) << name;
+  }
 }
 
 TEST_F(ReconstructTest, TorusGivesGenusOne) {

@@ -2,6 +2,7 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <regex>
@@ -13,6 +14,7 @@
 #include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/cli/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/server/subprocess.h"
 #include "tests/support/shared_data.h"
@@ -214,6 +216,40 @@ TEST_F(EndToEndTest, JobsGetWatchAndUnknownIds) {
   EXPECT_EQ(watch.exit_code, 0) << watch.err;
   EXPECT_EQ(Run({"check", dir_.File("again.drc")}).exit_code, 0);
   EXPECT_EQ(Run({"jobs", "get", "nope", "--server", address_}).exit_code, 3);
+}
+
+// A georeferenced scan goes up in its moved float32 positions with its origin beside them, and
+// comes back at its coordinates, through the call and through `jobs watch` alike.
+TEST_F(EndToEndTest, GeoreferencedCloudComesBackAtItsCoordinates) {
+  StartServer();
+  const std::string cloud = dir_.File("survey.xyz");
+  WriteSurveyCopy(Synth("sphere", 3000), cloud);
+  const CliResult r = Run({"reconstruct", cloud, "-o", dir_.File("survey.obj"), "--server",
+                           address_, "--stats-json", dir_.File("survey.json")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(ReadWholeFile(dir_.File("survey.json")).find("\"origin\": [51234"),
+            std::string::npos);
+  const CliResult list = Run({"jobs", "list", "--server", address_});
+  ASSERT_EQ(list.exit_code, 0);
+  const std::string id = list.out.substr(0, list.out.find(' '));
+  ASSERT_EQ(Run({"jobs", "watch", id, "--server", address_, "-o", dir_.File("again.ply")})
+                .exit_code,
+            0);
+  for (const char* name : {"survey.obj", "again.ply"}) {
+    absl::StatusOr<TriangleMesh> mesh = ReadMesh(dir_.File(name));
+    ASSERT_TRUE(mesh.ok()) << mesh.status();
+    const std::array<double, 3> centre = FileBoxCentre(*mesh);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(centre[k], kSurveyOffset[k], 0.05) << name << k;
+    EXPECT_EQ(Run({"check", dir_.File(name)}).exit_code, 0) << name;
+  }
+  // .drc holds float32 only: refused before the upload, and `jobs watch` refuses it too.
+  const CliResult drc =
+      Run({"reconstruct", cloud, "-o", dir_.File("survey.drc"), "--server", address_});
+  EXPECT_EQ(drc.exit_code, 3);
+  EXPECT_NE(drc.err.find("write .ply or .obj"), std::string::npos) << drc.err;
+  EXPECT_EQ(drc.err.find("accepted"), std::string::npos) << drc.err;
+  EXPECT_EQ(Run({"jobs", "watch", id, "--server", address_, "-o", dir_.File("w.drc")}).exit_code,
+            3);
 }
 
 TEST_F(EndToEndTest, GridOverTheServersVoxelBudgetExitsThree) {

@@ -1,4 +1,5 @@
 // Every call of membrane.v1.Reconstruction against an in-process server over a real channel.
+#include <cmath>
 #include <chrono>
 #include <cstring>
 #include <thread>
@@ -154,6 +155,41 @@ TEST_F(ServiceTest, OutOfRangeParameterIsInvalidArgumentNamingTheFieldAndRange) 
   s.set_schedule("spiral");
   EXPECT_EQ(Reconstruct(DracoCloud("sphere", 1000), s).status.error_code(),
             grpc::StatusCode::INVALID_ARGUMENT);
+}
+
+TEST_F(ServiceTest, OriginOfOtherThanThreeFiniteValuesIsInvalidArgument) {
+  StartServer();
+  v1::Parameters two;
+  two.add_origin(512346);
+  two.add_origin(4123457);
+  const CallResult r = Reconstruct(DracoCloud("sphere", 1000), two);
+  EXPECT_EQ(r.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(r.status.error_message().find("origin has 2 values"), std::string::npos)
+      << r.status.error_message();
+  v1::Parameters nan;
+  for (double v : {1.0, std::nan(""), 2.0}) nan.add_origin(v);
+  const CallResult n = Reconstruct(DracoCloud("sphere", 1000), nan);
+  EXPECT_EQ(n.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(n.status.error_message().find("origin value nan"), std::string::npos)
+      << n.status.error_message();
+}
+
+// The server computes in the uploaded positions and keeps the client's origin beside them.
+TEST_F(ServiceTest, OriginIsKeptInTheStatisticsAndTheJob) {
+  StartServer();
+  v1::Parameters p;
+  for (double v : {512346.0, 4123457.0, 0.0}) p.add_origin(v);
+  const CallResult r = Reconstruct(DracoCloud("sphere", 3000), p);
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  std::string json, id;
+  for (const v1::JobEvent& e : r.events) {
+    if (e.has_result()) json = e.result().statistics_json();
+    if (e.has_accepted()) id = e.accepted().job_id();
+  }
+  EXPECT_NE(json.find("\"origin\": [512346, 4123457, 0]"), std::string::npos) << json;
+  const v1::Job job = WaitUntilDone(*stub_, id, 10);
+  ASSERT_EQ(job.parameters().origin_size(), 3);
+  EXPECT_EQ(job.parameters().origin(1), 4123457.0);
 }
 
 TEST_F(ServiceTest, GetJobAndListJobsShowAFinishedJobAndItsResultIsFetchableAgain) {

@@ -96,7 +96,8 @@ absl::Status CheckPositionPrecision(const Box3d& bounds, double voxel_size) {
   return absl::InvalidArgumentError(absl::StrFormat(
       "the coordinates reach %g, where float32 positions are %g apart: more than a quarter of "
       "the voxel size %g, so the points sit on a lattice too coarse for the surface; move the "
-      "cloud near the origin (subtract its centre) and try again",
+      "cloud near the origin (subtract its centre), or give its coordinates in double (text, or "
+      "PLY or PCD doubles: membrane then moves it itself)",
       reach, spacing, voxel_size));
 }
 

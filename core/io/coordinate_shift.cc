@@ -24,16 +24,6 @@ Point3f CoordinateShift::Narrow(double x, double y, double z) {
           NarrowToFloat(z - origin_[2])};
 }
 
-void CoordinateShift::ShiftInPlace(std::vector<Point3f>& points) {
-  for (const Point3f& p : points) {
-    if (fixed_) break;
-    Fix(p[0], p[1], p[2]);
-  }
-  if (origin_ == Origin3d{0, 0, 0}) return;
-  for (Point3f& p : points)
-    for (int k = 0; k < 3; ++k) p[k] = NarrowToFloat(p[k] - origin_[k]);
-}
-
 absl::Status CheckOriginFitsFormat(const Origin3d& origin, FileFormat format, FileUse use) {
   if (origin == Origin3d{0, 0, 0} || (format != FileFormat::kStl && format != FileFormat::kDrc))
     return absl::OkStatus();

@@ -1,8 +1,11 @@
 // Moving clouds near the origin as they are read. Georeferenced scans carry coordinates such as
 // UTM eastings and northings (500,000 and 4,000,000 m) or ECEF positions, where float32 values
 // lie 0.03 to 0.5 m apart: coarser than a scan's detail, and the core computes in float32. The
-// readers subtract a whole-unit offset in double before narrowing, so nothing of the file's
-// precision is lost, and record it as the geometry's origin for the writers.
+// readers of text and of binary doubles subtract a whole-unit offset in double before
+// narrowing, so nothing of the file's precision is lost, and record it as the geometry's origin
+// for the writers. Binary float32 positions (PLY, PCD, STL, Draco) are taken as they are:
+// moving them would gain no precision, and would hide their coarse lattice from Voxelize's
+// precision check, which refuses such clouds instead of giving a wrong genus.
 #ifndef MEMBRANE_CORE_IO_COORDINATE_SHIFT_H_
 #define MEMBRANE_CORE_IO_COORDINATE_SHIFT_H_
 
@@ -26,14 +29,8 @@ class CoordinateShift {
   // (x, y, z) minus the origin, each narrowed with NarrowToFloat (infinite beyond float's
   // range, NaN kept, so that the finiteness checks report them). The first call whose three
   // coordinates are finite fixes the origin: on each axis where that coordinate's magnitude is
-  // in [kShiftFrom, kShiftUpTo], the coordinate rounded to a whole unit; 0 on the others. For
-  // a float32 coordinate no farther from the origin than from 0 (every point of a cloud smaller
-  // than its distance from 0) the result is exact: such a file changes by the translation only.
+  // in [kShiftFrom, kShiftUpTo], the coordinate rounded to a whole unit; 0 on the others.
   Point3f Narrow(double x, double y, double z);
-
-  // The same for positions already in float32, in place (the fast path of binary readers):
-  // fixes the origin from the first finite point if Narrow has not, then subtracts it.
-  void ShiftInPlace(std::vector<Point3f>& points);
 
   // The origin fixed so far: zero before the first finite point and when nothing is moved.
   const Origin3d& origin() const { return origin_; }

@@ -10,6 +10,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/io/binary_scalar.h"
 #include "core/io/coordinate_shift.h"
 #include "core/io/parse_error.h"
 #include "core/io/ply_value_source.h"
@@ -91,9 +92,12 @@ absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
   const PlyProperty& pz = element.properties[plan.z];
   const ByteOrder order = in.order();
   out->vertices.resize(element.count);
+  // Binary float32 positions are not moved (see CoordinateShift).
+  const bool float32_positions = px.type == ScalarType::kFloat32 &&
+                                 py.type == ScalarType::kFloat32 &&
+                                 pz.type == ScalarType::kFloat32;
   const bool native_floats =
-      px.type == ScalarType::kFloat32 && py.type == ScalarType::kFloat32 &&
-      pz.type == ScalarType::kFloat32 &&
+      float32_positions &&
       (order == ByteOrder::kLittleEndian) == (std::endian::native == std::endian::little);
   if (native_floats) {
     // The common scan layout: copy the floats as they are, no per-value conversion.
@@ -104,14 +108,16 @@ absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
       std::memcpy(&p[1], row + offsets[plan.y], sizeof(float));
       std::memcpy(&p[2], row + offsets[plan.z], sizeof(float));
     }
-    shift.ShiftInPlace(out->vertices);
     return absl::OkStatus();
   }
   for (uint64_t r = 0; r < element.count; ++r) {
     const char* row = rows + r * row_bytes;
-    out->vertices[r] = shift.Narrow(DecodeScalar(row + offsets[plan.x], px.type, order),
-                                    DecodeScalar(row + offsets[plan.y], py.type, order),
-                                    DecodeScalar(row + offsets[plan.z], pz.type, order));
+    const double x = DecodeScalar(row + offsets[plan.x], px.type, order);
+    const double y = DecodeScalar(row + offsets[plan.y], py.type, order);
+    const double z = DecodeScalar(row + offsets[plan.z], pz.type, order);
+    out->vertices[r] = float32_positions
+                           ? Point3f{NarrowToFloat(x), NarrowToFloat(y), NarrowToFloat(z)}
+                           : shift.Narrow(x, y, z);
   }
   return absl::OkStatus();
 }

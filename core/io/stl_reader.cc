@@ -65,10 +65,7 @@ TriangleMesh ReadBinary(absl::string_view data, uint64_t triangles) {
     }
     mesh.faces.push_back(face);
   }
-  // Welded first: the corners that were one float32 stay one vertex.
-  CoordinateShift shift;
-  shift.ShiftInPlace(mesh.vertices);
-  mesh.origin = shift.origin();
+  // float32 corners are not moved (see CoordinateShift).
   return mesh;
 }
 

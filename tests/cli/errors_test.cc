@@ -5,8 +5,10 @@
 
 #include "absl/strings/escaping.h"
 #include "gmock/gmock.h"
+#include "core/io/point_cloud_io.h"
 #include "gtest/gtest.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/cli/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
@@ -69,6 +71,21 @@ TEST_F(ErrorsTest, UnknownOutputExtensionIsInvalidInput) {
   const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.xyz"), "--local"});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("out.xyz")));
+}
+
+// The same survey cloud as float32 (a float PLY): the file itself holds positions 0.25 m
+// apart, which no move can mend, and the line says how to give it in double.
+TEST_F(ErrorsTest, Float32SurveyCloudIsRefusedNamingTheSpacing) {
+  absl::StatusOr<PointCloud> cloud = ReadPointCloud(SphereCloud());
+  ASSERT_TRUE(cloud.ok()) << cloud.status();
+  for (Point3f& p : cloud->points)
+    for (int k = 0; k < 3; ++k) p[k] = static_cast<float>(p[k] + kSurveyOffset[k]);
+  const std::string path = dir_.File("survey_float.ply");
+  ASSERT_TRUE(WritePointCloud(*cloud, path).ok());
+  const CliResult r = Run({"reconstruct", path, "-o", dir_.File("out.ply"), "--local"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("float32 positions are 0.25 apart")));
+  EXPECT_THAT(r.err, HasSubstr("give its coordinates in double"));
 }
 
 TEST_F(ErrorsTest, NaNCoordinatesAreInvalidInputInOneLine) {

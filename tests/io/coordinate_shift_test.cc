@@ -18,7 +18,9 @@
 namespace membrane {
 namespace {
 
+using ::membrane::testing::BigEndianFloat;
 using ::membrane::testing::LittleEndianDouble;
+using ::membrane::testing::LittleEndianFloat;
 using ::membrane::testing::Octahedron;
 using ::membrane::testing::ScratchDir;
 using ::testing::ElementsAre;
@@ -84,16 +86,32 @@ TEST(CoordinateShift, SmallAndAbsurdCoordinatesStayWhereTheyAre) {
   EXPECT_EQ(absurd.origin(), (Origin3d{0, 0, 0}));
 }
 
-TEST(CoordinateShift, FloatInputOnlyTranslatesExactly) {
-  std::vector<Point3f> points = {{512345.66f, 4123456.75f, 10.5f},
-                                 {512350.03f, 4123450.25f, -3.125f}};
-  const std::vector<Point3f> original = points;
-  CoordinateShift shift;
-  shift.ShiftInPlace(points);
-  ASSERT_EQ(shift.origin(), (Origin3d{512346, 4123457, 0}));
-  for (size_t i = 0; i < points.size(); ++i)
-    for (int k = 0; k < 3; ++k)
-      EXPECT_EQ(static_cast<double>(points[i][k]) + shift.origin()[k], original[i][k]);
+// float32 files already hold the coarse lattice: they stay where they are, so that Voxelize's
+// precision check still sees it and refuses the cloud instead of a wrong genus.
+TEST(CoordinateShift, BinaryFloat32PositionsAreNotMoved) {
+  const Point3f far = {512345.66f, 4123456.75f, 10.5f};
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1\n"
+      "property float x\nproperty float y\nproperty float z\nend_header\n";
+  std::string ply_big =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 1\n"
+      "property float x\nproperty float y\nproperty float z\nend_header\n";
+  std::string pcd =
+      "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\n"
+      "POINTS 1\nDATA binary\n";
+  for (float v : far) {
+    ply += LittleEndianFloat(v);
+    ply_big += BigEndianFloat(v);
+    pcd += LittleEndianFloat(v);
+  }
+  for (const auto& [data, format] : {std::pair{ply, FileFormat::kPly},
+                                     std::pair{ply_big, FileFormat::kPly},
+                                     std::pair{pcd, FileFormat::kPcd}}) {
+    absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(data, format);
+    ASSERT_TRUE(cloud.ok()) << cloud.status();
+    EXPECT_EQ(cloud->origin, (Origin3d{0, 0, 0}));
+    EXPECT_THAT(cloud->points, ElementsAre(far));
+  }
 }
 
 TEST(CoordinateShift, EveryTextAndDoubleReaderMovesSurveyCoordinates) {

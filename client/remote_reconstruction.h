@@ -48,10 +48,10 @@ struct RemoteOutcome {
 // file holds, and the mesh comes back lossless (unless the output is .drc), so the vertices
 // and faces equal --local's up to Draco's reordering (tests/server LosslessUpload...). With
 // quantized uploads (the default 11 bits) each coordinate moves by at most
-// DracoEncoding::max_position_error, and the mesh may differ from --local's by about that. Calls refused before
-// the job is accepted (UNAVAILABLE; RESOURCE_EXHAUSTED with a RetryInfo) are repeated with
-// exponential backoff honouring the server's delay, 5 attempts at most and within the timeout;
-// a call that breaks after acceptance is resumed with WatchJob the same way.
+// DracoEncoding::max_position_error, and the mesh may differ from --local's by about that.
+// Calls refused before the job is accepted (UNAVAILABLE; RESOURCE_EXHAUSTED with a RetryInfo)
+// are repeated with exponential backoff honouring the server's delay, 5 attempts at most and
+// within the timeout; a call that breaks after acceptance is resumed with WatchJob the same way.
 // Errors: the reader's status for an unreadable input; the server's status (INVALID_ARGUMENT,
 // RESOURCE_EXHAUSTED for its limits, ...) with a "server: " message; Unavailable when the
 // server stays unreachable or busy; DeadlineExceeded when the timeout expires; the job's

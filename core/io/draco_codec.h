@@ -67,8 +67,8 @@ absl::StatusOr<DracoEncoding> EncodeDracoPointCloud(const PointCloud& cloud,
                                                     const DracoOptions& options);
 
 // `mesh` compressed by Draco: its float32 positions, not its origin, as for clouds. Draco may
-// reorder vertices and faces and, for non-manifold
-// input, duplicate vertices; positions and triangles (with their orientation) are kept.
+// reorder vertices and faces and, for non-manifold input, duplicate vertices; positions and
+// triangles (with their orientation) are kept.
 // InvalidArgument for invalid options, a mesh without vertices or faces, non-finite
 // coordinates or face indices out of range; Internal when the Draco encoder fails.
 absl::StatusOr<DracoEncoding> EncodeDracoMesh(const TriangleMesh& mesh,

@@ -24,8 +24,9 @@ absl::StatusOr<TriangleMesh> ReadMesh(const std::string& path);
 // faces gives a mesh without faces. InvalidArgument "<source>: ..." for empty input, XYZ or
 // PCD, malformed, truncated or lying input (with the byte offset where it went wrong), face
 // indices out of range, and "<source>: 3 vertices have NaN or infinite coordinates".
-// PLY, OBJ and STL coordinates from 10^4 on are moved near 0 (CoordinateShift), and the mesh's
-// origin says by how much; Draco's float32 positions are taken as they are.
+// Coordinates from 10^4 on in text or binary doubles are moved near 0 (CoordinateShift), and
+// the mesh's origin says by how much; binary float32 positions (PLY, STL, Draco) are taken as
+// they are.
 absl::StatusOr<TriangleMesh> ReadMeshFromBuffer(absl::string_view data, FileFormat format,
                                                 absl::string_view source = "<buffer>");
 

@@ -27,9 +27,9 @@ absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path);
 //     and "<source>: 12 points have NaN or infinite coordinates";
 //   Unimplemented for PCD binary_compressed.
 // Never allocates more than a small multiple of data.size(). Draco input is decoded in-process
-// (see draco_codec.h about crafted input). Coordinates from 10^4 on are moved near 0
-// (CoordinateShift), and the cloud's origin says by how much; Draco's float32 positions are
-// taken as they are.
+// (see draco_codec.h about crafted input). Coordinates from 10^4 on in text or binary doubles
+// are moved near 0 (CoordinateShift), and the cloud's origin says by how much; binary float32
+// positions (PLY, PCD, Draco) are taken as they are.
 absl::StatusOr<PointCloud> ReadPointCloudFromBuffer(absl::string_view data, FileFormat format,
                                                     absl::string_view source = "<buffer>");
 

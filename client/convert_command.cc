@@ -4,11 +4,13 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "CLI/CLI.hpp"
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "client/input_files.h"
 #include "client/io_errors.h"
 #include "core/io/draco_codec.h"
@@ -94,6 +96,17 @@ DracoOptions CheckedDracoOptions(TriangleMesh& mesh) {
   return DracoOptionsOnGrid(grid, defaults.compression_level);
 }
 
+// What a .drc file's quantization does to the positions written, for the line that reports it:
+// "" for other formats.
+std::string DracoErrorNote(FileFormat format, const std::vector<Point3f>& positions,
+                           const DracoOptions& draco) {
+  if (format != FileFormat::kDrc) return "";
+  if (draco.position_quantization_bits == 0) return " (lossless positions)";
+  return absl::StrFormat(" (%d-bit positions: each coordinate within %.3g of the input's)",
+                         draco.position_quantization_bits,
+                         DracoPositionErrorBound(positions, draco));
+}
+
 absl::Status RunConvert(const ConvertFlags& flags) {
   // Both extensions are checked before any reading.
   absl::StatusOr<FileFormat> in_format =
@@ -109,12 +122,16 @@ absl::Status RunConvert(const ConvertFlags& flags) {
       !geometry->faces.empty() && FormatFromPath(flags.output, FileUse::kWriteMesh).ok();
   if (keep_faces) {
     DracoOptions draco;
+    // The bound is taken on the input's positions, before CheckedDracoOptions snaps them.
+    const std::vector<Point3f> input_vertices =
+        *out_format == FileFormat::kDrc ? geometry->vertices : std::vector<Point3f>{};
     if (*out_format == FileFormat::kDrc) draco = CheckedDracoOptions(*geometry);
     if (absl::Status s = WriteMesh(*geometry, flags.output, draco); !s.ok()) {
       return FileErrorAsInvalidInput(s);
     }
-    std::printf("wrote a mesh of %zu vertices and %zu faces to %s\n", geometry->vertices.size(),
-                geometry->faces.size(), flags.output.c_str());
+    std::printf("wrote a mesh of %zu vertices and %zu faces to %s%s\n",
+                geometry->vertices.size(), geometry->faces.size(), flags.output.c_str(),
+                DracoErrorNote(*out_format, input_vertices, draco).c_str());
     return absl::OkStatus();
   }
   if (!FormatFromPath(flags.output, FileUse::kWritePointCloud).ok()) {
@@ -124,10 +141,12 @@ absl::Status RunConvert(const ConvertFlags& flags) {
   PointCloud cloud;
   cloud.points = std::move(geometry->vertices);
   cloud.origin = geometry->origin;
-  if (absl::Status s = WritePointCloud(cloud, flags.output); !s.ok()) {
+  const DracoOptions draco;
+  if (absl::Status s = WritePointCloud(cloud, flags.output, draco); !s.ok()) {
     return FileErrorAsInvalidInput(s);
   }
-  std::printf("wrote %zu points to %s\n", cloud.points.size(), flags.output.c_str());
+  std::printf("wrote %zu points to %s%s\n", cloud.points.size(), flags.output.c_str(),
+              DracoErrorNote(*out_format, cloud.points, draco).c_str());
   return absl::OkStatus();
 }
 

@@ -106,11 +106,17 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   }
   outcome.raw_bytes = cloud->points.size() * sizeof(Point3f);
   outcome.upload_bytes = encoded->bytes.size();
+  const std::string positions =
+      params.upload.position_quantization_bits == 0
+          ? std::string("lossless positions")
+          : absl::StrFormat("%d-bit positions, each coordinate within %.3g of the file's",
+                            params.upload.position_quantization_bits,
+                            encoded->max_position_error);
   progress.Finish(absl::StrFormat(
-      "decode: %d points%s, %d bytes as Draco (%.1f%% of %d raw float32 bytes) in %.3f s",
+      "decode: %d points%s, %d bytes as Draco (%.1f%% of %d raw float32 bytes; %s) in %.3f s",
       cloud->points.size(), OriginNote(cloud->origin), outcome.upload_bytes,
       100.0 * outcome.upload_bytes / std::max<uint64_t>(1, outcome.raw_bytes),
-      outcome.raw_bytes, watch.Seconds()));
+      outcome.raw_bytes, positions, watch.Seconds()));
   return Upload{std::move(encoded->bytes), cloud->origin};
 }
 

@@ -48,30 +48,6 @@ void SetPositions(const std::vector<Point3f>& positions, draco::PointCloud* pc) 
   pc->attribute(id)->buffer()->Write(0, positions.data(), positions.size() * sizeof(Point3f));
 }
 
-// See DracoEncoding::max_position_error.
-double QuantizationErrorBound(const std::vector<Point3f>& positions, const DracoOptions& options) {
-  const int bits = options.position_quantization_bits;
-  if (bits == 0) return 0;
-  double range = 0, magnitude = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
-    for (const Point3f& p : positions) {
-      low = std::min(low, p[axis]);
-      high = std::max(high, p[axis]);
-    }
-    range = std::max(range, double{high} - low);
-    magnitude = std::max({magnitude, std::fabs(double{low}), std::fabs(double{high})});
-  }
-  if (options.box) range = options.box->range;
-  // Draco quantizes a flat (zero-range) attribute over a range of 1.
-  if (range == 0) range = 1;
-  const double half_step = range / (std::ldexp(1.0, bits) - 1) / 2;
-  // Dequantization computes q * step + min in float32: a few rounding units of the range
-  // and of the largest coordinate.
-  const double rounding = 4 * FLT_EPSILON * (range + magnitude);
-  return half_step + rounding;
-}
-
 absl::Status CheckEncodable(const std::vector<Point3f>& positions, const DracoOptions& options,
                             bool is_mesh) {
   const absl::string_view what = is_mesh ? "mesh" : "point cloud";
@@ -121,7 +97,7 @@ DracoEncoding Finish(const draco::EncoderBuffer& buffer, const std::vector<Point
                      const DracoOptions& options) {
   DracoEncoding encoding;
   encoding.bytes.assign(buffer.data(), buffer.size());
-  encoding.max_position_error = QuantizationErrorBound(positions, options);
+  encoding.max_position_error = DracoPositionErrorBound(positions, options);
   return encoding;
 }
 
@@ -193,6 +169,29 @@ absl::StatusOr<std::vector<Point3f>> AllPositionValues(const draco::PointAttribu
 }
 
 }  // namespace
+
+double DracoPositionErrorBound(const std::vector<Point3f>& positions, const DracoOptions& options) {
+  const int bits = options.position_quantization_bits;
+  if (bits == 0) return 0;
+  double range = 0, magnitude = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
+    for (const Point3f& p : positions) {
+      low = std::min(low, p[axis]);
+      high = std::max(high, p[axis]);
+    }
+    range = std::max(range, double{high} - low);
+    magnitude = std::max({magnitude, std::fabs(double{low}), std::fabs(double{high})});
+  }
+  if (options.box) range = options.box->range;
+  // Draco quantizes a flat (zero-range) attribute over a range of 1.
+  if (range == 0) range = 1;
+  const double half_step = range / (std::ldexp(1.0, bits) - 1) / 2;
+  // Dequantization computes q * step + min in float32: a few rounding units of the range
+  // and of the largest coordinate.
+  const double rounding = 4 * FLT_EPSILON * (range + magnitude);
+  return half_step + rounding;
+}
 
 absl::Status ValidateDracoOptions(const DracoOptions& options) {
   const int bits = options.position_quantization_bits;

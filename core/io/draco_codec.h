@@ -59,6 +59,10 @@ struct DracoEncoding {
   double max_position_error = 0;
 };
 
+// DracoEncoding::max_position_error for `positions` encoded with `options`, without encoding
+// them: what a caller reports before or beside the encoding. `options` are not validated.
+double DracoPositionErrorBound(const std::vector<Point3f>& positions, const DracoOptions& options);
+
 // `cloud` compressed by Draco: its float32 positions, not its origin (the client sends a moved
 // cloud's origin beside it). InvalidArgument for invalid options, an empty cloud or
 // non-finite coordinates (the quantizer's range would be meaningless); Internal when the

@@ -90,6 +90,7 @@ absl::StatusOr<BuiltSurface> Surface(const ReconstructionOptions& options,
   if (!built.ok()) return built.status();
   report.quantization.bits = output_grid.bits;
   report.quantization.step = output_grid.step();
+  report.quantization.max_position_error = output_grid.step() / 2;
   // A second build (see MeshDelivery) adds to the first.
   report.seconds.surface += watch.Seconds();
   // Known now; the check repeats them with the rest of its findings.

@@ -35,6 +35,9 @@ struct QuantizationReport {
   // when on it the check found crossing or flattened faces.
   int bits = 0;
   double step = 0;  // model units between grid positions along an axis; 0 for float32
+  // How far the grid can move a coordinate from where float32 would put it: half the step (0
+  // for float32). The positions delivered are the ones checked, exactly.
+  double max_position_error = 0;
 };
 
 struct ReconstructionReport {

@@ -53,7 +53,10 @@ std::string StageFinishedLine(PipelineStage stage, const ReconstructionReport& r
       const QuantizationReport& q = r.quantization;
       std::string grid;
       if (q.bits > 0) {
-        grid = absl::StrFormat(" on the output's %d-bit grid (step %.3g)", q.bits, q.step);
+        grid = absl::StrFormat(
+            " on the output's %d-bit grid (step %.3g; each coordinate within %.3g of its float32 "
+            "value)",
+            q.bits, q.step, q.max_position_error);
       } else if (q.requested_bits > 0) {
         grid = absl::StrFormat(" in float32 (on the %d-bit grid asked for, faces crossed)",
                                q.requested_bits);

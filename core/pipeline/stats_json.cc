@@ -95,7 +95,8 @@ std::string OriginJson(const std::array<double, 3>& o) {
 
 std::string QuantizationJson(const QuantizationReport& q) {
   return absl::StrCat("{\"requested_bits\": ", q.requested_bits, ", \"bits\": ", q.bits,
-                      ", \"step\": ", JsonNumber(q.step), "}");
+                      ", \"step\": ", JsonNumber(q.step),
+                      ", \"max_position_error\": ", JsonNumber(q.max_position_error), "}");
 }
 
 }  // namespace

@@ -1,8 +1,12 @@
 // `membrane convert INPUT OUTPUT` between point cloud and mesh formats.
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <regex>
 #include <string>
 #include <vector>
 
+#include "core/io/point_cloud_io.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/cli/cli_runner.h"
@@ -75,9 +79,41 @@ TEST_F(ConvertTest, MeshToDracoKeepsElevenBitsWhenTheyAreClean) {
   const CliResult convert = Run({"convert", obj, drc});
   ASSERT_EQ(convert.exit_code, 0) << convert.err;
   EXPECT_THAT(convert.out, ::testing::Not(HasSubstr("float32")));
+  // Range 1 on 11 bits: half a step is 1 / 2047 / 2.
+  EXPECT_THAT(convert.out, HasSubstr("(11-bit positions: each coordinate within 0.000245 of"));
   const CliResult check = Run({"check", drc});
   EXPECT_THAT(check.out, HasSubstr("closed: yes"));
   EXPECT_THAT(check.out, HasSubstr("self-intersections: 0"));
+}
+
+// The bound the line reports holds: every decoded point is that close to a point of the input.
+TEST_F(ConvertTest, CloudToDracoReportsAnErrorBoundThatHolds) {
+  const std::string ply = dir_.File("cloud.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", ply, "--points", "1000"}).exit_code, 0);
+  const std::string drc = dir_.File("cloud.drc");
+  const CliResult convert = Run({"convert", ply, drc});
+  ASSERT_EQ(convert.exit_code, 0) << convert.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(convert.out, m, std::regex("each coordinate within ([0-9.e-]+)")))
+      << convert.out;
+  const double bound = std::stod(m[1].str());
+  EXPECT_GT(bound, 0);
+  absl::StatusOr<PointCloud> input = ReadPointCloud(ply), decoded = ReadPointCloud(drc);
+  ASSERT_TRUE(input.ok() && decoded.ok());
+  ASSERT_EQ(decoded->points.size(), input->points.size());
+  double worst = 0;
+  for (const Point3f& d : decoded->points) {
+    double nearest = 1e300;
+    for (const Point3f& p : input->points) {
+      double chebyshev = 0;
+      for (int k = 0; k < 3; ++k) chebyshev = std::max<double>(chebyshev, std::fabs(d[k] - p[k]));
+      nearest = std::min(nearest, chebyshev);
+    }
+    worst = std::max(worst, nearest);
+  }
+  // The line rounds to 3 digits.
+  EXPECT_LE(worst, bound * 1.005);
+  EXPECT_GT(worst, bound / 4);  // a bound, not a guess far above the truth
 }
 
 TEST_F(ConvertTest, MeshToPointFormatWritesItsVertices) {

@@ -170,6 +170,9 @@ TEST_F(ReconstructTest, DracoFileChecksAsTheStatisticsSay) {
   EXPECT_EQ(q->Find("requested_bits")->number, 11);
   EXPECT_EQ(q->Find("bits")->number, 11);
   EXPECT_GT(q->Find("step")->number, 0);
+  ASSERT_NE(q->Find("max_position_error"), nullptr);
+  EXPECT_NEAR(q->Find("max_position_error")->number, q->Find("step")->number / 2, 1e-9);
+  EXPECT_THAT(r.err, HasSubstr("each coordinate within"));
   EXPECT_EQ(json->Find("mesh")->Find("self_intersections")->number, 0);
 }
 

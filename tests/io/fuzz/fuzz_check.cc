@@ -43,7 +43,8 @@ void CheckReaders(const uint8_t* data, size_t size, FileFormat format) {
     Require(AllFinite(cloud->points), "a point cloud with non-finite points");
     Require(ValidOrigin(cloud->origin), "a point cloud with an invalid origin");
   }
-  if (format != FileFormat::kPly && format != FileFormat::kObj && format != FileFormat::kDrc) {
+  if (format != FileFormat::kPly && format != FileFormat::kObj && format != FileFormat::kDrc &&
+      format != FileFormat::kStl) {
     return;
   }
   absl::StatusOr<TriangleMesh> mesh = ReadMeshFromBuffer(bytes, format, "fuzz");

@@ -11,8 +11,8 @@
 namespace membrane::fuzzing {
 
 // Feeds `data` to ReadPointCloudFromBuffer as `format` (and, for formats that hold meshes,
-// to ReadMeshFromBuffer) and aborts when a result is OK but holds a non-finite coordinate or
-// a face index outside the vertices. Crashes, leaks and sanitizer reports are the fuzzer's
+// to ReadMeshFromBuffer) and aborts when a result is OK but holds a non-finite coordinate, an
+// origin CoordinateShift would not give, or a face index outside the vertices. Crashes, leaks and sanitizer reports are the fuzzer's
 // to catch.
 void CheckReaders(const uint8_t* data, size_t size, FileFormat format);
 

@@ -64,19 +64,6 @@ v1::MeshSummary MeshSummaryOf(const MeshReport& m) {
   return summary;
 }
 
-// Holds a memory reservation for as long as the job runs.
-class Reservation {
- public:
-  Reservation(MemoryBudget& budget, int64_t bytes) : budget_(budget), bytes_(bytes) {}
-  ~Reservation() { budget_.Release(bytes_); }
-  Reservation(const Reservation&) = delete;
-  Reservation& operator=(const Reservation&) = delete;
-
- private:
-  MemoryBudget& budget_;
-  const int64_t bytes_;
-};
-
 }  // namespace
 
 int JobThreads(const ServerOptions& options, int running_jobs) {
@@ -132,8 +119,21 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   const int64_t bytes = EstimateJobBytes(
       std::min(plan->voxels, settings->reconstruction.voxelize.voxel_budget),
       decode_report.points);
-  if (absl::Status s = memory_.Reserve(bytes, job->cancel_token()); !s.ok()) return fail(s);
-  const Reservation reservation(memory_, bytes);
+  // Held until the job ends; the surface's share is added once the membrane is known.
+  MemoryBudget::Share memory(memory_);
+  if (absl::Status s = memory.Add(bytes, job->cancel_token()); !s.ok()) return fail(s);
+  // Its refusal is the job's status as it is: the voxel-budget hint below is not about it.
+  absl::Status admission;
+  settings->reconstruction.admit_surface = [&](const MembraneCounts& membrane) {
+    admission = memory.Add(SurfaceBytesEstimate(membrane), job->cancel_token());
+    if (absl::IsResourceExhausted(admission)) {
+      admission = absl::ResourceExhaustedError(absl::StrCat(
+          "the surface of a membrane of ",
+          membrane.hard_voxels + membrane.frozen_voxels + membrane.soft_voxels,
+          " voxels (a noisy cloud makes a foam of one): ", admission.message()));
+    }
+    return admission;
+  };
 
   // The Draco encoding of the result runs beside the mesh check.
   std::string mesh;
@@ -147,7 +147,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   settings->reconstruction.threads = threads;
   absl::StatusOr<ReconstructionResult> result = ReconstructCloud(
       *cloud, settings->reconstruction, job->cancel_token(), observer, encode);
-  if (!result.ok()) return fail(WithParameterHint(result.status()));
+  if (!result.ok()) return fail(admission.ok() ? WithParameterHint(result.status()) : admission);
   ReconstructionReport& report = result->report;
   report.seconds.decode = decode_report.seconds.decode;
   report.seconds.total = total.Seconds();

@@ -1,5 +1,7 @@
 #include "server/memory_budget.h"
 
+#include <algorithm>
+
 #include "absl/strings/str_format.h"
 #include "absl/time/time.h"
 #include "core/geometry/point_cloud.h"
@@ -19,29 +21,54 @@ int64_t EstimateJobBytes(int64_t voxels, int64_t points) {
   return voxels * kBytesPerVoxel + points * kBytesPerPoint;
 }
 
-absl::Status MemoryBudget::Reserve(int64_t bytes, const CancelToken& cancel) {
-  if (total_ <= 0) return absl::OkStatus();
-  if (bytes > total_) {
+MemoryBudget::Share::~Share() {
+  if (bytes_ == 0 || budget_.total_ <= 0) return;
+  absl::MutexLock lock(&budget_.mutex_);
+  budget_.reserved_ -= bytes_;
+  --budget_.holders_;
+}
+
+absl::Status MemoryBudget::Share::Add(int64_t bytes, const CancelToken& cancel) {
+  MemoryBudget& b = budget_;
+  if (b.total_ <= 0 || bytes <= 0) {
+    bytes_ += std::max<int64_t>(bytes, 0);
+    return absl::OkStatus();
+  }
+  if (bytes_ + bytes > b.total_) {
     return absl::ResourceExhaustedError(absl::StrFormat(
         "the job needs about %d bytes, over the server's memory budget of %d bytes; use a "
         "larger voxel_size",
-        bytes, total_));
+        bytes_ + bytes, b.total_));
   }
-  absl::MutexLock lock(&mutex_);
-  auto fits = [this, bytes]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) {
-    return reserved_ + bytes <= total_;
+  absl::MutexLock lock(&b.mutex_);
+  const bool holder = bytes_ > 0;
+  // Every holder waiting means no share will shrink: waiting would never end.
+  auto stuck = [&b, holder]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(b.mutex_) {
+    return holder && b.waiting_holders_ == b.holders_;
   };
-  while (!mutex_.AwaitWithTimeout(absl::Condition(&fits), absl::Milliseconds(50))) {
-    if (cancel.cancelled()) return absl::CancelledError("cancelled while waiting for memory");
+  auto ready = [&b, bytes, &stuck]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(b.mutex_) {
+    return b.reserved_ + bytes <= b.total_ || stuck();
+  };
+  if (holder) ++b.waiting_holders_;
+  absl::Status status = absl::OkStatus();
+  while (!b.mutex_.AwaitWithTimeout(absl::Condition(&ready), absl::Milliseconds(50))) {
+    if (cancel.cancelled()) {
+      status = absl::CancelledError("cancelled while waiting for memory");
+      break;
+    }
   }
-  reserved_ += bytes;
+  if (status.ok() && b.reserved_ + bytes > b.total_) {
+    status = absl::ResourceExhaustedError(absl::StrFormat(
+        "the job needs %d more bytes while every running job waits for memory the others "
+        "hold (%d of %d bytes reserved); retry later, or use a larger voxel_size",
+        bytes, b.reserved_, b.total_));
+  }
+  if (holder) --b.waiting_holders_;
+  if (!status.ok()) return status;
+  b.reserved_ += bytes;
+  if (!holder) ++b.holders_;
+  bytes_ += bytes;
   return absl::OkStatus();
-}
-
-void MemoryBudget::Release(int64_t bytes) {
-  if (total_ <= 0) return;
-  absl::MutexLock lock(&mutex_);
-  reserved_ -= bytes;
 }
 
 }  // namespace membrane::server

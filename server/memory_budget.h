@@ -1,5 +1,6 @@
 // The memory budget across running jobs (--memory-budget-bytes): a job reserves its estimate
-// before allocating its grid and waits while others hold the rest.
+// before allocating its grid, and the surface's estimate once its membrane is known, and waits
+// while others hold the rest.
 #ifndef MEMBRANE_SERVER_MEMORY_BUDGET_H_
 #define MEMBRANE_SERVER_MEMORY_BUDGET_H_
 
@@ -17,21 +18,40 @@ class MemoryBudget {
   // `total_bytes` <= 0: no limit (every reservation succeeds at once).
   explicit MemoryBudget(int64_t total_bytes) : total_(total_bytes) {}
 
-  // Reserves `bytes`, waiting while other jobs hold too much. ResourceExhausted naming both
-  // numbers when `bytes` alone exceeds the budget; Cancelled when `cancel` fires while
-  // waiting (looked at every 50 ms).
-  absl::Status Reserve(int64_t bytes, const CancelToken& cancel) ABSL_LOCKS_EXCLUDED(mutex_);
-  // Gives back a reservation.
-  void Release(int64_t bytes) ABSL_LOCKS_EXCLUDED(mutex_);
+  // One job's reservation, grown stage by stage and given back whole when destroyed. Must not
+  // outlive the budget.
+  class Share {
+   public:
+    explicit Share(MemoryBudget& budget) : budget_(budget) {}
+    ~Share();
+    Share(const Share&) = delete;
+    Share& operator=(const Share&) = delete;
+
+    // Adds `bytes` to the share, waiting while other jobs hold too much. ResourceExhausted
+    // naming the numbers when the share would exceed the whole budget, or when waiting could
+    // never end: every job holding a share waits to add to it (their surfaces, say), so none
+    // will give memory back; this one then gives up, and its share returns when it is
+    // destroyed. Cancelled when `cancel` fires while waiting (looked at every 50 ms).
+    absl::Status Add(int64_t bytes, const CancelToken& cancel);
+
+    int64_t bytes() const { return bytes_; }
+
+   private:
+    MemoryBudget& budget_;
+    int64_t bytes_ = 0;
+  };
 
  private:
   const int64_t total_;
   absl::Mutex mutex_;
   int64_t reserved_ ABSL_GUARDED_BY(mutex_) = 0;
+  int holders_ ABSL_GUARDED_BY(mutex_) = 0;          // shares holding bytes
+  int waiting_holders_ ABSL_GUARDED_BY(mutex_) = 0;  // of those, the ones waiting in Add
 };
 
-// An estimate of the peak bytes of one job: the voxel grid and the working sets of the
-// shrink and the surface (a few bytes per voxel), plus the cloud and its copies.
+// An estimate of the bytes of one job before its surface: the voxel grid and the shrink's
+// working sets (a few bytes per voxel), plus the cloud and its copies. The surface's share
+// comes later (SurfaceBytesEstimate, core/pipeline/surface_builder.h).
 int64_t EstimateJobBytes(int64_t voxels, int64_t points);
 
 }  // namespace membrane::server

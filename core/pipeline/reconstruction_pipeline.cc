@@ -205,6 +205,11 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
     if (absl::Status s = RelaxMembrane(cancel, grid, report, observer); !s.ok()) return s;
   }
 
+  if (options.admit_surface) {
+    if (absl::Status s = options.admit_surface(report.membrane); !s.ok()) return s;
+    const PipelineStage last = options.relax ? PipelineStage::kRelax : PipelineStage::kShrink;
+    if (absl::Status s = StopIfCancelled(cancel, last); !s.ok()) return s;
+  }
   report.quantization.requested_bits = options.output_quantization_bits;
   PositionGrid output_grid = OutputGrid(grid, options.output_quantization_bits);
   absl::StatusOr<BuiltSurface> surface;

@@ -32,6 +32,12 @@ struct ReconstructionOptions {
   // Threads of the smooth surface's fit and of the mesh check, 1..kMaxReconstructionThreads;
   // the other stages use the calling thread. The mesh is the same for any value.
   int threads = 1;
+  // Asked once the membrane is final, before the surface is built, with its counts (the
+  // statistics' "membrane", taken before relaxation, which moves few voxels); a non-OK status
+  // ends the reconstruction with it. The server reserves the surface's memory here
+  // (SurfaceBytesEstimate): a noisy cloud's surface can take many times its grid's bytes.
+  // Empty: the surface is built without asking.
+  std::function<absl::Status(const MembraneCounts& membrane)> admit_surface;
 };
 
 struct ReconstructionResult {

@@ -141,6 +141,27 @@ TEST_F(BadUploadTest, JobOverTheMemoryBudgetIsResourceExhausted) {
   EXPECT_EQ(Health(), "SERVING");
 }
 
+// Uniform noise has no surface to find: its membrane is a foam whose mesh takes many times
+// the grid's bytes (100k points: 19 MB estimated before the surface, 532 MB at the peak). The
+// surface's share is reserved once the membrane is known, so such an upload is refused instead
+// of taking the server past its budget; a real cloud of the same size still goes through.
+TEST_F(BadUploadTest, NoiseWhoseSurfaceIsOverTheMemoryBudgetIsResourceExhausted) {
+  server_->Shutdown(absl::ZeroDuration());
+  options_.memory_budget_bytes = 30'000'000;
+  StartServer();
+  PointCloud noise;
+  uint32_t state = 12345;
+  auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<float>(state >> 8) / static_cast<float>(1 << 24);
+  };
+  for (int i = 0; i < 20000; ++i) noise.points.push_back({next(), next(), next()});
+  absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(noise, DracoOptions{});
+  ASSERT_TRUE(encoded.ok());
+  ExpectStatus(encoded->bytes, grpc::StatusCode::RESOURCE_EXHAUSTED, "memory budget");
+  EXPECT_TRUE(Reconstruct(DracoCloud("sphere", 20000), {}).status.ok());
+}
+
 TEST_F(BadUploadTest, CoplanarCloudIsInvalidArgument) {
   PointCloud flat;
   for (int i = 0; i < 200; ++i) flat.points.push_back({float(i % 20), float(i / 20), 0});

@@ -31,7 +31,7 @@ ABSL_FLAG(int64_t, max_upload_bytes, 512LL << 20, "largest Draco upload, bytes")
 ABSL_FLAG(int64_t, max_points, 50'000'000, "largest decoded cloud, points");
 ABSL_FLAG(int64_t, voxel_budget, 400'000'000, "largest grid of one job, voxels (padding included)");
 ABSL_FLAG(int64_t, memory_budget_bytes, 0,
-          "estimated bytes across running jobs (about 6 per voxel, and 800 per membrane voxel "
+          "estimated bytes across running jobs (about 6 per voxel, and 1000 per membrane voxel "
           "for the surface); 0 = no limit");
 ABSL_FLAG(double, result_ttl_seconds, 3600, "how long finished jobs and results are kept");
 ABSL_FLAG(double, grace_seconds, 30, "on SIGTERM, how long running jobs may finish");

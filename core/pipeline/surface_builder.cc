@@ -45,7 +45,7 @@ absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const Point
 }
 
 int64_t SurfaceBytesEstimate(const MembraneCounts& membrane) {
-  constexpr int64_t kBytesPerBoundaryVoxel = 800;
+  constexpr int64_t kBytesPerBoundaryVoxel = 1000;
   return kBytesPerBoundaryVoxel *
          (membrane.hard_voxels + membrane.frozen_voxels + membrane.soft_voxels);
 }

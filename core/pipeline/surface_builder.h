@@ -52,10 +52,11 @@ absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const Point
                                           const CancelToken* cancel, int threads = 1);
 
 // The bytes BuildSurface and the mesh check may take beyond the grid and the cloud, for a
-// membrane with these counts (CountMembrane): its boundary voxels times 800. Measured: the
-// surfaces have 2.0-2.2 faces per boundary voxel, and a run's peak is 260-360 bytes per face
-// above the grid and the cloud, on the ten real clouds and on uniform noise, whose membrane is
-// a foam: there the surface takes 28 times what the grid does.
+// membrane with these counts (CountMembrane): its boundary voxels times 1000. Measured on the
+// ten real clouds and on uniform noise (whose membrane is a foam: its surface takes 28 times
+// what the grid does), both surfaces: 1.8-2.7 faces per boundary voxel, and whole-process
+// peaks at 0.74-1.0 of the grid's, the cloud's and 800 bytes per boundary voxel together
+// (1.2 for cuberille on 20k noise points); 1000 leaves a margin.
 int64_t SurfaceBytesEstimate(const MembraneCounts& membrane);
 
 }  // namespace membrane

@@ -20,6 +20,7 @@
 #include "client/progress_printer.h"
 #include "client/remote_reconstruction.h"
 #include "client/server_connection.h"
+#include "client/upload_plan.h"
 #include "client/report_text.h"
 #include "core/engine/plate_schedule.h"
 #include "core/io/file_bytes.h"
@@ -46,7 +47,8 @@ struct ReconstructFlags {
   std::string schedule = "halving";
   std::string surface = "smooth";
   bool no_relax = false;
-  int64_t quantization = 11;
+  int64_t quantization = kDefaultUploadBits;
+  bool quantization_given = false;
   int64_t compression_level = 7;
   int64_t voxel_budget = kDefaultVoxelBudget;
   std::string stats_json;
@@ -74,8 +76,10 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   app.add_flag("--no-relax", f.no_relax, "skip the membrane relaxation (paper section 5)");
   app.add_option("--quantization", f.quantization,
                  "Draco position bits of the cloud sent to --server and of .drc output, [0, 30]; "
-                 "0 = lossless")
-      ->capture_default_str();
+                 "0 = lossless; when not given, the cloud sent gets more bits where its voxel "
+                 "needs them (a step of at most 1/8 voxel)")
+      ->capture_default_str()
+      ->each([&f](const std::string&) { f.quantization_given = true; });
   app.add_option("--compression-level", f.compression_level,
                  "Draco compression level of the cloud sent and of .drc output, [0, 10]")
       ->capture_default_str();
@@ -180,6 +184,7 @@ RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f, ServerConnection s
   // The client's default budget is the core's; the server caps it with its own.
   p.set_voxel_budget(f.voxel_budget == kDefaultVoxelBudget ? 0 : f.voxel_budget);
   r.upload.position_quantization_bits = static_cast<int>(f.quantization);
+  r.adapt_upload_bits = !f.quantization_given;
   r.upload.compression_level = static_cast<int>(f.compression_level);
   if (f.timeout > 0) r.timeout = absl::Seconds(f.timeout);
   r.drop_after_events = static_cast<int>(f.drop_after_events);

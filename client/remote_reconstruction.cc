@@ -16,6 +16,7 @@
 #include "client/input_files.h"
 #include "client/io_errors.h"
 #include "client/rpc_errors.h"
+#include "client/upload_plan.h"
 #include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
 #include "core/pipeline/stopwatch.h"
@@ -28,10 +29,12 @@ namespace {
 constexpr size_t kChunkBytes = 1 << 20;  // well under gRPC's 4 MB message limit
 constexpr int kMaxAttempts = 5;
 
-// The cloud as sent: Draco bytes of the positions, and their origin (PointCloud::origin).
+// The cloud as sent: Draco bytes of the positions, and the job's parameters as sent with them
+// (params.parameters with the cloud's origin and, unless one was given, its voxel size).
 struct Upload {
   std::string bytes;
-  Origin3d origin{0, 0, 0};
+  v1::Parameters parameters;
+  Origin3d origin{0, 0, 0};  // PointCloud::origin, to write the mesh back with
 };
 
 std::chrono::system_clock::time_point ToChrono(absl::Time t) {
@@ -65,11 +68,7 @@ grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams&
   Authorize(context, params.server);
   auto stream = stub.Reconstruct(&context);
   v1::ReconstructRequest header;
-  v1::Parameters& parameters = *header.mutable_header()->mutable_parameters();
-  parameters = params.parameters;
-  if (upload_cloud.origin != Origin3d{0, 0, 0}) {
-    for (double v : upload_cloud.origin) parameters.add_origin(v);
-  }
+  *header.mutable_header()->mutable_parameters() = upload_cloud.parameters;
   header.mutable_header()->set_upload_bytes(upload.size());
   header.mutable_header()->set_upload_crc32c(Crc32c(upload));
   bool sending = stream->Write(header);
@@ -99,7 +98,19 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   absl::StatusOr<PointCloud> cloud = ReadInputCloud(params.input, not_cancelled);
   if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
   if (absl::Status s = CheckOutputKeepsOrigin(cloud->origin, params.output); !s.ok()) return s;
-  absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, params.upload);
+  Upload upload;
+  upload.origin = cloud->origin;
+  upload.parameters = params.parameters;
+  if (upload.origin != Origin3d{0, 0, 0}) {
+    for (double v : upload.origin) upload.parameters.add_origin(v);
+  }
+  const UploadPlan plan = PlanUpload(*cloud, params.parameters.voxel_size());
+  if (plan.voxel_size > 0) upload.parameters.set_voxel_size(plan.voxel_size);
+  DracoOptions draco = params.upload;
+  if (params.adapt_upload_bits && draco.position_quantization_bits > 0) {
+    draco.position_quantization_bits = std::max(draco.position_quantization_bits, plan.bits);
+  }
+  absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, draco);
   if (!encoded.ok()) {
     return absl::Status(encoded.status().code(),
                         absl::StrCat(params.input, ": ", encoded.status().message()));
@@ -107,17 +118,17 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   outcome.raw_bytes = cloud->points.size() * sizeof(Point3f);
   outcome.upload_bytes = encoded->bytes.size();
   const std::string positions =
-      params.upload.position_quantization_bits == 0
+      draco.position_quantization_bits == 0
           ? std::string("lossless positions")
           : absl::StrFormat("%d-bit positions, each coordinate within %.3g of the file's",
-                            params.upload.position_quantization_bits,
-                            encoded->max_position_error);
+                            draco.position_quantization_bits, encoded->max_position_error);
   progress.Finish(absl::StrFormat(
       "decode: %d points%s, %d bytes as Draco (%.1f%% of %d raw float32 bytes; %s) in %.3f s",
       cloud->points.size(), OriginNote(cloud->origin), outcome.upload_bytes,
       100.0 * outcome.upload_bytes / std::max<uint64_t>(1, outcome.raw_bytes),
       outcome.raw_bytes, positions, watch.Seconds()));
-  return Upload{std::move(encoded->bytes), cloud->origin};
+  upload.bytes = std::move(encoded->bytes);
+  return upload;
 }
 
 }  // namespace

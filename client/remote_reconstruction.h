@@ -27,6 +27,9 @@ struct RemoteParams {
   std::string output;          // mesh path; format by extension
   v1::Parameters parameters;   // sent as they are; the server validates them
   DracoOptions upload;         // compression of the cloud sent (--quantization 0: lossless)
+  // --quantization not given: more bits than upload's where the cloud's voxel needs them
+  // (PlanUpload).
+  bool adapt_upload_bits = false;
   absl::Duration timeout = absl::InfiniteDuration();  // the whole command, retries included
   // Test hook: cancel the call after this many events of the job, then re-attach with
   // WatchJob as after a dropped connection. 0: never.
@@ -43,7 +46,9 @@ struct RemoteOutcome {
   uint64_t mesh_bytes = 0;      // the Draco mesh received
 };
 
-// Runs the reconstruction on params.server and writes params.output. Same mesh as --local:
+// Runs the reconstruction on params.server and writes params.output. Without a voxel size in
+// params.parameters, the formula-(1) size of the cloud as read is sent (PlanUpload), so the
+// server's grid is --local's whatever the upload's quantization merges. Same mesh as --local:
 // with params.upload lossless (--quantization 0) the server reconstructs the very points the
 // file holds, and the mesh comes back lossless (unless the output is .drc), so the vertices
 // and faces equal --local's up to Draco's reordering (tests/server LosslessUpload...). With

@@ -13,6 +13,7 @@
 
 #include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
+#include "core/io/point_cloud_io.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
@@ -136,6 +137,59 @@ TEST_F(EndToEndTest, LosslessUploadGivesTheSameMeshAsLocal) {
   std::sort(local->vertices.begin(), local->vertices.end());
   EXPECT_EQ(remote->vertices, local->vertices);
   EXPECT_NE(ReadText(dir_.File("remote.json")).find("\"generations\""), std::string::npos);
+}
+
+// The "voxel_size" and "grid" of a statistics JSON, as text.
+std::string GridOf(const std::string& json) {
+  std::smatch voxel, grid;
+  if (!std::regex_search(json, voxel, std::regex("\"voxel_size\": [^,]+")) ||
+      !std::regex_search(json, grid, std::regex("\"grid\": \\[[^\\]]+\\]"))) {
+    return "no voxel_size or grid in: " + json.substr(0, 200);
+  }
+  return voxel.str() + " " + grid.str();
+}
+
+// The default 11-bit upload merges points closer than its step, and formula (1) counts
+// distinct points: the server used to pick a coarser grid than --local (3M sphere points:
+// 693^3 instead of 712^3). The client now sends the formula-(1) voxel of the cloud as read.
+TEST_F(EndToEndTest, DefaultUploadGetsLocalsGridWhenQuantizationMergesPoints) {
+  StartServer();
+  absl::StatusOr<PointCloud> sphere = ReadPointCloud(Synth("sphere", 20000));
+  ASSERT_TRUE(sphere.ok());
+  // Each point twice, 1e-5 apart: distinct in the file, one point on an 11-bit grid.
+  const size_t n = sphere->points.size();
+  for (size_t i = 0; i < n; ++i) {
+    Point3f p = sphere->points[i];
+    for (float& c : p) c += 1e-5f;
+    sphere->points.push_back(p);
+  }
+  const std::string cloud = dir_.File("pairs.ply");
+  ASSERT_TRUE(WritePointCloud(*sphere, cloud).ok());
+  ASSERT_EQ(Run({"reconstruct", cloud, "-o", dir_.File("remote.ply"), "--server", address_,
+                 "--stats-json", dir_.File("remote.json")})
+                .exit_code,
+            0);
+  ASSERT_EQ(Run({"reconstruct", cloud, "-o", dir_.File("local.ply"), "--local", "--stats-json",
+                 dir_.File("local.json")})
+                .exit_code,
+            0);
+  EXPECT_EQ(GridOf(ReadText(dir_.File("remote.json"))), GridOf(ReadText(dir_.File("local.json"))));
+}
+
+// A dense cloud is sent with enough bits for its voxel: 400k sphere points make a 258^3 grid,
+// and 11 bits would be a step of 0.25 voxel.
+TEST_F(EndToEndTest, DenseCloudIsSentWithMoreBitsUnlessTheyAreGiven) {
+  StartServer();
+  const std::string cloud = Synth("sphere", 400000);
+  const CliResult r = Run({"reconstruct", cloud, "-o", dir_.File("dense.ply"), "--server",
+                           address_, "--stats-json", dir_.File("dense.json")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("12-bit positions"), std::string::npos) << r.err;
+  const CliResult given = Run({"reconstruct", Synth("sphere", 20000), "-o",
+                               dir_.File("given.ply"), "--server", address_, "--quantization",
+                               "9"});
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  EXPECT_NE(given.err.find("9-bit positions"), std::string::npos) << given.err;
 }
 
 TEST_F(EndToEndTest, TenMillionPointCloudGoesThroughInChunks) {

@@ -1,0 +1,25 @@
+#include "client/upload_plan.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/status/statusor.h"
+#include "core/engine/voxelization.h"
+
+namespace membrane::client {
+
+UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size) {
+  UploadPlan plan;
+  absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
+  if (!bounds.ok()) return plan;
+  plan.voxel_size =
+      requested_voxel_size > 0 ? requested_voxel_size : FormulaVoxelSize(*bounds, cloud.points);
+  const auto extent = bounds->Extent();
+  const double range = std::max({extent[0], extent[1], extent[2]});
+  // Draco's step is range / (2^bits - 1).
+  const double steps = range / plan.voxel_size * kStepsPerVoxel;
+  while (plan.bits < 30 && std::ldexp(1.0, plan.bits) - 1 < steps) ++plan.bits;
+  return plan;
+}
+
+}  // namespace membrane::client

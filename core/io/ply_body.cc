@@ -66,6 +66,21 @@ absl::StatusOr<ElementPlan> PlanFace(const PlyElement& element, absl::string_vie
   return plan;
 }
 
+// True when the vertex element stores x, y and z as float32. Read in binary, such positions
+// are not moved (see CoordinateShift).
+bool Float32Positions(const PlyElement& element, const ElementPlan& plan) {
+  for (size_t p : {plan.x, plan.y, plan.z})
+    if (element.properties[p].type != ScalarType::kFloat32) return false;
+  return true;
+}
+
+// A vertex's position from its x, y, z values: binary float32 as they are, anything else
+// (doubles, integers, text) through `shift`.
+Point3f Position(double x, double y, double z, bool binary_float32, CoordinateShift& shift) {
+  if (binary_float32) return {NarrowToFloat(x), NarrowToFloat(y), NarrowToFloat(z)};
+  return shift.Narrow(x, y, z);
+}
+
 // Binary elements without lists have fixed-size rows: the vertex block of a scan is read
 // with one bounds check instead of one per value.
 absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
@@ -92,10 +107,7 @@ absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
   const PlyProperty& pz = element.properties[plan.z];
   const ByteOrder order = in.order();
   out->vertices.resize(element.count);
-  // Binary float32 positions are not moved (see CoordinateShift).
-  const bool float32_positions = px.type == ScalarType::kFloat32 &&
-                                 py.type == ScalarType::kFloat32 &&
-                                 pz.type == ScalarType::kFloat32;
+  const bool float32_positions = Float32Positions(element, plan);
   const bool native_floats =
       float32_positions &&
       (order == ByteOrder::kLittleEndian) == (std::endian::native == std::endian::little);
@@ -115,9 +127,7 @@ absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
     const double x = DecodeScalar(row + offsets[plan.x], px.type, order);
     const double y = DecodeScalar(row + offsets[plan.y], py.type, order);
     const double z = DecodeScalar(row + offsets[plan.z], pz.type, order);
-    out->vertices[r] = float32_positions
-                           ? Point3f{NarrowToFloat(x), NarrowToFloat(y), NarrowToFloat(z)}
-                           : shift.Narrow(x, y, z);
+    out->vertices[r] = Position(x, y, z, float32_positions, shift);
   }
   return absl::OkStatus();
 }
@@ -166,6 +176,9 @@ absl::Status ReadElement(const PlyElement& element, const ElementPlan& plan, uin
   // Safe now: the count is bounded by the bytes that remain.
   if (plan.role == ElementPlan::Role::kVertex) out->vertices.reserve(element.count);
   if (plan.role == ElementPlan::Role::kFace) out->faces.reserve(element.count);
+  const bool binary_float32 = std::is_same_v<Source, PlyBinarySource> &&
+                              plan.role == ElementPlan::Role::kVertex &&
+                              Float32Positions(element, plan);
   std::vector<double> row(element.properties.size());
   std::vector<int32_t> polygon;
   for (uint64_t r = 0; r < element.count; ++r) {
@@ -204,7 +217,8 @@ absl::Status ReadElement(const PlyElement& element, const ElementPlan& plan, uin
       }
     }
     if (plan.role == ElementPlan::Role::kVertex) {
-      out->vertices.push_back(shift.Narrow(row[plan.x], row[plan.y], row[plan.z]));
+      out->vertices.push_back(
+          Position(row[plan.x], row[plan.y], row[plan.z], binary_float32, shift));
     }
   }
   return absl::OkStatus();

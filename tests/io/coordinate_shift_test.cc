@@ -96,16 +96,24 @@ TEST(CoordinateShift, BinaryFloat32PositionsAreNotMoved) {
   std::string ply_big =
       "ply\nformat binary_big_endian 1.0\nelement vertex 1\n"
       "property float x\nproperty float y\nproperty float z\nend_header\n";
+  // A list in the vertex element sends the reader down its general path.
+  std::string ply_list =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1\n"
+      "property float x\nproperty float y\nproperty float z\n"
+      "property list uchar int tags\nend_header\n";
   std::string pcd =
       "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\n"
       "POINTS 1\nDATA binary\n";
   for (float v : far) {
     ply += LittleEndianFloat(v);
     ply_big += BigEndianFloat(v);
+    ply_list += LittleEndianFloat(v);
     pcd += LittleEndianFloat(v);
   }
+  ply_list += std::string(1, '\0');  // an empty list
   for (const auto& [data, format] : {std::pair{ply, FileFormat::kPly},
                                      std::pair{ply_big, FileFormat::kPly},
+                                     std::pair{ply_list, FileFormat::kPly},
                                      std::pair{pcd, FileFormat::kPcd}}) {
     absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(data, format);
     ASSERT_TRUE(cloud.ok()) << cloud.status();

@@ -23,6 +23,11 @@ Point3f CoordinateShift::Narrow(double x, double y, double z) {
           NarrowToFloat(z - origin_[2])};
 }
 
+Point3f CoordinateShift::NarrowStored(double x, double y, double z, bool binary_float32) {
+  if (binary_float32) return {NarrowToFloat(x), NarrowToFloat(y), NarrowToFloat(z)};
+  return Narrow(x, y, z);
+}
+
 absl::Status CheckOriginFitsFormat(const Origin3d& origin, FileFormat format, FileUse use) {
   if (origin == Origin3d{0, 0, 0} || (format != FileFormat::kStl && format != FileFormat::kDrc))
     return absl::OkStatus();

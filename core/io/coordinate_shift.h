@@ -32,6 +32,11 @@ class CoordinateShift {
   // in [kShiftFrom, kShiftUpTo], the coordinate rounded to a whole unit; 0 on the others.
   Point3f Narrow(double x, double y, double z);
 
+  // The position of values a binary file stores as `binary_float32` (all three) or not: float32
+  // values as they are, anything else through Narrow. Moving float32 values gains no precision,
+  // and would hide their lattice from Voxelize's precision check (see the top of this file).
+  Point3f NarrowStored(double x, double y, double z, bool binary_float32);
+
   // The origin fixed so far: zero before the first finite point and when nothing is moved.
   const Origin3d& origin() const { return origin_; }
 

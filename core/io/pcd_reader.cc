@@ -71,8 +71,7 @@ absl::StatusOr<PointCloud> ReadBinary(absl::string_view data, const PcdHeader& h
   }
   PointCloud cloud;
   CoordinateShift shift;
-  // Binary float32 positions are not moved (see CoordinateShift).
-  bool float32_positions = true;
+  bool float32_positions = true;  // CoordinateShift::NarrowStored
   for (const AxisSlot& slot : layout.axes) float32_positions &= slot.type == ScalarType::kFloat32;
   cloud.points.resize(header.points);
   const char* rows = data.data() + start;
@@ -85,10 +84,7 @@ absl::StatusOr<PointCloud> ReadBinary(absl::string_view data, const PcdHeader& h
       // is used on.
       point[axis] = DecodeScalar(row + slot.byte_offset, slot.type, ByteOrder::kLittleEndian);
     }
-    cloud.points[i] =
-        float32_positions
-            ? Point3f{NarrowToFloat(point[0]), NarrowToFloat(point[1]), NarrowToFloat(point[2])}
-            : shift.Narrow(point[0], point[1], point[2]);
+    cloud.points[i] = shift.NarrowStored(point[0], point[1], point[2], float32_positions);
   }
   cloud.origin = shift.origin();
   return cloud;

@@ -66,19 +66,11 @@ absl::StatusOr<ElementPlan> PlanFace(const PlyElement& element, absl::string_vie
   return plan;
 }
 
-// True when the vertex element stores x, y and z as float32. Read in binary, such positions
-// are not moved (see CoordinateShift).
+// True when the vertex element stores x, y and z as float32 (CoordinateShift::NarrowStored).
 bool Float32Positions(const PlyElement& element, const ElementPlan& plan) {
   for (size_t p : {plan.x, plan.y, plan.z})
     if (element.properties[p].type != ScalarType::kFloat32) return false;
   return true;
-}
-
-// A vertex's position from its x, y, z values: binary float32 as they are, anything else
-// (doubles, integers, text) through `shift`.
-Point3f Position(double x, double y, double z, bool binary_float32, CoordinateShift& shift) {
-  if (binary_float32) return {NarrowToFloat(x), NarrowToFloat(y), NarrowToFloat(z)};
-  return shift.Narrow(x, y, z);
 }
 
 // Binary elements without lists have fixed-size rows: the vertex block of a scan is read
@@ -127,7 +119,7 @@ absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
     const double x = DecodeScalar(row + offsets[plan.x], px.type, order);
     const double y = DecodeScalar(row + offsets[plan.y], py.type, order);
     const double z = DecodeScalar(row + offsets[plan.z], pz.type, order);
-    out->vertices[r] = Position(x, y, z, float32_positions, shift);
+    out->vertices[r] = shift.NarrowStored(x, y, z, float32_positions);
   }
   return absl::OkStatus();
 }
@@ -218,7 +210,7 @@ absl::Status ReadElement(const PlyElement& element, const ElementPlan& plan, uin
     }
     if (plan.role == ElementPlan::Role::kVertex) {
       out->vertices.push_back(
-          Position(row[plan.x], row[plan.y], row[plan.z], binary_float32, shift));
+          shift.NarrowStored(row[plan.x], row[plan.y], row[plan.z], binary_float32));
     }
   }
   return absl::OkStatus();

@@ -1,6 +1,4 @@
 // `membrane convert INPUT OUTPUT` between point cloud and mesh formats.
-#include <algorithm>
-#include <cmath>
 #include <fstream>
 #include <regex>
 #include <string>
@@ -10,6 +8,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/io/io_test_util.h"
 #include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
@@ -101,16 +100,7 @@ TEST_F(ConvertTest, CloudToDracoReportsAnErrorBoundThatHolds) {
   absl::StatusOr<PointCloud> input = ReadPointCloud(ply), decoded = ReadPointCloud(drc);
   ASSERT_TRUE(input.ok() && decoded.ok());
   ASSERT_EQ(decoded->points.size(), input->points.size());
-  double worst = 0;
-  for (const Point3f& d : decoded->points) {
-    double nearest = 1e300;
-    for (const Point3f& p : input->points) {
-      double chebyshev = 0;
-      for (int k = 0; k < 3; ++k) chebyshev = std::max<double>(chebyshev, std::fabs(d[k] - p[k]));
-      nearest = std::min(nearest, chebyshev);
-    }
-    worst = std::max(worst, nearest);
-  }
+  const double worst = MaxNearestChebyshev(decoded->points, input->points);
   // The line rounds to 3 digits.
   EXPECT_LE(worst, bound * 1.005);
   EXPECT_GT(worst, bound / 4);  // a bound, not a guess far above the truth

@@ -1,7 +1,6 @@
 #include "tests/cli/survey_cloud.h"
 
-#include <algorithm>
-
+#include "core/engine/voxelization.h"
 #include "core/io/point_cloud_io.h"
 #include "gtest/gtest.h"
 
@@ -18,15 +17,12 @@ void WriteSurveyCopy(const std::string& in, const std::string& out) {
 }
 
 std::array<double, 3> FileBoxCentre(const TriangleMesh& mesh) {
-  std::array<double, 3> lo, hi;
-  lo.fill(1e300);
-  hi.fill(-1e300);
-  for (const Point3f& v : mesh.vertices)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], v[k] + mesh.origin[k]);
-      hi[k] = std::max(hi[k], v[k] + mesh.origin[k]);
-    }
-  return {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+  absl::StatusOr<Box3d> box = CheckedBounds(mesh.vertices);
+  EXPECT_TRUE(box.ok()) << box.status();
+  if (!box.ok()) return {0, 0, 0};
+  std::array<double, 3> centre;
+  for (int k = 0; k < 3; ++k) centre[k] = (box->min[k] + box->max[k]) / 2 + mesh.origin[k];
+  return centre;
 }
 
 }  // namespace membrane::testing

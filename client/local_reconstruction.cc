@@ -1,5 +1,8 @@
 #include "client/local_reconstruction.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <string>
 #include <utility>
 
 #include "absl/status/status.h"
@@ -9,6 +12,7 @@
 #include "client/input_files.h"
 #include "client/io_errors.h"
 #include "core/io/mesh_io.h"
+#include "core/pipeline/memory_estimate.h"
 #include "core/pipeline/peak_memory.h"
 #include "core/pipeline/stopwatch.h"
 
@@ -26,6 +30,19 @@ absl::Status WithCommandLineContext(const absl::Status& status, const std::strin
   }
 }
 
+namespace {
+
+// ResourceExhausted when the `bytes` that `what` needs are over `limit` (> 0).
+absl::Status CheckMemoryLimit(int64_t bytes, int64_t limit, const std::string& what,
+                              const char* advice) {
+  if (limit <= 0 || bytes <= limit) return absl::OkStatus();
+  return absl::ResourceExhaustedError(
+      absl::StrCat(what, ", about ", BytesText(bytes), ", over the memory limit of ",
+                   BytesText(limit), " (--memory-limit, by default the memory available)", advice));
+}
+
+}  // namespace
+
 absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const ReconstructionParams& params,
                                                             const CancelToken& cancel,
                                                             ProgressPrinter& progress) {
@@ -40,6 +57,33 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
   if (absl::Status s = CheckOutputKeepsOrigin(cloud->origin, params.output); !s.ok()) return s;
   if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled after decode");
 
+  ReconstructionOptions options = params.options;
+  absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, options.voxelize.voxel_size);
+  if (!plan.ok()) return WithCommandLineContext(plan.status(), params.input);
+  // The pipeline takes the planned size rather than counting the points again for formula (1).
+  options.voxelize.voxel_size = plan->voxel_size;
+  // Over the voxel budget: Voxelize refuses it, with the grid in its message.
+  const int64_t grid_bytes = GridBytesEstimate(
+      std::min(plan->voxels, options.voxelize.voxel_budget),
+      static_cast<int64_t>(cloud->points.size()));
+  if (absl::Status s = CheckMemoryLimit(
+          grid_bytes, params.memory_limit_bytes,
+          absl::StrFormat("the grid of %d voxels and the %d points need", plan->voxels,
+                          cloud->points.size()),
+          "; use a larger --voxel-size");
+      !s.ok())
+    return s;
+  // Its refusal is the run's status as it is: the voxel-budget advice is not about it.
+  absl::Status admission;
+  options.admit_surface = [&](const MembraneCounts& membrane) {
+    const int64_t voxels = membrane.hard_voxels + membrane.frozen_voxels + membrane.soft_voxels;
+    admission = CheckMemoryLimit(
+        grid_bytes + SurfaceBytesEstimate(membrane), params.memory_limit_bytes,
+        absl::StrFormat("the membrane (%d voxels) needs for its surface and the grid", voxels),
+        "; noise makes a foam of a membrane: is this the scan of one object?");
+    return admission;
+  };
+
   // The output is written beside the mesh check (and kept whatever the check finds).
   bool write_failed = false;
   const MeshDelivery write = [&](const TriangleMesh& mesh, const PositionGrid& grid) {
@@ -49,9 +93,10 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
     return s;
   };
   absl::StatusOr<ReconstructionResult> result =
-      ReconstructCloud(*cloud, params.options, cancel, progress, write);
+      ReconstructCloud(*cloud, options, cancel, progress, write);
   if (!result.ok()) {
     if (write_failed) return FileErrorAsInvalidInput(result.status());
+    if (!admission.ok()) return admission;
     return WithCommandLineContext(result.status(), params.input);
   }
   ReconstructionReport& report = result->report;

@@ -2,6 +2,7 @@
 #ifndef MEMBRANE_CLIENT_LOCAL_RECONSTRUCTION_H_
 #define MEMBRANE_CLIENT_LOCAL_RECONSTRUCTION_H_
 
+#include <cstdint>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -18,6 +19,9 @@ struct ReconstructionParams {
   std::string output;  // mesh path; format by extension (.ply .obj .stl .drc)
   ReconstructionOptions options;
   DracoOptions draco;  // used for .drc output only
+  // The most memory the run may need by the core's estimates (memory_estimate.h), in bytes;
+  // 0: no limit. --memory-limit, by default what the machine has available (MachineMemory).
+  int64_t memory_limit_bytes = 0;
 };
 
 // Reads params.input, reconstructs its surface (ReconstructCloud) and writes it to
@@ -27,8 +31,10 @@ struct ReconstructionParams {
 // Errors: the reader's status (InvalidArgument / NotFound / Unimplemented, message naming the
 // file) for unreadable input; InvalidArgument naming the file for a degenerate cloud (no
 // points, all equal, coplanar); ResourceExhausted for a grid over the voxel budget, naming
-// --voxel-size and --voxel-budget; Cancelled when `cancel` fires; InvalidArgument naming the
-// output path when it cannot be written.
+// --voxel-size and --voxel-budget, and for a grid or a surface over params.memory_limit_bytes
+// (checked before the grid is allocated and again once the membrane is known, when a noisy
+// cloud's foam of a membrane shows), naming the bytes and --memory-limit; Cancelled when
+// `cancel` fires; InvalidArgument naming the output path when it cannot be written.
 absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const ReconstructionParams& params,
                                                             const CancelToken& cancel,
                                                             ProgressPrinter& progress);

@@ -25,6 +25,7 @@
 #include "core/engine/plate_schedule.h"
 #include "core/io/file_bytes.h"
 #include "core/io/file_format.h"
+#include "core/pipeline/machine_memory.h"
 #include "core/pipeline/stats_json.h"
 #include "core/pipeline/thread_limits.h"
 
@@ -33,6 +34,7 @@ namespace {
 
 constexpr int64_t kMaxInitialPlate = 100000;  // ValidateShrinkOptions' bound
 constexpr int64_t kMaxVoxelBudget = 1'000'000'000'000;
+constexpr int64_t kMaxMemoryLimit = int64_t{1} << 60;
 constexpr double kMaxTimeoutSeconds = 1e6;
 
 // The values as parsed, before validation: wide types, so that an out-of-range value reaches
@@ -51,6 +53,7 @@ struct ReconstructFlags {
   bool quantization_given = false;
   int64_t compression_level = 7;
   int64_t voxel_budget = kDefaultVoxelBudget;
+  int64_t memory_limit = -1;  // -1: what the machine has available
   std::string stats_json;
   double timeout = 0;
   bool quiet = false;
@@ -86,6 +89,11 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   app.add_option("--voxel-budget", f.voxel_budget,
                  "largest voxel grid to allocate (padding included), 1 byte per voxel")
       ->capture_default_str();
+  app.add_option("--memory-limit", f.memory_limit,
+                 "with --local: most bytes the run may need by its estimates, checked before "
+                 "the grid and before the surface; -1 (default) = the memory this machine (or "
+                 "its container) has available; 0 = no limit")
+      ->needs(local);
   app.add_option("--stats-json", f.stats_json, "write the statistics JSON to this file");
   app.add_option("--timeout", f.timeout, "give up after this many seconds (exit 4); 0 = never")
       ->capture_default_str();
@@ -116,6 +124,8 @@ absl::Status CheckFlagValues(const ReconstructFlags& f) {
       CheckIntRange("--quantization", f.quantization, 0, 30, "0 = lossless"),
       CheckIntRange("--compression-level", f.compression_level, 0, 10),
       CheckIntRange("--voxel-budget", f.voxel_budget, 1, kMaxVoxelBudget),
+      CheckIntRange("--memory-limit", f.memory_limit, -1, kMaxMemoryLimit,
+                    "-1 = what is available, 0 = no limit"),
       f.stats_json.empty() ? absl::OkStatus() : CheckOutputDirectory("--stats-json", f.stats_json),
       CheckRealRange("--timeout", f.timeout, 0, kMaxTimeoutSeconds, "seconds; 0 = no limit"),
       CheckIntRange("--threads", f.threads, 0, kMaxReconstructionThreads, "0 = the cores"),
@@ -145,6 +155,8 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   p.options.relax = !f.no_relax;
   p.options.surface = *surface;
   p.options.threads = f.threads > 0 ? static_cast<int>(f.threads) : MachineThreads();
+  p.memory_limit_bytes =
+      f.memory_limit >= 0 ? f.memory_limit : ReadMachineMemory().available_bytes;
   p.draco.position_quantization_bits = static_cast<int>(f.quantization);
   p.draco.compression_level = static_cast<int>(f.compression_level);
   // Only .drc quantizes; the surface is then built and checked on the file's grid.
@@ -214,7 +226,6 @@ absl::Status RunReconstruct(const ReconstructFlags& flags) {
   absl::StatusOr<ReconstructionParams> params = ParamsFromFlags(flags);
   if (!params.ok()) return params.status();
   if (!flags.local) return RunRemote(flags);
-  if (!params.ok()) return params.status();
 
   CancelToken cancel;
   absl::StatusOr<ReconstructionReport> report;

@@ -1,7 +1,6 @@
 #include "server/job_runner.h"
 
 #include <algorithm>
-#include <cmath>
 #include <string>
 #include <utility>
 
@@ -9,10 +8,9 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "core/engine/voxel_grid.h"
-#include "core/engine/voxelization.h"
 #include "core/io/decode_subprocess.h"
 #include "core/io/draco_codec.h"
+#include "core/pipeline/memory_estimate.h"
 #include "core/pipeline/peak_memory.h"
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/stats_json.h"
@@ -23,26 +21,6 @@
 
 namespace membrane::server {
 namespace {
-
-// The grid Voxelize will allocate for `cloud`, computed the same way before anything is
-// allocated: its voxel size (the given one, or formula (1)'s) and voxel count (padding
-// included). InvalidArgument for a degenerate cloud.
-struct PlannedGrid {
-  double voxel_size = 0;
-  int64_t voxels = 0;
-};
-absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, double voxel_size) {
-  absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
-  if (!bounds.ok()) return bounds.status();
-  PlannedGrid plan;
-  plan.voxel_size = voxel_size > 0 ? voxel_size : FormulaVoxelSize(*bounds, cloud.points);
-  double voxels = 1;
-  for (const double side : bounds->Extent()) {
-    voxels *= std::floor(side / plan.voxel_size) + 1 + 2 * VoxelGrid::kPadding;
-  }
-  plan.voxels = static_cast<int64_t>(std::min(voxels, 9e18));
-  return plan;
-}
 
 // A grid over the budget: the message says which job fields change it.
 absl::Status WithParameterHint(const absl::Status& status) {
@@ -116,7 +94,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   // The pipeline takes the planned size rather than counting the points again for formula (1).
   settings->reconstruction.voxelize.voxel_size = plan->voxel_size;
   // Over the voxel budget: Voxelize refuses it with the grid in its message; do not reserve.
-  const int64_t bytes = EstimateJobBytes(
+  const int64_t bytes = GridBytesEstimate(
       std::min(plan->voxels, settings->reconstruction.voxelize.voxel_budget),
       decode_report.points);
   // Held until the job ends; the surface's share is added once the membrane is known.

@@ -16,9 +16,11 @@
 #include "absl/strings/str_cat.h"
 #include "core/io/file_bytes.h"
 #include "core/io/token_file.h"
+#include "core/pipeline/machine_memory.h"
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/thread_limits.h"
 #include "server/membrane_server.h"
+#include "server/memory_budget.h"
 #include "server/server_options.h"
 
 ABSL_FLAG(std::string, listen, "127.0.0.1:50051", "address to listen on (HOST:PORT; port 0 = any)");
@@ -30,9 +32,10 @@ ABSL_FLAG(int, queue, 16, "jobs waiting beyond the running ones; more get RESOUR
 ABSL_FLAG(int64_t, max_upload_bytes, 512LL << 20, "largest Draco upload, bytes");
 ABSL_FLAG(int64_t, max_points, 50'000'000, "largest decoded cloud, points");
 ABSL_FLAG(int64_t, voxel_budget, 400'000'000, "largest grid of one job, voxels (padding included)");
-ABSL_FLAG(int64_t, memory_budget_bytes, 0,
+ABSL_FLAG(int64_t, memory_budget_bytes, -1,
           "estimated bytes across running jobs (about 6 per voxel, and 1000 per membrane voxel "
-          "for the surface); 0 = no limit");
+          "for the surface); -1 = 3/4 of this machine's memory, or of its container's limit "
+          "when lower; 0 = no limit");
 ABSL_FLAG(double, result_ttl_seconds, 3600, "how long finished jobs and results are kept");
 ABSL_FLAG(double, grace_seconds, 30, "on SIGTERM, how long running jobs may finish");
 ABSL_FLAG(std::string, on_disconnect, "continue",
@@ -106,6 +109,18 @@ bool OptionsFromFlags(ServerOptions& o) {
   o.max_points = absl::GetFlag(FLAGS_max_points);
   o.voxel_budget = absl::GetFlag(FLAGS_voxel_budget);
   o.memory_budget_bytes = absl::GetFlag(FLAGS_memory_budget_bytes);
+  if (o.memory_budget_bytes < -1) {
+    std::fprintf(stderr, "membraned: --memory-budget-bytes %lld is not -1 (auto), 0 (none) or a "
+                 "byte count\n", static_cast<long long>(o.memory_budget_bytes));
+    return false;
+  }
+  if (o.memory_budget_bytes == -1) {
+    const MachineMemory machine = ReadMachineMemory();
+    o.memory_budget_bytes = DefaultMemoryBudget(machine.total_bytes);
+    o.memory_budget_source = "3/4 of " + machine.total_source;
+  } else {
+    o.memory_budget_source = "--memory-budget-bytes";
+  }
   o.result_ttl_seconds = absl::GetFlag(FLAGS_result_ttl_seconds);
   o.grace_seconds = absl::GetFlag(FLAGS_grace_seconds);
   o.decoder_timeout_seconds = absl::GetFlag(FLAGS_decoder_timeout_seconds);

@@ -63,6 +63,10 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
                                                   : absl::StrCat("auto (", options_.cores,
                                                                  " cores)")},
                               {"queue", absl::StrCat(options_.queue)},
+                              {"memory_budget_bytes", absl::StrCat(options_.memory_budget_bytes)},
+                              {"memory_budget_from", options_.memory_budget_source.empty()
+                                                         ? "options"
+                                                         : options_.memory_budget_source},
                               {"tls", options_.tls_cert_pem.empty() ? "off" : "on"},
                               {"token", options_.bearer_token.empty() ? "off" : "on"}});
   return port;

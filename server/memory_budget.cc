@@ -4,21 +4,11 @@
 
 #include "absl/strings/str_format.h"
 #include "absl/time/time.h"
-#include "core/geometry/point_cloud.h"
 
 namespace membrane::server {
-namespace {
 
-// Measured on the bench clouds: the grid (1 byte per voxel) plus the shrinker's bitsets,
-// snapshots and the surface's index maps stay under 6 bytes per voxel.
-constexpr int64_t kBytesPerVoxel = 6;
-// The decoded cloud, the pipeline's copy for the surface fit, and slack for the mesh.
-constexpr int64_t kBytesPerPoint = 4 * sizeof(Point3f);
-
-}  // namespace
-
-int64_t EstimateJobBytes(int64_t voxels, int64_t points) {
-  return voxels * kBytesPerVoxel + points * kBytesPerPoint;
+int64_t DefaultMemoryBudget(int64_t total_bytes) {
+  return total_bytes > 0 ? total_bytes / 4 * 3 : 0;
 }
 
 MemoryBudget::Share::~Share() {

@@ -1,6 +1,6 @@
 // The memory budget across running jobs (--memory-budget-bytes): a job reserves its estimate
 // before allocating its grid, and the surface's estimate once its membrane is known, and waits
-// while others hold the rest.
+// while others hold the rest (the estimates: core/pipeline/memory_estimate.h).
 #ifndef MEMBRANE_SERVER_MEMORY_BUDGET_H_
 #define MEMBRANE_SERVER_MEMORY_BUDGET_H_
 
@@ -49,10 +49,11 @@ class MemoryBudget {
   int waiting_holders_ ABSL_GUARDED_BY(mutex_) = 0;  // of those, the ones waiting in Add
 };
 
-// An estimate of the bytes of one job before its surface: the voxel grid and the shrink's
-// working sets (a few bytes per voxel), plus the cloud and its copies. The surface's share
-// comes later (SurfaceBytesEstimate, core/pipeline/surface_builder.h).
-int64_t EstimateJobBytes(int64_t voxels, int64_t points);
+// The budget membraned takes when --memory-budget-bytes is not given: 3/4 of `total_bytes`
+// (MachineMemory::total_bytes: the machine's memory, or its container's limit), leaving the
+// rest to what the estimates do not count: the uploads waiting in the queue, gRPC's buffers,
+// the decoder processes. 0 (no limit) when `total_bytes` is unknown (<= 0).
+int64_t DefaultMemoryBudget(int64_t total_bytes);
 
 }  // namespace membrane::server
 

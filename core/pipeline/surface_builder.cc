@@ -44,10 +44,4 @@ absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const Point
   return built;
 }
 
-int64_t SurfaceBytesEstimate(const MembraneCounts& membrane) {
-  constexpr int64_t kBytesPerBoundaryVoxel = 1000;
-  return kBytesPerBoundaryVoxel *
-         (membrane.hard_voxels + membrane.frozen_voxels + membrane.soft_voxels);
-}
-
 }  // namespace membrane

@@ -16,7 +16,6 @@
 #include "core/geometry/position_grid.h"
 #include "core/mesh/output_grid.h"
 #include "core/geometry/triangle_mesh.h"
-#include "core/pipeline/membrane_counts.h"
 
 namespace membrane {
 
@@ -50,14 +49,6 @@ struct BuiltSurface {
 absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken* cancel, int threads = 1);
-
-// The bytes BuildSurface and the mesh check may take beyond the grid and the cloud, for a
-// membrane with these counts (CountMembrane): its boundary voxels times 1000. Measured on the
-// ten real clouds and on uniform noise (whose membrane is a foam: its surface takes 28 times
-// what the grid does), both surfaces: 1.8-2.7 faces per boundary voxel. Each run's peak RSS
-// stayed within the server's estimate for the grid and the cloud plus 800 bytes per boundary
-// voxel, but for cuberille on 20k noise points (1.2 times that); 1000 leaves a margin.
-int64_t SurfaceBytesEstimate(const MembraneCounts& membrane);
 
 }  // namespace membrane
 

@@ -1,5 +1,6 @@
 // Every failure prints exactly one "membrane: ..." line and exits with the status of
 // design/contracts.md: 2 usage, 3 invalid input, 4 unavailable or timed out.
+#include <cstdint>
 #include <fstream>
 #include <string>
 
@@ -14,6 +15,7 @@
 namespace membrane::testing {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::SizeIs;
@@ -121,6 +123,56 @@ TEST_F(ErrorsTest, TinyVoxelSizeExceedsTheVoxelBudget) {
   EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("voxel budget")));
   EXPECT_THAT(r.err, ::testing::EndsWith("\n"));
   EXPECT_THAT(ErrorLines(r.err).back(), HasSubstr("--voxel-size"));
+}
+
+// Uniform noise has no surface to find: its membrane is a foam whose surface takes many times
+// the grid's memory. The estimate made once the membrane is known refuses it before the
+// surface is built, in one line naming the limit, and nothing is written.
+TEST_F(ErrorsTest, NoiseWhoseSurfaceIsOverTheMemoryLimitIsRefused) {
+  const std::string path = dir_.File("noise.xyz");
+  {
+    std::ofstream out(path);
+    uint32_t state = 12345;
+    auto next = [&state] {
+      state = state * 1664525u + 1013904223u;
+      return static_cast<float>(state >> 8) / static_cast<float>(1 << 24);
+    };
+    for (int i = 0; i < 20000; ++i) out << next() << ' ' << next() << ' ' << next() << '\n';
+  }
+  const CliResult r = Run({"reconstruct", path, "-o", dir_.File("out.ply"), "--local",
+                           "--quiet", "--memory-limit", "30000000"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err),
+              ElementsAre(AllOf(HasSubstr("for its surface"), HasSubstr("memory limit of 30 MB"),
+                                HasSubstr("--memory-limit"), HasSubstr("foam"))));
+  EXPECT_FALSE(std::ifstream(dir_.File("out.ply")).good()) << "out.ply was written";
+  // A real cloud of the same size goes through under the same limit.
+  const CliResult sphere = Run({"reconstruct", SphereCloud(20000), "-o", dir_.File("s.ply"),
+                                "--local", "--quiet", "--memory-limit", "30000000"});
+  EXPECT_EQ(sphere.exit_code, 0) << sphere.err;
+}
+
+TEST_F(ErrorsTest, GridOverTheMemoryLimitIsRefusedBeforeVoxelizing) {
+  const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"), "--local",
+                           "--memory-limit", "100000"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(AllOf(HasSubstr("the grid of"),
+                                                   HasSubstr("memory limit of 100 KB"),
+                                                   HasSubstr("--voxel-size"))));
+  // Refused before the first stage's line.
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("voxelize:")));
+}
+
+TEST_F(ErrorsTest, MemoryLimitIsForLocalRunsAndNamesItsRange) {
+  const CliResult remote = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"),
+                                "--memory-limit", "100000"});
+  EXPECT_EQ(remote.exit_code, 2);
+  EXPECT_THAT(ErrorLines(remote.err), ElementsAre(HasSubstr("--memory-limit requires --local")));
+  const CliResult negative = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"),
+                                  "--local", "--memory-limit", "-2"});
+  EXPECT_EQ(negative.exit_code, 3);
+  EXPECT_THAT(ErrorLines(negative.err),
+              ElementsAre(AllOf(HasSubstr("--memory-limit -2"), HasSubstr("0 = no limit"))));
 }
 
 TEST_F(ErrorsTest, CloudThatEnclosesNoSolidIsInvalidInputAndWritesNothing) {

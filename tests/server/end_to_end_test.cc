@@ -14,6 +14,7 @@
 #include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
+#include "core/pipeline/machine_memory.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
@@ -329,6 +330,29 @@ TEST_F(EndToEndTest, SigtermStopsTheServerGracefully) {
   server_->Signal(SIGTERM);
   EXPECT_EQ(server_->Wait(10), 0);
   EXPECT_NE(ReadText(log_).find("event=server_stopped"), std::string::npos);
+}
+
+// Without --memory-budget-bytes a noisy upload must still be refused rather than take the
+// machine: the default budget is 3/4 of its memory (or of the container's limit), in the log.
+TEST_F(EndToEndTest, DefaultMemoryBudgetIsThreeQuartersOfTheMachine) {
+  StartServer();
+  const MachineMemory machine = ReadMachineMemory();
+  ASSERT_GT(machine.total_bytes, 0);
+  const std::string log = ReadText(log_);
+  EXPECT_NE(log.find("memory_budget_bytes=" + std::to_string(machine.total_bytes / 4 * 3)),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("memory_budget_from=\"3/4 of " + machine.total_source + "\""),
+            std::string::npos)
+      << log;
+}
+
+TEST_F(EndToEndTest, NegativeMemoryBudgetIsRefusedAtStart) {
+  Subprocess bad({MEMBRANED_BINARY, "--listen=127.0.0.1:0", "--memory-budget-bytes=-2"},
+                 dir_.File("bad.out"), dir_.File("bad.err"));
+  EXPECT_EQ(bad.Wait(10), 2);
+  EXPECT_NE(ReadText(dir_.File("bad.err")).find("--memory-budget-bytes -2"), std::string::npos)
+      << ReadText(dir_.File("bad.err"));
 }
 
 TEST_F(EndToEndTest, TokenIsNeededOnEveryCallButHealth) {

@@ -8,17 +8,24 @@
 
 namespace membrane::server {
 
-Job::Job(std::string id, std::string peer, v1::Parameters parameters, std::string upload)
+Job::Job(std::string id, std::string peer, v1::Parameters parameters, std::string upload,
+         UploadMemory::Hold upload_hold)
     : id_(std::move(id)),
       peer_(std::move(peer)),
       parameters_(std::move(parameters)),
       upload_bytes_(upload.size()),
       created_at_(absl::Now()),
-      upload_(std::move(upload)) {}
+      upload_(std::move(upload)),
+      upload_hold_(std::move(upload_hold)) {}
 
 std::string Job::TakeUpload() {
   absl::MutexLock lock(&mutex_);
   return std::exchange(upload_, std::string());
+}
+
+void Job::ReleaseUploadHold() {
+  absl::MutexLock lock(&mutex_);
+  upload_hold_.Release();
 }
 
 v1::Job Job::Snapshot() const {
@@ -109,6 +116,7 @@ void Job::FinishLocked(v1::JobState state, const absl::Status& status) {
   stage_.clear();
   upload_.clear();
   upload_.shrink_to_fit();
+  upload_hold_.Release();
   finished_at_ = absl::Now();
 }
 

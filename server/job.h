@@ -14,13 +14,17 @@
 #include "absl/time/time.h"
 #include "core/engine/cancel_token.h"
 #include "membrane/v1/reconstruction.pb.h"
+#include "server/upload_memory.h"
 
 namespace membrane::server {
 
 class Job {
  public:
-  // A QUEUED job. `upload` is the Draco cloud (kept until the job runs).
-  Job(std::string id, std::string peer, v1::Parameters parameters, std::string upload);
+  // A QUEUED job. `upload` is the Draco cloud (kept until the job runs); `upload_hold` its
+  // bytes in the server's memory for uploads, given back by ReleaseUploadHold() or when the
+  // job ends.
+  Job(std::string id, std::string peer, v1::Parameters parameters, std::string upload,
+      UploadMemory::Hold upload_hold = {});
 
   Job(const Job&) = delete;
   Job& operator=(const Job&) = delete;
@@ -32,6 +36,9 @@ class Job {
 
   // The upload, handed over once to the worker (later calls return an empty string).
   std::string TakeUpload() ABSL_LOCKS_EXCLUDED(mutex_);
+  // Gives the upload's bytes back to the server's memory for uploads: the worker calls it once
+  // the upload is decoded (and gone). Ending the job does it too.
+  void ReleaseUploadHold() ABSL_LOCKS_EXCLUDED(mutex_);
   uint64_t upload_bytes() const { return upload_bytes_; }
 
   // The resource as GetJob returns it.
@@ -85,6 +92,7 @@ class Job {
 
   mutable absl::Mutex mutex_;
   std::string upload_ ABSL_GUARDED_BY(mutex_);
+  UploadMemory::Hold upload_hold_ ABSL_GUARDED_BY(mutex_);
   v1::JobState state_ ABSL_GUARDED_BY(mutex_) = v1::QUEUED;
   int queue_position_ ABSL_GUARDED_BY(mutex_) = 0;
   std::string stage_ ABSL_GUARDED_BY(mutex_);

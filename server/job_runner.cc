@@ -82,6 +82,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   limits.subject = "the upload";
   absl::StatusOr<PointCloud> cloud =
       DecodeInSubprocess(job->TakeUpload(), limits, job->cancel_token());
+  job->ReleaseUploadHold();  // the upload is gone with the decoder's input
   if (!cloud.ok()) return fail(cloud.status());
   cloud->origin = settings->origin;
   decode_report.points = static_cast<int64_t>(cloud->points.size());

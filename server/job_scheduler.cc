@@ -17,6 +17,11 @@ JobScheduler::~JobScheduler() { Shutdown(absl::ZeroDuration()); }
 absl::Status JobScheduler::Submit(std::shared_ptr<Job> job) {
   absl::MutexLock lock(&mutex_);
   if (stopping_) return absl::UnavailableError("the server is shutting down; try another replica");
+  // Jobs cancelled while queued leave their place now rather than when a worker reaches them:
+  // else they would fill the queue for nothing.
+  if (std::erase_if(queue_, [](const std::shared_ptr<Job>& j) { return j->done(); }) > 0) {
+    RenumberQueueLocked();
+  }
   // Jobs waiting beyond the idle workers count against the queue.
   if (queue_.size() + running_.size() >= workers_.size() + queue_capacity_) {
     return absl::ResourceExhaustedError(absl::StrFormat(

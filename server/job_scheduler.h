@@ -31,7 +31,8 @@ class JobScheduler {
   JobScheduler& operator=(const JobScheduler&) = delete;
 
   // Queues `job` and sets its queue position. ResourceExhausted "queue full (N jobs
-  // waiting)" when the queue is full; Unavailable "shutting down" once Shutdown has begun.
+  // waiting)" when the queue is full (jobs cancelled while queued do not count: they leave
+  // the queue here); Unavailable "shutting down" once Shutdown has begun.
   absl::Status Submit(std::shared_ptr<Job> job) ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Stops accepting jobs and cancels the queued ones ("server shutting down"); lets the

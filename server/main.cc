@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "absl/flags/flag.h"
@@ -21,6 +22,7 @@
 #include "core/pipeline/thread_limits.h"
 #include "server/membrane_server.h"
 #include "server/memory_budget.h"
+#include "server/upload_memory.h"
 #include "server/server_options.h"
 
 ABSL_FLAG(std::string, listen, "127.0.0.1:50051", "address to listen on (HOST:PORT; port 0 = any)");
@@ -36,6 +38,9 @@ ABSL_FLAG(int64_t, memory_budget_bytes, -1,
           "estimated bytes across running jobs (about 6 per voxel, and 1000 per membrane voxel "
           "for the surface); -1 = 3/4 of this machine's memory, or of its container's limit "
           "when lower; 0 = no limit");
+ABSL_FLAG(int64_t, upload_memory_bytes, -1,
+          "bytes of uploads held at once (arriving, queued, being decoded), beside the memory "
+          "budget; -1 = 1/8 of this machine's memory or of its container's limit; 0 = no limit");
 ABSL_FLAG(double, result_ttl_seconds, 3600, "how long finished jobs and results are kept");
 ABSL_FLAG(double, grace_seconds, 30, "on SIGTERM, how long running jobs may finish");
 ABSL_FLAG(std::string, on_disconnect, "continue",
@@ -109,18 +114,22 @@ bool OptionsFromFlags(ServerOptions& o) {
   o.max_points = absl::GetFlag(FLAGS_max_points);
   o.voxel_budget = absl::GetFlag(FLAGS_voxel_budget);
   o.memory_budget_bytes = absl::GetFlag(FLAGS_memory_budget_bytes);
-  if (o.memory_budget_bytes < -1) {
-    std::fprintf(stderr, "membraned: --memory-budget-bytes %lld is not -1 (auto), 0 (none) or a "
-                 "byte count\n", static_cast<long long>(o.memory_budget_bytes));
-    return false;
+  o.upload_memory_bytes = absl::GetFlag(FLAGS_upload_memory_bytes);
+  for (auto [flag, value] : {std::pair{"--memory-budget-bytes", o.memory_budget_bytes},
+                             std::pair{"--upload-memory-bytes", o.upload_memory_bytes}}) {
+    if (value < -1) {
+      std::fprintf(stderr, "membraned: %s %lld is not -1 (auto), 0 (none) or a byte count\n",
+                   flag, static_cast<long long>(value));
+      return false;
+    }
   }
+  const MachineMemory machine = ReadMachineMemory();
+  o.memory_budget_source = "--memory-budget-bytes";
   if (o.memory_budget_bytes == -1) {
-    const MachineMemory machine = ReadMachineMemory();
     o.memory_budget_bytes = DefaultMemoryBudget(machine.total_bytes);
     o.memory_budget_source = "3/4 of " + machine.total_source;
-  } else {
-    o.memory_budget_source = "--memory-budget-bytes";
   }
+  if (o.upload_memory_bytes == -1) o.upload_memory_bytes = DefaultUploadMemory(machine.total_bytes);
   o.result_ttl_seconds = absl::GetFlag(FLAGS_result_ttl_seconds);
   o.grace_seconds = absl::GetFlag(FLAGS_grace_seconds);
   o.decoder_timeout_seconds = absl::GetFlag(FLAGS_decoder_timeout_seconds);

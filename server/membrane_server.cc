@@ -23,13 +23,14 @@ constexpr int kMaxMessageBytes = 4 << 20;  // gRPC's default, stated: chunks kee
 
 MembraneServer::MembraneServer(ServerOptions options)
     : options_(std::move(options)),
+      upload_memory_(options_.upload_memory_bytes),
       memory_(options_.memory_budget_bytes),
       runner_(options_, memory_),
       scheduler_(options_.workers, options_.queue,
                  [this](const std::shared_ptr<Job>& job) {
                    runner_.Run(job, JobThreads(options_, scheduler_.running()));
                  }),
-      service_(options_, store_, scheduler_) {}
+      service_(options_, store_, scheduler_, upload_memory_) {}
 
 MembraneServer::~MembraneServer() { Shutdown(absl::ZeroDuration()); }
 
@@ -67,6 +68,7 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
                               {"memory_budget_from", options_.memory_budget_source.empty()
                                                          ? "options"
                                                          : options_.memory_budget_source},
+                              {"upload_memory_bytes", absl::StrCat(options_.upload_memory_bytes)},
                               {"tls", options_.tls_cert_pem.empty() ? "off" : "on"},
                               {"token", options_.bearer_token.empty() ? "off" : "on"}});
   return port;

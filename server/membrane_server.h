@@ -13,6 +13,7 @@
 #include "server/job_runner.h"
 #include "server/job_scheduler.h"
 #include "server/memory_budget.h"
+#include "server/upload_memory.h"
 #include "server/reconstruction_service.h"
 #include "server/server_options.h"
 
@@ -42,6 +43,8 @@ class MembraneServer {
 
  private:
   const ServerOptions options_;
+  // Before the store: jobs hold parts of it until they are destroyed.
+  UploadMemory upload_memory_;
   InMemoryJobStore store_;
   MemoryBudget memory_;
   JobRunner runner_;

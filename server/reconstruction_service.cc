@@ -50,7 +50,7 @@ grpc::Status ReconstructionService::Authenticate(const grpc::ServerContext& cont
 grpc::Status ReconstructionService::ReadUpload(
     grpc::ServerContext* context,
     grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
-    v1::Parameters& parameters, std::string& upload) {
+    v1::Parameters& parameters, std::string& upload, UploadMemory::Hold& hold) {
   v1::ReconstructRequest request;
   if (!stream->Read(&request) || !request.has_header()) {
     return InvalidArgument("the first message of Reconstruct must be an UploadHeader");
@@ -68,6 +68,15 @@ grpc::Status ReconstructionService::ReadUpload(
                                         "bytes (--max-upload-bytes)",
                                         header.upload_bytes(), options_.max_upload_bytes));
   }
+  // Held from here until the job's decoding ends; a busy server asks the client to come back.
+  absl::StatusOr<UploadMemory::Hold> held =
+      upload_memory_.Reserve(static_cast<int64_t>(header.upload_bytes()));
+  if (!held.ok()) {
+    if (!upload_memory_.Fits(static_cast<int64_t>(header.upload_bytes())))
+      return ToGrpcStatus(held.status());
+    return ToGrpcStatusWithRetry(held.status(), absl::Seconds(options_.retry_delay_seconds));
+  }
+  hold = *std::move(held);
   // Reserve no more than what a few chunks justify: a header alone must not pin memory.
   upload.reserve(std::min<uint64_t>(header.upload_bytes(), 64 << 20));
   uint32_t crc = 0;
@@ -79,6 +88,10 @@ grpc::Status ReconstructionService::ReadUpload(
                                              header.upload_bytes()));
     }
     crc = Crc32c(chunk.chunk(), crc);
+    // Grown geometrically but never past the size announced, which the hold covers.
+    if (upload.size() + chunk.chunk().size() > upload.capacity()) {
+      upload.reserve(std::min<uint64_t>(header.upload_bytes(), 2 * upload.capacity()));
+    }
     upload += chunk.chunk();
   }
   if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "call cancelled");
@@ -105,14 +118,16 @@ grpc::Status ReconstructionService::Reconstruct(
   }
   v1::Parameters parameters;
   std::string upload;
-  if (grpc::Status s = ReadUpload(context, stream, parameters, upload); !s.ok()) {
+  UploadMemory::Hold hold;
+  if (grpc::Status s = ReadUpload(context, stream, parameters, upload, hold); !s.ok()) {
     LogEvent("upload_rejected", {{"peer", context->peer()},
                                  {"code", absl::StrCat(s.error_code())},
                                  {"message", s.error_message()}});
     return s;
   }
   const uint64_t upload_bytes = upload.size();
-  auto job = std::make_shared<Job>(NewJobId(), context->peer(), parameters, std::move(upload));
+  auto job = std::make_shared<Job>(NewJobId(), context->peer(), parameters, std::move(upload),
+                                   std::move(hold));
   if (absl::Status s = scheduler_.Submit(job); !s.ok()) {
     LogEvent("job_refused", {{"peer", context->peer()}, {"message", std::string(s.message())}});
     return ToGrpcStatusWithRetry(s, absl::Seconds(options_.retry_delay_seconds));

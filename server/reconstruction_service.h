@@ -14,14 +14,16 @@
 #include "server/job_scheduler.h"
 #include "server/job_store.h"
 #include "server/server_options.h"
+#include "server/upload_memory.h"
 
 namespace membrane::server {
 
 class ReconstructionService final : public v1::Reconstruction::Service {
  public:
-  // `options`, `store` and `scheduler` (not owned) must outlive the service.
-  ReconstructionService(const ServerOptions& options, JobStore& store, JobScheduler& scheduler)
-      : options_(options), store_(store), scheduler_(scheduler) {}
+  // `options`, `store`, `scheduler` and `upload_memory` (not owned) must outlive the service.
+  ReconstructionService(const ServerOptions& options, JobStore& store, JobScheduler& scheduler,
+                        UploadMemory& upload_memory)
+      : options_(options), store_(store), scheduler_(scheduler), upload_memory_(upload_memory) {}
 
   // From now on Reconstruct answers UNAVAILABLE (graceful shutdown); other calls still work,
   // so that clients can fetch their results.
@@ -40,10 +42,13 @@ class ReconstructionService final : public v1::Reconstruction::Service {
                         v1::ListJobsResponse* response) override;
 
  private:
-  // Reads the header and the chunks of an upload; checks size, checksum and parameters.
+  // Reads the header and the chunks of an upload; checks size, checksum and parameters, and
+  // holds the announced bytes in the memory for uploads (`hold`) before reading the chunks:
+  // RESOURCE_EXHAUSTED, with a retry delay when it is only busy, where they do not fit.
   grpc::Status ReadUpload(grpc::ServerContext* context,
                           grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
-                          v1::Parameters& parameters, std::string& upload);
+                          v1::Parameters& parameters, std::string& upload,
+                          UploadMemory::Hold& hold);
   // OK for a call with the configured bearer token (or when none is); UNAUTHENTICATED, logged
   // with the peer, otherwise.
   grpc::Status Authenticate(const grpc::ServerContext& context);
@@ -54,6 +59,7 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   const ServerOptions& options_;
   JobStore& store_;
   JobScheduler& scheduler_;
+  UploadMemory& upload_memory_;
   std::atomic<bool> accepting_{true};
   absl::Mutex id_mutex_;
   absl::BitGen id_random_ ABSL_GUARDED_BY(id_mutex_);

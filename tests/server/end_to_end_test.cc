@@ -334,7 +334,7 @@ TEST_F(EndToEndTest, SigtermStopsTheServerGracefully) {
 
 // Without --memory-budget-bytes a noisy upload must still be refused rather than take the
 // machine: the default budget is 3/4 of its memory (or of the container's limit), in the log.
-TEST_F(EndToEndTest, DefaultMemoryBudgetIsThreeQuartersOfTheMachine) {
+TEST_F(EndToEndTest, DefaultMemoryLimitsAreShareOfTheMachine) {
   StartServer();
   const MachineMemory machine = ReadMachineMemory();
   ASSERT_GT(machine.total_bytes, 0);
@@ -343,6 +343,10 @@ TEST_F(EndToEndTest, DefaultMemoryBudgetIsThreeQuartersOfTheMachine) {
             std::string::npos)
       << log;
   EXPECT_NE(log.find("memory_budget_from=\"3/4 of " + machine.total_source + "\""),
+            std::string::npos)
+      << log;
+  // Uploads held at once (arriving, queued, decoding) get an eighth, beside the budget.
+  EXPECT_NE(log.find("upload_memory_bytes=" + std::to_string(machine.total_bytes / 8)),
             std::string::npos)
       << log;
 }

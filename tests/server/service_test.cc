@@ -298,6 +298,54 @@ TEST_F(ServiceTest, FullQueueIsResourceExhaustedWithARetryDelay) {
   EXPECT_EQ(retry.retry_delay().seconds() * 1000 + retry.retry_delay().nanos() / 1000000, 500);
 }
 
+// Uploads are held from their header until their job is decoded, within
+// --upload-memory-bytes: a full queue of large uploads cannot take the machine's memory.
+TEST_F(ServiceTest, UploadsHeldOverTheirMemoryAreRefusedUntilOneIsReleased) {
+  const std::string cloud = DracoCloud("sphere", 30000);
+  options_.upload_memory_bytes = static_cast<int64_t>(cloud.size());  // one upload at a time
+  StartServer();  // 1 worker, queue of 1
+  const std::string running = StartJobInBackground(cloud, SlowParameters());
+  ASSERT_FALSE(running.empty());
+  // Once decoded, the running job's upload is given back.
+  for (int i = 0; i < 200; ++i) {
+    grpc::ClientContext context;
+    v1::GetJobRequest request;
+    request.set_job_id(running);
+    v1::Job job;
+    ASSERT_TRUE(stub_->GetJob(&context, request, &job).ok());
+    if (!job.stage().empty() && job.stage() != "decode") break;
+    absl::SleepFor(absl::Milliseconds(20));
+  }
+  const std::string queued = StartJobInBackground(cloud, SlowParameters());  // holds it all
+  ASSERT_FALSE(queued.empty());
+  const CallResult busy = Reconstruct(cloud, {}, {}, 10);
+  ASSERT_EQ(busy.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(busy.status.error_message().find("--upload-memory-bytes"), std::string::npos)
+      << busy.status.error_message();
+  google::rpc::Status details;
+  ASSERT_TRUE(details.ParseFromString(busy.status.error_details()));
+  EXPECT_EQ(details.details_size(), 1);  // RetryInfo: it fits once another is released
+  // Cancelling the queued job gives its upload back: the same upload is taken now.
+  grpc::ClientContext context;
+  v1::CancelJobRequest request;
+  request.set_job_id(queued);
+  v1::Job job;
+  ASSERT_TRUE(stub_->CancelJob(&context, request, &job).ok());
+  EXPECT_FALSE(StartJobInBackground(cloud, SlowParameters()).empty());
+}
+
+TEST_F(ServiceTest, UploadOverTheWholeUploadMemoryIsRefusedWithoutRetry) {
+  const std::string cloud = DracoCloud("sphere", 2000);
+  options_.upload_memory_bytes = static_cast<int64_t>(cloud.size()) - 1;
+  StartServer();
+  const CallResult r = Reconstruct(cloud, {}, {}, 10);
+  ASSERT_EQ(r.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(r.status.error_message().find("over the server's memory for uploads"),
+            std::string::npos)
+      << r.status.error_message();
+  EXPECT_TRUE(r.status.error_details().empty());  // no RetryInfo: it never fits
+}
+
 TEST_F(ServiceTest, QueuedJobReportsItsPosition) {
   StartServer();
   const std::string cloud = DracoCloud("sphere", 30000);

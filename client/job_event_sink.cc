@@ -70,6 +70,7 @@ void JobEventSink::ConsumeProgress(const v1::JobEvent& event) {
     progress_.Begin(s.line());
   } else {
     progress_.Finish(s.line());
+    warnings_.insert(warnings_.end(), s.warnings().begin(), s.warnings().end());
   }
 }
 

@@ -34,6 +34,8 @@ class JobEventSink {
   absl::Status Outcome() const;
   const std::vector<GenerationStats>& generations() const { return generations_; }
   const std::string& statistics_json() const { return statistics_json_; }
+  // The stages' warnings (StageEvent.warnings), in order, each once.
+  const std::vector<std::string>& warnings() const { return warnings_; }
   // The server's check of the mesh.
   const v1::MeshSummary& mesh_summary() const { return mesh_summary_; }
   const std::string& mesh() const { return mesh_; }
@@ -50,6 +52,7 @@ class JobEventSink {
   int events_in_call_ = 0;
   std::vector<GenerationStats> generations_;
   std::string statistics_json_;
+  std::vector<std::string> warnings_;
   v1::MeshSummary mesh_summary_;
   uint64_t mesh_bytes_ = 0;
   uint32_t mesh_crc32c_ = 0;

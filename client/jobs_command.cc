@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <grpcpp/client_context.h>
 
@@ -13,6 +14,7 @@
 #include "client/job_event_sink.h"
 #include "client/progress_printer.h"
 #include "client/remote_reconstruction.h"
+#include "client/report_text.h"
 #include "client/rpc_errors.h"
 #include "client/server_connection.h"
 #include "core/io/file_bytes.h"
@@ -88,6 +90,7 @@ absl::Status RunWatch(const JobsFlags& flags) {
       flags.timeout > 0 ? absl::Now() + absl::Seconds(flags.timeout) : absl::InfiniteFuture();
   absl::Status outcome;
   std::string mesh, statistics;
+  std::vector<std::string> warnings;
   Origin3d origin;
   {
     ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
@@ -95,9 +98,11 @@ absl::Status RunWatch(const JobsFlags& flags) {
     outcome = WatchUntilDone(flags.server, flags.job_id, deadline, sink);
     mesh = sink.mesh();
     statistics = sink.statistics_json();
+    warnings = sink.warnings();
     origin = sink.origin();
   }
   if (!outcome.ok()) return outcome;
+  std::fputs(WarningLines(warnings).c_str(), stderr);
   if (!flags.stats_json.empty()) {
     if (absl::Status s = WriteFileBytes(flags.stats_json, statistics); !s.ok()) {
       return FileErrorAsInvalidInput(s);

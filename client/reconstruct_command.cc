@@ -215,6 +215,7 @@ absl::Status RunRemote(const ReconstructFlags& flags) {
   std::fputs(GenerationTable(outcome->generations).c_str(), stdout);
   std::fputs(RemoteSummaryLine(*outcome).c_str(), stdout);
   std::fflush(stdout);
+  std::fputs(WarningLines(outcome->warnings).c_str(), stderr);
   if (!flags.stats_json.empty()) {
     absl::Status s = WriteFileBytes(flags.stats_json, outcome->statistics_json);
     if (!s.ok()) return FileErrorAsInvalidInput(s);
@@ -246,6 +247,7 @@ absl::Status RunReconstruct(const ReconstructFlags& flags) {
   std::fputs(GenerationTable(report->generations).c_str(), stdout);
   std::fputs(SummaryLine(*report).c_str(), stdout);
   std::fflush(stdout);
+  std::fputs(WarningLines(report->warnings).c_str(), stderr);
   if (!flags.stats_json.empty()) {
     absl::Status s = WriteFileBytes(flags.stats_json, StatsJson(*report));
     if (!s.ok()) return FileErrorAsInvalidInput(s);

@@ -232,6 +232,7 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
   outcome.job_id = sink.job_id();
   outcome.generations = sink.generations();
   outcome.statistics_json = sink.statistics_json();
+  outcome.warnings = sink.warnings();
   outcome.mesh = MeshReportOf(sink.mesh_summary());
   outcome.mesh_bytes = sink.mesh().size();
   return outcome;

@@ -44,6 +44,7 @@ struct RemoteOutcome {
   uint64_t raw_bytes = 0;       // the cloud as float32 x y z
   uint64_t upload_bytes = 0;    // the Draco cloud sent
   uint64_t mesh_bytes = 0;      // the Draco mesh received
+  std::vector<std::string> warnings;  // the server's (StageEvent.warnings), in order
 };
 
 // Runs the reconstruction on params.server and writes params.output. Without a voxel size in

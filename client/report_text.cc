@@ -45,4 +45,10 @@ std::string RemoteSummaryLine(const RemoteOutcome& o) {
       o.mesh_bytes);
 }
 
+std::string WarningLines(const std::vector<std::string>& warnings) {
+  std::string lines;
+  for (const std::string& w : warnings) absl::StrAppend(&lines, "warning: ", w, "\n");
+  return lines;
+}
+
 }  // namespace membrane::client

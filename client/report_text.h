@@ -31,6 +31,11 @@ std::string SummaryLine(const ReconstructionReport& report);
 //    (25.8% of raw float32), download 150000 bytes"
 std::string RemoteSummaryLine(const RemoteOutcome& outcome);
 
+// One "warning: <text>\n" line per warning of the report (ReconstructionReport::warnings, or
+// the server's), for stderr after the summary: they say what the result may get wrong, so
+// --quiet, which silences progress, does not silence them. Empty for none.
+std::string WarningLines(const std::vector<std::string>& warnings);
+
 }  // namespace membrane::client
 
 #endif  // MEMBRANE_CLIENT_REPORT_TEXT_H_

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test: the Release suite, then the engine,
-# synth, io, mesh and in-process server suites again under AddressSanitizer and
+# synth, io, mesh, pipeline and in-process server suites again under AddressSanitizer and
 # UndefinedBehaviorSanitizer, the thread tests of the mesh suite under ThreadSanitizer, then
 # the libFuzzer smoke of the readers (clang).
 set -euo pipefail
@@ -18,12 +18,12 @@ cmake --build build -j "$JOBS"
 ctest --test-dir build --output-on-failure -j "$JOBS" --timeout 900
 phase_done "Release build and suite"
 
-echo "== ASan/UBSan build: engine, synth, io, mesh and server (in process) suites"
+echo "== ASan/UBSan build: engine, synth, io, mesh, pipeline and server (in process) suites"
 # -O1 -g1 (line tables): sanitizer reports keep file:line at a lower build cost than -O2 -g
 # (measured on 2 cores: the whole suite 17.9 min against 18.4).
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DMEMBRANE_SANITIZE=ON \
-  -DMEMBRANE_BENCH=OFF -DMEMBRANE_TEST_DIRS="engine;synth;io;mesh;server" >/dev/null
+  -DMEMBRANE_BENCH=OFF -DMEMBRANE_TEST_DIRS="engine;synth;io;mesh;pipeline;server" >/dev/null
 # Only what these suites run: the client and the process-level server tests are not built a
 # second time (the in-process suite covers the service, its job runner and the decoder child).
 cmake --build build-asan -j "$JOBS" --target test_engine test_shrink test_real_scans test_synth \

@@ -38,8 +38,11 @@ void JobEventObserver::GenerationFinished(const GenerationStats& g, int planned_
 
 void JobEventObserver::StageFinished(PipelineStage stage, double seconds,
                                      const ReconstructionReport& report) {
-  job_.AddEvent(
-      StageEvent(stage, v1::StageEvent::FINISHED, seconds, StageFinishedLine(stage, report)));
+  v1::JobEvent event =
+      StageEvent(stage, v1::StageEvent::FINISHED, seconds, StageFinishedLine(stage, report));
+  for (; warnings_sent_ < report.warnings.size(); ++warnings_sent_)
+    event.mutable_stage()->add_warnings(report.warnings[warnings_sent_]);
+  job_.AddEvent(std::move(event));
 }
 
 }  // namespace membrane::server

@@ -20,6 +20,7 @@ class JobEventObserver : public ReconstructionObserver {
 
  private:
   Job& job_;
+  size_t warnings_sent_ = 0;  // report.warnings already in a StageEvent
 };
 
 }  // namespace membrane::server

@@ -6,6 +6,7 @@
 #include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
+#include "core/engine/point_density.h"
 
 namespace membrane {
 
@@ -158,28 +159,18 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
 
   // Voxel of each point, sorted, so that runs give the points per voxel without a per-voxel
   // counter array.
-  std::vector<int64_t> cell_of(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    int c[3];
-    for (int d = 0; d < 3; ++d) {
-      const double f = std::floor((points[i][d] - bounds->min[d]) / l);
-      c[d] = std::clamp(static_cast<int>(f), 0, v.data_dims[d] - 1) + p;
-    }
-    cell_of[i] = v.grid.Index(c[0], c[1], c[2]);
-  }
-  std::sort(cell_of.begin(), cell_of.end());
-  for (size_t i = 0; i < cell_of.size();) {
-    size_t j = i;
-    while (j < cell_of.size() && cell_of[j] == cell_of[i]) ++j;
-    (j - i == 1 ? v.voxels_with_one_point : v.voxels_with_more_points)++;
-    const VoxelState s = v.grid.at(cell_of[i]);
-    v.grid.set(cell_of[i], IsBoundary(s) ? kBoundaryHard : kInsideHard);
-    i = j;
-  }
+  const std::vector<int64_t> sorted = SortedPointVoxels(points, *bounds, l, v.data_dims);
+  const int64_t nx = v.data_dims[0], ny = v.data_dims[1];
+  const PointDensity density = ForEachOccupiedVoxel(sorted, [&](int64_t voxel, int64_t) {
+    const int64_t index = v.grid.Index(static_cast<int>(voxel % nx) + p,
+                                       static_cast<int>(voxel / nx % ny) + p,
+                                       static_cast<int>(voxel / (nx * ny)) + p);
+    v.grid.set(index, IsBoundary(v.grid.at(index)) ? kBoundaryHard : kInsideHard);
+  });
+  v.voxels_with_one_point = density.voxels_with_one_point;
+  v.voxels_with_more_points = density.voxels_with_more_points;
   v.hard_voxels = v.voxels_with_one_point + v.voxels_with_more_points;
-  v.density_ratio = v.voxels_with_one_point > 0
-                        ? static_cast<double>(v.voxels_with_more_points) / v.voxels_with_one_point
-                        : 0.0;
+  v.density_ratio = density.ratio();
   return v;
 }
 

@@ -1,6 +1,8 @@
 #include "core/pipeline/reconstruction_pipeline.h"
 
 #include <functional>
+#include <optional>
+#include <string>
 #include <system_error>
 #include <thread>
 #include <utility>
@@ -13,6 +15,7 @@
 #include "core/mesh/relaxation.h"
 #include "core/pipeline/membrane_counts.h"
 #include "core/pipeline/peak_memory.h"
+#include "core/pipeline/scatter_warning.h"
 #include "core/pipeline/stopwatch.h"
 
 namespace membrane {
@@ -25,7 +28,8 @@ absl::Status StopIfCancelled(const CancelToken& cancel, PipelineStage finished_s
 }
 
 absl::StatusOr<Voxelization> VoxelizeCloud(const ReconstructionOptions& options,
-                                           const PointCloud& cloud, ReconstructionReport& report,
+                                           const PointCloud& cloud, const CancelToken& cancel,
+                                           ReconstructionReport& report,
                                            ReconstructionObserver& observer) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kVoxelize, report);
@@ -36,6 +40,11 @@ absl::StatusOr<Voxelization> VoxelizeCloud(const ReconstructionOptions& options,
   report.data_grid = v->data_dims;
   report.hard_voxels = v->hard_voxels;
   report.density_ratio = v->density_ratio;
+  const PointDensity density{v->voxels_with_one_point, v->voxels_with_more_points};
+  if (std::optional<std::string> w =
+          ScatterWarning(cloud.points, v->bounds, report.voxel_size, density, cancel)) {
+    report.warnings.push_back(*std::move(w));
+  }
   report.seconds.voxelize = watch.Seconds();
   observer.StageFinished(PipelineStage::kVoxelize, report.seconds.voxelize, report);
   return v;
@@ -192,7 +201,7 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
   report.surface = SurfaceKindName(options.surface);
   report.threads = options.threads;
 
-  absl::StatusOr<Voxelization> voxelization = VoxelizeCloud(options, cloud, report, observer);
+  absl::StatusOr<Voxelization> voxelization = VoxelizeCloud(options, cloud, cancel, report, observer);
   if (!voxelization.ok()) return voxelization.status();
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kVoxelize); !s.ok()) return s;
   VoxelGrid& grid = voxelization->grid;

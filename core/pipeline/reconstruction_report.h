@@ -64,6 +64,9 @@ struct ReconstructionReport {
   QuantizationReport quantization;
   StageSeconds seconds;
   int64_t peak_rss_bytes = 0;  // getrusage ru_maxrss, in bytes
+  // What the user should know about the result, one sentence each (ScatterWarning's), in the
+  // order found; set before the stage that found them is reported finished.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace membrane

@@ -99,6 +99,13 @@ std::string QuantizationJson(const QuantizationReport& q) {
                       ", \"max_position_error\": ", JsonNumber(q.max_position_error), "}");
 }
 
+std::string WarningsJson(const std::vector<std::string>& warnings) {
+  std::string out = "[";
+  for (size_t i = 0; i < warnings.size(); ++i)
+    absl::StrAppend(&out, i > 0 ? ", " : "", JsonString(warnings[i]));
+  return out + "]";
+}
+
 }  // namespace
 
 std::string StatsJson(const ReconstructionReport& r) {
@@ -116,7 +123,8 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"handle_retry\": ", HandleRetryJson(r.handle_retry),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
       ",\n  \"quantization\": ", QuantizationJson(r.quantization),
-      ",\n  \"origin\": ", OriginJson(r.origin), "\n}\n");
+      ",\n  \"origin\": ", OriginJson(r.origin),
+      ",\n  \"warnings\": ", WarningsJson(r.warnings), "\n}\n");
 }
 
 }  // namespace membrane

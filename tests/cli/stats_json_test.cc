@@ -61,6 +61,8 @@ TEST(StatsJsonTest, HasEveryDocumentedKeyWithItsType) {
   for (const JsonValue& n : s.Find("grid")->array) EXPECT_TRUE(n.integer);
   ExpectKey(s, "", "hard_voxels", Type::kNumber, true);
   ExpectKey(s, "", "density_ratio", Type::kNumber);
+  ExpectKey(s, "", "warnings", Type::kArray);
+  EXPECT_TRUE(s.Find("warnings")->array.empty());  // a clean scan
   ExpectKey(s, "", "generations", Type::kArray);
   for (const JsonValue& g : s.Find("generations")->array) {
     ExpectKey(g, "generations[].", "plate_size", Type::kNumber, true);

@@ -332,6 +332,25 @@ TEST_F(EndToEndTest, SigtermStopsTheServerGracefully) {
   EXPECT_NE(ReadText(log_).find("event=server_stopped"), std::string::npos);
 }
 
+// The server's warnings reach the --server client's stderr after its summary, as --local's do,
+// and `jobs watch` prints them too.
+TEST_F(EndToEndTest, ScatteredCloudsWarningIsPrintedByTheClient) {
+  StartServer();
+  const std::string cloud = dir_.File("noisy.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "20000", "--noise", "0.05"})
+                .exit_code,
+            0);
+  const CliResult r = Run({"reconstruct", cloud, "-o", dir_.File("noisy_mesh.ply"), "--server",
+                           address_, "--quiet", "--surface", "cuberille"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("warning: the points scatter", 0), 0u) << r.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, std::regex("job ([0-9a-f]+):"))) << r.out;
+  const CliResult watched = Run({"jobs", "watch", m[1].str(), "--server", address_, "--quiet"});
+  ASSERT_EQ(watched.exit_code, 0) << watched.err;
+  EXPECT_EQ(watched.err, r.err);
+}
+
 // Without --memory-budget-bytes a noisy upload must still be refused rather than take the
 // machine: the default budget is 3/4 of its memory (or of the container's limit), in the log.
 TEST_F(EndToEndTest, DefaultMemoryLimitsAreShareOfTheMachine) {

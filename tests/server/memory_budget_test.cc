@@ -94,5 +94,10 @@ TEST(MemoryBudget, NoBudgetGrantsEverything) {
   EXPECT_TRUE(share.Add(int64_t{1} << 50, CancelToken()).ok());
 }
 
+TEST(DefaultMemoryBudget, IsThreeQuartersOfTheTotalOrNoLimitWhenUnknown) {
+  EXPECT_EQ(DefaultMemoryBudget(int64_t{16} << 30), int64_t{12} << 30);
+  EXPECT_EQ(DefaultMemoryBudget(0), 0);
+}
+
 }  // namespace
 }  // namespace membrane::server

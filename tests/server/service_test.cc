@@ -11,6 +11,7 @@
 #include "core/mesh/mesh_check.h"
 #include "google/rpc/error_details.pb.h"
 #include "google/rpc/status.pb.h"
+#include "core/synth/synthesize.h"
 #include "server/job_runner.h"
 #include "tests/server/service_fixture.h"
 
@@ -344,6 +345,42 @@ TEST_F(ServiceTest, UploadOverTheWholeUploadMemoryIsRefusedWithoutRetry) {
             std::string::npos)
       << r.status.error_message();
   EXPECT_TRUE(r.status.error_details().empty());  // no RetryInfo: it never fits
+}
+
+// A cloud scattered over more than a voxel succeeds, and the voxelize stage's FINISHED event
+// carries the warning the statistics hold, for the client to print; a clean cloud's carries none.
+TEST_F(ServiceTest, ScatteredCloudsWarningComesWithTheVoxelizeStage) {
+  StartServer();
+  SynthOptions synth{.shape = "sphere", .points = 20000, .noise = 0.05, .seed = 3};
+  absl::StatusOr<PointCloud> cloud = SynthesizeShape(synth);
+  ASSERT_TRUE(cloud.ok()) << cloud.status();
+  absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, DracoOptions{});
+  ASSERT_TRUE(encoded.ok());
+  v1::Parameters cuberille;
+  cuberille.set_surface("cuberille");
+  for (const auto& [upload, warned] :
+       {std::pair{encoded->bytes, true}, std::pair{DracoCloud("sphere", 20000), false}}) {
+    const CallResult r = Reconstruct(upload, cuberille);
+    ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+    std::vector<std::string> warnings;
+    std::string statistics;
+    for (const v1::JobEvent& e : r.events) {
+      if (e.has_stage() && e.stage().phase() == v1::StageEvent::FINISHED) {
+        for (const std::string& w : e.stage().warnings()) {
+          EXPECT_EQ(e.stage().stage(), "voxelize");
+          warnings.push_back(w);
+        }
+      }
+      if (e.has_result()) statistics = e.result().statistics_json();
+    }
+    ASSERT_EQ(warnings.size(), warned ? 1u : 0u);
+    if (warned) {
+      EXPECT_NE(warnings[0].find("scatter"), std::string::npos) << warnings[0];
+      EXPECT_NE(statistics.find(warnings[0]), std::string::npos) << statistics;
+    } else {
+      EXPECT_NE(statistics.find("\"warnings\": []"), std::string::npos) << statistics;
+    }
+  }
 }
 
 TEST_F(ServiceTest, QueuedJobReportsItsPosition) {

@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include "core/pipeline/machine_memory.h"
-#include "server/memory_budget.h"
 #include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
@@ -131,11 +130,6 @@ TEST(ReadMachineMemory, ThisMachineHasSomeMemory) {
   EXPECT_GT(got.total_bytes, 0);
   EXPECT_GT(got.available_bytes, 0);
   EXPECT_LE(got.available_bytes, got.total_bytes);
-}
-
-TEST(DefaultMemoryBudget, IsThreeQuartersOfTheTotalOrNoLimitWhenUnknown) {
-  EXPECT_EQ(server::DefaultMemoryBudget(int64_t{16} << 30), int64_t{12} << 30);
-  EXPECT_EQ(server::DefaultMemoryBudget(0), 0);
 }
 
 }  // namespace

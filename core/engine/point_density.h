@@ -1,0 +1,60 @@
+// How points fill the voxels of a grid: which voxels hold points, and the paper's density
+// ratio (section 4.3), voxels holding two points or more over voxels holding one. Voxelize
+// marks its hard voxels from it; the pipeline's scatter warning measures the ratio at other
+// voxel sizes without building a grid.
+#ifndef MEMBRANE_CORE_ENGINE_POINT_DENSITY_H_
+#define MEMBRANE_CORE_ENGINE_POINT_DENSITY_H_
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "absl/types/span.h"
+#include "core/geometry/point_cloud.h"
+
+namespace membrane {
+
+// Voxels per axis covering `bounds` with edge `voxel_size` (model units, > 0): floor(L / l) + 1,
+// so the largest coordinate falls inside (Voxelize's data region, without its padding).
+std::array<int, 3> DataDims(const Box3d& bounds, double voxel_size);
+
+// The data-region voxel of each point, x + nx (y + ny z) with (nx, ny, nz) = `dims` (DataDims
+// of the same bounds and size), sorted so that a voxel's points are adjacent. Voxel x of a
+// point is floor((p - bounds.min) / voxel_size), clamped into the region.
+std::vector<int64_t> SortedPointVoxels(absl::Span<const Point3f> points, const Box3d& bounds,
+                                       double voxel_size, const std::array<int, 3>& dims);
+
+struct PointDensity {
+  int64_t voxels_with_one_point = 0;
+  int64_t voxels_with_more_points = 0;
+  // more / one; 0 when no voxel holds exactly one point.
+  double ratio() const {
+    return voxels_with_one_point > 0
+               ? static_cast<double>(voxels_with_more_points) / voxels_with_one_point
+               : 0.0;
+  }
+};
+
+// Calls visit(voxel, points_in_it) once per occupied voxel of `sorted` (SortedPointVoxels), in
+// order, and returns the counts.
+template <typename Visit>
+PointDensity ForEachOccupiedVoxel(const std::vector<int64_t>& sorted, Visit visit) {
+  PointDensity d;
+  for (size_t i = 0; i < sorted.size();) {
+    size_t j = i;
+    while (j < sorted.size() && sorted[j] == sorted[i]) ++j;
+    (j - i == 1 ? d.voxels_with_one_point : d.voxels_with_more_points)++;
+    visit(sorted[i], static_cast<int64_t>(j - i));
+    i = j;
+  }
+  return d;
+}
+
+// The counts for `points` in voxels of edge `voxel_size` laid from bounds.min (`bounds` must
+// hold every point, as CheckedBounds' does). Cost: one sort of the points' voxel indices.
+PointDensity MeasurePointDensity(absl::Span<const Point3f> points, const Box3d& bounds,
+                                 double voxel_size);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_POINT_DENSITY_H_

@@ -25,7 +25,7 @@ struct PostProcessStats {
 // voxel become BOUNDARY, and soft ones 6-adjacent to it FROZEN, so the membrane invariants
 // (Property 3 included) still hold. Searches skip the soft components known to have no way out
 // (so a sealed interior is searched once, not once per hard voxel on its wall), and all of them
-// together visit at most 32 voxels per grid voxel: past that, the remaining inside hard voxels
+// together visit at most 4 voxels per grid voxel: past that, the remaining inside hard voxels
 // are left as they are (inside_hard_after counts them). Cancelled when `cancel` fires.
 absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
                                                          const CancelToken* cancel,

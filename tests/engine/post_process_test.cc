@@ -52,6 +52,22 @@ TEST(ConnectInsideHardVoxels, AWideSealedInteriorEnds) {
   EXPECT_EQ(stats->carved_voxels, 0);
 }
 
+// The same wide interior with an opening: it leads out, so it is not skipped, and most wall
+// voxels are farther than 64 steps from the opening. Their searches are cut short one after the
+// other; all searches together stop at 4 visits per grid voxel, leaving the rest (counted).
+TEST(ConnectInsideHardVoxels, AWideInteriorOpenFarAwayEndsWithinTheBudget) {
+  const int n = 140, p = VoxelGrid::kPadding;
+  VoxelGrid grid = HollowBox(n);
+  grid.set(grid.Index(n / 2 + p, n / 2 + p, p), kBoundaryFrozen);
+  grid.set(grid.Index(n / 2 + p, n / 2 + p, p + 1), kBoundarySoft);
+  absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, nullptr);
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_GT(stats->inside_hard_after, 0);
+  EXPECT_EQ(stats->inside_hard_after, CountState(grid, kInsideHard));
+  EXPECT_TRUE(CheckMembraneInvariants(grid, InvariantOptions{}).ok())
+      << CheckMembraneInvariants(grid, InvariantOptions{});
+}
+
 // A soft voxel in the outer layer opens the interior to the outside: the wall voxels near it
 // are connected by carving, the rest stay, and the solid keeps one shell of genus 0.
 TEST(ConnectInsideHardVoxels, AnOpeningConnectsTheWallNearItAndKeepsTheTopology) {

@@ -68,17 +68,22 @@ grpc::Status ReconstructionService::ReadUpload(
                                         "bytes (--max-upload-bytes)",
                                         header.upload_bytes(), options_.max_upload_bytes));
   }
-  // Held from here until the job's decoding ends; a busy server asks the client to come back.
-  absl::StatusOr<UploadMemory::Hold> held =
-      upload_memory_.Reserve(static_cast<int64_t>(header.upload_bytes()));
-  if (!held.ok()) {
-    if (!upload_memory_.Fits(static_cast<int64_t>(header.upload_bytes())))
-      return ToGrpcStatus(held.status());
-    return ToGrpcStatusWithRetry(held.status(), absl::Seconds(options_.retry_delay_seconds));
+  if (absl::Status s = upload_memory_.CheckFits(static_cast<int64_t>(header.upload_bytes()));
+      !s.ok()) {
+    return ToGrpcStatus(s);
   }
-  hold = *std::move(held);
-  // Reserve no more than what a few chunks justify: a header alone must not pin memory.
-  upload.reserve(std::min<uint64_t>(header.upload_bytes(), 64 << 20));
+  // The buffer's bytes are held from here until the job's decoding ends; a busy server asks
+  // the client to come back. Held as they grow, so a header alone pins nothing.
+  auto grow = [&](uint64_t capacity) {
+    const int64_t more = static_cast<int64_t>(capacity) - hold.bytes();
+    if (more <= 0) return grpc::Status::OK;
+    if (absl::Status s = upload_memory_.Grow(hold, more); !s.ok()) {
+      return ToGrpcStatusWithRetry(s, absl::Seconds(options_.retry_delay_seconds));
+    }
+    return grpc::Status::OK;
+  };
+  // The buffer's first size: no more than what a few chunks justify.
+  const uint64_t first = std::min<uint64_t>(header.upload_bytes(), 64 << 20);
   uint32_t crc = 0;
   v1::ReconstructRequest chunk;
   while (stream->Read(&chunk)) {
@@ -88,9 +93,13 @@ grpc::Status ReconstructionService::ReadUpload(
                                              header.upload_bytes()));
     }
     crc = Crc32c(chunk.chunk(), crc);
-    // Grown geometrically but never past the size announced, which the hold covers.
+    // Grown geometrically but never past the size announced, each step held first.
     if (upload.size() + chunk.chunk().size() > upload.capacity()) {
-      upload.reserve(std::min<uint64_t>(header.upload_bytes(), 2 * upload.capacity()));
+      const uint64_t capacity = std::min<uint64_t>(
+          header.upload_bytes(),
+          std::max<uint64_t>({first, 2 * upload.capacity(), upload.size() + chunk.chunk().size()}));
+      if (grpc::Status s = grow(capacity); !s.ok()) return s;
+      upload.reserve(capacity);
     }
     upload += chunk.chunk();
   }

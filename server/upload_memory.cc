@@ -24,22 +24,26 @@ void UploadMemory::Hold::Release() {
   bytes_ = 0;
 }
 
-absl::StatusOr<UploadMemory::Hold> UploadMemory::Reserve(int64_t bytes) {
+absl::Status UploadMemory::CheckFits(int64_t bytes) const {
+  if (total_ <= 0 || bytes <= total_) return absl::OkStatus();
+  return absl::ResourceExhaustedError(absl::StrFormat(
+      "an upload of %d bytes is over the server's memory for uploads, %d bytes "
+      "(--upload-memory-bytes)",
+      bytes, total_));
+}
+
+absl::Status UploadMemory::Grow(Hold& hold, int64_t bytes) {
   absl::MutexLock lock(&mutex_);
-  if (!Fits(bytes)) {
-    return absl::ResourceExhaustedError(absl::StrFormat(
-        "an upload of %d bytes is over the server's memory for uploads, %d bytes "
-        "(--upload-memory-bytes)",
-        bytes, total_));
-  }
   if (total_ > 0 && held_ + bytes > total_) {
     return absl::ResourceExhaustedError(absl::StrFormat(
-        "the server is busy: an upload of %d bytes does not fit beside the %d bytes of uploads "
+        "the server is busy: %d more bytes of upload do not fit beside the %d bytes of uploads "
         "it holds, within its %d bytes for uploads (--upload-memory-bytes)",
         bytes, held_, total_));
   }
   held_ += bytes;
-  return Hold(this, bytes);
+  hold.owner_ = this;
+  hold.bytes_ += bytes;
+  return absl::OkStatus();
 }
 
 int64_t UploadMemory::held() const {

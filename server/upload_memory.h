@@ -1,6 +1,6 @@
-// The bytes of uploads membraned holds at once (--upload-memory-bytes): an upload is held from
-// its header until its job's decoding ends (while it arrives, waits in the queue and is fed to
-// the decoder), outside the jobs' memory budget. Without this, a full queue of uploads at
+// The bytes of uploads membraned holds at once (--upload-memory-bytes): an upload holds its
+// buffer's bytes from its first chunk until its job's decoding ends (while it arrives, waits in
+// the queue and is fed to the decoder), outside the jobs' memory budget. Without this, a full queue of uploads at
 // --max-upload-bytes (16 x 512 MB) could hold more memory than the machine has.
 #ifndef MEMBRANE_SERVER_UPLOAD_MEMORY_H_
 #define MEMBRANE_SERVER_UPLOAD_MEMORY_H_
@@ -32,19 +32,20 @@ class UploadMemory {
 
    private:
     friend class UploadMemory;
-    Hold(UploadMemory* owner, int64_t bytes) : owner_(owner), bytes_(bytes) {}
     UploadMemory* owner_ = nullptr;
     int64_t bytes_ = 0;
   };
 
-  // A hold of `bytes` when they fit beside the uploads held now, never waiting.
-  // ResourceExhausted naming the bytes and the limit otherwise: "over the server's memory for
-  // uploads" when they never fit (!Fits), "the server is busy" when they would once others are
-  // released (worth retrying).
-  absl::StatusOr<Hold> Reserve(int64_t bytes) ABSL_LOCKS_EXCLUDED(mutex_);
+  // OK when an upload of `bytes` fits within the limit at all; ResourceExhausted "over the
+  // server's memory for uploads", naming both, when it never will (not worth retrying).
+  absl::Status CheckFits(int64_t bytes) const;
 
-  // True when `bytes` fit within the limit at all.
-  bool Fits(int64_t bytes) const { return total_ <= 0 || bytes <= total_; }
+  // Adds `bytes` to `hold` (an empty hold becomes one of this UploadMemory) when they fit
+  // beside the uploads held now, never waiting; else ResourceExhausted "the server is busy"
+  // naming the numbers (worth retrying once others are released), and `hold` is unchanged.
+  // An upload grows its hold with its buffer, so a call that announces much and sends little
+  // holds little.
+  absl::Status Grow(Hold& hold, int64_t bytes) ABSL_LOCKS_EXCLUDED(mutex_);
 
   int64_t held() const ABSL_LOCKS_EXCLUDED(mutex_);
 

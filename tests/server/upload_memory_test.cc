@@ -1,5 +1,5 @@
-// The memory for uploads: holds never wait, are refused at once when they do not fit, and give
-// their bytes back exactly once, however they are moved.
+// The memory for uploads: holds grow with their buffers, never wait, are refused at once when
+// they do not fit, and give their bytes back exactly once, however they are moved.
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -11,34 +11,35 @@ namespace {
 
 TEST(UploadMemory, HoldsAreRefusedWhileFullAndTakenOnceReleased) {
   UploadMemory memory(100);
-  absl::StatusOr<UploadMemory::Hold> a = memory.Reserve(60);
-  ASSERT_TRUE(a.ok());
-  const absl::StatusOr<UploadMemory::Hold> b = memory.Reserve(41);
-  ASSERT_EQ(b.status().code(), absl::StatusCode::kResourceExhausted);
-  EXPECT_NE(b.status().message().find("the server is busy"), std::string::npos)
-      << b.status().message();
-  EXPECT_TRUE(memory.Fits(41));
-  a->Release();
+  UploadMemory::Hold a;
+  ASSERT_TRUE(memory.Grow(a, 40).ok());
+  ASSERT_TRUE(memory.Grow(a, 20).ok());  // its buffer grew
+  EXPECT_EQ(a.bytes(), 60);
+  UploadMemory::Hold b;
+  const absl::Status busy = memory.Grow(b, 41);
+  ASSERT_EQ(busy.code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_NE(busy.message().find("the server is busy"), std::string::npos) << busy.message();
+  EXPECT_EQ(b.bytes(), 0);  // unchanged
+  EXPECT_TRUE(memory.CheckFits(41).ok());
+  a.Release();
   EXPECT_EQ(memory.held(), 0);
-  EXPECT_TRUE(memory.Reserve(41).ok());
+  EXPECT_TRUE(memory.Grow(b, 41).ok());
 }
 
 TEST(UploadMemory, AnUploadOverTheWholeNeverFits) {
   UploadMemory memory(100);
-  const absl::StatusOr<UploadMemory::Hold> big = memory.Reserve(101);
-  ASSERT_EQ(big.status().code(), absl::StatusCode::kResourceExhausted);
-  EXPECT_NE(big.status().message().find("over the server's memory for uploads"),
-            std::string::npos)
-      << big.status().message();
-  EXPECT_FALSE(memory.Fits(101));
+  const absl::Status never = memory.CheckFits(101);
+  ASSERT_EQ(never.code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_NE(never.message().find("over the server's memory for uploads"), std::string::npos)
+      << never.message();
 }
 
 TEST(UploadMemory, AMovedHoldGivesItsBytesBackOnce) {
   UploadMemory memory(100);
   {
-    absl::StatusOr<UploadMemory::Hold> a = memory.Reserve(30);
-    ASSERT_TRUE(a.ok());
-    UploadMemory::Hold moved = *std::move(a);
+    UploadMemory::Hold a;
+    ASSERT_TRUE(memory.Grow(a, 30).ok());
+    UploadMemory::Hold moved = std::move(a);
     UploadMemory::Hold other;
     other = std::move(moved);
     EXPECT_EQ(other.bytes(), 30);
@@ -46,9 +47,9 @@ TEST(UploadMemory, AMovedHoldGivesItsBytesBackOnce) {
     other.Release();
     other.Release();  // again: nothing
     EXPECT_EQ(memory.held(), 0);
-    absl::StatusOr<UploadMemory::Hold> b = memory.Reserve(50);
-    ASSERT_TRUE(b.ok());
-    other = *std::move(b);
+    UploadMemory::Hold b;
+    ASSERT_TRUE(memory.Grow(b, 50).ok());
+    other = std::move(b);
     EXPECT_EQ(memory.held(), 50);
   }  // destroyed: given back
   EXPECT_EQ(memory.held(), 0);
@@ -56,8 +57,9 @@ TEST(UploadMemory, AMovedHoldGivesItsBytesBackOnce) {
 
 TEST(UploadMemory, NoLimitTakesEverything) {
   UploadMemory memory(0);
-  EXPECT_TRUE(memory.Reserve(int64_t{1} << 50).ok());
-  EXPECT_TRUE(memory.Fits(int64_t{1} << 60));
+  UploadMemory::Hold h;
+  EXPECT_TRUE(memory.Grow(h, int64_t{1} << 50).ok());
+  EXPECT_TRUE(memory.CheckFits(int64_t{1} << 60).ok());
 }
 
 TEST(DefaultUploadMemory, IsAnEighthOfTheTotalOrNoLimitWhenUnknown) {

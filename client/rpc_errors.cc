@@ -9,7 +9,7 @@ namespace membrane::client {
 absl::Status FromGrpcStatus(const grpc::Status& status, const std::string& address) {
   if (status.ok()) return absl::OkStatus();
   const auto code = static_cast<absl::StatusCode>(status.error_code());
-  if (code == absl::StatusCode::kUnavailable) {
+  if (code == absl::StatusCode::kUnavailable || ServerThreadsExhausted(status)) {
     return absl::UnavailableError(
         absl::StrCat("server ", address, " unavailable: ", status.error_message()));
   }
@@ -33,7 +33,14 @@ std::optional<absl::Duration> RetryDelayOf(const grpc::Status& status) {
 bool IsRetryable(const grpc::Status& status) {
   if (status.error_code() == grpc::StatusCode::UNAVAILABLE) return true;
   return status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED &&
-         RetryDelayOf(status).has_value();
+         (RetryDelayOf(status).has_value() || ServerThreadsExhausted(status));
+}
+
+bool ServerThreadsExhausted(const grpc::Status& status) {
+  // gRPC's own message (src/cpp/server/server_cc.cc, the sync server's ErrorMethodHandler): no
+  // code or detail tells it apart from our limits.
+  return status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED &&
+         status.error_message() == "Server Threadpool Exhausted";
 }
 
 }  // namespace membrane::client

@@ -31,6 +31,9 @@ ABSL_FLAG(int, job_threads, 0,
           "threads of one job's surface fit and mesh check; 0 = the cores shared among the jobs "
           "running when it starts (at least 1)");
 ABSL_FLAG(int, queue, 16, "jobs waiting beyond the running ones; more get RESOURCE_EXHAUSTED");
+ABSL_FLAG(int, max_calls, 1000,
+          "calls served at once, of any kind (each holds a thread); more get RESOURCE_EXHAUSTED; "
+          "0 = no limit");
 ABSL_FLAG(int64_t, max_upload_bytes, 512LL << 20, "largest Draco upload, bytes");
 ABSL_FLAG(int64_t, max_points, 50'000'000, "largest decoded cloud, points");
 ABSL_FLAG(int64_t, voxel_budget, 400'000'000, "largest grid of one job, voxels (padding included)");
@@ -110,6 +113,7 @@ bool OptionsFromFlags(ServerOptions& o) {
     return false;
   }
   o.queue = absl::GetFlag(FLAGS_queue);
+  o.max_calls = absl::GetFlag(FLAGS_max_calls);
   o.max_upload_bytes = absl::GetFlag(FLAGS_max_upload_bytes);
   o.max_points = absl::GetFlag(FLAGS_max_points);
   o.voxel_budget = absl::GetFlag(FLAGS_voxel_budget);
@@ -148,10 +152,11 @@ bool OptionsFromFlags(ServerOptions& o) {
     return false;
   }
   if (!ReadSecrets(o)) return false;
-  if (o.queue < 0 || o.max_upload_bytes <= 0 || o.max_points <= 0 || o.voxel_budget <= 0 ||
+  if (o.queue < 0 || o.max_calls < 0 || o.max_upload_bytes <= 0 || o.max_points <= 0 || o.voxel_budget <= 0 ||
       o.result_ttl_seconds < 0 || o.grace_seconds < 0 || o.decoder_timeout_seconds <= 0) {
     std::fprintf(stderr,
-                 "membraned: --queue, --grace-seconds and --result-ttl-seconds must be >= 0; "
+                 "membraned: --queue, --max-calls, --grace-seconds and --result-ttl-seconds must "
+                 "be >= 0; "
                  "the other limits > 0\n");
     return false;
   }

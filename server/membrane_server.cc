@@ -6,7 +6,9 @@
 #include <utility>
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpc/grpc.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/resource_quota.h>
 #include <grpcpp/security/server_credentials.h>
 #include <grpcpp/server_builder.h>
 
@@ -18,6 +20,9 @@ namespace membrane::server {
 namespace {
 
 constexpr int kMaxMessageBytes = 4 << 20;  // gRPC's default, stated: chunks keep under it
+// Threads of the sync server that poll for calls rather than serve one (its MAX_POLLERS
+// default), on top of --max-calls.
+constexpr int kPollerThreads = 2;
 
 }  // namespace
 
@@ -50,6 +55,18 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   }
   builder.AddListeningPort(address, credentials, &port);
   builder.SetMaxReceiveMessageSize(kMaxMessageBytes);
+  // The sync server gives each open call a thread: without a bound, a flood of calls (or of
+  // uploads that never end) would create threads until the process dies. Past it, gRPC answers
+  // RESOURCE_EXHAUSTED "Server Threadpool Exhausted". The pollers take threads too.
+  if (options_.max_calls > 0) {
+    grpc::ResourceQuota quota("membraned");
+    quota.SetMaxThreads(options_.max_calls + kPollerThreads);
+    builder.SetResourceQuota(quota);
+  }
+  // A client whose network vanished (no FIN) would hold its call, and its thread, for the
+  // kernel's two hours: a ping after a minute without traffic, unanswered for 20 s, ends it.
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 60'000);
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 20'000);
   builder.RegisterService(&service_);
   server_ = builder.BuildAndStart();
   if (server_ == nullptr || port == 0) {
@@ -64,6 +81,7 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
                                                   : absl::StrCat("auto (", options_.cores,
                                                                  " cores)")},
                               {"queue", absl::StrCat(options_.queue)},
+                              {"max_calls", absl::StrCat(options_.max_calls)},
                               {"memory_budget_bytes", absl::StrCat(options_.memory_budget_bytes)},
                               {"memory_budget_from", options_.memory_budget_source.empty()
                                                          ? "options"

@@ -19,6 +19,7 @@ struct ServerOptions {
   int job_threads = 1;
   int cores = 1;                            // this machine's, for job_threads 0
   int queue = 16;                           // jobs waiting beyond those; more: RESOURCE_EXHAUSTED
+  int max_calls = 1000;                     // calls served at once, of any kind; 0 = no limit
   int64_t max_upload_bytes = 512 << 20;     // Draco bytes of one upload
   int64_t max_points = 50'000'000;          // points of one decoded cloud
   int64_t voxel_budget = 400'000'000;       // voxels of one job's grid, padding included

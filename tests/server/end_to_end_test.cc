@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "absl/time/clock.h"
 #include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
@@ -244,6 +245,36 @@ TEST_F(EndToEndTest, BusyServerIsRetriedWithBackoffThenExitFour) {
   const CliResult get = Run({"jobs", "get", id, "--server", address_});
   EXPECT_NE(get.out.find("state: CANCELLED"), std::string::npos) << get.out;
   ExpectHealthy();
+}
+
+// With every call thread busy (--max-calls), gRPC itself refuses calls. The client takes that
+// for a busy server, as a full queue: it retries, and exits 4 at its timeout, not 3.
+TEST_F(EndToEndTest, ServerOutOfCallThreadsIsRetriedThenExitFour) {
+  StartServer({"--max-calls=1"});
+  const std::string big = Synth("sphere", 30000);
+  auto slow = RunInBackground({"reconstruct", big, "-o", dir_.File("slow.ply"), "--server",
+                               address_, "--voxel-size", "0.008", "-q"},
+                              "slow");
+  ASSERT_NE(WaitForText(log_, "event=job_started", 20).find("job_started"), std::string::npos);
+  const CliResult list = Run({"jobs", "list", "--server", address_});
+  ASSERT_EQ(list.exit_code, 0) << list.err;
+  const std::string id = list.out.substr(0, list.out.find(' '));
+  // Watchers of the running job hold the call threads the limit leaves (with gRPC's pollers).
+  std::vector<std::unique_ptr<Subprocess>> watchers;
+  for (int i = 0; i < 4; ++i) {
+    watchers.push_back(RunInBackground({"jobs", "watch", id, "--server", address_, "-q"},
+                                       "watch" + std::to_string(i)));
+  }
+  absl::SleepFor(absl::Seconds(1));
+  const CliResult busy = Run({"reconstruct", Synth("sphere", 1000), "-o", dir_.File("b.ply"),
+                              "--server", address_, "--timeout", "2"});
+  EXPECT_EQ(busy.exit_code, 4) << busy.err;
+  EXPECT_NE(busy.err.find("Threadpool Exhausted"), std::string::npos) << busy.err;
+  EXPECT_NE(busy.err.find("retrying in"), std::string::npos) << busy.err;
+  for (auto& w : watchers) w->Signal(SIGTERM);
+  slow->Signal(SIGTERM);
+  for (auto& w : watchers) w->Wait(10);
+  slow->Wait(10);
 }
 
 TEST_F(EndToEndTest, TimeoutCancelsTheJobOnTheServer) {

@@ -1,4 +1,5 @@
 // Every call of membrane.v1.Reconstruction against an in-process server over a real channel.
+#include <atomic>
 #include <cmath>
 #include <chrono>
 #include <cstring>
@@ -381,6 +382,50 @@ TEST_F(ServiceTest, ScatteredCloudsWarningComesWithTheVoxelizeStage) {
       EXPECT_NE(statistics.find("\"warnings\": []"), std::string::npos) << statistics;
     }
   }
+}
+
+// Each open call holds a thread of the sync server: past --max-calls, calls are refused with
+// RESOURCE_EXHAUSTED instead of threads piling up, and the server serves again once they end.
+TEST_F(ServiceTest, CallsPastTheLimitAreResourceExhausted) {
+  options_.max_calls = 6;
+  StartServer();
+  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  ASSERT_FALSE(id.empty());
+  std::vector<std::thread> watchers;
+  std::vector<grpc::ClientContext> contexts(12);
+  std::atomic<int> refused{0};
+  for (grpc::ClientContext& context : contexts) {
+    watchers.emplace_back([&, this] {
+      v1::WatchJobRequest request;
+      request.set_job_id(id);
+      auto reader = stub_->WatchJob(&context, request);
+      v1::JobEvent event;
+      while (reader->Read(&event)) {
+      }
+      const grpc::Status s = reader->Finish();
+      // The client tells this refusal (busy: retry) from our limits by gRPC's own message.
+      if (s.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED &&
+          s.error_message() == "Server Threadpool Exhausted")
+        ++refused;
+    });
+  }
+  absl::SleepFor(absl::Seconds(1));
+  EXPECT_GT(refused.load(), 0);
+  for (grpc::ClientContext& context : contexts) context.TryCancel();
+  for (std::thread& t : watchers) t.join();
+  // The handlers see their calls cancelled within their next wait for events.
+  grpc::Status cancelled;
+  for (int attempt = 0; attempt < 50; ++attempt) {
+    grpc::ClientContext context;
+    v1::CancelJobRequest request;
+    request.set_job_id(id);
+    v1::Job job;
+    cancelled = stub_->CancelJob(&context, request, &job);
+    if (cancelled.ok()) break;
+    absl::SleepFor(absl::Milliseconds(100));
+  }
+  EXPECT_TRUE(cancelled.ok()) << cancelled.error_message();
+  EXPECT_EQ(Health(), "SERVING");
 }
 
 TEST_F(ServiceTest, QueuedJobReportsItsPosition) {

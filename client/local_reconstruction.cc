@@ -32,13 +32,14 @@ absl::Status WithCommandLineContext(const absl::Status& status, const std::strin
 
 namespace {
 
-// ResourceExhausted when the `bytes` that `what` needs are over `limit` (> 0).
-absl::Status CheckMemoryLimit(int64_t bytes, int64_t limit, const std::string& what,
-                              const char* advice) {
+// ResourceExhausted when `bytes` are over `limit` (> 0): "<who_needs> about <bytes><purpose>,
+// over the memory limit of <limit> (...)<advice>".
+absl::Status CheckMemoryLimit(int64_t bytes, int64_t limit, const std::string& who_needs,
+                              const char* purpose, const char* advice) {
   if (limit <= 0 || bytes <= limit) return absl::OkStatus();
-  return absl::ResourceExhaustedError(
-      absl::StrCat(what, ", about ", BytesText(bytes), ", over the memory limit of ",
-                   BytesText(limit), " (--memory-limit, by default the memory available)", advice));
+  return absl::ResourceExhaustedError(absl::StrCat(
+      who_needs, " about ", BytesText(bytes), purpose, ", over the memory limit of ",
+      BytesText(limit), " (--memory-limit, by default the memory available)", advice));
 }
 
 }  // namespace
@@ -70,7 +71,7 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
           grid_bytes, params.memory_limit_bytes,
           absl::StrFormat("the grid of %d voxels and the %d points need", plan->voxels,
                           cloud->points.size()),
-          "; use a larger --voxel-size");
+          "", "; use a larger --voxel-size");
       !s.ok())
     return s;
   // Its refusal is the run's status as it is: the voxel-budget advice is not about it.
@@ -79,7 +80,7 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
     const int64_t voxels = membrane.hard_voxels + membrane.frozen_voxels + membrane.soft_voxels;
     admission = CheckMemoryLimit(
         grid_bytes + SurfaceBytesEstimate(membrane), params.memory_limit_bytes,
-        absl::StrFormat("the membrane (%d voxels) needs for its surface and the grid", voxels),
+        absl::StrFormat("the membrane (%d voxels) needs", voxels), " for its surface and the grid",
         "; noise makes a foam of a membrane: is this the scan of one object?");
     return admission;
   };

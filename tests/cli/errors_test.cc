@@ -1,6 +1,5 @@
 // Every failure prints exactly one "membrane: ..." line and exits with the status of
 // design/contracts.md: 2 usage, 3 invalid input, 4 unavailable or timed out.
-#include <cstdint>
 #include <fstream>
 #include <string>
 
@@ -11,6 +10,7 @@
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/uniform_noise.h"
 
 namespace membrane::testing {
 namespace {
@@ -132,12 +132,8 @@ TEST_F(ErrorsTest, NoiseWhoseSurfaceIsOverTheMemoryLimitIsRefused) {
   const std::string path = dir_.File("noise.xyz");
   {
     std::ofstream out(path);
-    uint32_t state = 12345;
-    auto next = [&state] {
-      state = state * 1664525u + 1013904223u;
-      return static_cast<float>(state >> 8) / static_cast<float>(1 << 24);
-    };
-    for (int i = 0; i < 20000; ++i) out << next() << ' ' << next() << ' ' << next() << '\n';
+    for (const Point3f& p : UniformNoise(20000, 12345).points)
+      out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
   }
   const CliResult r = Run({"reconstruct", path, "-o", dir_.File("out.ply"), "--local",
                            "--quiet", "--memory-limit", "30000000"});

@@ -9,6 +9,7 @@
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/scatter_warning.h"
 #include "core/synth/synthesize.h"
+#include "tests/support/uniform_noise.h"
 
 namespace membrane::testing {
 namespace {
@@ -63,13 +64,7 @@ TEST(ScatterWarning, NoisySphereIsWarnedAndTheSuggestedSizeMendsItsGenus) {
 
 TEST(ScatterWarning, PointsThatNoSizeTriedGathersAreAskedAbout) {
   // Uniform points in a box: 1.25x the voxel gathers them no better.
-  PointCloud cloud;
-  uint32_t state = 7;
-  auto next = [&state] {
-    state = state * 1664525u + 1013904223u;
-    return static_cast<float>(state >> 8) / static_cast<float>(1 << 24);
-  };
-  for (int i = 0; i < 200000; ++i) cloud.points.push_back({next(), next(), next()});
+  const PointCloud cloud = UniformNoise(200000, 7);
   absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
   ASSERT_TRUE(bounds.ok());
   const double l = FormulaVoxelSize(*bounds, cloud.points);

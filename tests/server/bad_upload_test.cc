@@ -9,6 +9,7 @@
 #include "core/io/draco_codec.h"
 #include "core/synth/synthesize.h"
 #include "tests/server/service_fixture.h"
+#include "tests/support/uniform_noise.h"
 
 namespace membrane::testing {
 namespace {
@@ -149,13 +150,7 @@ TEST_F(BadUploadTest, NoiseWhoseSurfaceIsOverTheMemoryBudgetIsResourceExhausted)
   server_->Shutdown(absl::ZeroDuration());
   options_.memory_budget_bytes = 30'000'000;
   StartServer();
-  PointCloud noise;
-  uint32_t state = 12345;
-  auto next = [&state] {
-    state = state * 1664525u + 1013904223u;
-    return static_cast<float>(state >> 8) / static_cast<float>(1 << 24);
-  };
-  for (int i = 0; i < 20000; ++i) noise.points.push_back({next(), next(), next()});
+  const PointCloud noise = UniformNoise(20000, 12345);
   absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(noise, DracoOptions{});
   ASSERT_TRUE(encoded.ok());
   ExpectStatus(encoded->bytes, grpc::StatusCode::RESOURCE_EXHAUSTED, "memory budget");

@@ -51,8 +51,16 @@ grpc::Status ReconstructionService::ReadUpload(
     grpc::ServerContext* context,
     grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
     v1::Parameters& parameters, std::string& upload, UploadMemory::Hold& hold) {
+  IdleWatchdog::Watch watch = upload_watchdog_.Start(context);
+  auto idle = [&] {
+    return grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED,
+                        absl::StrFormat("nothing of the upload arrived for %g s "
+                                        "(--upload-idle-seconds): call cancelled",
+                                        options_.upload_idle_seconds));
+  };
   v1::ReconstructRequest request;
   if (!stream->Read(&request) || !request.has_header()) {
+    if (watch.fired()) return idle();
     return InvalidArgument("the first message of Reconstruct must be an UploadHeader");
   }
   // A copy: the chunks are read into `request` below, which frees the header it held.
@@ -87,6 +95,7 @@ grpc::Status ReconstructionService::ReadUpload(
   uint32_t crc = 0;
   v1::ReconstructRequest chunk;
   while (stream->Read(&chunk)) {
+    watch.Touch();
     if (!chunk.has_chunk()) return InvalidArgument("UploadHeader sent twice");
     if (upload.size() + chunk.chunk().size() > header.upload_bytes()) {
       return InvalidArgument(absl::StrFormat("the upload is longer than the %d bytes announced",
@@ -103,6 +112,7 @@ grpc::Status ReconstructionService::ReadUpload(
     }
     upload += chunk.chunk();
   }
+  if (watch.fired()) return idle();
   if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "call cancelled");
   if (upload.size() != header.upload_bytes()) {
     return InvalidArgument(absl::StrFormat("the upload is truncated: %d of %d bytes arrived",

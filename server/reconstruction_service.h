@@ -13,6 +13,7 @@
 #include "membrane/v1/reconstruction.grpc.pb.h"
 #include "server/job_scheduler.h"
 #include "server/job_store.h"
+#include "server/idle_watchdog.h"
 #include "server/server_options.h"
 #include "server/upload_memory.h"
 
@@ -23,7 +24,11 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   // `options`, `store`, `scheduler` and `upload_memory` (not owned) must outlive the service.
   ReconstructionService(const ServerOptions& options, JobStore& store, JobScheduler& scheduler,
                         UploadMemory& upload_memory)
-      : options_(options), store_(store), scheduler_(scheduler), upload_memory_(upload_memory) {}
+      : options_(options),
+        store_(store),
+        scheduler_(scheduler),
+        upload_memory_(upload_memory),
+        upload_watchdog_(absl::Seconds(options.upload_idle_seconds)) {}
 
   // From now on Reconstruct answers UNAVAILABLE (graceful shutdown); other calls still work,
   // so that clients can fetch their results.
@@ -42,7 +47,9 @@ class ReconstructionService final : public v1::Reconstruction::Service {
                         v1::ListJobsResponse* response) override;
 
  private:
-  // Reads the header and the chunks of an upload; checks size, checksum and parameters, and
+  // Reads the header and the chunks of an upload, cancelling the call when nothing arrives for
+  // options_.upload_idle_seconds (DEADLINE_EXCEEDED, for the log); checks size, checksum and
+  // parameters, and
   // holds the announced bytes in the memory for uploads (`hold`) before reading the chunks:
   // RESOURCE_EXHAUSTED, with a retry delay when it is only busy, where they do not fit.
   grpc::Status ReadUpload(grpc::ServerContext* context,
@@ -60,6 +67,7 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   JobStore& store_;
   JobScheduler& scheduler_;
   UploadMemory& upload_memory_;
+  IdleWatchdog upload_watchdog_;  // ends uploads idle for options_.upload_idle_seconds
   std::atomic<bool> accepting_{true};
   absl::Mutex id_mutex_;
   absl::BitGen id_random_ ABSL_GUARDED_BY(id_mutex_);

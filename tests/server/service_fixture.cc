@@ -103,6 +103,7 @@ void SendUpload(grpc::ClientReaderWriter<v1::ReconstructRequest, v1::JobEvent>& 
     chunk.set_chunk(sent.substr(at, 1 << 20));
     if (!stream.Write(chunk)) break;
   }
+  if (tweaks.stall_seconds > 0) absl::SleepFor(absl::Seconds(tweaks.stall_seconds));
   stream.WritesDone();
 }
 

@@ -34,6 +34,7 @@ struct UploadTweaks {
   int64_t announced_bytes = -1;  // >= 0: the header's size instead of the real one
   bool wrong_checksum = false;
   size_t send_bytes = SIZE_MAX;  // send only this many bytes of the upload
+  double stall_seconds = 0;      // then wait this long before closing the upload
 };
 
 class ServiceTest : public ::testing::Test {

@@ -428,6 +428,27 @@ TEST_F(ServiceTest, CallsPastTheLimitAreResourceExhausted) {
   EXPECT_EQ(Health(), "SERVING");
 }
 
+// A client that stops sending halfway (alive enough to answer keepalive pings) does not hold
+// its call and its upload's memory for ever: the call is cancelled once nothing arrived for
+// --upload-idle-seconds, and its memory serves the next upload.
+TEST_F(ServiceTest, StalledUploadIsCancelledAndItsMemoryGivenBack) {
+  const std::string cloud = DracoCloud("sphere", 20000);
+  options_.upload_idle_seconds = 0.5;
+  options_.upload_memory_bytes = static_cast<int64_t>(cloud.size());
+  StartServer();
+  UploadTweaks stall;
+  stall.send_bytes = cloud.size() / 2;
+  stall.stall_seconds = 3;
+  const CallResult stalled = Reconstruct(cloud, {}, stall, 10);
+  // Cancelled by the server while we waited: had it waited for us, the half upload would have
+  // ended INVALID_ARGUMENT "truncated".
+  EXPECT_EQ(stalled.status.error_code(), grpc::StatusCode::CANCELLED)
+      << stalled.status.error_message();
+  EXPECT_TRUE(stalled.JobId().empty());
+  const CallResult next = Reconstruct(cloud, {}, {}, 30);
+  EXPECT_TRUE(next.status.ok()) << next.status.error_message();
+}
+
 TEST_F(ServiceTest, QueuedJobReportsItsPosition) {
   StartServer();
   const std::string cloud = DracoCloud("sphere", 30000);

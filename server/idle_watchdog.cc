@@ -1,0 +1,65 @@
+#include "server/idle_watchdog.h"
+
+#include <algorithm>
+
+#include "absl/time/clock.h"
+
+namespace membrane::server {
+
+IdleWatchdog::IdleWatchdog(absl::Duration idle_limit) : limit_(idle_limit) {
+  if (limit_ > absl::ZeroDuration()) thread_ = std::thread([this] { Loop(); });
+}
+
+IdleWatchdog::~IdleWatchdog() {
+  {
+    absl::MutexLock lock(&mutex_);
+    stopping_ = true;
+  }
+  if (thread_.joinable()) thread_.join();
+}
+
+IdleWatchdog::Watch IdleWatchdog::Start(grpc::ServerContext* context) {
+  if (limit_ <= absl::ZeroDuration()) return Watch(nullptr, 0);
+  absl::MutexLock lock(&mutex_);
+  const int64_t id = next_id_++;
+  calls_[id] = Entry{context, absl::Now()};
+  return Watch(this, id);
+}
+
+IdleWatchdog::Watch::~Watch() {
+  if (owner_ == nullptr) return;
+  absl::MutexLock lock(&owner_->mutex_);
+  owner_->calls_.erase(id_);
+}
+
+void IdleWatchdog::Watch::Touch() {
+  if (owner_ == nullptr) return;
+  absl::MutexLock lock(&owner_->mutex_);
+  owner_->calls_[id_].last = absl::Now();
+}
+
+bool IdleWatchdog::Watch::fired() const {
+  if (owner_ == nullptr) return false;
+  absl::MutexLock lock(&owner_->mutex_);
+  auto it = owner_->calls_.find(id_);
+  return it != owner_->calls_.end() && it->second.fired;
+}
+
+void IdleWatchdog::Loop() {
+  // A quarter of the limit between looks (at most a second): a call is ended within 1.25
+  // limits of its last progress.
+  const absl::Duration period = std::min(limit_ / 4, absl::Seconds(1));
+  absl::MutexLock lock(&mutex_);
+  while (!stopping_) {
+    mutex_.AwaitWithTimeout(absl::Condition(&stopping_), period);
+    const absl::Time now = absl::Now();
+    for (auto& [id, entry] : calls_) {
+      if (entry.fired || now - entry.last <= limit_) continue;
+      // Under the lock: the Watch, and so the context, cannot go away meanwhile.
+      entry.context->TryCancel();
+      entry.fired = true;
+    }
+  }
+}
+
+}  // namespace membrane::server

@@ -1,0 +1,71 @@
+// Ends calls that stop making progress: a Reconstruct call whose upload has received nothing
+// for --upload-idle-seconds is cancelled, so that a stalled client (alive enough to answer
+// keepalive pings) cannot hold a call thread and its upload's memory for ever. One thread
+// watches every call.
+#ifndef MEMBRANE_SERVER_IDLE_WATCHDOG_H_
+#define MEMBRANE_SERVER_IDLE_WATCHDOG_H_
+
+#include <cstdint>
+#include <thread>
+
+#include <grpcpp/server_context.h>
+
+#include "absl/base/thread_annotations.h"
+#include "absl/container/flat_hash_map.h"
+#include "absl/synchronization/mutex.h"
+#include "absl/time/time.h"
+
+namespace membrane::server {
+
+class IdleWatchdog {
+ public:
+  // `idle_limit` <= 0: watches nothing (Watch objects are inert).
+  explicit IdleWatchdog(absl::Duration idle_limit);
+  // Stops the watching thread; every Watch must be gone by then.
+  ~IdleWatchdog();
+  IdleWatchdog(const IdleWatchdog&) = delete;
+  IdleWatchdog& operator=(const IdleWatchdog&) = delete;
+
+  // One call under watch from its creation to its destruction, which must come before the
+  // call's context is destroyed (the handler's scope).
+  class Watch {
+   public:
+    ~Watch();
+    Watch(const Watch&) = delete;
+    Watch& operator=(const Watch&) = delete;
+    // The call made progress now.
+    void Touch();
+    // True once the watchdog cancelled the call for idling.
+    bool fired() const;
+
+   private:
+    friend class IdleWatchdog;
+    Watch(IdleWatchdog* owner, int64_t id) : owner_(owner), id_(id) {}
+    IdleWatchdog* owner_;
+    int64_t id_;
+  };
+
+  // Starts watching the call of `context`, as of now.
+  Watch Start(grpc::ServerContext* context) ABSL_LOCKS_EXCLUDED(mutex_);
+
+  absl::Duration idle_limit() const { return limit_; }
+
+ private:
+  struct Entry {
+    grpc::ServerContext* context;
+    absl::Time last;
+    bool fired = false;
+  };
+  void Loop();
+
+  const absl::Duration limit_;
+  mutable absl::Mutex mutex_;
+  int64_t next_id_ ABSL_GUARDED_BY(mutex_) = 0;
+  absl::flat_hash_map<int64_t, Entry> calls_ ABSL_GUARDED_BY(mutex_);
+  bool stopping_ ABSL_GUARDED_BY(mutex_) = false;
+  std::thread thread_;
+};
+
+}  // namespace membrane::server
+
+#endif  // MEMBRANE_SERVER_IDLE_WATCHDOG_H_

@@ -90,8 +90,9 @@ grpc::Status ReconstructionService::ReadUpload(
     }
     return grpc::Status::OK;
   };
-  // The buffer's first size: no more than what a few chunks justify.
-  const uint64_t first = std::min<uint64_t>(header.upload_bytes(), 64 << 20);
+  // The buffer's first size: no more than what a few chunks justify, so that a call which
+  // announces much and sends a byte holds little.
+  const uint64_t first = std::min<uint64_t>(header.upload_bytes(), 4 << 20);
   uint32_t crc = 0;
   v1::ReconstructRequest chunk;
   while (stream->Read(&chunk)) {

@@ -1,7 +1,7 @@
-// Ends calls that stop making progress: a Reconstruct call whose upload has received nothing
-// for --upload-idle-seconds is cancelled, so that a stalled client (alive enough to answer
-// keepalive pings) cannot hold a call thread and its upload's memory for ever. One thread
-// watches every call.
+// Ends calls that stop making progress (--stall-seconds): a Reconstruct call whose upload has
+// received nothing that long, or a call whose client has read nothing of an event written to
+// it that long, is cancelled. So a stalled client (alive enough to answer keepalive pings)
+// cannot hold a call thread, or its upload's memory, for ever. One thread watches every call.
 #ifndef MEMBRANE_SERVER_IDLE_WATCHDOG_H_
 #define MEMBRANE_SERVER_IDLE_WATCHDOG_H_
 

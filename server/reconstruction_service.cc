@@ -51,12 +51,12 @@ grpc::Status ReconstructionService::ReadUpload(
     grpc::ServerContext* context,
     grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
     v1::Parameters& parameters, std::string& upload, UploadMemory::Hold& hold) {
-  IdleWatchdog::Watch watch = upload_watchdog_.Start(context);
+  IdleWatchdog::Watch watch = stall_watchdog_.Start(context);
   auto idle = [&] {
     return grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED,
                         absl::StrFormat("nothing of the upload arrived for %g s "
-                                        "(--upload-idle-seconds): call cancelled",
-                                        options_.upload_idle_seconds));
+                                        "(--stall-seconds): call cancelled",
+                                        options_.stall_seconds));
   };
   v1::ReconstructRequest request;
   if (!stream->Read(&request) || !request.has_header()) {
@@ -162,11 +162,12 @@ grpc::Status ReconstructionService::Reconstruct(
   accepted.mutable_accepted()->set_job_id(job->id());
   accepted.mutable_accepted()->set_queue_position(snapshot.queue_position());
   const FollowPolicy policy{options_.on_disconnect == DisconnectPolicy::kCancel};
-  if (!stream->Write(accepted)) {
+  if (!WriteUnlessStalled(context, [&] { return stream->Write(accepted); })) {
     return FollowJob(*job, *context, policy, [](const v1::JobEvent&) { return false; });
   }
-  return FollowJob(*job, *context, policy,
-                   [stream](const v1::JobEvent& event) { return stream->Write(event); });
+  return FollowJob(*job, *context, policy, [this, context, stream](const v1::JobEvent& event) {
+    return WriteUnlessStalled(context, [&] { return stream->Write(event); });
+  });
 }
 
 grpc::Status ReconstructionService::GetJob(grpc::ServerContext* context,
@@ -187,10 +188,14 @@ grpc::Status ReconstructionService::WatchJob(grpc::ServerContext* context,
   LogEvent("job_watched", {{"job", job->id()}, {"peer", context->peer()}});
   v1::JobEvent snapshot;
   *snapshot.mutable_snapshot() = job->Snapshot();
-  if (!writer->Write(snapshot)) return grpc::Status(grpc::StatusCode::CANCELLED, "call cancelled");
+  if (!WriteUnlessStalled(context, [&] { return writer->Write(snapshot); })) {
+    return grpc::Status(grpc::StatusCode::CANCELLED, "call cancelled");
+  }
   // A watcher going away never cancels the job: only its own Reconstruct call may.
   return FollowJob(*job, *context, FollowPolicy{},
-                   [writer](const v1::JobEvent& event) { return writer->Write(event); });
+                   [this, context, writer](const v1::JobEvent& event) {
+                     return WriteUnlessStalled(context, [&] { return writer->Write(event); });
+                   });
 }
 
 grpc::Status ReconstructionService::CancelJob(grpc::ServerContext* context,

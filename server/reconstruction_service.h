@@ -28,7 +28,7 @@ class ReconstructionService final : public v1::Reconstruction::Service {
         store_(store),
         scheduler_(scheduler),
         upload_memory_(upload_memory),
-        upload_watchdog_(absl::Seconds(options.upload_idle_seconds)) {}
+        stall_watchdog_(absl::Seconds(options.stall_seconds)) {}
 
   // From now on Reconstruct answers UNAVAILABLE (graceful shutdown); other calls still work,
   // so that clients can fetch their results.
@@ -48,7 +48,7 @@ class ReconstructionService final : public v1::Reconstruction::Service {
 
  private:
   // Reads the header and the chunks of an upload, cancelling the call when nothing arrives for
-  // options_.upload_idle_seconds (DEADLINE_EXCEEDED, for the log); checks size, checksum and
+  // options_.stall_seconds (DEADLINE_EXCEEDED, for the log); checks size, checksum and
   // parameters, and
   // holds the announced bytes in the memory for uploads (`hold`) before reading the chunks:
   // RESOURCE_EXHAUSTED, with a retry delay when it is only busy, where they do not fit.
@@ -62,12 +62,21 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   // The job with `id` after dropping expired ones, or null.
   std::shared_ptr<Job> FindJob(const std::string& id);
   std::string NewJobId() ABSL_LOCKS_EXCLUDED(id_mutex_);
+  // Writes `event` to the call of `context` through `write`, cancelling the call when the
+  // write is held longer than options_.stall_seconds (then false, as for a gone caller).
+  template <typename Write>
+  bool WriteUnlessStalled(grpc::ServerContext* context, Write write) {
+    IdleWatchdog::Watch watch = stall_watchdog_.Start(context);
+    return write();
+  }
 
   const ServerOptions& options_;
   JobStore& store_;
   JobScheduler& scheduler_;
   UploadMemory& upload_memory_;
-  IdleWatchdog upload_watchdog_;  // ends uploads idle for options_.upload_idle_seconds
+  // Ends calls stalled for options_.stall_seconds: an upload receiving nothing, or a write of
+  // an event that the client does not read (flow control holds the write).
+  IdleWatchdog stall_watchdog_;
   std::atomic<bool> accepting_{true};
   absl::Mutex id_mutex_;
   absl::BitGen id_random_ ABSL_GUARDED_BY(id_mutex_);

@@ -26,7 +26,7 @@ struct ServerOptions {
   int64_t memory_budget_bytes = 0;          // estimated bytes across running jobs; 0 = no limit
   std::string memory_budget_source;         // for the log: the flag, or what the default took
   int64_t upload_memory_bytes = 0;          // uploads held at once (UploadMemory); 0 = no limit
-  double upload_idle_seconds = 300;         // an upload silent this long is cancelled; 0 = never
+  double stall_seconds = 300;               // a call stalled this long is cancelled; 0 = never
   double result_ttl_seconds = 3600;         // how long finished jobs and results are kept
   double grace_seconds = 30;                // SIGTERM: how long running jobs may finish
   DisconnectPolicy on_disconnect = DisconnectPolicy::kContinue;

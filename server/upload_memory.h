@@ -1,7 +1,8 @@
 // The bytes of uploads membraned holds at once (--upload-memory-bytes): an upload holds its
-// buffer's bytes from its first chunk until its job's decoding ends (while it arrives, waits in
-// the queue and is fed to the decoder), outside the jobs' memory budget. Without this, a full queue of uploads at
-// --max-upload-bytes (16 x 512 MB) could hold more memory than the machine has.
+// buffer's bytes from its first chunk until its job's decoding ends (while it arrives, waits
+// in the queue and is fed to the decoder), outside the jobs' memory budget. Without this, a
+// full queue of uploads at --max-upload-bytes (16 x 512 MB) could hold more memory than the
+// machine has.
 #ifndef MEMBRANE_SERVER_UPLOAD_MEMORY_H_
 #define MEMBRANE_SERVER_UPLOAD_MEMORY_H_
 

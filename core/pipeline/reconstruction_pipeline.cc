@@ -201,7 +201,8 @@ absl::StatusOr<ReconstructionResult> ReconstructCloud(const PointCloud& cloud,
   report.surface = SurfaceKindName(options.surface);
   report.threads = options.threads;
 
-  absl::StatusOr<Voxelization> voxelization = VoxelizeCloud(options, cloud, cancel, report, observer);
+  absl::StatusOr<Voxelization> voxelization =
+      VoxelizeCloud(options, cloud, cancel, report, observer);
   if (!voxelization.ok()) return voxelization.status();
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kVoxelize); !s.ok()) return s;
   VoxelGrid& grid = voxelization->grid;

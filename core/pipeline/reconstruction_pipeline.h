@@ -35,7 +35,8 @@ struct ReconstructionOptions {
   // Asked once the membrane is final, before the surface is built, with its counts (the
   // statistics' "membrane", taken before relaxation, which moves few voxels); a non-OK status
   // ends the reconstruction with it. The server reserves the surface's memory here
-  // (SurfaceBytesEstimate, memory_estimate.h): a noisy cloud's surface can take many times its grid's bytes.
+  // (SurfaceBytesEstimate, memory_estimate.h): a noisy cloud's surface can take many times
+  // its grid's bytes.
   // Empty: the surface is built without asking.
   std::function<absl::Status(const MembraneCounts& membrane)> admit_surface;
 };

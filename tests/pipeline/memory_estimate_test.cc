@@ -9,7 +9,8 @@ namespace membrane::testing {
 namespace {
 
 TEST(PlanGrid, PlansTheGridVoxelizeAllocates) {
-  absl::StatusOr<PointCloud> cloud = SynthesizeShape(SynthOptions{.shape = "torus", .points = 20000});
+  absl::StatusOr<PointCloud> cloud =
+      SynthesizeShape(SynthOptions{.shape = "torus", .points = 20000});
   ASSERT_TRUE(cloud.ok()) << cloud.status();
   for (const double voxel_size : {0.0, 0.05}) {
     absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, voxel_size);

@@ -26,7 +26,8 @@ ReconstructionReport Reconstruct(const PointCloud& cloud, double voxel_size) {
   options.voxelize.voxel_size = voxel_size;
   options.surface = SurfaceKind::kCuberille;
   NullReconstructionObserver observer;
-  absl::StatusOr<ReconstructionResult> r = ReconstructCloud(cloud, options, CancelToken(), observer);
+  absl::StatusOr<ReconstructionResult> r =
+      ReconstructCloud(cloud, options, CancelToken(), observer);
   EXPECT_TRUE(r.ok()) << r.status();
   return r.ok() ? r->report : ReconstructionReport{};
 }

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <thread>
 
+#include <grpcpp/create_channel.h>
 #include <gtest/gtest.h>
 
 #include "absl/time/clock.h"
@@ -13,6 +14,7 @@
 #include "google/rpc/error_details.pb.h"
 #include "google/rpc/status.pb.h"
 #include "core/synth/synthesize.h"
+#include "proto/crc32c.h"
 #include "server/job_runner.h"
 #include "tests/server/service_fixture.h"
 
@@ -430,10 +432,10 @@ TEST_F(ServiceTest, CallsPastTheLimitAreResourceExhausted) {
 
 // A client that stops sending halfway (alive enough to answer keepalive pings) does not hold
 // its call and its upload's memory for ever: the call is cancelled once nothing arrived for
-// --upload-idle-seconds, and its memory serves the next upload.
+// --stall-seconds, and its memory serves the next upload.
 TEST_F(ServiceTest, StalledUploadIsCancelledAndItsMemoryGivenBack) {
   const std::string cloud = DracoCloud("sphere", 20000);
-  options_.upload_idle_seconds = 0.5;
+  options_.stall_seconds = 0.5;
   options_.upload_memory_bytes = static_cast<int64_t>(cloud.size());
   StartServer();
   UploadTweaks stall;
@@ -447,6 +449,52 @@ TEST_F(ServiceTest, StalledUploadIsCancelledAndItsMemoryGivenBack) {
   EXPECT_TRUE(stalled.JobId().empty());
   const CallResult next = Reconstruct(cloud, {}, {}, 30);
   EXPECT_TRUE(next.status.ok()) << next.status.error_message();
+}
+
+// A client that reads none of the events (flow control then holds the server's writes) does not
+// hold its call for ever: the write is cancelled after --stall-seconds, and the job, which the
+// call no longer follows, still ends and keeps its result.
+TEST_F(ServiceTest, ClientThatReadsNothingIsCutOffAndTheJobGoesOn) {
+  options_.stall_seconds = 0.5;
+  StartServer();
+  // A small receive window and no window growth: the mesh cannot all be in flight unread.
+  grpc::ChannelArguments args;
+  args.SetInt(GRPC_ARG_HTTP2_BDP_PROBE, 0);
+  args.SetInt(GRPC_ARG_HTTP2_STREAM_LOOKAHEAD_BYTES, 8192);
+  auto stub = v1::Reconstruction::NewStub(
+      grpc::CreateCustomChannel(address_, grpc::InsecureChannelCredentials(), args));
+  const std::string upload = DracoCloud("sphere", 100000);
+  grpc::ClientContext context;
+  auto stream = stub->Reconstruct(&context);
+  v1::ReconstructRequest header;
+  header.mutable_header()->set_upload_bytes(upload.size());
+  header.mutable_header()->set_upload_crc32c(Crc32c(upload));
+  ASSERT_TRUE(stream->Write(header));
+  for (size_t at = 0; at < upload.size(); at += 1 << 20) {
+    v1::ReconstructRequest chunk;
+    chunk.set_chunk(upload.substr(at, 1 << 20));
+    ASSERT_TRUE(stream->Write(chunk));
+  }
+  stream->WritesDone();
+  // Read nothing until the only job has ended (watched through the fixture's own channel).
+  v1::Job job;
+  for (int i = 0; i < 600 && job.state() != v1::SUCCEEDED && job.state() != v1::FAILED; ++i) {
+    absl::SleepFor(absl::Milliseconds(50));
+    grpc::ClientContext list_context;
+    v1::ListJobsResponse list;
+    if (stub_->ListJobs(&list_context, {}, &list).ok() && list.jobs_size() == 1)
+      job = list.jobs(0);
+  }
+  ASSERT_EQ(job.state(), v1::SUCCEEDED);
+  absl::SleepFor(absl::Seconds(1.5));  // past the stall limit with the mesh unread
+  v1::JobEvent event;
+  while (stream->Read(&event)) {
+  }
+  // Had the server waited for us, every event would have come and the call ended OK.
+  EXPECT_EQ(stream->Finish().error_code(), grpc::StatusCode::CANCELLED);
+  const CallResult watched = Watch(job.id());
+  EXPECT_TRUE(watched.status.ok()) << watched.status.error_message();
+  EXPECT_FALSE(watched.Mesh().empty());
 }
 
 TEST_F(ServiceTest, QueuedJobReportsItsPosition) {

@@ -51,8 +51,8 @@ class MemoryBudget {
 
 // The budget membraned takes when --memory-budget-bytes is not given: 3/4 of `total_bytes`
 // (MachineMemory::total_bytes: the machine's memory, or its container's limit), leaving the
-// rest to what the estimates do not count: the uploads waiting in the queue, gRPC's buffers,
-// the decoder processes. 0 (no limit) when `total_bytes` is unknown (<= 0).
+// rest to what the estimates do not count: the uploads' own pool (UploadMemory, 1/8), gRPC's
+// buffers, the decoder processes. 0 (no limit) when `total_bytes` is unknown (<= 0).
 int64_t DefaultMemoryBudget(int64_t total_bytes);
 
 }  // namespace membrane::server

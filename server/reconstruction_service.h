@@ -47,11 +47,11 @@ class ReconstructionService final : public v1::Reconstruction::Service {
                         v1::ListJobsResponse* response) override;
 
  private:
-  // Reads the header and the chunks of an upload, cancelling the call when nothing arrives for
-  // options_.stall_seconds (DEADLINE_EXCEEDED, for the log); checks size, checksum and
-  // parameters, and
-  // holds the announced bytes in the memory for uploads (`hold`) before reading the chunks:
-  // RESOURCE_EXHAUSTED, with a retry delay when it is only busy, where they do not fit.
+  // Reads the header and the chunks of an upload; checks parameters, size and checksum. The
+  // buffer's bytes are held in the memory for uploads (`hold`) as it grows: RESOURCE_EXHAUSTED
+  // at the header when the upload can never fit, with a retry delay when it does not fit now.
+  // The call is cancelled when nothing arrives for options_.stall_seconds (DEADLINE_EXCEEDED,
+  // for the log).
   grpc::Status ReadUpload(grpc::ServerContext* context,
                           grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
                           v1::Parameters& parameters, std::string& upload,
@@ -62,8 +62,9 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   // The job with `id` after dropping expired ones, or null.
   std::shared_ptr<Job> FindJob(const std::string& id);
   std::string NewJobId() ABSL_LOCKS_EXCLUDED(id_mutex_);
-  // Writes `event` to the call of `context` through `write`, cancelling the call when the
-  // write is held longer than options_.stall_seconds (then false, as for a gone caller).
+  // Runs `write` (one write to the call of `context`, true when it went out), cancelling the
+  // call when the write is held longer than options_.stall_seconds (it then returns false, as
+  // for a gone caller).
   template <typename Write>
   bool WriteUnlessStalled(grpc::ServerContext* context, Write write) {
     IdleWatchdog::Watch watch = stall_watchdog_.Start(context);

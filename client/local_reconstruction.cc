@@ -1,6 +1,5 @@
 #include "client/local_reconstruction.h"
 
-#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -59,14 +58,10 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
   if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled after decode");
 
   ReconstructionOptions options = params.options;
-  absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, options.voxelize.voxel_size);
+  absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, options.voxelize);
   if (!plan.ok()) return WithCommandLineContext(plan.status(), params.input);
-  // The pipeline takes the planned size rather than counting the points again for formula (1).
   options.voxelize.voxel_size = plan->voxel_size;
-  // Over the voxel budget: Voxelize refuses it, with the grid in its message.
-  const int64_t grid_bytes = GridBytesEstimate(
-      std::min(plan->voxels, options.voxelize.voxel_budget),
-      static_cast<int64_t>(cloud->points.size()));
+  const int64_t grid_bytes = plan->bytes;
   if (absl::Status s = CheckMemoryLimit(
           grid_bytes, params.memory_limit_bytes,
           absl::StrFormat("the grid of %d voxels and the %d points need", plan->voxels,
@@ -77,10 +72,10 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
   // Its refusal is the run's status as it is: the voxel-budget advice is not about it.
   absl::Status admission;
   options.admit_surface = [&](const MembraneCounts& membrane) {
-    const int64_t voxels = membrane.hard_voxels + membrane.frozen_voxels + membrane.soft_voxels;
     admission = CheckMemoryLimit(
         grid_bytes + SurfaceBytesEstimate(membrane), params.memory_limit_bytes,
-        absl::StrFormat("the membrane (%d voxels) needs", voxels), " for its surface and the grid",
+        absl::StrFormat("the membrane (%d voxels) needs", membrane.membrane_voxels()),
+        " for its surface and the grid",
         "; noise makes a foam of a membrane: is this the scan of one object?");
     return admission;
   };

@@ -155,8 +155,11 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   p.options.relax = !f.no_relax;
   p.options.surface = *surface;
   p.options.threads = f.threads > 0 ? static_cast<int>(f.threads) : MachineThreads();
-  p.memory_limit_bytes =
-      f.memory_limit >= 0 ? f.memory_limit : ReadMachineMemory().available_bytes;
+  // Read only for --local: the limit does not apply to --server runs.
+  if (f.local) {
+    p.memory_limit_bytes =
+        f.memory_limit >= 0 ? f.memory_limit : ReadMachineMemory().available_bytes;
+  }
   p.draco.position_quantization_bits = static_cast<int>(f.quantization);
   p.draco.compression_level = static_cast<int>(f.compression_level);
   // Only .drc quantizes; the surface is then built and checked on the file's grid.

@@ -4,17 +4,17 @@
 #include <cmath>
 
 #include "absl/status/statusor.h"
-#include "core/engine/voxelization.h"
+#include "core/pipeline/memory_estimate.h"
 
 namespace membrane::client {
 
 UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size) {
   UploadPlan plan;
-  absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
-  if (!bounds.ok()) return plan;
-  plan.voxel_size =
-      requested_voxel_size > 0 ? requested_voxel_size : FormulaVoxelSize(*bounds, cloud.points);
-  const auto extent = bounds->Extent();
+  absl::StatusOr<PlannedGrid> grid =
+      PlanGrid(cloud, VoxelizeOptions{.voxel_size = requested_voxel_size});
+  if (!grid.ok()) return plan;
+  plan.voxel_size = grid->voxel_size;
+  const auto extent = grid->bounds.Extent();
   const double range = std::max({extent[0], extent[1], extent[2]});
   // Draco's step is range / (2^bits - 1).
   const double steps = range / plan.voxel_size * kStepsPerVoxel;

@@ -21,7 +21,7 @@ struct UploadPlan {
   int bits = kDefaultUploadBits;
 };
 
-// For `cloud` and the voxel size asked for (0: formula (1), computed here as Voxelize does):
+// For `cloud` and the voxel size asked for (0: formula (1), as PlanGrid plans Voxelize's):
 // that voxel size, and the fewest bits from kDefaultUploadBits up (at most 30) whose step over
 // the cloud's largest side is at most voxel / kStepsPerVoxel. A degenerate cloud (no points,
 // coplanar, ...) gives voxel_size 0 and the default bits.

@@ -89,26 +89,19 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   decode_report.seconds.decode = decode_watch.Seconds();
   observer.StageFinished(PipelineStage::kDecode, decode_report.seconds.decode, decode_report);
 
-  absl::StatusOr<PlannedGrid> plan =
-      PlanGrid(*cloud, settings->reconstruction.voxelize.voxel_size);
+  absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, settings->reconstruction.voxelize);
   if (!plan.ok()) return fail(plan.status());
-  // The pipeline takes the planned size rather than counting the points again for formula (1).
   settings->reconstruction.voxelize.voxel_size = plan->voxel_size;
-  // Over the voxel budget: Voxelize refuses it with the grid in its message; do not reserve.
-  const int64_t bytes = GridBytesEstimate(
-      std::min(plan->voxels, settings->reconstruction.voxelize.voxel_budget),
-      decode_report.points);
   // Held until the job ends; the surface's share is added once the membrane is known.
   MemoryBudget::Share memory(memory_);
-  if (absl::Status s = memory.Add(bytes, job->cancel_token()); !s.ok()) return fail(s);
+  if (absl::Status s = memory.Add(plan->bytes, job->cancel_token()); !s.ok()) return fail(s);
   // Its refusal is the job's status as it is: the voxel-budget hint below is not about it.
   absl::Status admission;
   settings->reconstruction.admit_surface = [&](const MembraneCounts& membrane) {
     admission = memory.Add(SurfaceBytesEstimate(membrane), job->cancel_token());
     if (absl::IsResourceExhausted(admission)) {
       admission = absl::ResourceExhaustedError(absl::StrCat(
-          "the surface of a membrane of ",
-          membrane.hard_voxels + membrane.frozen_voxels + membrane.soft_voxels,
+          "the surface of a membrane of ", membrane.membrane_voxels(),
           " voxels (a noisy cloud makes a foam of one): ", admission.message()));
     }
     return admission;

@@ -14,6 +14,8 @@ struct MembraneCounts {
   int64_t hard_voxels = 0;
   int64_t frozen_voxels = 0;
   int64_t soft_voxels = 0;  // neither: none touches an outside face (Property 3)
+  // All BOUNDARY voxels.
+  int64_t membrane_voxels() const { return hard_voxels + frozen_voxels + soft_voxels; }
   // INSIDE voxels by hardness.
   int64_t inside_hard_voxels = 0;  // points the post-process could not reach
   int64_t inside_soft_voxels = 0;

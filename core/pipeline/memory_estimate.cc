@@ -5,7 +5,6 @@
 
 #include "absl/strings/str_format.h"
 #include "core/engine/voxel_grid.h"
-#include "core/engine/voxelization.h"
 
 namespace membrane {
 namespace {
@@ -17,16 +16,20 @@ constexpr int64_t kBytesPerBoundaryVoxel = 1000;
 
 }  // namespace
 
-absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, double voxel_size) {
+absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize) {
   absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
   if (!bounds.ok()) return bounds.status();
   PlannedGrid plan;
-  plan.voxel_size = voxel_size > 0 ? voxel_size : FormulaVoxelSize(*bounds, cloud.points);
+  plan.bounds = *bounds;
+  plan.voxel_size =
+      voxelize.voxel_size > 0 ? voxelize.voxel_size : FormulaVoxelSize(*bounds, cloud.points);
   double voxels = 1;
   for (const double side : bounds->Extent()) {
     voxels *= std::floor(side / plan.voxel_size) + 1 + 2 * VoxelGrid::kPadding;
   }
   plan.voxels = static_cast<int64_t>(std::min(voxels, 9e18));
+  plan.bytes = GridBytesEstimate(std::min(plan.voxels, voxelize.voxel_budget),
+                                 static_cast<int64_t>(cloud.points.size()));
   return plan;
 }
 
@@ -38,8 +41,7 @@ int64_t GridBytesEstimate(int64_t voxels, int64_t points) {
 }
 
 int64_t SurfaceBytesEstimate(const MembraneCounts& membrane) {
-  return kBytesPerBoundaryVoxel *
-         (membrane.hard_voxels + membrane.frozen_voxels + membrane.soft_voxels);
+  return kBytesPerBoundaryVoxel * membrane.membrane_voxels();
 }
 
 std::string BytesText(int64_t bytes) {

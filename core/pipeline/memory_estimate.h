@@ -9,20 +9,25 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "core/engine/voxelization.h"
 #include "core/geometry/point_cloud.h"
 #include "core/pipeline/membrane_counts.h"
 
 namespace membrane {
 
-// The grid Voxelize will allocate for `cloud`, computed the same way before anything is
-// allocated: its voxel size (`voxel_size` when > 0, else formula (1)'s, in model units) and its
-// voxel count (padding included).
+// The grid Voxelize will allocate for `cloud` with `voxelize`, computed the same way before
+// anything is allocated.
 struct PlannedGrid {
-  double voxel_size = 0;
-  int64_t voxels = 0;
+  Box3d bounds;           // CheckedBounds of the points
+  double voxel_size = 0;  // voxelize.voxel_size when > 0, else formula (1)'s (model units)
+  int64_t voxels = 0;     // padding included
+  // GridBytesEstimate of the grid and the points; a grid over voxelize.voxel_budget counts at
+  // the budget (Voxelize refuses it, with the grid in its message, before allocating).
+  int64_t bytes = 0;
 };
-// InvalidArgument for a degenerate cloud (CheckedBounds' message).
-absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, double voxel_size);
+// InvalidArgument for a degenerate cloud (CheckedBounds' message). Callers that then voxelize
+// pass the planned voxel_size on, so that formula (1) does not count the points again.
+absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize);
 
 // The bytes of a reconstruction before its surface: the grid and the shrink's working sets
 // (under 6 bytes per voxel on the bench clouds) plus the cloud and its copies (48 per point).

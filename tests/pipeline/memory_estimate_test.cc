@@ -13,20 +13,23 @@ TEST(PlanGrid, PlansTheGridVoxelizeAllocates) {
       SynthesizeShape(SynthOptions{.shape = "torus", .points = 20000});
   ASSERT_TRUE(cloud.ok()) << cloud.status();
   for (const double voxel_size : {0.0, 0.05}) {
-    absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, voxel_size);
+    absl::StatusOr<PlannedGrid> plan =
+        PlanGrid(*cloud, VoxelizeOptions{.voxel_size = voxel_size});
     ASSERT_TRUE(plan.ok()) << plan.status();
     absl::StatusOr<Voxelization> v =
         Voxelize(cloud->points, VoxelizeOptions{.voxel_size = voxel_size});
     ASSERT_TRUE(v.ok()) << v.status();
     EXPECT_EQ(plan->voxels, v->grid.size()) << "voxel size " << voxel_size;
     EXPECT_EQ(plan->voxel_size, v->grid.voxel_size());
+    EXPECT_EQ(plan->bytes, GridBytesEstimate(v->grid.size(), 20000));
   }
 }
 
 TEST(PlanGrid, ADegenerateCloudIsInvalidArgument) {
   PointCloud flat;
   for (int i = 0; i < 100; ++i) flat.points.push_back({float(i % 10), float(i / 10), 0});
-  EXPECT_EQ(PlanGrid(flat, 0).status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(PlanGrid(flat, VoxelizeOptions{}).status().code(),
+            absl::StatusCode::kInvalidArgument);
 }
 
 TEST(GridBytesEstimate, SaturatesInsteadOfOverflowing) {

@@ -413,6 +413,9 @@ TEST_F(ServiceTest, CallsPastTheLimitAreResourceExhausted) {
   }
   absl::SleepFor(absl::Seconds(1));
   EXPECT_GT(refused.load(), 0);
+  // Health is a callback service, outside the sync server's threads: a liveness probe is still
+  // answered, so a busy pod is not restarted (and its running jobs ended) for being busy.
+  EXPECT_EQ(Health(), "SERVING");
   for (grpc::ClientContext& context : contexts) context.TryCancel();
   for (std::thread& t : watchers) t.join();
   // The handlers see their calls cancelled within their next wait for events.

@@ -33,10 +33,11 @@ struct JobsFlags {
   bool quiet = false;
 };
 
-// A one-call context with the --timeout deadline.
+// A one-call context with the --timeout deadline, routed to the job's replica.
 std::unique_ptr<grpc::ClientContext> CallContext(const JobsFlags& flags) {
   auto context = std::make_unique<grpc::ClientContext>();
   Authorize(*context, flags.server);
+  RouteToJob(*context, flags.job_id);
   if (flags.timeout > 0) {
     context->set_deadline(absl::ToChronoTime(absl::Now() + absl::Seconds(flags.timeout)));
   }

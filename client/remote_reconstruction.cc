@@ -141,6 +141,7 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
     grpc::ClientContext context;
     SetDeadline(context, deadline);
     Authorize(context, server);
+    RouteToJob(context, job_id);
     v1::WatchJobRequest request;
     request.set_job_id(job_id);
     auto reader = stub->WatchJob(&context, request);

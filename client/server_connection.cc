@@ -9,6 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/io/file_bytes.h"
 #include "core/io/token_file.h"
+#include "proto/job_routing.h"
 
 namespace membrane::client {
 
@@ -63,6 +64,11 @@ void Authorize(grpc::ClientContext& context, const ServerConnection& connection)
   if (!connection.token.empty()) {
     context.AddMetadata("authorization", absl::StrCat("Bearer ", connection.token));
   }
+}
+
+void RouteToJob(grpc::ClientContext& context, const std::string& job_id) {
+  const absl::string_view replica = ReplicaOfJobId(job_id);
+  if (!replica.empty()) context.AddMetadata(kReplicaHeader, std::string(replica));
 }
 
 }  // namespace membrane::client

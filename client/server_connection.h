@@ -51,6 +51,11 @@ std::shared_ptr<grpc::Channel> Connect(const ServerConnection& connection);
 // membrane.v1 API needs it on a server started with --token-file; health checks do not.
 void Authorize(grpc::ClientContext& context, const ServerConnection& connection);
 
+// Adds the replica `job_id` names (proto/job_routing.h), when it names one, to a call's
+// metadata, so that a balancer sends the call to the replica holding the job. For every call
+// that names a job: GetJob, WatchJob (re-attach too), CancelJob.
+void RouteToJob(grpc::ClientContext& context, const std::string& job_id);
+
 }  // namespace membrane::client
 
 #endif  // MEMBRANE_CLIENT_SERVER_CONNECTION_H_

@@ -13,6 +13,7 @@ PACKAGES=(
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer job
   python3-open3d             # the peer measured beside us in tests/bench
   openssl                    # the TLS test makes its own self-signed certificate
+  nginx-light                # the balancer test runs deploy/nginx/nginx.conf
 )
 
 missing=()

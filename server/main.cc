@@ -20,6 +20,7 @@
 #include "core/pipeline/machine_memory.h"
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/thread_limits.h"
+#include "proto/job_routing.h"
 #include "server/membrane_server.h"
 #include "server/memory_budget.h"
 #include "server/upload_memory.h"
@@ -34,6 +35,9 @@ ABSL_FLAG(int, queue, 16, "jobs waiting beyond the running ones; more get RESOUR
 ABSL_FLAG(int, max_calls, 1000,
           "calls served at once, of any kind (each holds a thread); more get RESOURCE_EXHAUSTED; "
           "0 = no limit");
+ABSL_FLAG(std::string, replica, "",
+          "this replica's name (lower-case letters, digits, '-'; e.g. the pod's), put in front "
+          "of its job ids so that a balancer routes calls about a job here; empty = none");
 ABSL_FLAG(int64_t, max_upload_bytes, 512LL << 20, "largest Draco upload, bytes");
 ABSL_FLAG(int64_t, max_points, 50'000'000, "largest decoded cloud, points");
 ABSL_FLAG(int64_t, voxel_budget, 400'000'000, "largest grid of one job, voxels (padding included)");
@@ -117,6 +121,14 @@ bool OptionsFromFlags(ServerOptions& o) {
   }
   o.queue = absl::GetFlag(FLAGS_queue);
   o.max_calls = absl::GetFlag(FLAGS_max_calls);
+  o.replica = absl::GetFlag(FLAGS_replica);
+  if (!o.replica.empty() && !IsReplicaName(o.replica)) {
+    std::fprintf(stderr,
+                 "membraned: --replica '%s' is not a DNS label (1-63 lower-case letters, digits "
+                 "and '-', no '-' at either end)\n",
+                 o.replica.c_str());
+    return false;
+  }
   o.max_upload_bytes = absl::GetFlag(FLAGS_max_upload_bytes);
   o.max_points = absl::GetFlag(FLAGS_max_points);
   o.voxel_budget = absl::GetFlag(FLAGS_voxel_budget);

@@ -75,6 +75,7 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   server_->GetHealthCheckService()->SetServingStatus(true);
   LogEvent("server_started", {{"address", address},
                               {"port", absl::StrCat(port)},
+                              {"replica", options_.replica.empty() ? "-" : options_.replica},
                               {"workers", absl::StrCat(options_.workers)},
                               {"job_threads", options_.job_threads > 0
                                                   ? absl::StrCat(options_.job_threads)

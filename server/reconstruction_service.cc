@@ -8,6 +8,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
 #include "proto/crc32c.h"
+#include "proto/job_routing.h"
 #include "server/bearer_token.h"
 #include "server/job_follower.h"
 #include "server/parameter_checks.h"
@@ -21,7 +22,17 @@ grpc::Status InvalidArgument(const std::string& message) {
   return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, message);
 }
 
-grpc::Status JobNotFound(const std::string& id) {
+// Names the replica the id belongs to when it is another one: a balancer that does not route
+// on the replica header sends re-attach calls to any replica.
+grpc::Status JobNotFound(const std::string& id, const std::string& this_replica) {
+  const absl::string_view owner = ReplicaOfJobId(id);
+  if (!owner.empty() && owner != this_replica) {
+    return grpc::Status(
+        grpc::StatusCode::NOT_FOUND,
+        absl::StrCat("no job '", id, "' here: it belongs to replica '", owner, "', and this is ",
+                     this_replica.empty() ? "an unnamed replica" : "'" + this_replica + "'",
+                     " (the balancer must route on the ", kReplicaHeader, " header)"));
+  }
   return grpc::Status(grpc::StatusCode::NOT_FOUND,
                       absl::StrCat("no job '", id, "' (unknown, or its result expired)"));
 }
@@ -30,7 +41,7 @@ grpc::Status JobNotFound(const std::string& id) {
 
 std::string ReconstructionService::NewJobId() {
   absl::MutexLock lock(&id_mutex_);
-  return absl::StrFormat("%016x", absl::Uniform<uint64_t>(id_random_));
+  return MakeJobId(options_.replica, absl::Uniform<uint64_t>(id_random_));
 }
 
 std::shared_ptr<Job> ReconstructionService::FindJob(const std::string& id) {
@@ -174,7 +185,7 @@ grpc::Status ReconstructionService::GetJob(grpc::ServerContext* context,
                                            const v1::GetJobRequest* request, v1::Job* response) {
   if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
   std::shared_ptr<Job> job = FindJob(request->job_id());
-  if (job == nullptr) return JobNotFound(request->job_id());
+  if (job == nullptr) return JobNotFound(request->job_id(), options_.replica);
   *response = job->Snapshot();
   return grpc::Status::OK;
 }
@@ -184,7 +195,7 @@ grpc::Status ReconstructionService::WatchJob(grpc::ServerContext* context,
                                              grpc::ServerWriter<v1::JobEvent>* writer) {
   if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
   std::shared_ptr<Job> job = FindJob(request->job_id());
-  if (job == nullptr) return JobNotFound(request->job_id());
+  if (job == nullptr) return JobNotFound(request->job_id(), options_.replica);
   LogEvent("job_watched", {{"job", job->id()}, {"peer", context->peer()}});
   v1::JobEvent snapshot;
   *snapshot.mutable_snapshot() = job->Snapshot();
@@ -203,7 +214,7 @@ grpc::Status ReconstructionService::CancelJob(grpc::ServerContext* context,
                                               v1::Job* response) {
   if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
   std::shared_ptr<Job> job = FindJob(request->job_id());
-  if (job == nullptr) return JobNotFound(request->job_id());
+  if (job == nullptr) return JobNotFound(request->job_id(), options_.replica);
   job->RequestCancel("cancelled by the client");
   LogEvent("job_cancel_requested", {{"job", job->id()}, {"peer", context->peer()}});
   *response = job->Snapshot();

@@ -19,6 +19,9 @@ struct ServerOptions {
   int job_threads = 1;
   int cores = 1;                            // this machine's, for job_threads 0
   int queue = 16;                           // jobs waiting beyond those; more: RESOURCE_EXHAUSTED
+  // This replica's name (a DNS label; proto/job_routing.h), the prefix of its job ids so that
+  // a balancer can route calls about a job to it; empty = none.
+  std::string replica;
   int max_calls = 1000;                     // calls served at once, of any kind; 0 = no limit
   int64_t max_upload_bytes = 512 << 20;     // Draco bytes of one upload
   int64_t max_points = 50'000'000;          // points of one decoded cloud

@@ -19,6 +19,7 @@
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/server/membraned_process.h"
 #include "tests/server/subprocess.h"
 #include "tests/support/shared_data.h"
 
@@ -29,15 +30,11 @@ class EndToEndTest : public ::testing::Test {
  protected:
   // Starts membraned on 127.0.0.1:0 with `flags`; reads its port from the log.
   void StartServer(std::vector<std::string> flags = {}) {
-    std::vector<std::string> argv = {MEMBRANED_BINARY, "--listen=127.0.0.1:0",
-                                     "--workers=1", "--queue=2", "--grace_seconds=1"};
-    argv.insert(argv.end(), flags.begin(), flags.end());
-    log_ = dir_.File("membraned.log");
-    server_ = std::make_unique<Subprocess>(argv, dir_.File("membraned.out"), log_);
-    const std::string log = WaitForText(log_, "event=server_started", 10);
-    std::smatch m;
-    ASSERT_TRUE(std::regex_search(log, m, std::regex("port=(\\d+)"))) << log;
-    address_ = "127.0.0.1:" + m[1].str();
+    MembranedProcess server = StartMembraned(dir_, "membraned", flags);
+    server_ = std::move(server.process);
+    log_ = server.log;
+    address_ = server.address;
+    ASSERT_FALSE(address_.empty());
   }
 
   CliResult Run(std::vector<std::string> args) { return RunMembrane(args, dir_.path()); }

@@ -15,6 +15,7 @@
 #include "google/rpc/status.pb.h"
 #include "core/synth/synthesize.h"
 #include "proto/crc32c.h"
+#include "proto/job_routing.h"
 #include "server/job_runner.h"
 #include "tests/server/service_fixture.h"
 
@@ -229,6 +230,22 @@ TEST_F(ServiceTest, UnknownJobIsNotFound) {
   v1::Job job;
   EXPECT_EQ(stub_->GetJob(&context, request, &job).error_code(), grpc::StatusCode::NOT_FOUND);
   EXPECT_EQ(Watch("nope").status.error_code(), grpc::StatusCode::NOT_FOUND);
+}
+
+// A named replica's job ids carry its name; a call about another replica's job, which a
+// balancer routed wrongly, is NOT_FOUND with both names and the header to route on.
+TEST_F(ServiceTest, NamedReplicaPrefixesItsJobIdsAndNamesTheOwnerOfOthers) {
+  options_.replica = "membraned-1";
+  StartServer();
+  const CallResult r = Reconstruct(DracoCloud("sphere", 2000), {});
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  EXPECT_EQ(ReplicaOfJobId(r.JobId()), "membraned-1") << r.JobId();
+  EXPECT_TRUE(Watch(r.JobId()).status.ok());
+  const CallResult other = Watch("membraned-0.0123456789abcdef");
+  EXPECT_EQ(other.status.error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_EQ(other.status.error_message(),
+            "no job 'membraned-0.0123456789abcdef' here: it belongs to replica 'membraned-0', and "
+            "this is 'membraned-1' (the balancer must route on the membrane-replica header)");
 }
 
 TEST_F(ServiceTest, ResultsExpireAfterTheirTimeToLive) {

@@ -160,7 +160,16 @@ TEST_F(BalancerTest, CallsAboutAJobReachTheReplicaHoldingIt) {
   const CliResult watch =
       Run({"jobs", "watch", ids[1], "-o", dir_.File("w.ply"), "--server", balancer, "-q"});
   EXPECT_EQ(watch.exit_code, 0) << watch.err;
-  EXPECT_EQ(ReadText(dir_.File("w.ply")), ReadText(dir_.File("m1.ply")));
+  EXPECT_TRUE(ReadText(dir_.File("w.ply")) == ReadText(dir_.File("m1.ply")))
+      << "the watched mesh is not the one reconstructed";
+  // A client whose call drops mid-job re-attaches through the balancer: its WatchJob, the next
+  // call, would go to the other replica in turn without the header.
+  const CliResult dropped = Run({"reconstruct", cloud, "-o", dir_.File("d.ply"), "--server",
+                                 balancer, "--drop-after-events", "4"});
+  EXPECT_EQ(dropped.exit_code, 0) << dropped.err;
+  EXPECT_NE(dropped.err.find("re-attaching to job"), std::string::npos) << dropped.err;
+  EXPECT_TRUE(ReadText(dir_.File("d.ply")) == ReadText(dir_.File("m0.ply")))
+      << "the re-attached mesh is not the one reconstructed";
   // A replica the balancer cannot reach (here: no such upstream, and a resolver that answers
   // nothing; in a cluster: a pod that ended): NOT_FOUND, said in one line.
   const CliResult gone = Run({"jobs", "get", "membraned-7.0123456789abcdef", "--server", balancer});

@@ -9,6 +9,7 @@ PACKAGES=(
   libgrpc++-dev libgrpc-dev protobuf-compiler protobuf-compiler-grpc libprotobuf-dev
   libdraco-dev
   libcli11-dev
+  prometheus-cpp-dev         # membraned --metrics-listen
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer job
   python3-open3d             # the peer measured beside us in tests/bench

@@ -9,12 +9,13 @@
 namespace membrane::server {
 
 Job::Job(std::string id, std::string peer, v1::Parameters parameters, std::string upload,
-         UploadMemory::Hold upload_hold)
+         UploadMemory::Hold upload_hold, FinishHook on_finish)
     : id_(std::move(id)),
       peer_(std::move(peer)),
       parameters_(std::move(parameters)),
       upload_bytes_(upload.size()),
       created_at_(absl::Now()),
+      on_finish_(std::move(on_finish)),
       upload_(std::move(upload)),
       upload_hold_(std::move(upload_hold)) {}
 
@@ -118,6 +119,7 @@ void Job::FinishLocked(v1::JobState state, const absl::Status& status) {
   upload_.shrink_to_fit();
   upload_hold_.Release();
   finished_at_ = absl::Now();
+  if (on_finish_) on_finish_(state, status, finished_at_ - created_at_, mesh_.size());
 }
 
 size_t Job::WaitForEvents(size_t next, absl::Duration timeout,

@@ -5,6 +5,7 @@
 #define MEMBRANE_SERVER_JOB_H_
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,11 +21,17 @@ namespace membrane::server {
 
 class Job {
  public:
+  // Called once, when the job ends, whatever ends it (the worker, or a cancel while it is
+  // queued): its final state and status, the time since it was created, and the bytes of its
+  // mesh. Called under the job's lock: it must not call the job.
+  using FinishHook = std::function<void(v1::JobState state, const absl::Status& status,
+                                        absl::Duration age, uint64_t mesh_bytes)>;
+
   // A QUEUED job. `upload` is the Draco cloud (kept until the job runs); `upload_hold` its
   // bytes in the server's memory for uploads, given back by ReleaseUploadHold() or when the
-  // job ends.
+  // job ends. `on_finish` may be empty.
   Job(std::string id, std::string peer, v1::Parameters parameters, std::string upload,
-      UploadMemory::Hold upload_hold = {});
+      UploadMemory::Hold upload_hold = {}, FinishHook on_finish = nullptr);
 
   Job(const Job&) = delete;
   Job& operator=(const Job&) = delete;
@@ -88,6 +95,7 @@ class Job {
   const v1::Parameters parameters_;
   const uint64_t upload_bytes_;
   const absl::Time created_at_;
+  const FinishHook on_finish_;
   CancelToken cancel_;
 
   mutable absl::Mutex mutex_;

@@ -43,6 +43,7 @@ void JobEventObserver::StageFinished(PipelineStage stage, double seconds,
   for (; warnings_sent_ < report.warnings.size(); ++warnings_sent_)
     event.mutable_stage()->add_warnings(report.warnings[warnings_sent_]);
   job_.AddEvent(std::move(event));
+  if (metrics_ != nullptr) metrics_->StageFinished(stage, seconds);
 }
 
 }  // namespace membrane::server

@@ -5,13 +5,16 @@
 
 #include "core/pipeline/reconstruction_observer.h"
 #include "server/job.h"
+#include "server/server_metrics.h"
 
 namespace membrane::server {
 
 class JobEventObserver : public ReconstructionObserver {
  public:
-  // `job` (not owned) must outlive the observer.
-  explicit JobEventObserver(Job& job) : job_(job) {}
+  // `job` and `metrics` (not owned; metrics may be null) must outlive the observer. Finished
+  // stages are also observed in metrics' membrane_stage_seconds.
+  explicit JobEventObserver(Job& job, ServerMetrics* metrics = nullptr)
+      : job_(job), metrics_(metrics) {}
 
   void StageStarted(PipelineStage stage, const ReconstructionReport& report) override;
   void GenerationFinished(const GenerationStats& generation, int planned_generations) override;
@@ -20,6 +23,7 @@ class JobEventObserver : public ReconstructionObserver {
 
  private:
   Job& job_;
+  ServerMetrics* metrics_;
   size_t warnings_sent_ = 0;  // report.warnings already in a StageEvent
 };
 

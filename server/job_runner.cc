@@ -53,7 +53,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   if (!job->Start()) return;  // cancelled while queued
   LogEvent("job_started", {{"job", job->id()}, {"peer", job->peer()}});
   const Stopwatch total;
-  JobEventObserver observer(*job);
+  JobEventObserver observer(*job, &metrics_);
   const auto fail = [&](const absl::Status& status) {
     absl::Status final_status = status;
     if (status.code() == absl::StatusCode::kCancelled && !job->cancel_reason().empty()) {

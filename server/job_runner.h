@@ -8,6 +8,7 @@
 
 #include "server/job.h"
 #include "server/memory_budget.h"
+#include "server/server_metrics.h"
 #include "server/server_options.h"
 
 namespace membrane::server {
@@ -19,9 +20,9 @@ int JobThreads(const ServerOptions& options, int running_jobs);
 
 class JobRunner {
  public:
-  // `options` and `memory` (not owned) must outlive the runner.
-  JobRunner(const ServerOptions& options, MemoryBudget& memory)
-      : options_(options), memory_(memory) {}
+  // `options`, `memory` and `metrics` (not owned) must outlive the runner.
+  JobRunner(const ServerOptions& options, MemoryBudget& memory, ServerMetrics& metrics)
+      : options_(options), memory_(memory), metrics_(metrics) {}
 
   // Runs `job` to its end (QUEUED -> RUNNING -> SUCCEEDED / FAILED / CANCELLED) on the
   // calling thread; returns at once when the job was cancelled while queued. Statuses a job
@@ -34,6 +35,7 @@ class JobRunner {
  private:
   const ServerOptions& options_;
   MemoryBudget& memory_;
+  ServerMetrics& metrics_;
 };
 
 }  // namespace membrane::server

@@ -2,7 +2,10 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
+#include <exception>
+#include <vector>
 #include <utility>
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
@@ -30,12 +33,12 @@ MembraneServer::MembraneServer(ServerOptions options)
     : options_(std::move(options)),
       upload_memory_(options_.upload_memory_bytes),
       memory_(options_.memory_budget_bytes),
-      runner_(options_, memory_),
+      runner_(options_, memory_, metrics_),
       scheduler_(options_.workers, options_.queue,
                  [this](const std::shared_ptr<Job>& job) {
                    runner_.Run(job, JobThreads(options_, scheduler_.running()));
                  }),
-      service_(options_, store_, scheduler_, upload_memory_) {}
+      service_(options_, store_, scheduler_, upload_memory_, metrics_) {}
 
 MembraneServer::~MembraneServer() { Shutdown(absl::ZeroDuration()); }
 
@@ -72,9 +75,17 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   if (server_ == nullptr || port == 0) {
     return absl::UnavailableError(absl::StrCat("cannot listen on ", address));
   }
+  if (!options_.metrics_listen.empty()) {
+    if (absl::Status s = StartMetrics(); !s.ok()) {
+      server_->Shutdown();
+      server_.reset();
+      return s;
+    }
+  }
   server_->GetHealthCheckService()->SetServingStatus(true);
   LogEvent("server_started", {{"address", address},
                               {"port", absl::StrCat(port)},
+                              {"metrics_port", absl::StrCat(metrics_port_)},
                               {"replica", options_.replica.empty() ? "-" : options_.replica},
                               {"workers", absl::StrCat(options_.workers)},
                               {"job_threads", options_.job_threads > 0
@@ -105,6 +116,33 @@ void MembraneServer::Shutdown(absl::Duration grace) {
     server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(1));
   }
   LogEvent("server_stopped", {});
+}
+
+absl::Status MembraneServer::StartMetrics() {
+  state_collector_ = std::make_shared<ServerStateCollector>([this] {
+    ServerState s;
+    s.queued = scheduler_.queued();
+    s.queue_limit = options_.queue;
+    s.running = scheduler_.running();
+    s.workers = options_.workers;
+    s.memory_reserved_bytes = memory_.reserved();
+    s.memory_budget_bytes = std::max<int64_t>(options_.memory_budget_bytes, 0);
+    s.upload_held_bytes = upload_memory_.held();
+    s.upload_memory_bytes = std::max<int64_t>(options_.upload_memory_bytes, 0);
+    return s;
+  });
+  // prometheus-cpp reports a port it cannot bind by throwing: the one exception caught here.
+  try {
+    exposer_ = std::make_unique<prometheus::Exposer>(options_.metrics_listen, /*num_threads=*/1);
+  } catch (const std::exception& e) {
+    return absl::UnavailableError(absl::StrCat("cannot serve metrics on ", options_.metrics_listen,
+                                               " (--metrics-listen): ", e.what()));
+  }
+  exposer_->RegisterCollectable(metrics_.registry());
+  exposer_->RegisterCollectable(state_collector_);
+  const std::vector<int> ports = exposer_->GetListeningPorts();
+  metrics_port_ = ports.empty() ? 0 : ports.front();
+  return absl::OkStatus();
 }
 
 void MembraneServer::Wait() {

@@ -8,6 +8,8 @@
 
 #include <grpcpp/server.h>
 
+#include "prometheus/exposer.h"
+
 #include "absl/status/statusor.h"
 #include "server/in_memory_job_store.h"
 #include "server/job_runner.h"
@@ -15,6 +17,7 @@
 #include "server/memory_budget.h"
 #include "server/upload_memory.h"
 #include "server/reconstruction_service.h"
+#include "server/server_metrics.h"
 #include "server/server_options.h"
 
 namespace membrane::server {
@@ -28,9 +31,10 @@ class MembraneServer {
   MembraneServer(const MembraneServer&) = delete;
   MembraneServer& operator=(const MembraneServer&) = delete;
 
-  // Listens on `address` ("127.0.0.1:0" picks a free port), health SERVING; ignores SIGPIPE
-  // in this process (see decode_subprocess.h). Returns the bound port; Unavailable when the
-  // address cannot be bound.
+  // Listens on `address` ("127.0.0.1:0" picks a free port), health SERVING, and serves
+  // Prometheus metrics on options.metrics_listen (HTTP, path /metrics) when set; ignores
+  // SIGPIPE in this process (see decode_subprocess.h). Returns the bound port of `address`;
+  // Unavailable when either address cannot be bound.
   absl::StatusOr<int> Start(const std::string& address);
 
   // Graceful shutdown: health NOT_SERVING, new Reconstruct calls UNAVAILABLE, queued jobs
@@ -41,8 +45,16 @@ class MembraneServer {
   // Blocks until Shutdown has stopped the gRPC server.
   void Wait();
 
+  // The bound port of options.metrics_listen once Start succeeded; 0 when there is none.
+  int metrics_port() const { return metrics_port_; }
+
  private:
+  // Starts exposer_ on options_.metrics_listen.
+  absl::Status StartMetrics();
+
   const ServerOptions options_;
+  // Before everything that counts in it: the store's jobs report their end to it.
+  ServerMetrics metrics_;
   // Before the store: jobs hold parts of it until they are destroyed.
   UploadMemory upload_memory_;
   InMemoryJobStore store_;
@@ -51,6 +63,10 @@ class MembraneServer {
   JobScheduler scheduler_;
   ReconstructionService service_;
   std::unique_ptr<grpc::Server> server_;
+  // Last: destroyed first, so that no scrape reads what is gone.
+  std::shared_ptr<ServerStateCollector> state_collector_;
+  std::unique_ptr<prometheus::Exposer> exposer_;
+  int metrics_port_ = 0;
   bool shut_down_ = false;
 };
 

@@ -7,6 +7,11 @@
 
 namespace membrane::server {
 
+int64_t MemoryBudget::reserved() const {
+  absl::MutexLock lock(&mutex_);
+  return reserved_;
+}
+
 int64_t DefaultMemoryBudget(int64_t total_bytes) {
   return total_bytes > 0 ? total_bytes / 4 * 3 : 0;
 }

@@ -41,9 +41,12 @@ class MemoryBudget {
     int64_t bytes_ = 0;
   };
 
+  // The bytes reserved by all shares now (for the metrics).
+  int64_t reserved() const ABSL_LOCKS_EXCLUDED(mutex_);
+
  private:
   const int64_t total_;
-  absl::Mutex mutex_;
+  mutable absl::Mutex mutex_;
   int64_t reserved_ ABSL_GUARDED_BY(mutex_) = 0;
   int holders_ ABSL_GUARDED_BY(mutex_) = 0;          // shares holding bytes
   int waiting_holders_ ABSL_GUARDED_BY(mutex_) = 0;  // of those, the ones waiting in Add

@@ -141,11 +141,16 @@ grpc::Status ReconstructionService::ReadUpload(
 grpc::Status ReconstructionService::Reconstruct(
     grpc::ServerContext* context,
     grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream) {
-  if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
+  // gRPC's codes are absl's, number for number.
+  const auto refused = [this](const grpc::Status& s) {
+    metrics_.ReconstructRefused(static_cast<absl::StatusCode>(s.error_code()));
+    return s;
+  };
+  if (grpc::Status s = Authenticate(*context); !s.ok()) return refused(s);
   if (!accepting_) {
-    return ToGrpcStatusWithRetry(
+    return refused(ToGrpcStatusWithRetry(
         absl::UnavailableError("the server is shutting down; try again or another replica"),
-        absl::Seconds(options_.retry_delay_seconds));
+        absl::Seconds(options_.retry_delay_seconds)));
   }
   v1::Parameters parameters;
   std::string upload;
@@ -154,15 +159,21 @@ grpc::Status ReconstructionService::Reconstruct(
     LogEvent("upload_rejected", {{"peer", context->peer()},
                                  {"code", absl::StrCat(s.error_code())},
                                  {"message", s.error_message()}});
-    return s;
+    return refused(s);
   }
   const uint64_t upload_bytes = upload.size();
-  auto job = std::make_shared<Job>(NewJobId(), context->peer(), parameters, std::move(upload),
-                                   std::move(hold));
+  ServerMetrics& metrics = metrics_;
+  auto job = std::make_shared<Job>(
+      NewJobId(), context->peer(), parameters, std::move(upload), std::move(hold),
+      [&metrics](v1::JobState state, const absl::Status& status, absl::Duration age,
+                 uint64_t mesh_bytes) {
+        metrics.JobFinished(state, status.code(), absl::ToDoubleSeconds(age), mesh_bytes);
+      });
   if (absl::Status s = scheduler_.Submit(job); !s.ok()) {
     LogEvent("job_refused", {{"peer", context->peer()}, {"message", std::string(s.message())}});
-    return ToGrpcStatusWithRetry(s, absl::Seconds(options_.retry_delay_seconds));
+    return refused(ToGrpcStatusWithRetry(s, absl::Seconds(options_.retry_delay_seconds)));
   }
+  metrics_.JobAccepted(upload_bytes);
   store_.Add(job);
   const v1::Job snapshot = job->Snapshot();
   LogEvent("job_accepted", {{"job", job->id()},

@@ -14,6 +14,7 @@
 #include "server/job_scheduler.h"
 #include "server/job_store.h"
 #include "server/idle_watchdog.h"
+#include "server/server_metrics.h"
 #include "server/server_options.h"
 #include "server/upload_memory.h"
 
@@ -21,13 +22,15 @@ namespace membrane::server {
 
 class ReconstructionService final : public v1::Reconstruction::Service {
  public:
-  // `options`, `store`, `scheduler` and `upload_memory` (not owned) must outlive the service.
+  // `options`, `store`, `scheduler`, `upload_memory` and `metrics` (not owned) must outlive
+  // the service.
   ReconstructionService(const ServerOptions& options, JobStore& store, JobScheduler& scheduler,
-                        UploadMemory& upload_memory)
+                        UploadMemory& upload_memory, ServerMetrics& metrics)
       : options_(options),
         store_(store),
         scheduler_(scheduler),
         upload_memory_(upload_memory),
+        metrics_(metrics),
         stall_watchdog_(absl::Seconds(options.stall_seconds)) {}
 
   // From now on Reconstruct answers UNAVAILABLE (graceful shutdown); other calls still work,
@@ -75,6 +78,7 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   JobStore& store_;
   JobScheduler& scheduler_;
   UploadMemory& upload_memory_;
+  ServerMetrics& metrics_;
   // Ends calls stalled for options_.stall_seconds: an upload receiving nothing, or a write of
   // an event that the client does not read (flow control holds the write).
   IdleWatchdog stall_watchdog_;

@@ -22,6 +22,8 @@ struct ServerOptions {
   // This replica's name (a DNS label; proto/job_routing.h), the prefix of its job ids so that
   // a balancer can route calls about a job to it; empty = none.
   std::string replica;
+  // HOST:PORT serving Prometheus metrics over HTTP (/metrics); empty = none.
+  std::string metrics_listen;
   int max_calls = 1000;                     // calls served at once, of any kind; 0 = no limit
   int64_t max_upload_bytes = 512 << 20;     // Draco bytes of one upload
   int64_t max_points = 50'000'000;          // points of one decoded cloud

@@ -19,6 +19,7 @@
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/server/http_get.h"
 #include "tests/server/membraned_process.h"
 #include "tests/server/subprocess.h"
 #include "tests/support/shared_data.h"
@@ -276,6 +277,25 @@ TEST_F(EndToEndTest, ServerOutOfCallThreadsIsRetriedThenExitFour) {
   slow->Signal(SIGTERM);
   for (auto& w : watchers) w->Wait(10);
   slow->Wait(10);
+}
+
+// membraned --metrics-listen: the port is in the server_started line, and a scrape counts
+// the job a client ran.
+TEST_F(EndToEndTest, MetricsEndpointCountsAJob) {
+  StartServer({"--metrics-listen=127.0.0.1:0"});
+  std::smatch m;
+  const std::string log = ReadText(log_);
+  ASSERT_TRUE(std::regex_search(log, m, std::regex("metrics_port=(\\d+)"))) << log;
+  const int port = std::stoi(m[1].str());
+  ASSERT_EQ(Run({"reconstruct", Synth("sphere", 2000), "-o", dir_.File("m.ply"), "--server",
+                 address_, "-q"})
+                .exit_code,
+            0);
+  const std::string metrics = HttpGet(port, "/metrics");
+  EXPECT_EQ(
+      MetricValue(metrics, "membrane_jobs_finished_total{code=\"OK\",state=\"SUCCEEDED\"}"), 1)
+      << metrics;
+  EXPECT_EQ(HttpGet(port, "/nothing-here"), "");
 }
 
 TEST_F(EndToEndTest, TimeoutCancelsTheJobOnTheServer) {

@@ -17,6 +17,7 @@
 #include "proto/crc32c.h"
 #include "proto/job_routing.h"
 #include "server/job_runner.h"
+#include "tests/server/http_get.h"
 #include "tests/server/service_fixture.h"
 
 namespace membrane::testing {
@@ -317,6 +318,68 @@ TEST_F(ServiceTest, FullQueueIsResourceExhaustedWithARetryDelay) {
   google::rpc::RetryInfo retry;
   ASSERT_TRUE(details.details(0).UnpackTo(&retry));
   EXPECT_EQ(retry.retry_delay().seconds() * 1000 + retry.retry_delay().nanos() / 1000000, 500);
+}
+
+// --metrics-listen serves Prometheus text: jobs by outcome (whoever ended them), refused
+// calls by code, stage seconds, and the queue and workers as they are at the scrape.
+TEST_F(ServiceTest, MetricsCountJobsRefusalsAndStages) {
+  options_.metrics_listen = "127.0.0.1:0";
+  StartServer();  // 1 worker, queue of 1
+  ASSERT_GT(server_->metrics_port(), 0);
+  const int port = server_->metrics_port();
+  std::string m = HttpGet(port, "/metrics");
+  EXPECT_EQ(MetricValue(m, "membrane_jobs_accepted_total"), 0) << m;
+  EXPECT_EQ(MetricValue(m, "membrane_job_seconds_count{state=\"FAILED\"}"), 0) << m;
+
+  ASSERT_TRUE(Reconstruct(DracoCloud("sphere", 2000), {}).status.ok());
+  UploadTweaks corrupt;
+  corrupt.wrong_checksum = true;
+  EXPECT_EQ(Reconstruct(DracoCloud("sphere", 2000), {}, corrupt).status.error_code(),
+            grpc::StatusCode::INVALID_ARGUMENT);
+  const std::string cloud = DracoCloud("sphere", 30000);
+  const std::string running = StartJobInBackground(cloud, SlowParameters());
+  const std::string queued = StartJobInBackground(cloud, SlowParameters());
+  ASSERT_FALSE(running.empty());
+  ASSERT_FALSE(queued.empty());
+  m = HttpGet(port, "/metrics");
+  EXPECT_EQ(MetricValue(m, "membrane_jobs_queued"), 1) << m;
+  EXPECT_EQ(MetricValue(m, "membrane_jobs_running"), 1) << m;
+  EXPECT_EQ(MetricValue(m, "membrane_workers"), 1) << m;
+  EXPECT_EQ(MetricValue(m, "membrane_queue_limit"), 1) << m;
+  // The queued job ends without a worker: cancelled where it waits.
+  for (const std::string& id : {queued, running}) {
+    grpc::ClientContext context;
+    v1::CancelJobRequest request;
+    request.set_job_id(id);
+    v1::Job job;
+    ASSERT_TRUE(stub_->CancelJob(&context, request, &job).ok());
+    EXPECT_EQ(WaitUntilDone(*stub_, id, 5).state(), v1::CANCELLED);
+  }
+  m = HttpGet(port, "/metrics");
+  EXPECT_EQ(MetricValue(m, "membrane_jobs_accepted_total"), 3) << m;
+  EXPECT_EQ(MetricValue(m, "membrane_reconstruct_refused_total{code=\"INVALID_ARGUMENT\"}"), 1)
+      << m;
+  EXPECT_EQ(MetricValue(m, "membrane_jobs_finished_total{code=\"OK\",state=\"SUCCEEDED\"}"), 1)
+      << m;
+  EXPECT_EQ(
+      MetricValue(m, "membrane_jobs_finished_total{code=\"CANCELLED\",state=\"CANCELLED\"}"), 2)
+      << m;
+  EXPECT_EQ(MetricValue(m, "membrane_job_seconds_count{state=\"CANCELLED\"}"), 2) << m;
+  EXPECT_EQ(MetricValue(m, "membrane_stage_seconds_count{stage=\"encode\"}"), 1) << m;
+  EXPECT_GE(MetricValue(m, "membrane_stage_seconds_count{stage=\"decode\"}"), 2) << m;
+  EXPECT_GT(MetricValue(m, "membrane_mesh_bytes_total"), 0) << m;
+  EXPECT_EQ(MetricValue(m, "membrane_jobs_queued"), 0) << m;
+  EXPECT_EQ(MetricValue(m, "membrane_jobs_running"), 0) << m;
+}
+
+// An address that cannot be bound fails the start, naming the flag.
+TEST_F(ServiceTest, UnboundMetricsAddressFailsTheStart) {
+  options_.metrics_listen = "256.0.0.1:1";
+  server::MembraneServer server(options_);
+  const absl::StatusOr<int> port = server.Start("127.0.0.1:0");
+  ASSERT_FALSE(port.ok());
+  EXPECT_EQ(port.status().code(), absl::StatusCode::kUnavailable);
+  EXPECT_NE(port.status().message().find("--metrics-listen"), std::string::npos) << port.status();
 }
 
 // Uploads are held from their header until their job is decoded, within

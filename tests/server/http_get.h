@@ -1,0 +1,20 @@
+// A plain HTTP/1.0 GET for tests of membraned's metrics endpoint.
+#ifndef MEMBRANE_TESTS_SERVER_HTTP_GET_H_
+#define MEMBRANE_TESTS_SERVER_HTTP_GET_H_
+
+#include <string>
+
+namespace membrane::testing {
+
+// The body of `GET path` from 127.0.0.1:`port`, or "" when the request fails or the status is
+// not 200. Waits at most a few seconds.
+std::string HttpGet(int port, const std::string& path);
+
+// The value of the sample `series` (a metric name with its labels, as the text format writes
+// them, e.g. `membrane_jobs_finished_total{code="OK",state="SUCCEEDED"}`) in a Prometheus text
+// exposition; -1 when absent.
+double MetricValue(const std::string& exposition, const std::string& series);
+
+}  // namespace membrane::testing
+
+#endif  // MEMBRANE_TESTS_SERVER_HTTP_GET_H_

@@ -366,7 +366,8 @@ TEST_F(ServiceTest, MetricsCountJobsRefusalsAndStages) {
       << m;
   EXPECT_EQ(MetricValue(m, "membrane_job_seconds_count{state=\"CANCELLED\"}"), 2) << m;
   EXPECT_EQ(MetricValue(m, "membrane_stage_seconds_count{stage=\"encode\"}"), 1) << m;
-  EXPECT_GE(MetricValue(m, "membrane_stage_seconds_count{stage=\"decode\"}"), 2) << m;
+  // The cancelled running job may or may not have finished decoding.
+  EXPECT_GE(MetricValue(m, "membrane_stage_seconds_count{stage=\"decode\"}"), 1) << m;
   EXPECT_GT(MetricValue(m, "membrane_mesh_bytes_total"), 0) << m;
   EXPECT_EQ(MetricValue(m, "membrane_jobs_queued"), 0) << m;
   EXPECT_EQ(MetricValue(m, "membrane_jobs_running"), 0) << m;

@@ -8,6 +8,7 @@
 #include <grpcpp/client_context.h>
 
 #include "CLI/CLI.hpp"
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
 #include "client/io_errors.h"
@@ -19,6 +20,7 @@
 #include "client/server_connection.h"
 #include "core/io/file_bytes.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
+#include "proto/job_routing.h"
 
 namespace membrane::client {
 namespace {
@@ -27,6 +29,7 @@ struct JobsFlags {
   ConnectionFlags connection;
   ServerConnection server;  // the connection's files read, before the subcommand runs
   std::string job_id;
+  std::string replica;      // list: the replica to ask, behind a balancer
   std::string output;      // watch: where to write the mesh
   std::string stats_json;  // watch: where to write the statistics
   double timeout = 30;     // per call; watch: for the whole job (0 = no limit)
@@ -56,9 +59,16 @@ void PrintJob(const v1::Job& job) {
 }
 
 absl::Status RunList(const JobsFlags& flags) {
+  if (!flags.replica.empty() && !IsReplicaName(flags.replica)) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "--replica '", flags.replica,
+        "' is not a replica name (lower-case letters, digits and '-', as in membraned-0)"));
+  }
   auto stub = v1::Reconstruction::NewStub(Connect(flags.server));
   v1::ListJobsResponse response;
-  const grpc::Status status = stub->ListJobs(CallContext(flags).get(), {}, &response);
+  const std::unique_ptr<grpc::ClientContext> context = CallContext(flags);
+  if (!flags.replica.empty()) context->AddMetadata(kReplicaHeader, flags.replica);
+  const grpc::Status status = stub->ListJobs(context.get(), {}, &response);
   if (!status.ok()) return FromGrpcStatus(status, flags.server.address);
   for (const v1::Job& job : response.jobs()) {
     std::printf("%s %s %s %llu %s\n", job.id().c_str(), StateName(job.state()).c_str(),
@@ -130,6 +140,8 @@ Command AddJobsCommand(CLI::App& parent) {
   jobs->require_subcommand(1);
   auto flags = std::make_shared<JobsFlags>();
   CLI::App* list = AddJobsSubcommand(*jobs, "list", "every job the server holds", flags, false);
+  list->add_option("--replica", flags->replica,
+                   "behind a balancer: list the jobs of this replica (e.g. membraned-0)");
   CLI::App* get = AddJobsSubcommand(*jobs, "get", "one job's state", flags, true);
   CLI::App* watch =
       AddJobsSubcommand(*jobs, "watch", "follow a job to its end (re-attach)", flags, true);

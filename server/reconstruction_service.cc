@@ -236,6 +236,19 @@ grpc::Status ReconstructionService::ListJobs(grpc::ServerContext* context,
                                              const v1::ListJobsRequest*,
                                              v1::ListJobsResponse* response) {
   if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
+  // A list asked of one replica (membrane jobs list --replica) must not silently be another's.
+  const auto asked = context->client_metadata().find(kReplicaHeader);
+  if (asked != context->client_metadata().end()) {
+    const std::string name(asked->second.data(), asked->second.size());
+    if (name != options_.replica) {
+      return grpc::Status(
+          grpc::StatusCode::NOT_FOUND,
+          absl::StrCat("the jobs of replica '", name, "' were asked for, and this is ",
+                       options_.replica.empty() ? "an unnamed replica"
+                                                : "'" + options_.replica + "'",
+                       " (the balancer must route on the ", kReplicaHeader, " header)"));
+    }
+  }
   store_.RemoveFinishedBefore(absl::Now() - absl::Seconds(options_.result_ttl_seconds));
   for (const std::shared_ptr<Job>& job : store_.List()) *response->add_jobs() = job->Snapshot();
   return grpc::Status::OK;

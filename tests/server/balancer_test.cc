@@ -162,6 +162,15 @@ TEST_F(BalancerTest, CallsAboutAJobReachTheReplicaHoldingIt) {
   EXPECT_EQ(watch.exit_code, 0) << watch.err;
   EXPECT_TRUE(ReadText(dir_.File("w.ply")) == ReadText(dir_.File("m1.ply")))
       << "the watched mesh is not the one reconstructed";
+  // Each replica's jobs, asked through the balancer; a replica it cannot reach is NOT_FOUND.
+  for (const std::string& id : ids) {
+    const std::string replica(ReplicaOfJobId(id));
+    const CliResult list = Run({"jobs", "list", "--server", balancer, "--replica", replica});
+    EXPECT_EQ(list.exit_code, 0) << list.err;
+    EXPECT_EQ(list.out.rfind(id + " SUCCEEDED", 0), 0u) << list.out;
+    EXPECT_EQ(list.out.find('\n'), list.out.size() - 1) << "one job each: " << list.out;
+  }
+  EXPECT_EQ(Run({"jobs", "list", "--server", balancer, "--replica", "Membraned"}).exit_code, 3);
   // A client whose call drops mid-job re-attaches through the balancer: its WatchJob, the next
   // call, would go to the other replica in turn without the header.
   const CliResult dropped = Run({"reconstruct", cloud, "-o", dir_.File("d.ply"), "--server",

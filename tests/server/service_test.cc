@@ -242,6 +242,23 @@ TEST_F(ServiceTest, NamedReplicaPrefixesItsJobIdsAndNamesTheOwnerOfOthers) {
   ASSERT_TRUE(r.status.ok()) << r.status.error_message();
   EXPECT_EQ(ReplicaOfJobId(r.JobId()), "membraned-1") << r.JobId();
   EXPECT_TRUE(Watch(r.JobId()).status.ok());
+  {
+    grpc::ClientContext context;
+    context.AddMetadata(kReplicaHeader, "membraned-0");
+    v1::ListJobsResponse list;
+    const grpc::Status s = stub_->ListJobs(&context, {}, &list);
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::NOT_FOUND);
+    EXPECT_EQ(s.error_message(),
+              "the jobs of replica 'membraned-0' were asked for, and this is 'membraned-1' (the "
+              "balancer must route on the membrane-replica header)");
+  }
+  {
+    grpc::ClientContext context;
+    context.AddMetadata(kReplicaHeader, "membraned-1");
+    v1::ListJobsResponse list;
+    ASSERT_TRUE(stub_->ListJobs(&context, {}, &list).ok());
+    EXPECT_EQ(list.jobs_size(), 1);
+  }
   const CallResult other = Watch("membraned-0.0123456789abcdef");
   EXPECT_EQ(other.status.error_code(), grpc::StatusCode::NOT_FOUND);
   EXPECT_EQ(other.status.error_message(),

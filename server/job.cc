@@ -19,6 +19,31 @@ Job::Job(std::string id, std::string peer, v1::Parameters parameters, std::strin
       upload_(std::move(upload)),
       upload_hold_(std::move(upload_hold)) {}
 
+std::shared_ptr<Job> Job::Restore(const v1::Job& snapshot, std::vector<v1::JobEvent> events,
+                                  std::string statistics_json, v1::MeshSummary summary,
+                                  std::string mesh) {
+  auto job = std::make_shared<Job>(snapshot.id(), snapshot.peer(), snapshot.parameters(),
+                                   std::string());
+  const auto at = [](double unix_seconds) { return absl::FromUnixNanos(
+                                                static_cast<int64_t>(unix_seconds * 1e9)); };
+  job->created_at_ = at(snapshot.created_unix_seconds());
+  job->upload_bytes_ = snapshot.upload_bytes();
+  absl::MutexLock lock(&job->mutex_);
+  job->events_ = std::move(events);
+  job->statistics_json_ = std::move(statistics_json);
+  job->mesh_summary_ = std::move(summary);
+  job->mesh_ = std::move(mesh);
+  job->state_ = snapshot.state();
+  job->status_ = FromRpcStatus(snapshot.error());
+  job->finished_at_ = at(snapshot.finished_unix_seconds());
+  return job;
+}
+
+std::vector<v1::JobEvent> Job::Events() const {
+  absl::MutexLock lock(&mutex_);
+  return events_;
+}
+
 std::string Job::TakeUpload() {
   absl::MutexLock lock(&mutex_);
   return std::exchange(upload_, std::string());

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,13 @@ class Job {
   // job ends. `on_finish` may be empty.
   Job(std::string id, std::string peer, v1::Parameters parameters, std::string upload,
       UploadMemory::Hold upload_hold = {}, FinishHook on_finish = nullptr);
+
+  // A finished job as a durable store wrote it down (JobStore): `snapshot` (id, peer,
+  // parameters, times, state and error), its stage and generation `events`, and for a
+  // SUCCEEDED job its statistics, mesh check and mesh. It is done at once; no hook runs.
+  static std::shared_ptr<Job> Restore(const v1::Job& snapshot, std::vector<v1::JobEvent> events,
+                                      std::string statistics_json, v1::MeshSummary summary,
+                                      std::string mesh);
 
   Job(const Job&) = delete;
   Job& operator=(const Job&) = delete;
@@ -82,6 +90,9 @@ class Job {
   // (SUCCEEDED only), then JobDone. Empty while the job runs.
   std::vector<v1::JobEvent> ClosingEvents(size_t chunk_bytes) const ABSL_LOCKS_EXCLUDED(mutex_);
 
+  // The stage and generation events so far.
+  std::vector<v1::JobEvent> Events() const ABSL_LOCKS_EXCLUDED(mutex_);
+
   // When the job finished; InfinitePast while it runs.
   absl::Time finished_at() const ABSL_LOCKS_EXCLUDED(mutex_);
 
@@ -93,8 +104,8 @@ class Job {
   const std::string id_;
   const std::string peer_;
   const v1::Parameters parameters_;
-  const uint64_t upload_bytes_;
-  const absl::Time created_at_;
+  uint64_t upload_bytes_;  // set once, before the job is shared
+  absl::Time created_at_;  // set once, before the job is shared
   const FinishHook on_finish_;
   CancelToken cancel_;
 

@@ -1,6 +1,6 @@
-// Where the server keeps its jobs. Handlers see only this interface, so a durable store (a
-// database, a shared cache for several replicas) can replace the in-memory one without
-// touching them.
+// Where the server keeps its jobs. Handlers see only this interface, so a durable store
+// (DiskJobStore; a database, a shared cache for several replicas) can replace the in-memory
+// one without touching them.
 #ifndef MEMBRANE_SERVER_JOB_STORE_H_
 #define MEMBRANE_SERVER_JOB_STORE_H_
 
@@ -24,6 +24,9 @@ class JobStore {
   virtual std::vector<std::shared_ptr<Job>> List() const = 0;
   // Drops the jobs that finished before `cutoff`; returns how many.
   virtual int RemoveFinishedBefore(absl::Time cutoff) = 0;
+  // Tells the store that the job `id` has ended. Called from the job's finish hook, under the
+  // job's lock: the store must not call the job from here. A durable store writes it down.
+  virtual void Finished(const std::string& id) { (void)id; }
 };
 
 }  // namespace membrane::server

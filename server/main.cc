@@ -35,6 +35,9 @@ ABSL_FLAG(int, queue, 16, "jobs waiting beyond the running ones; more get RESOUR
 ABSL_FLAG(int, max_calls, 1000,
           "calls served at once, of any kind (each holds a thread); more get RESOURCE_EXHAUSTED; "
           "0 = no limit");
+ABSL_FLAG(std::string, store_dir, "",
+          "a directory where jobs and their results are also written, so that they survive a "
+          "crash or restart (until --result-ttl-seconds); empty = in memory only");
 ABSL_FLAG(std::string, metrics_listen, "",
           "HOST:PORT serving Prometheus metrics over HTTP at /metrics (jobs, stages, queue, "
           "memory); empty = none");
@@ -125,6 +128,7 @@ bool OptionsFromFlags(ServerOptions& o) {
   o.queue = absl::GetFlag(FLAGS_queue);
   o.max_calls = absl::GetFlag(FLAGS_max_calls);
   o.metrics_listen = absl::GetFlag(FLAGS_metrics_listen);
+  o.store_dir = absl::GetFlag(FLAGS_store_dir);
   o.replica = absl::GetFlag(FLAGS_replica);
   if (!o.replica.empty() && !IsReplicaName(o.replica)) {
     std::fprintf(stderr,

@@ -27,18 +27,27 @@ constexpr int kMaxMessageBytes = 4 << 20;  // gRPC's default, stated: chunks kee
 // default), on top of --max-calls.
 constexpr int kPollerThreads = 2;
 
+// The store of `dir`: in memory only when it is empty.
+std::unique_ptr<JobStore> MakeStore(const std::string& dir) {
+  if (dir.empty()) return std::make_unique<InMemoryJobStore>();
+  return std::make_unique<DiskJobStore>(dir);
+}
+
 }  // namespace
 
 MembraneServer::MembraneServer(ServerOptions options)
     : options_(std::move(options)),
       upload_memory_(options_.upload_memory_bytes),
+      store_(MakeStore(options_.store_dir)),
       memory_(options_.memory_budget_bytes),
       runner_(options_, memory_, metrics_),
       scheduler_(options_.workers, options_.queue,
                  [this](const std::shared_ptr<Job>& job) {
                    runner_.Run(job, JobThreads(options_, scheduler_.running()));
                  }),
-      service_(options_, store_, scheduler_, upload_memory_, metrics_) {}
+      service_(options_, *store_, scheduler_, upload_memory_, metrics_) {
+  disk_store_ = dynamic_cast<DiskJobStore*>(store_.get());
+}
 
 MembraneServer::~MembraneServer() { Shutdown(absl::ZeroDuration()); }
 
@@ -46,6 +55,9 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   // A decoder child that dies while its stdin is being fed must cost an EPIPE, not the
   // server: SIGPIPE is ignored process-wide (gRPC needs the same for its sockets).
   signal(SIGPIPE, SIG_IGN);
+  if (disk_store_ != nullptr) {
+    if (absl::StatusOr<int> loaded = disk_store_->Load(); !loaded.ok()) return loaded.status();
+  }
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
@@ -99,6 +111,7 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
                                                          ? "options"
                                                          : options_.memory_budget_source},
                               {"upload_memory_bytes", absl::StrCat(options_.upload_memory_bytes)},
+                              {"store_dir", options_.store_dir.empty() ? "-" : options_.store_dir},
                               {"tls", options_.tls_cert_pem.empty() ? "off" : "on"},
                               {"token", options_.bearer_token.empty() ? "off" : "on"}});
   return port;
@@ -111,6 +124,8 @@ void MembraneServer::Shutdown(absl::Duration grace) {
   if (server_ != nullptr) server_->GetHealthCheckService()->SetServingStatus(false);
   service_.StopAccepting();
   scheduler_.Shutdown(grace);
+  // The jobs' ends are on disk before the process may exit.
+  if (disk_store_ != nullptr) disk_store_->Flush();
   if (server_ != nullptr) {
     // The open calls see their jobs ended and write the outcome; a second is plenty.
     server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(1));

@@ -11,6 +11,7 @@
 #include "prometheus/exposer.h"
 
 #include "absl/status/statusor.h"
+#include "server/disk_job_store.h"
 #include "server/in_memory_job_store.h"
 #include "server/job_runner.h"
 #include "server/job_scheduler.h"
@@ -31,15 +32,17 @@ class MembraneServer {
   MembraneServer(const MembraneServer&) = delete;
   MembraneServer& operator=(const MembraneServer&) = delete;
 
-  // Listens on `address` ("127.0.0.1:0" picks a free port), health SERVING, and serves
+  // Loads the jobs of options.store_dir when set (DiskJobStore::Load), then listens on
+  // `address` ("127.0.0.1:0" picks a free port), health SERVING, and serves
   // Prometheus metrics on options.metrics_listen (HTTP, path /metrics) when set; ignores
   // SIGPIPE in this process (see decode_subprocess.h). Returns the bound port of `address`;
-  // Unavailable when either address cannot be bound.
+  // Unavailable when the store cannot be read or either address cannot be bound.
   absl::StatusOr<int> Start(const std::string& address);
 
   // Graceful shutdown: health NOT_SERVING, new Reconstruct calls UNAVAILABLE, queued jobs
-  // cancelled, running ones given `grace` to finish and then cancelled; then the calls still
-  // open get a second to deliver their outcome and the server stops.
+  // cancelled, running ones given `grace` to finish and then cancelled, their ends written to
+  // the store's directory; then the calls still open get a second to deliver their outcome
+  // and the server stops.
   void Shutdown(absl::Duration grace);
 
   // Blocks until Shutdown has stopped the gRPC server.
@@ -57,7 +60,10 @@ class MembraneServer {
   ServerMetrics metrics_;
   // Before the store: jobs hold parts of it until they are destroyed.
   UploadMemory upload_memory_;
-  InMemoryJobStore store_;
+  // Before the workers and handlers, whose jobs tell it when they end. In memory, or also on
+  // disk (disk_store_) with options.store_dir.
+  std::unique_ptr<JobStore> store_;
+  DiskJobStore* disk_store_ = nullptr;
   MemoryBudget memory_;
   JobRunner runner_;
   JobScheduler scheduler_;

@@ -163,11 +163,14 @@ grpc::Status ReconstructionService::Reconstruct(
   }
   const uint64_t upload_bytes = upload.size();
   ServerMetrics& metrics = metrics_;
+  JobStore& store = store_;
+  const std::string id = NewJobId();
   auto job = std::make_shared<Job>(
-      NewJobId(), context->peer(), parameters, std::move(upload), std::move(hold),
-      [&metrics](v1::JobState state, const absl::Status& status, absl::Duration age,
-                 uint64_t mesh_bytes) {
+      id, context->peer(), parameters, std::move(upload), std::move(hold),
+      [&metrics, &store, id](v1::JobState state, const absl::Status& status, absl::Duration age,
+                             uint64_t mesh_bytes) {
         metrics.JobFinished(state, status.code(), absl::ToDoubleSeconds(age), mesh_bytes);
+        store.Finished(id);
       });
   if (absl::Status s = scheduler_.Submit(job); !s.ok()) {
     LogEvent("job_refused", {{"peer", context->peer()}, {"message", std::string(s.message())}});

@@ -29,4 +29,11 @@ google::rpc::Status ToRpcStatus(const absl::Status& status) {
   return out;
 }
 
+absl::Status FromRpcStatus(const google::rpc::Status& status) {
+  const int code = status.code();
+  const absl::StatusCode absl_code = code >= 0 && code <= 16 ? static_cast<absl::StatusCode>(code)
+                                                             : absl::StatusCode::kUnknown;
+  return absl::Status(absl_code, status.message());
+}
+
 }  // namespace membrane::server

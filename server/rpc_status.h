@@ -21,6 +21,10 @@ grpc::Status ToGrpcStatusWithRetry(const absl::Status& status, absl::Duration re
 // `status` as a google.rpc.Status message (for JobDone and Job.error).
 google::rpc::Status ToRpcStatus(const absl::Status& status);
 
+// The absl::Status of a google.rpc.Status (code and message; codes outside absl's become
+// Unknown).
+absl::Status FromRpcStatus(const google::rpc::Status& status);
+
 }  // namespace membrane::server
 
 #endif  // MEMBRANE_SERVER_RPC_STATUS_H_

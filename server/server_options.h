@@ -24,6 +24,9 @@ struct ServerOptions {
   std::string replica;
   // HOST:PORT serving Prometheus metrics over HTTP (/metrics); empty = none.
   std::string metrics_listen;
+  // A directory where jobs and results are also written (DiskJobStore), so that they survive
+  // a restart; empty = in memory only.
+  std::string store_dir;
   int max_calls = 1000;                     // calls served at once, of any kind; 0 = no limit
   int64_t max_upload_bytes = 512 << 20;     // Draco bytes of one upload
   int64_t max_points = 50'000'000;          // points of one decoded cloud

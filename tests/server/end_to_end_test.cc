@@ -298,6 +298,57 @@ TEST_F(EndToEndTest, MetricsEndpointCountsAJob) {
   EXPECT_EQ(HttpGet(port, "/nothing-here"), "");
 }
 
+// membraned --store-dir killed outright (no shutdown at all): once restarted on the same
+// directory it serves the finished job's mesh again, and says of the job it was running that
+// it must be submitted again.
+TEST_F(EndToEndTest, StoreDirKeepsResultsAcrossACrash) {
+  const std::string store = "--store-dir=" + dir_.File("jobs");
+  StartServer({store});
+  const std::string cloud = Synth("sphere", 20000);
+  const CliResult done = Run({"reconstruct", cloud, "-o", dir_.File("m.ply"), "--server",
+                              address_, "-q"});
+  ASSERT_EQ(done.exit_code, 0) << done.err;
+  const CliResult list = Run({"jobs", "list", "--server", address_});
+  const std::string finished = list.out.substr(0, list.out.find(' '));
+  auto slow = RunInBackground({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("s.ply"),
+                               "--server", address_, "--voxel-size", "0.008", "-q"},
+                              "slow");
+  // The slow job is the second to start.
+  std::string log;
+  for (int i = 0; i < 200; ++i) {
+    log = ReadText(log_);
+    const size_t first = log.find("event=job_started");
+    if (first != std::string::npos &&
+        log.find("event=job_started", first + 1) != std::string::npos)
+      break;
+    absl::SleepFor(absl::Milliseconds(100));
+  }
+  server_->Signal(SIGKILL);
+  server_->Wait(10);
+  slow->Wait(30);
+  std::string running;
+  const std::regex accepted("event=job_accepted job=([0-9a-f]+)");
+  for (auto it = std::sregex_iterator(log.begin(), log.end(), accepted);
+       it != std::sregex_iterator(); ++it) {
+    if ((*it)[1].str() != finished) running = (*it)[1].str();
+  }
+  ASSERT_FALSE(running.empty()) << log;
+
+  // A log of its own: the first one already says server_started.
+  MembranedProcess restarted = StartMembraned(dir_, "restarted", {store});
+  ASSERT_FALSE(restarted.address.empty());
+  address_ = restarted.address;
+  EXPECT_NE(ReadText(restarted.log).find("event=store_loaded"), std::string::npos);
+  const CliResult watch = Run({"jobs", "watch", finished, "-o", dir_.File("again.ply"),
+                               "--server", address_, "-q"});
+  EXPECT_EQ(watch.exit_code, 0) << watch.err;
+  EXPECT_TRUE(ReadText(dir_.File("again.ply")) == ReadText(dir_.File("m.ply")))
+      << "the stored mesh differs";
+  const CliResult get = Run({"jobs", "get", running, "--server", address_});
+  EXPECT_NE(get.out.find("state: FAILED"), std::string::npos) << get.out;
+  EXPECT_NE(get.out.find("submit it again"), std::string::npos) << get.out;
+}
+
 TEST_F(EndToEndTest, TimeoutCancelsTheJobOnTheServer) {
   StartServer();
   const CliResult r = Run({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("m.ply"),

@@ -19,6 +19,7 @@
 #include "server/job_runner.h"
 #include "tests/server/http_get.h"
 #include "tests/server/service_fixture.h"
+#include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
 namespace {
@@ -264,6 +265,24 @@ TEST_F(ServiceTest, NamedReplicaPrefixesItsJobIdsAndNamesTheOwnerOfOthers) {
   EXPECT_EQ(other.status.error_message(),
             "no job 'membraned-0.0123456789abcdef' here: it belongs to replica 'membraned-0', and "
             "this is 'membraned-1' (the balancer must route on the membrane-replica header)");
+}
+
+// With --store-dir, a result outlives the server: a new server on the same directory serves
+// the job again, mesh and all.
+TEST_F(ServiceTest, StoredResultsOutliveTheServer) {
+  ScratchDir dir;
+  options_.store_dir = dir.File("jobs");
+  StartServer();
+  const CallResult r = Reconstruct(DracoCloud("sphere", 3000), {});
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  server_->Shutdown(absl::ZeroDuration());
+  server_.reset();
+  StartServer();
+  const CallResult again = Watch(r.JobId());
+  ASSERT_TRUE(again.status.ok()) << again.status.error_message();
+  EXPECT_EQ(again.FinalState(), v1::SUCCEEDED);
+  EXPECT_TRUE(again.Mesh() == r.Mesh()) << "the stored mesh differs";
+  EXPECT_EQ(again.Generations().size(), r.Generations().size());
 }
 
 TEST_F(ServiceTest, ResultsExpireAfterTheirTimeToLive) {

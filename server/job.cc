@@ -24,8 +24,9 @@ std::shared_ptr<Job> Job::Restore(const v1::Job& snapshot, std::vector<v1::JobEv
                                   std::string mesh) {
   auto job = std::make_shared<Job>(snapshot.id(), snapshot.peer(), snapshot.parameters(),
                                    std::string());
-  const auto at = [](double unix_seconds) { return absl::FromUnixNanos(
-                                                static_cast<int64_t>(unix_seconds * 1e9)); };
+  const auto at = [](double unix_seconds) {
+    return absl::UnixEpoch() + absl::Seconds(unix_seconds);
+  };
   job->created_at_ = at(snapshot.created_unix_seconds());
   job->upload_bytes_ = snapshot.upload_bytes();
   absl::MutexLock lock(&job->mutex_);

@@ -28,6 +28,10 @@ namespace {
 
 constexpr size_t kChunkBytes = 1 << 20;  // well under gRPC's 4 MB message limit
 constexpr int kMaxAttempts = 5;
+// How long a job's follower keeps trying an unreachable server after its last event.
+constexpr absl::Duration kReattachPatience = absl::Seconds(120);
+// Jobs the server may lose to restarts (ending UNAVAILABLE) before the client gives up.
+constexpr int kMaxSubmissions = 3;
 
 // The cloud as sent: Draco bytes of the positions, and the job's parameters as sent with them
 // (params.parameters with the cloud's origin and, unless one was given, its voxel size).
@@ -137,7 +141,10 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
                             absl::Time deadline, JobEventSink& sink) {
   auto stub = v1::Reconstruction::NewStub(Connect(server));
   Backoff backoff(absl::Milliseconds(200), absl::Seconds(5));
-  for (int attempt = 1;; ++attempt) {
+  // A server that restarts (a pod rescheduled, a crash) is back within a minute or two; one
+  // that stays unreachable longer since the last event is given up on.
+  absl::Time heard = absl::Now();
+  for (;;) {
     grpc::ClientContext context;
     SetDeadline(context, deadline);
     Authorize(context, server);
@@ -146,13 +153,17 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
     request.set_job_id(job_id);
     auto reader = stub->WatchJob(&context, request);
     v1::JobEvent event;
-    while (reader->Read(&event)) sink.Consume(event);
+    while (reader->Read(&event)) {
+      heard = absl::Now();
+      sink.Consume(event);
+    }
     const grpc::Status status = reader->Finish();
     if (sink.done()) return sink.Outcome();
     if (status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED || absl::Now() >= deadline) {
       return absl::DeadlineExceededError(absl::StrCat("timed out following job ", job_id));
     }
-    if (status.error_code() != grpc::StatusCode::UNAVAILABLE || attempt >= kMaxAttempts ||
+    if (status.error_code() != grpc::StatusCode::UNAVAILABLE ||
+        absl::Now() - heard > kReattachPatience ||
         !SleepBefore(backoff.Next(RetryDelayOf(status)), deadline)) {
       return FromGrpcStatus(status, server.address);
     }
@@ -189,18 +200,17 @@ MeshReport MeshReportOf(const v1::MeshSummary& s) {
 
 }  // namespace
 
-absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params,
-                                                      ProgressPrinter& progress) {
-  const absl::Time deadline = absl::Now() + params.timeout;
-  RemoteOutcome outcome;
-  absl::StatusOr<Upload> upload = ReadAndEncode(params, outcome, progress);
-  if (!upload.ok()) return upload.status();
+namespace {
 
-  auto stub = v1::Reconstruction::NewStub(Connect(params.server));
-  JobEventSink sink(progress);
+// Submits `upload` (retrying a busy or unreachable server) and follows its job to the end,
+// re-attaching when the call breaks. OK once `sink` holds the job's end, whatever it is; else
+// why the job could not be followed (DeadlineExceeded at `deadline`).
+absl::Status SubmitAndFollow(v1::Reconstruction::Stub& stub, const RemoteParams& params,
+                             const Upload& upload, absl::Time deadline, JobEventSink& sink,
+                             ProgressPrinter& progress) {
   Backoff backoff(absl::Milliseconds(250), absl::Seconds(8));
   for (int attempt = 1; !sink.accepted(); ++attempt) {
-    const grpc::Status status = ReconstructOnce(*stub, params, *upload, deadline, sink);
+    const grpc::Status status = ReconstructOnce(stub, params, upload, deadline, sink);
     if (sink.accepted() || status.ok()) break;
     if (status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED) return DeadlineStatus(params);
     if (!IsRetryable(status)) return FromGrpcStatus(status, params.server.address);
@@ -222,21 +232,48 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
     if (absl::IsDeadlineExceeded(watched)) return DeadlineStatus(params);
     if (!watched.ok() && !sink.done()) return watched;
   }
-  if (absl::Status s = sink.Outcome(); !s.ok()) return s;
+  return absl::OkStatus();
+}
 
-  const Stopwatch watch;
-  progress.Begin(absl::StrCat("encode: writing ", params.output));
-  if (absl::Status s = WriteReceivedMesh(sink.mesh(), upload->origin, params.output); !s.ok())
-    return s;
-  progress.Finish(absl::StrFormat("encode: %s (%d bytes received as Draco) in %.3f s",
-                                  params.output, sink.mesh().size(), watch.Seconds()));
-  outcome.job_id = sink.job_id();
-  outcome.generations = sink.generations();
-  outcome.statistics_json = sink.statistics_json();
-  outcome.warnings = sink.warnings();
-  outcome.mesh = MeshReportOf(sink.mesh_summary());
-  outcome.mesh_bytes = sink.mesh().size();
-  return outcome;
+}  // namespace
+
+absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params,
+                                                      ProgressPrinter& progress) {
+  const absl::Time deadline = absl::Now() + params.timeout;
+  RemoteOutcome outcome;
+  absl::StatusOr<Upload> upload = ReadAndEncode(params, outcome, progress);
+  if (!upload.ok()) return upload.status();
+
+  auto stub = v1::Reconstruction::NewStub(Connect(params.server));
+  for (int submission = 1;; ++submission) {
+    JobEventSink sink(progress);
+    if (absl::Status s = SubmitAndFollow(*stub, params, *upload, deadline, sink, progress);
+        !s.ok()) {
+      return s;
+    }
+    absl::Status ended = sink.Outcome();
+    // A job ends UNAVAILABLE only when the server lost it, stopping while it was queued or
+    // running (server/README.md, Store): this client still has the cloud, so it sends it again.
+    if (absl::IsUnavailable(ended) && submission < kMaxSubmissions && absl::Now() < deadline) {
+      progress.Finish(absl::StrCat(ended.message(), "; sending the cloud again"));
+      continue;
+    }
+    if (!ended.ok()) return ended;
+
+    const Stopwatch watch;
+    progress.Begin(absl::StrCat("encode: writing ", params.output));
+    if (absl::Status s = WriteReceivedMesh(sink.mesh(), upload->origin, params.output); !s.ok())
+      return s;
+    progress.Finish(absl::StrFormat("encode: %s (%d bytes received as Draco) in %.3f s",
+                                    params.output, sink.mesh().size(), watch.Seconds()));
+    outcome.job_id = sink.job_id();
+    outcome.generations = sink.generations();
+    outcome.statistics_json = sink.statistics_json();
+    outcome.warnings = sink.warnings();
+    outcome.mesh = MeshReportOf(sink.mesh_summary());
+    outcome.mesh_bytes = sink.mesh().size();
+    return outcome;
+  }
 }
 
 }  // namespace membrane::client

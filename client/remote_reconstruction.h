@@ -70,7 +70,9 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
                                                       ProgressPrinter& progress);
 
 // Follows job `job_id` with WatchJob into `sink` until it ends, re-attaching after dropped
-// calls as RunRemoteReconstruction does, within `deadline`.
+// calls as RunRemoteReconstruction does, within `deadline`: an unreachable server is tried
+// again (backing off up to 5 s) for up to 2 minutes after the job's last event, long enough
+// for a restarted server to come back; then Unavailable.
 absl::Status WatchUntilDone(const ServerConnection& server, const std::string& job_id,
                             absl::Time deadline, JobEventSink& sink);
 

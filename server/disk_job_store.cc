@@ -198,7 +198,13 @@ absl::StatusOr<int> DiskJobStore::Load() {
 void DiskJobStore::Add(std::shared_ptr<Job> job) {
   const std::string id = job->id();
   memory_.Add(std::move(job));
-  Enqueue(id);
+  const int64_t ticket = Enqueue(id);
+  // Writes run in the order asked for: once `done_` reaches the ticket, this one is done.
+  absl::MutexLock lock(&mutex_);
+  const auto written = [this, ticket]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) {
+    return done_ >= ticket;
+  };
+  mutex_.Await(absl::Condition(&written));
 }
 
 std::shared_ptr<Job> DiskJobStore::Find(const std::string& id) const { return memory_.Find(id); }
@@ -217,10 +223,10 @@ int DiskJobStore::RemoveFinishedBefore(absl::Time cutoff) {
 
 void DiskJobStore::Finished(const std::string& id) { Enqueue(id); }
 
-void DiskJobStore::Enqueue(const std::string& id) {
+int64_t DiskJobStore::Enqueue(const std::string& id) {
   absl::MutexLock lock(&mutex_);
   pending_.push_back(id);
-  ++asked_;
+  return ++asked_;
 }
 
 void DiskJobStore::Flush() {

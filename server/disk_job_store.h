@@ -5,8 +5,8 @@
 // A job is written when it is added and again when it ends, to DIR/<id>.job (a new file
 // renamed over the old, after fsync): the stream WatchJob sends for it, each message
 // length-delimited: the v1.Job snapshot, the stage and generation events, and once it has
-// ended its ResultHeader, mesh chunks and JobDone. Writes happen on the store's own thread, so
-// that no handler or worker waits for the disk.
+// ended its ResultHeader, mesh chunks and JobDone. Writes happen on the store's own thread;
+// only Add waits for its write (one small file), so that no worker waits for the disk.
 //
 // Uploads are not kept: a job the previous process left queued or running is restored as
 // FAILED (UNAVAILABLE, "submit it again"), which tells its client what happened, where an
@@ -45,6 +45,8 @@ class DiskJobStore : public JobStore {
   // naming the directory when it cannot be created or listed. Call once, before Add.
   absl::StatusOr<int> Load();
 
+  // Returns once the job is written (or its write failed and was logged): a client told that
+  // its job was accepted finds it after a crash.
   void Add(std::shared_ptr<Job> job) override;
   std::shared_ptr<Job> Find(const std::string& id) const override;
   std::vector<std::shared_ptr<Job>> List() const override;
@@ -57,7 +59,8 @@ class DiskJobStore : public JobStore {
   void Flush();
 
  private:
-  void Enqueue(const std::string& id);
+  // Asks the writer for the job's current state; returns the write's ticket (asked_).
+  int64_t Enqueue(const std::string& id);
   void WriterLoop();
   absl::Status Write(const Job& job) const;
   std::string PathOf(const std::string& id) const;

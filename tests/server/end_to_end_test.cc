@@ -349,6 +349,29 @@ TEST_F(EndToEndTest, StoreDirKeepsResultsAcrossACrash) {
   EXPECT_NE(get.out.find("submit it again"), std::string::npos) << get.out;
 }
 
+// A client whose job the server lost (killed and restarted on the same address and store
+// while the job ran) learns it from the restored job's UNAVAILABLE end, sends its cloud again,
+// and gets its mesh.
+TEST_F(EndToEndTest, ClientSendsItsCloudAgainWhenTheServerLostTheJob) {
+  const std::string store = "--store-dir=" + dir_.File("jobs");
+  StartServer({store});
+  const std::string cloud = Synth("sphere", 20000);
+  auto client = RunInBackground({"reconstruct", cloud, "-o", dir_.File("m.ply"), "--server",
+                                 address_, "--voxel-size", "0.012", "--timeout", "120"},
+                                "client");
+  // Logged once the job is on disk, before the client hears it was accepted.
+  ASSERT_NE(WaitForText(log_, "event=job_accepted", 20).find("job_accepted"), std::string::npos);
+  server_->Signal(SIGKILL);
+  server_->Wait(10);
+  MembranedProcess restarted =
+      StartMembraned(dir_, "restarted", {store, "--listen=" + address_});
+  ASSERT_EQ(restarted.address, address_);
+  EXPECT_EQ(client->Wait(120), 0) << ReadText(dir_.File("client.err"));
+  const std::string err = ReadText(dir_.File("client.err"));
+  EXPECT_NE(err.find("submit it again; sending the cloud again"), std::string::npos) << err;
+  EXPECT_EQ(Run({"check", dir_.File("m.ply")}).exit_code, 0);
+}
+
 TEST_F(EndToEndTest, TimeoutCancelsTheJobOnTheServer) {
   StartServer();
   const CliResult r = Run({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("m.ply"),

@@ -141,10 +141,12 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
                             absl::Time deadline, JobEventSink& sink) {
   auto stub = v1::Reconstruction::NewStub(Connect(server));
   Backoff backoff(absl::Milliseconds(200), absl::Seconds(5));
-  // A server that restarts (a pod rescheduled, a crash) is back within a minute or two; one
-  // that stays unreachable longer since the last event is given up on.
-  absl::Time heard = absl::Now();
-  for (;;) {
+  // A server that restarts (a pod rescheduled, a crash) is back within a minute or two: one
+  // heard from (this job's events, or its acceptance) is tried that long after its last event.
+  // One never heard from (a wrong address) is given up on after a few attempts.
+  bool heard = sink.accepted();
+  absl::Time last_heard = absl::Now();
+  for (int attempt = 1;; ++attempt) {
     grpc::ClientContext context;
     SetDeadline(context, deadline);
     Authorize(context, server);
@@ -154,7 +156,8 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
     auto reader = stub->WatchJob(&context, request);
     v1::JobEvent event;
     while (reader->Read(&event)) {
-      heard = absl::Now();
+      heard = true;
+      last_heard = absl::Now();
       sink.Consume(event);
     }
     const grpc::Status status = reader->Finish();
@@ -162,8 +165,9 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
     if (status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED || absl::Now() >= deadline) {
       return absl::DeadlineExceededError(absl::StrCat("timed out following job ", job_id));
     }
-    if (status.error_code() != grpc::StatusCode::UNAVAILABLE ||
-        absl::Now() - heard > kReattachPatience ||
+    const bool patient =
+        heard ? absl::Now() - last_heard <= kReattachPatience : attempt < kMaxAttempts;
+    if (status.error_code() != grpc::StatusCode::UNAVAILABLE || !patient ||
         !SleepBefore(backoff.Next(RetryDelayOf(status)), deadline)) {
       return FromGrpcStatus(status, server.address);
     }

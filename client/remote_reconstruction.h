@@ -71,8 +71,9 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
 
 // Follows job `job_id` with WatchJob into `sink` until it ends, re-attaching after dropped
 // calls as RunRemoteReconstruction does, within `deadline`: an unreachable server is tried
-// again (backing off up to 5 s) for up to 2 minutes after the job's last event, long enough
-// for a restarted server to come back; then Unavailable.
+// again (backing off up to 5 s) for up to 2 minutes after the job's last event (or its
+// acceptance, when `sink` holds it), long enough for a restarted server to come back, and 5
+// times when it was never heard from; then Unavailable.
 absl::Status WatchUntilDone(const ServerConnection& server, const std::string& job_id,
                             absl::Time deadline, JobEventSink& sink);
 

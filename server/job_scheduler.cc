@@ -84,7 +84,9 @@ void JobScheduler::Shutdown(absl::Duration grace) {
 
 int JobScheduler::queued() const {
   absl::MutexLock lock(&mutex_);
-  return static_cast<int>(queue_.size());
+  // A job cancelled while queued stays in queue_ until a worker or the next Submit drops it.
+  const auto waiting = [](const std::shared_ptr<Job>& job) { return !job->done(); };
+  return static_cast<int>(std::count_if(queue_.begin(), queue_.end(), waiting));
 }
 
 int JobScheduler::running() const {

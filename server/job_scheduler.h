@@ -39,6 +39,7 @@ class JobScheduler {
   // running ones finish for up to `grace`, then cancels them and joins the workers.
   void Shutdown(absl::Duration grace) ABSL_LOCKS_EXCLUDED(mutex_);
 
+  // Jobs waiting for a worker (not those cancelled while waiting), and jobs on a worker.
   int queued() const ABSL_LOCKS_EXCLUDED(mutex_);
   int running() const ABSL_LOCKS_EXCLUDED(mutex_);
 

@@ -198,13 +198,7 @@ absl::StatusOr<int> DiskJobStore::Load() {
 void DiskJobStore::Add(std::shared_ptr<Job> job) {
   const std::string id = job->id();
   memory_.Add(std::move(job));
-  const int64_t ticket = Enqueue(id);
-  // Writes run in the order asked for: once `done_` reaches the ticket, this one is done.
-  absl::MutexLock lock(&mutex_);
-  const auto written = [this, ticket]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) {
-    return done_ >= ticket;
-  };
-  mutex_.Await(absl::Condition(&written));
+  WaitFor(Enqueue(id));
 }
 
 std::shared_ptr<Job> DiskJobStore::Find(const std::string& id) const { return memory_.Find(id); }
@@ -212,13 +206,9 @@ std::shared_ptr<Job> DiskJobStore::Find(const std::string& id) const { return me
 std::vector<std::shared_ptr<Job>> DiskJobStore::List() const { return memory_.List(); }
 
 int DiskJobStore::RemoveFinishedBefore(absl::Time cutoff) {
-  std::vector<std::string> expired;
-  for (const std::shared_ptr<Job>& job : memory_.List()) {
-    if (job->done() && job->finished_at() < cutoff) expired.push_back(job->id());
-  }
-  const int removed = memory_.RemoveFinishedBefore(cutoff);
-  for (const std::string& id : expired) unlink(PathOf(id).c_str());
-  return removed;
+  const std::vector<std::shared_ptr<Job>> expired = memory_.TakeFinishedBefore(cutoff);
+  for (const std::shared_ptr<Job>& job : expired) unlink(PathOf(job->id()).c_str());
+  return static_cast<int>(expired.size());
 }
 
 void DiskJobStore::Finished(const std::string& id) { Enqueue(id); }
@@ -230,10 +220,19 @@ int64_t DiskJobStore::Enqueue(const std::string& id) {
 }
 
 void DiskJobStore::Flush() {
+  int64_t last = 0;
+  {
+    absl::MutexLock lock(&mutex_);
+    last = asked_;
+  }
+  WaitFor(last);
+}
+
+void DiskJobStore::WaitFor(int64_t ticket) {
+  // Writes run in the order asked for: once `done_` reaches the ticket, that one is done.
   absl::MutexLock lock(&mutex_);
-  const int64_t target = asked_;
-  const auto written = [this, target]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) {
-    return done_ >= target;
+  const auto written = [this, ticket]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) {
+    return done_ >= ticket;
   };
   mutex_.Await(absl::Condition(&written));
 }

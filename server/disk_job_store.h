@@ -61,6 +61,8 @@ class DiskJobStore : public JobStore {
  private:
   // Asks the writer for the job's current state; returns the write's ticket (asked_).
   int64_t Enqueue(const std::string& id);
+  // Returns once the write with `ticket` (and every one before it) is done.
+  void WaitFor(int64_t ticket);
   void WriterLoop();
   absl::Status Write(const Job& job) const;
   std::string PathOf(const std::string& id) const;

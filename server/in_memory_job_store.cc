@@ -1,6 +1,7 @@
 #include "server/in_memory_job_store.h"
 
 #include <algorithm>
+#include <iterator>
 #include <utility>
 
 namespace membrane::server {
@@ -25,12 +26,19 @@ std::vector<std::shared_ptr<Job>> InMemoryJobStore::List() const {
 }
 
 int InMemoryJobStore::RemoveFinishedBefore(absl::Time cutoff) {
+  return static_cast<int>(TakeFinishedBefore(cutoff).size());
+}
+
+std::vector<std::shared_ptr<Job>> InMemoryJobStore::TakeFinishedBefore(absl::Time cutoff) {
   absl::MutexLock lock(&mutex_);
   const auto expired = [cutoff](const std::shared_ptr<Job>& job) {
     return job->done() && job->finished_at() < cutoff;
   };
-  const auto first = std::remove_if(jobs_.begin(), jobs_.end(), expired);
-  const int removed = static_cast<int>(jobs_.end() - first);
+  // Kept in order at the front; the expired ones end at the back, moved out.
+  const auto first = std::stable_partition(
+      jobs_.begin(), jobs_.end(), [&](const std::shared_ptr<Job>& job) { return !expired(job); });
+  std::vector<std::shared_ptr<Job>> removed(std::make_move_iterator(first),
+                                            std::make_move_iterator(jobs_.end()));
   jobs_.erase(first, jobs_.end());
   return removed;
 }

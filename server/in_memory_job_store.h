@@ -18,6 +18,9 @@ class InMemoryJobStore : public JobStore {
   std::shared_ptr<Job> Find(const std::string& id) const override ABSL_LOCKS_EXCLUDED(mutex_);
   std::vector<std::shared_ptr<Job>> List() const override ABSL_LOCKS_EXCLUDED(mutex_);
   int RemoveFinishedBefore(absl::Time cutoff) override ABSL_LOCKS_EXCLUDED(mutex_);
+  // RemoveFinishedBefore, returning the jobs removed (for a store that also drops their files).
+  std::vector<std::shared_ptr<Job>> TakeFinishedBefore(absl::Time cutoff)
+      ABSL_LOCKS_EXCLUDED(mutex_);
 
  private:
   mutable absl::Mutex mutex_;

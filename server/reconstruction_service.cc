@@ -22,16 +22,23 @@ grpc::Status InvalidArgument(const std::string& message) {
   return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, message);
 }
 
+// NOT_FOUND for a call that reached this replica with what another one holds: `asked` says
+// what that was, and the message names both replicas, for whoever configures the balancer.
+grpc::Status WrongReplica(absl::string_view asked, const std::string& this_replica) {
+  return grpc::Status(
+      grpc::StatusCode::NOT_FOUND,
+      absl::StrCat(asked, ", and this is ",
+                   this_replica.empty() ? "an unnamed replica" : "'" + this_replica + "'",
+                   " (the balancer must route on the ", kReplicaHeader, " header)"));
+}
+
 // Names the replica the id belongs to when it is another one: a balancer that does not route
 // on the replica header sends re-attach calls to any replica.
 grpc::Status JobNotFound(const std::string& id, const std::string& this_replica) {
   const absl::string_view owner = ReplicaOfJobId(id);
   if (!owner.empty() && owner != this_replica) {
-    return grpc::Status(
-        grpc::StatusCode::NOT_FOUND,
-        absl::StrCat("no job '", id, "' here: it belongs to replica '", owner, "', and this is ",
-                     this_replica.empty() ? "an unnamed replica" : "'" + this_replica + "'",
-                     " (the balancer must route on the ", kReplicaHeader, " header)"));
+    return WrongReplica(absl::StrCat("no job '", id, "' here: it belongs to replica '", owner, "'"),
+                        this_replica);
   }
   return grpc::Status(grpc::StatusCode::NOT_FOUND,
                       absl::StrCat("no job '", id, "' (unknown, or its result expired)"));
@@ -244,12 +251,8 @@ grpc::Status ReconstructionService::ListJobs(grpc::ServerContext* context,
   if (asked != context->client_metadata().end()) {
     const std::string name(asked->second.data(), asked->second.size());
     if (name != options_.replica) {
-      return grpc::Status(
-          grpc::StatusCode::NOT_FOUND,
-          absl::StrCat("the jobs of replica '", name, "' were asked for, and this is ",
-                       options_.replica.empty() ? "an unnamed replica"
-                                                : "'" + options_.replica + "'",
-                       " (the balancer must route on the ", kReplicaHeader, " header)"));
+      return WrongReplica(absl::StrCat("the jobs of replica '", name, "' were asked for"),
+                          options_.replica);
     }
   }
   store_.RemoveFinishedBefore(absl::Now() - absl::Seconds(options_.result_ttl_seconds));

@@ -1,28 +1,57 @@
 #!/usr/bin/env bash
-# Installs the Debian packages membrane needs to build, test and benchmark. Idempotent: only
-# missing packages are installed. Works as root and, for other users, through sudo.
+# Installs the Debian packages membrane needs, by set:
+#   build      compile membrane, membraned and membrane-decode (the container's build stage)
+#   test       the test suites of deploy/run-tests.sh, sanitizer and fuzzer builds included
+#   bench      the benchmarks of tests/bench
+#   container  deploy/test-container.sh: podman on runc, and debootstrap for its base image
+# Usage: deploy/install-deps.sh [SET...]; no SET means every set. Idempotent: only missing
+# packages are installed. Works as root and, for other users, through sudo.
 set -euo pipefail
 
-PACKAGES=(
-  cmake ninja-build g++ pkg-config
+BUILD=(
+  cmake ninja-build g++
+  ccache                     # the image build keeps its cache between builds (deploy/Dockerfile)
   libabsl-dev
   libgrpc++-dev libgrpc-dev protobuf-compiler protobuf-compiler-grpc libprotobuf-dev
   libdraco-dev
   libcli11-dev
   prometheus-cpp-dev         # membraned --metrics-listen
-  libgtest-dev libgmock-dev libbenchmark-dev
+)
+TEST=(
+  libgtest-dev libgmock-dev
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer job
-  python3-open3d             # the peer measured beside us in tests/bench
   openssl                    # the TLS test makes its own self-signed certificate
   nginx-light                # the balancer test runs deploy/nginx/nginx.conf
+  python3-yaml python3-kubernetes  # the manifest test (tests/deploy): YAML, the API schema
 )
+BENCH=(
+  libbenchmark-dev
+  python3-open3d             # the peer measured beside us in tests/bench
+)
+CONTAINER=(
+  podman runc                # runc: crun cannot set this machine's rlimits (test-container.sh)
+  debootstrap                # the base image is made locally: no registry is reachable
+)
+
+sets=("$@")
+[ ${#sets[@]} -gt 0 ] || sets=(build test bench container)
+PACKAGES=()
+for s in "${sets[@]}"; do
+  case "$s" in
+    build) PACKAGES+=("${BUILD[@]}") ;;
+    test) PACKAGES+=("${TEST[@]}") ;;
+    bench) PACKAGES+=("${BENCH[@]}") ;;
+    container) PACKAGES+=("${CONTAINER[@]}") ;;
+    *) echo "install-deps: unknown set '$s' (build, test, bench, container)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  echo "install-deps: all ${#PACKAGES[@]} packages of ${sets[*]} present"
   exit 0
 fi
 

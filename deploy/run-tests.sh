@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs every test: the Release suite, then the engine,
-# synth, io, mesh, pipeline and in-process server suites again under AddressSanitizer and
+# Installs what is missing, builds, and runs every test: the Release suite, then the container
+# image built with podman and run (deploy/test-container.sh), the engine, synth, io, mesh,
+# pipeline and in-process server suites again under AddressSanitizer and
 # UndefinedBehaviorSanitizer, the thread tests of the mesh suite under ThreadSanitizer, then
 # the libFuzzer smoke of the readers (clang).
 set -euo pipefail
@@ -17,6 +18,10 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$JOBS"
 ctest --test-dir build --output-on-failure -j "$JOBS" --timeout 900
 phase_done "Release build and suite"
+
+echo "== Container image: built with podman, run read-only, restarted (deploy/test-container.sh)"
+deploy/test-container.sh build
+phase_done "Container image build and run"
 
 echo "== ASan/UBSan build: engine, synth, io, mesh, pipeline and server (in process) suites"
 # -O1 -g1 (line tables): sanitizer reports keep file:line at a lower build cost than -O2 -g

@@ -157,8 +157,10 @@ logged runtime pod "${build[@]}" --target runtime -t localhost/membrane-runtime:
 step_done "runtime stage's packages"
 logged build pod "${build[@]}" --target build -t localhost/membrane-build:cache .
 logged image pod "${build[@]}" -t "$image" .
-hits="$(sed -n 's/^ *Hits: *\([0-9]* \/ *[0-9]*\).*/\1/p' "$work/build.log" | tail -n 1)"
-step_done "image $image built (${hits:+compiler cache hits: $hits}${hits:-every layer cached: nothing compiled})"
+hits="$(grep -o 'Hits: *[0-9]* */ *[0-9]*' "$work/build.log" | head -n 1 | tr -s ' ' |
+        sed 's/^Hits: //' || true)"
+[ -n "$hits" ] && compiled="compiler cache hits: $hits" || compiled="every layer cached"
+step_done "image $image built ($compiled)"
 
 user="$(pod image inspect --format '{{.Config.User}}' "$image")"
 case "$user" in

@@ -16,10 +16,11 @@
 #
 # Cache: podman keeps its images in a storage of this test's own, under
 # $MEMBRANE_CONTAINER_CACHE (default /var/cache/membrane-container, outside any clone): the base
-# image (tagged by a key of how it is made), and the image's dependency layers (podman's layer
-# cache, keyed by the base and deploy/install-deps.sh). The compiler cache of the image build
-# is a build cache mount of podman's (deploy/Dockerfile). Removing the directory makes the
-# next run cold.
+# image (tagged by a key of how it is made) and the Dockerfile's stages, tagged so that the
+# next run finds their layers (the packages' layer is keyed by the base and
+# deploy/install-deps.sh alone). The compiler cache of the image build is a build cache mount
+# of podman's (deploy/Dockerfile). Removing the directory makes the next run cold: measured on
+# a loaded 2-core machine, debootstrap 6 min, packages 3 min, compiling 10 min of CPU.
 #
 # Skips (exit 0, one line saying why) only where no container can run: not Linux, not root
 # (debootstrap and this rootful podman need root: run it with sudo), or a kernel that

@@ -1,4 +1,5 @@
-// `membrane reconstruct --local`: a file in, the shared pipeline in process, a file out.
+// `membrane reconstruct --local`: the shared pipeline in process, with a file in, the
+// --memory-limit gate and a file out as its adapters.
 #ifndef MEMBRANE_CLIENT_LOCAL_RECONSTRUCTION_H_
 #define MEMBRANE_CLIENT_LOCAL_RECONSTRUCTION_H_
 
@@ -9,7 +10,7 @@
 #include "client/progress_printer.h"
 #include "core/engine/cancel_token.h"
 #include "core/io/draco_codec.h"
-#include "core/pipeline/reconstruction_pipeline.h"
+#include "core/pipeline/reconstruction_options.h"
 #include "core/pipeline/reconstruction_report.h"
 
 namespace membrane::client {
@@ -24,7 +25,7 @@ struct ReconstructionParams {
   int64_t memory_limit_bytes = 0;
 };
 
-// Reads params.input, reconstructs its surface (ReconstructCloud) and writes it to
+// Reads params.input, reconstructs its surface (RunReconstruction) and writes it to
 // params.output, reporting each stage (and each plate generation) to `progress`. Returns the
 // measurements; the output file is written even when the mesh check finds the surface not
 // closed or not manifold (the caller decides what that means).
@@ -38,11 +39,6 @@ struct ReconstructionParams {
 absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const ReconstructionParams& params,
                                                             const CancelToken& cancel,
                                                             ProgressPrinter& progress);
-
-// `status` of ReconstructCloud with the context a command-line user needs: the flags to
-// change for a grid over the budget, the input file for a degenerate cloud. Other statuses
-// unchanged.
-absl::Status WithCommandLineContext(const absl::Status& status, const std::string& input);
 
 }  // namespace membrane::client
 

@@ -9,26 +9,19 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/io/decode_subprocess.h"
-#include "core/io/draco_codec.h"
-#include "core/pipeline/memory_estimate.h"
-#include "core/pipeline/peak_memory.h"
+#include "core/pipeline/draco_mesh_sink.h"
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/stats_json.h"
 #include "core/pipeline/stopwatch.h"
+#include "core/pipeline/thread_limits.h"
 #include "server/job_event_observer.h"
+#include "server/memory_budget_gate.h"
 #include "server/parameter_checks.h"
 #include "server/server_log.h"
+#include "server/upload_source.h"
 
 namespace membrane::server {
 namespace {
-
-// A grid over the budget: the message says which job fields change it.
-absl::Status WithParameterHint(const absl::Status& status) {
-  if (status.code() != absl::StatusCode::kResourceExhausted) return status;
-  return absl::ResourceExhaustedError(
-      absl::StrCat(status.message(), "; use a larger voxel_size (the server's voxel budget caps "
-                                     "voxel_budget)"));
-}
 
 v1::MeshSummary MeshSummaryOf(const MeshReport& m) {
   v1::MeshSummary summary;
@@ -53,7 +46,6 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   if (!job->Start()) return;  // cancelled while queued
   LogEvent("job_started", {{"job", job->id()}, {"peer", job->peer()}});
   const Stopwatch total;
-  JobEventObserver observer(*job, &metrics_);
   const auto fail = [&](const absl::Status& status) {
     absl::Status final_status = status;
     if (status.code() == absl::StatusCode::kCancelled && !job->cancel_reason().empty()) {
@@ -70,69 +62,37 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   absl::StatusOr<JobSettings> settings =
       CheckParameters(job->parameters(), options_.voxel_budget);
   if (!settings.ok()) return fail(settings.status());
+  settings->reconstruction.threads = threads;
 
-  ReconstructionReport decode_report;
-  const Stopwatch decode_watch;
-  observer.StageStarted(PipelineStage::kDecode, decode_report);
   DecodeLimits limits;
   limits.helper = {options_.decoder_path};
   limits.timeout_seconds = options_.decoder_timeout_seconds;
   limits.memory_bytes = options_.decoder_memory_bytes;
   limits.max_points = options_.max_points;
   limits.subject = "the upload";
-  absl::StatusOr<PointCloud> cloud =
-      DecodeInSubprocess(job->TakeUpload(), limits, job->cancel_token());
-  job->ReleaseUploadHold();  // the upload is gone with the decoder's input
-  if (!cloud.ok()) return fail(cloud.status());
-  cloud->origin = settings->origin;
-  decode_report.points = static_cast<int64_t>(cloud->points.size());
-  decode_report.seconds.decode = decode_watch.Seconds();
-  observer.StageFinished(PipelineStage::kDecode, decode_report.seconds.decode, decode_report);
-
-  absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, settings->reconstruction.voxelize);
-  if (!plan.ok()) return fail(plan.status());
-  settings->reconstruction.voxelize.voxel_size = plan->voxel_size;
-  // Held until the job ends; the surface's share is added once the membrane is known.
-  MemoryBudget::Share memory(memory_);
-  if (absl::Status s = memory.Add(plan->bytes, job->cancel_token()); !s.ok()) return fail(s);
-  // Its refusal is the job's status as it is: the voxel-budget hint below is not about it.
-  absl::Status admission;
-  settings->reconstruction.admit_surface = [&](const MembraneCounts& membrane) {
-    admission = memory.Add(SurfaceBytesEstimate(membrane), job->cancel_token());
-    if (absl::IsResourceExhausted(admission)) {
-      admission = absl::ResourceExhaustedError(absl::StrCat(
-          "the surface of a membrane of ", membrane.membrane_voxels(),
-          " voxels (a noisy cloud makes a foam of one): ", admission.message()));
-    }
-    return admission;
-  };
-
-  // The Draco encoding of the result runs beside the mesh check.
-  std::string mesh;
-  const MeshDelivery encode = [&](const TriangleMesh& m, const PositionGrid& grid) {
-    absl::StatusOr<DracoEncoding> encoded =
-        EncodeDracoMesh(m, DracoOptionsOnGrid(grid, settings->mesh_encoding.compression_level));
-    if (!encoded.ok()) return encoded.status();
-    mesh = std::move(encoded->bytes);
-    return absl::OkStatus();
-  };
-  settings->reconstruction.threads = threads;
-  absl::StatusOr<ReconstructionResult> result = ReconstructCloud(
-      *cloud, settings->reconstruction, job->cancel_token(), observer, encode);
-  if (!result.ok()) return fail(admission.ok() ? WithParameterHint(result.status()) : admission);
-  ReconstructionReport& report = result->report;
-  report.seconds.decode = decode_report.seconds.decode;
-  report.seconds.total = total.Seconds();
-  report.peak_rss_bytes = PeakRssBytes();
+  UploadSource source(*job, std::move(limits), settings->origin);
+  // Held until the job ends.
+  MemoryBudgetGate gate(memory_);
+  DracoMeshSink sink(settings->mesh_encoding.compression_level);
+  JobEventObserver observer(*job, &metrics_);
+  // A grid over the budget: the message says which job fields change it.
+  ErrorContext errors;
+  errors.resource_exhausted_advice =
+      "; use a larger voxel_size (the server's voxel budget caps voxel_budget)";
+  absl::StatusOr<ReconstructionReport> report =
+      RunReconstruction(settings->reconstruction, {source, gate, sink, observer}, errors,
+                        job->cancel_token());
+  if (!report.ok()) return fail(report.status());
+  std::string mesh = sink.TakeBytes();
   const size_t mesh_bytes = mesh.size();
-  job->Succeed(StatsJson(report), MeshSummaryOf(report.mesh), std::move(mesh));
+  job->Succeed(StatsJson(*report), MeshSummaryOf(report->mesh), std::move(mesh));
   LogEvent("job_finished", {{"job", job->id()},
                             {"outcome", "OK"},
-                            {"points", absl::StrCat(report.points)},
+                            {"points", absl::StrCat(report->points)},
                             {"upload_bytes", absl::StrCat(job->upload_bytes())},
                             {"mesh_bytes", absl::StrCat(mesh_bytes)},
-                            {"faces", absl::StrCat(report.mesh.faces)},
-                            {"seconds", absl::StrFormat("%.3f", report.seconds.total)}});
+                            {"faces", absl::StrCat(report->mesh.faces)},
+                            {"seconds", absl::StrFormat("%.3f", report->seconds.total)}});
 }
 
 }  // namespace membrane::server

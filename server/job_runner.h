@@ -1,6 +1,7 @@
-// What a worker does with one job: decode the upload in a subprocess, reserve memory,
-// reconstruct with the shared pipeline (core/pipeline), encode the mesh with Draco, and end
-// the job with its statistics and mesh or its status.
+// What a worker does with one job: run the shared pipeline (core/pipeline) with the job's
+// adapters (its upload decoded in a subprocess, its share of the memory budget, a Draco
+// encoding of the mesh, its event stream), and end the job with its statistics and mesh or
+// its status.
 #ifndef MEMBRANE_SERVER_JOB_RUNNER_H_
 #define MEMBRANE_SERVER_JOB_RUNNER_H_
 

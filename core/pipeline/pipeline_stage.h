@@ -4,8 +4,8 @@
 
 namespace membrane {
 
-// kDecode and kEncode belong to the caller (a file reader, an upload decoder, a mesh writer);
-// ReconstructCloud runs the five stages between them.
+// RunReconstruction runs them all; kDecode and kEncode are the work of its adapters (a file
+// reader or an upload decoder, a mesh writer or encoder: cloud_source.h, mesh_sink.h).
 enum class PipelineStage { kDecode, kVoxelize, kShrink, kRelax, kSurface, kCheck, kEncode };
 
 // The stage's name as in the statistics JSON's "seconds" object: "decode", "voxelize", ...

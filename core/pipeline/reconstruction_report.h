@@ -18,13 +18,13 @@ namespace membrane {
 
 // Wall-clock seconds per stage. `total` spans all stages, the statistics writing excepted.
 struct StageSeconds {
-  double decode = 0;  // reading and parsing the input (the caller's stage)
+  double decode = 0;  // reading and parsing the input (the run's CloudSource)
   double voxelize = 0;
   double shrink = 0;  // all generations and the section 7 post-process
   double relax = 0;   // 0 with --no-relax
   double surface = 0;
   double check = 0;   // CheckMesh of the surface
-  double encode = 0;  // encoding and writing the output (the caller's stage)
+  double encode = 0;  // encoding and writing the output (the run's MeshSink), beside the check
   double total = 0;
 };
 

@@ -6,6 +6,7 @@
 
 #include "core/engine/point_density.h"
 #include "core/engine/voxelization.h"
+#include "core/pipeline/in_memory_ends.h"
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/scatter_warning.h"
 #include "core/synth/synthesize.h"
@@ -25,11 +26,14 @@ ReconstructionReport Reconstruct(const PointCloud& cloud, double voxel_size) {
   ReconstructionOptions options;
   options.voxelize.voxel_size = voxel_size;
   options.surface = SurfaceKind::kCuberille;
+  InMemoryCloudSource source(cloud);
+  NoResourceLimit gate;
+  InMemoryMeshSink sink;
   NullReconstructionObserver observer;
-  absl::StatusOr<ReconstructionResult> r =
-      ReconstructCloud(cloud, options, CancelToken(), observer);
+  absl::StatusOr<ReconstructionReport> r =
+      RunReconstruction(options, {source, gate, sink, observer}, ErrorContext{}, CancelToken());
   EXPECT_TRUE(r.ok()) << r.status();
-  return r.ok() ? r->report : ReconstructionReport{};
+  return r.value_or(ReconstructionReport{});
 }
 
 TEST(ScatterWarning, CleanScanGetsNone) {

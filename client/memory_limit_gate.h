@@ -1,0 +1,36 @@
+// `membrane reconstruct --local --memory-limit`: a run refused before it allocates more than
+// the limit by the core's estimates (core/pipeline/memory_estimate.h), instead of being ended
+// by the kernel's OOM killer.
+#ifndef MEMBRANE_CLIENT_MEMORY_LIMIT_GATE_H_
+#define MEMBRANE_CLIENT_MEMORY_LIMIT_GATE_H_
+
+#include <cstdint>
+
+#include "core/pipeline/resource_gate.h"
+
+namespace membrane::client {
+
+class MemoryLimitGate : public ResourceGate {
+ public:
+  // `limit_bytes` <= 0: no limit.
+  explicit MemoryLimitGate(int64_t limit_bytes) : limit_(limit_bytes) {}
+
+  // ResourceExhausted "the grid of V voxels and the P points need about B, over the memory
+  // limit of L (--memory-limit, ...); use a larger --voxel-size" when the grid's bytes are
+  // over the limit. Never waits.
+  absl::Status AdmitGrid(const PlannedGrid& grid, int64_t points,
+                         const CancelToken& cancel) override;
+
+  // ResourceExhausted "the membrane (N voxels) needs about B for its surface and the grid,
+  // over the memory limit ...; noise makes a foam of a membrane: ..." when the grid's and the
+  // surface's bytes together are over the limit. Never waits.
+  absl::Status AdmitSurface(const MembraneCounts& membrane, const CancelToken& cancel) override;
+
+ private:
+  int64_t limit_;
+  int64_t grid_bytes_ = 0;  // admitted by AdmitGrid
+};
+
+}  // namespace membrane::client
+
+#endif  // MEMBRANE_CLIENT_MEMORY_LIMIT_GATE_H_

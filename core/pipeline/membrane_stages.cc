@@ -1,0 +1,75 @@
+#include "core/pipeline/membrane_stages.h"
+
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "core/engine/plate_schedule.h"
+#include "core/engine/point_density.h"
+#include "core/mesh/relaxation.h"
+#include "core/pipeline/scatter_warning.h"
+#include "core/pipeline/stopwatch.h"
+
+namespace membrane {
+
+absl::StatusOr<Voxelization> VoxelizeStage(const VoxelizeOptions& voxelize,
+                                           const PointCloud& cloud, const CancelToken& cancel,
+                                           ReconstructionReport& report,
+                                           ReconstructionObserver& observer) {
+  const Stopwatch watch;
+  observer.StageStarted(PipelineStage::kVoxelize, report);
+  absl::StatusOr<Voxelization> v = Voxelize(cloud.points, voxelize);
+  if (!v.ok()) return v.status();
+  report.voxel_size = v->grid.voxel_size();
+  report.grid = v->grid.dims();
+  report.data_grid = v->data_dims;
+  report.hard_voxels = v->hard_voxels;
+  report.density_ratio = v->density_ratio;
+  const PointDensity density{v->voxels_with_one_point, v->voxels_with_more_points};
+  if (std::optional<std::string> w =
+          ScatterWarning(cloud.points, v->bounds, report.voxel_size, density, cancel)) {
+    report.warnings.push_back(*std::move(w));
+  }
+  report.seconds.voxelize = watch.Seconds();
+  observer.StageFinished(PipelineStage::kVoxelize, report.seconds.voxelize, report);
+  return v;
+}
+
+absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken& cancel,
+                         VoxelGrid& grid, ReconstructionReport& report,
+                         ReconstructionObserver& observer) {
+  const Stopwatch watch;
+  // The shrinker computes the same schedule; asking for it here gives observers the "3/9"
+  // of a generation without a hook in the engine.
+  report.planned_generations = static_cast<int>(
+      PlateSizes(report.data_grid, options.shrink.schedule, options.shrink.initial_plate).size());
+  observer.StageStarted(PipelineStage::kShrink, report);
+  const int planned = report.planned_generations;
+  const GenerationCallback on_generation = [&observer, planned](const GenerationStats& g) {
+    observer.GenerationFinished(g, planned);
+  };
+  absl::StatusOr<ShrinkResult> result =
+      ShrinkMembrane(grid, options.shrink, on_generation, &cancel);
+  if (!result.ok()) return result.status();
+  report.generations = std::move(result->generations);
+  report.post_process = result->post_process;
+  report.handle_retry = result->handle_retry;
+  report.seconds.shrink = watch.Seconds();
+  observer.StageFinished(PipelineStage::kShrink, report.seconds.shrink, report);
+  return absl::OkStatus();
+}
+
+absl::Status RelaxStage(const CancelToken& cancel, VoxelGrid& grid, ReconstructionReport& report,
+                        ReconstructionObserver& observer) {
+  const Stopwatch watch;
+  observer.StageStarted(PipelineStage::kRelax, report);
+  absl::StatusOr<RelaxationStats> stats = Relax(grid, [&cancel] { return cancel.cancelled(); });
+  if (!stats.ok()) return stats.status();
+  report.relaxed = true;
+  report.relaxation = *stats;
+  report.seconds.relax = watch.Seconds();
+  observer.StageFinished(PipelineStage::kRelax, report.seconds.relax, report);
+  return absl::OkStatus();
+}
+
+}  // namespace membrane

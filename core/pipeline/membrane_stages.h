@@ -1,0 +1,42 @@
+// The pipeline's stages that make the membrane (paper sections 2-5): voxelize the cloud,
+// shrink the membrane, relax it. Each tells the observer when it starts and ends and records
+// its measurements and wall seconds in the report. Only RunReconstruction calls them, on the
+// reconstructing thread, in this order.
+#ifndef MEMBRANE_CORE_PIPELINE_MEMBRANE_STAGES_H_
+#define MEMBRANE_CORE_PIPELINE_MEMBRANE_STAGES_H_
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "core/engine/cancel_token.h"
+#include "core/engine/voxel_grid.h"
+#include "core/engine/voxelization.h"
+#include "core/geometry/point_cloud.h"
+#include "core/pipeline/reconstruction_observer.h"
+#include "core/pipeline/reconstruction_options.h"
+#include "core/pipeline/reconstruction_report.h"
+
+namespace membrane {
+
+// The voxel grid of `cloud` (Voxelize with `voxelize`), its sizes, density and any scatter
+// warning in `report`. Voxelize's errors: InvalidArgument for a degenerate cloud,
+// ResourceExhausted for a grid over the voxel budget.
+absl::StatusOr<Voxelization> VoxelizeStage(const VoxelizeOptions& voxelize,
+                                           const PointCloud& cloud, const CancelToken& cancel,
+                                           ReconstructionReport& report,
+                                           ReconstructionObserver& observer);
+
+// Shrinks the membrane of `grid` (ShrinkMembrane with options.shrink), each plate generation
+// told to the observer; the generations, post-process and handle retry in `report`.
+// Cancelled within milliseconds of `cancel` firing.
+absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken& cancel,
+                         VoxelGrid& grid, ReconstructionReport& report,
+                         ReconstructionObserver& observer);
+
+// Relaxes the final membrane of `grid` (paper section 5); its counts in `report`. Cancelled
+// within milliseconds of `cancel` firing.
+absl::Status RelaxStage(const CancelToken& cancel, VoxelGrid& grid, ReconstructionReport& report,
+                        ReconstructionObserver& observer);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_PIPELINE_MEMBRANE_STAGES_H_

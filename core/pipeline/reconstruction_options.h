@@ -1,0 +1,29 @@
+// What a reconstruction computes: the options of its stages.
+#ifndef MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_OPTIONS_H_
+#define MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_OPTIONS_H_
+
+#include "core/engine/membrane_shrinker.h"
+#include "core/engine/voxelization.h"
+#include "core/pipeline/surface_builder.h"
+#include "core/pipeline/thread_limits.h"
+
+namespace membrane {
+
+struct ReconstructionOptions {
+  // voxel_size 0: formula (1)'s, which the pipeline computes once when it plans the grid.
+  VoxelizeOptions voxelize;
+  ShrinkOptions shrink;
+  bool relax = true;
+  SurfaceKind surface = SurfaceKind::kSmooth;
+  // The grid the mesh sink quantizes positions to (Draco position bits, 0..30; 0: float32 as
+  // they are). The surface is built on that grid and checked there, so the report describes
+  // the positions delivered, not positions the encoding then moves.
+  int output_quantization_bits = 0;
+  // Threads of the smooth surface's fit and of the mesh check, 1..kMaxReconstructionThreads;
+  // the other stages use the calling thread. The mesh is the same for any value.
+  int threads = 1;
+};
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_OPTIONS_H_

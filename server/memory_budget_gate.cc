@@ -1,0 +1,23 @@
+#include "server/memory_budget_gate.h"
+
+#include "absl/strings/str_cat.h"
+
+namespace membrane::server {
+
+absl::Status MemoryBudgetGate::AdmitGrid(const PlannedGrid& grid, int64_t /*points*/,
+                                         const CancelToken& cancel) {
+  return share_.Add(grid.bytes, cancel);
+}
+
+absl::Status MemoryBudgetGate::AdmitSurface(const MembraneCounts& membrane,
+                                            const CancelToken& cancel) {
+  absl::Status admission = share_.Add(SurfaceBytesEstimate(membrane), cancel);
+  if (!absl::IsResourceExhausted(admission)) return admission;
+  return absl::ResourceExhaustedError(absl::StrCat("the surface of a membrane of ",
+                                                   membrane.membrane_voxels(),
+                                                   " voxels (a noisy cloud makes a foam of "
+                                                   "one): ",
+                                                   admission.message()));
+}
+
+}  // namespace membrane::server

@@ -1,0 +1,32 @@
+// A job's share of the server's memory budget (memory_budget.h), reserved as the pipeline
+// asks: the grid's estimate before it is allocated, the surface's once the membrane is known.
+#ifndef MEMBRANE_SERVER_MEMORY_BUDGET_GATE_H_
+#define MEMBRANE_SERVER_MEMORY_BUDGET_GATE_H_
+
+#include "core/pipeline/resource_gate.h"
+#include "server/memory_budget.h"
+
+namespace membrane::server {
+
+class MemoryBudgetGate : public ResourceGate {
+ public:
+  // `budget` (not owned) must outlive the gate. The share is held until the gate is
+  // destroyed: keep it until the job has ended.
+  explicit MemoryBudgetGate(MemoryBudget& budget) : share_(budget) {}
+
+  // Adds the grid's bytes to the share (MemoryBudget::Share::Add: waits while other jobs hold
+  // the memory; its ResourceExhausted and Cancelled as they are).
+  absl::Status AdmitGrid(const PlannedGrid& grid, int64_t points,
+                         const CancelToken& cancel) override;
+
+  // Adds the surface's bytes to the share; a ResourceExhausted then begins "the surface of a
+  // membrane of N voxels (a noisy cloud makes a foam of one): ".
+  absl::Status AdmitSurface(const MembraneCounts& membrane, const CancelToken& cancel) override;
+
+ private:
+  MemoryBudget::Share share_;
+};
+
+}  // namespace membrane::server
+
+#endif  // MEMBRANE_SERVER_MEMORY_BUDGET_GATE_H_

@@ -4,7 +4,9 @@
 // mesh (Chamfer, p95, Hausdorff as % of its bounding-box diagonal, F-score at 1%); Open3D
 // Poisson (depth 9) on the same cloud, measured the same way. See README.md.
 //
-// Core APIs only (no client/, no core/pipeline/). Exit status 1 when a stage fails.
+// Every run is core/pipeline's RunReconstruction, the driver `membrane reconstruct` and
+// membraned run, with a cloud in memory and a Draco encoding in memory as its ends. Exit
+// status 1 when a run fails.
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,17 +27,14 @@
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
-#include "core/engine/membrane_shrinker.h"
-#include "core/engine/voxel_topology.h"
-#include "core/engine/voxelization.h"
 #include "core/io/draco_codec.h"
 #include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
-#include "core/mesh/cuberille.h"
 #include "core/mesh/mesh_check.h"
-#include "core/mesh/output_grid.h"
-#include "core/mesh/relaxation.h"
-#include "core/mesh/smooth_surface.h"
+#include "core/pipeline/draco_mesh_sink.h"
+#include "core/pipeline/in_memory_ends.h"
+#include "core/pipeline/membrane_counts.h"
+#include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/thread_limits.h"
 #include "tests/bench/bench_util.h"
 #include "tests/bench/open3d_mesh_peer.h"
@@ -47,6 +46,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The default .drc output of `membrane reconstruct`: surfaces are built on its grid, and what
+// is measured and checked is the decoded file.
+constexpr int kFileBits = 11;
+constexpr int kFileCompressionLevel = 7;
+
 struct BenchOptions {
   bool quick = false;
   std::vector<std::string> models;  // substrings of cloud names; empty = all
@@ -54,7 +58,7 @@ struct BenchOptions {
   bool open3d = true;
   bool open3d_variable = false;  // also run Open3D on the *-variable clouds
   int64_t samples = 100'000;
-  int threads = 1;  // of the smooth surface's fit
+  int threads = 1;  // ReconstructionOptions::threads: the smooth surface's fit and the check
   Open3dPeer peer;
 };
 
@@ -72,8 +76,8 @@ constexpr char kUsage[] =
     "  --python PATH      interpreter with open3d (default /usr/bin/python3)\n"
     "  --open3d-threads N threads for Open3D (default 1, like the one-core membrane)\n"
     "  --open3d-timeout S stop Open3D after S seconds per cloud (default 0: never)\n"
-    "  --threads N        threads of the smooth surface's fit, 1..256 (default 1; the mesh is\n"
-    "                     the same for any N)\n";
+    "  --threads N        threads of the smooth surface's fit and the mesh check, 1..256\n"
+    "                     (default 1; the mesh is the same for any N)\n";
 
 std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
   BenchOptions o;
@@ -156,23 +160,31 @@ struct Row {
   MeshReport check;
   bool same_topology = false;
   double voxelize_s = 0, shrink_s = 0, relax_s = 0, surface_s = 0, encode_s = 0;
+  double total_s = 0;  // the pipeline's whole run (report.seconds.total)
   int64_t draco_bytes = 0;
   double open3d_s = 0;  // Open3D: wall seconds of normals + orientation + Poisson
   bool distances_ok = false;
   SurfaceDistances dist;
 
   bool AfterShrinkFaster() const { return relax_s + surface_s + encode_s < shrink_s; }
-  double Total() const { return voxelize_s + shrink_s + relax_s + surface_s + encode_s; }
 };
 
 const char* YesNo(bool b) { return b ? "yes" : "no"; }
 
-// Same number of shells and the same multiset of genera.
-bool SameTopology(const MeshReport& r, const VoxelTopology& t) {
-  std::vector<int> a = r.genus, b = t.genus;
+// Same number of shells and the same multiset of genera. The statistics' membrane is counted
+// before relaxation, which keeps its topology (only simple voxels move).
+bool SameTopology(const MeshReport& r, const MembraneCounts& membrane) {
+  std::vector<int> a = r.genus, b = membrane.genus;
   std::sort(a.begin(), a.end());
   std::sort(b.begin(), b.end());
-  return r.shells == t.shells && a == b;
+  return r.shells == membrane.shells && a == b;
+}
+
+// The grid the mesh was built and encoded on: "11-bit grid", or float32 when on the file's
+// grid the check found crossing or flattened faces.
+std::string GridText(const QuantizationReport& q) {
+  if (q.bits > 0) return absl::StrCat(q.bits, "-bit grid");
+  return absl::StrCat("float32 (the ", q.requested_bits, "-bit grid crossed faces)");
 }
 
 std::string Num(bool ok, double v) { return ok ? absl::StrFormat("%.3f", v) : std::string("-"); }
@@ -196,7 +208,7 @@ void PrintRow(const Row& r) {
               r.cloud.c_str(), r.kind.c_str(), static_cast<long long>(r.faces),
               YesNo(r.check.closed), YesNo(r.check.manifold), r.check.shells,
               GenusText(r.check.genus).c_str(), r.same_topology ? "yes" : "NO", r.voxelize_s,
-              r.shrink_s, r.relax_s, r.surface_s, r.encode_s, r.Total(),
+              r.shrink_s, r.relax_s, r.surface_s, r.encode_s, r.total_s,
               YesNo(r.AfterShrinkFaster()), Num(d, r.dist.chamfer).c_str(),
               Num(d, r.dist.p95).c_str(), Num(d, r.dist.hausdorff).c_str(),
               Num(d, r.dist.fscore).c_str());
@@ -269,88 +281,71 @@ std::vector<Row> RunCloud(const BenchOptions& o, const fs::path& file, bool run_
               static_cast<long long>(ref_check.faces), YesNo(ref_check.closed), ref_check.shells,
               static_cast<long long>(ref_check.boundary_edges));
 
-  double t = Now();
-  absl::StatusOr<Voxelization> vox = Voxelize(cloud->points, VoxelizeOptions{});  // formula (1)
-  const double voxelize_s = Now() - t;
-  if (!vox.ok()) return fail("voxelize", vox.status());
-  VoxelGrid& grid = vox->grid;
-  t = Now();
-  absl::StatusOr<ShrinkResult> shrink = ShrinkMembrane(grid, ShrinkOptions{}, {}, nullptr);
-  const double shrink_s = Now() - t;
-  if (!shrink.ok()) return fail("shrink", shrink.status());
-  t = Now();
-  absl::StatusOr<RelaxationStats> relax = Relax(grid, nullptr);
-  const double relax_s = Now() - t;
-  if (!relax.ok()) return fail("relax", relax.status());
-  const VoxelTopology topo = ComputeVoxelTopology(grid);
-  std::printf("points %lld, grid %dx%dx%d with padding, voxel %.5g; relaxation +%lld -%lld "
-              "voxels; membrane after relaxation: %d shell(s), genus %s\n",
-              static_cast<long long>(cloud->points.size()), grid.dim(0), grid.dim(1),
-              grid.dim(2), grid.voxel_size(), static_cast<long long>(relax->phase1_moves),
-              static_cast<long long>(relax->phase2_moves), topo.shells,
-              GenusText(topo.genus).c_str());
-
-  // The default .drc output's grid: surfaces are built on it, and what is measured and
-  // checked is the decoded file.
-  const PositionGrid file_grid = OutputGrid(grid, 11);
+  const auto row_failed = [&](Row& r, const std::string& error) {
+    r.error = error;
+    std::printf("ERROR %s\n", r.error.c_str());
+    rows.push_back(r);
+    failed = true;
+  };
+  // Each surface is a whole run of the pipeline users run (`membrane reconstruct --local` to
+  // a .drc file), from this cloud in memory to a Draco encoding in memory.
+  bool described = false;
   for (const std::string kind : {"smooth", "cuberille"}) {
     Row r;
     r.cloud = name;
     r.kind = kind;
-    r.voxelize_s = voxelize_s;
-    r.shrink_s = shrink_s;
-    r.relax_s = relax_s;
-    t = Now();
-    TriangleMesh mesh;
-    if (kind == "smooth") {
-      SmoothSurfaceOptions smooth;
-      smooth.fit_options.output_grid = file_grid;
-      smooth.fit_options.threads = o.threads;
-      absl::StatusOr<TriangleMesh> m = SmoothSurface(grid, cloud->points, smooth);
-      r.surface_s = Now() - t;
-      if (!m.ok()) {
-        r.error = absl::StrCat("smooth surface: ", m.status().ToString());
-        std::printf("ERROR %s\n", r.error.c_str());
-        rows.push_back(r);
-        failed = true;
-        continue;
-      }
-      mesh = std::move(*m);
-    } else {
-      mesh = Cuberille(grid);
-      for (Point3f& p : mesh.vertices) p = file_grid.Snap(p);
-      r.surface_s = Now() - t;
+    ReconstructionOptions options;  // formula (1), default shrink, relaxation on
+    options.surface = kind == "smooth" ? SurfaceKind::kSmooth : SurfaceKind::kCuberille;
+    options.output_quantization_bits = kFileBits;
+    options.threads = o.threads;
+    InMemoryCloudSource source(*cloud);
+    NoResourceLimit gate;
+    DracoMeshSink sink(kFileCompressionLevel);
+    NullReconstructionObserver observer;
+    absl::StatusOr<ReconstructionReport> report = RunReconstruction(
+        options, {source, gate, sink, observer}, ErrorContext{}, CancelToken());
+    if (!report.ok()) {
+      row_failed(r, absl::StrCat("reconstruction: ", report.status().ToString()));
+      continue;
     }
-    t = Now();
-    absl::StatusOr<DracoEncoding> enc = EncodeDracoMesh(mesh, DracoOptionsOnGrid(file_grid, 7));
-    r.encode_s = Now() - t;
-    if (enc.ok()) {
-      absl::StatusOr<TriangleMesh> decoded = DecodeDracoMesh(enc->bytes);
-      if (decoded.ok()) mesh = *std::move(decoded);
+    const ReconstructionReport& rep = *report;
+    if (!described) {
+      described = true;
+      std::printf("points %lld, grid %dx%dx%d with padding, voxel %.5g; relaxation +%lld -%lld "
+                  "voxels; membrane: %d shell(s), genus %s\n",
+                  static_cast<long long>(rep.points), rep.grid[0], rep.grid[1], rep.grid[2],
+                  rep.voxel_size, static_cast<long long>(rep.relaxation.phase1_moves),
+                  static_cast<long long>(rep.relaxation.phase2_moves), rep.membrane.shells,
+                  GenusText(rep.membrane.genus).c_str());
     }
-    r.check = CheckMesh(mesh);
+    r.voxelize_s = rep.seconds.voxelize;
+    r.shrink_s = rep.seconds.shrink;
+    r.relax_s = rep.seconds.relax;
+    r.surface_s = rep.seconds.surface;
+    r.encode_s = rep.seconds.encode;
+    r.total_s = rep.seconds.total;
+    const std::string file = sink.TakeBytes();
+    r.draco_bytes = static_cast<int64_t>(file.size());
+    absl::StatusOr<TriangleMesh> mesh = DecodeDracoMesh(file);
+    if (!mesh.ok()) {
+      row_failed(r, absl::StrCat("draco: ", mesh.status().ToString()));
+      continue;
+    }
+    r.ok = true;
+    r.check = CheckMesh(*mesh);
     r.faces = r.check.faces;
-    r.same_topology = SameTopology(r.check, topo);
-    r.ok = enc.ok();
-    if (!enc.ok()) {
-      r.error = absl::StrCat("draco: ", enc.status().ToString());
-      std::printf("ERROR %s\n", r.error.c_str());
-      failed = true;
-    } else {
-      r.draco_bytes = static_cast<int64_t>(enc->bytes.size());
-    }
-    std::printf("  %-9s %lld faces, draco %lld bytes; oriented %s, self-intersections %lld, "
+    r.same_topology = SameTopology(r.check, rep.membrane);
+    std::printf("  %-9s %lld faces, draco %lld bytes, %s; oriented %s, self-intersections %lld, "
                 "positive volume %s, boundary edges %lld, genus %s\n",
                 kind.c_str(), static_cast<long long>(r.faces),
-                static_cast<long long>(r.draco_bytes), YesNo(r.check.oriented),
-                static_cast<long long>(r.check.self_intersections),
+                static_cast<long long>(r.draco_bytes), GridText(rep.quantization).c_str(),
+                YesNo(r.check.oriented), static_cast<long long>(r.check.self_intersections),
                 YesNo(r.check.positive_volume), static_cast<long long>(r.check.boundary_edges),
                 GenusText(r.check.genus).c_str());
-    Measure(o, mesh, *reference, r);
+    Measure(o, *mesh, *reference, r);
     rows.push_back(r);
   }
-  // The membrane is done: free the grid and the points before Open3D runs.
-  *vox = Voxelization{};
+  // The membrane is done: free the points before Open3D runs.
   cloud->points = {};
 
   if (!run_open3d) {
@@ -391,12 +386,15 @@ int Main(int argc, char** argv) {
   std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", std::localtime(&now));
   std::printf("bench_surface%s: %s, %ld online CPUs, load average %s\n", o.quick ? " --quick" : "",
               date, sysconf(_SC_NPROCESSORS_ONLN), LoadAverage().c_str());
-  std::printf("formula-(1) voxel size, default shrink, relaxation on (threshold 13), one "
-              "thread (the smooth surface's fit: %d); surfaces on the 11-bit grid of the .drc output, encode = Draco 11 bits, "
-              "level 7; checks and distances on the decoded file, distances on %lld "
-              "area-uniform samples per mesh, %% of the reference mesh's bounding-box diagonal; "
-              "shared dir %s\n",
-              o.threads, static_cast<long long>(o.samples), o.shared_dir.c_str());
+  std::printf("each surface one run of the reconstruction pipeline: formula-(1) voxel size, "
+              "default shrink, relaxation on (threshold 13), one thread (the smooth surface's "
+              "fit and the mesh check: %d); surfaces on the %d-bit grid of the .drc output, "
+              "encode = Draco on that grid, level %d, beside the check; total = the whole run; "
+              "checks and distances on the decoded file, distances on %lld area-uniform "
+              "samples per mesh, %% of the reference mesh's bounding-box diagonal; shared dir "
+              "%s\n",
+              o.threads, kFileBits, kFileCompressionLevel, static_cast<long long>(o.samples),
+              o.shared_dir.c_str());
 
   const fs::path clouds = fs::path(o.shared_dir) / "data" / "clouds";
   std::error_code ec;
@@ -468,7 +466,7 @@ int Main(int argc, char** argv) {
 
   std::printf("\n== summary (seconds wall, one thread, the smooth fit %d; distances %% of the "
               "reference diagonal; r+s+e< = relax + surface + encode < shrink; =memb? = shells and "
-              "genus of the mesh equal the relaxed membrane's)\n",
+              "genus of the mesh equal the membrane's)\n",
               o.threads);
   PrintHeader();
   for (const Row& r : all) PrintRow(r);

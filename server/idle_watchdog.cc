@@ -1,12 +1,13 @@
 #include "server/idle_watchdog.h"
 
 #include <algorithm>
-
-#include "absl/time/clock.h"
+#include <utility>
 
 namespace membrane::server {
 
-IdleWatchdog::IdleWatchdog(absl::Duration idle_limit) : limit_(idle_limit) {
+IdleWatchdog::IdleWatchdog(absl::Duration idle_limit, const Clock& clock,
+                           std::function<void()> on_cut)
+    : limit_(idle_limit), clock_(clock), on_cut_(std::move(on_cut)) {
   if (limit_ > absl::ZeroDuration()) thread_ = std::thread([this] { Loop(); });
 }
 
@@ -22,7 +23,7 @@ IdleWatchdog::Watch IdleWatchdog::Start(grpc::ServerContext* context) {
   if (limit_ <= absl::ZeroDuration()) return Watch(nullptr, 0);
   absl::MutexLock lock(&mutex_);
   const int64_t id = next_id_++;
-  calls_[id] = Entry{context, absl::Now()};
+  calls_[id] = Entry{context, clock_.Now()};
   return Watch(this, id);
 }
 
@@ -35,7 +36,7 @@ IdleWatchdog::Watch::~Watch() {
 void IdleWatchdog::Watch::Touch() {
   if (owner_ == nullptr) return;
   absl::MutexLock lock(&owner_->mutex_);
-  owner_->calls_[id_].last = absl::Now();
+  owner_->calls_[id_].last = owner_->clock_.Now();
 }
 
 bool IdleWatchdog::Watch::fired() const {
@@ -52,12 +53,13 @@ void IdleWatchdog::Loop() {
   absl::MutexLock lock(&mutex_);
   while (!stopping_) {
     mutex_.AwaitWithTimeout(absl::Condition(&stopping_), period);
-    const absl::Time now = absl::Now();
+    const absl::Time now = clock_.Now();
     for (auto& [id, entry] : calls_) {
       if (entry.fired || now - entry.last <= limit_) continue;
       // Under the lock: the Watch, and so the context, cannot go away meanwhile.
       entry.context->TryCancel();
       entry.fired = true;
+      if (on_cut_) on_cut_();
     }
   }
 }

@@ -1,11 +1,13 @@
 // Ends calls that stop making progress (--stall-seconds): a Reconstruct call whose upload has
-// received nothing that long, or a call whose client has read nothing of an event written to
-// it that long, is cancelled. So a stalled client (alive enough to answer keepalive pings)
-// cannot hold a call thread, or its upload's memory, for ever. One thread watches every call.
+// made no progress that long (what counts as progress is the caller's: bytes, for uploads), or
+// a call whose client has read nothing of an event written to it that long, is cancelled. So
+// a stalled client (alive enough to answer keepalive pings) cannot hold a call thread, or its
+// upload's memory, for ever. One thread watches every call.
 #ifndef MEMBRANE_SERVER_IDLE_WATCHDOG_H_
 #define MEMBRANE_SERVER_IDLE_WATCHDOG_H_
 
 #include <cstdint>
+#include <functional>
 #include <thread>
 
 #include <grpcpp/server_context.h>
@@ -14,13 +16,18 @@
 #include "absl/container/flat_hash_map.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
+#include "server/clock.h"
 
 namespace membrane::server {
 
 class IdleWatchdog {
  public:
-  // `idle_limit` <= 0: watches nothing (Watch objects are inert).
-  explicit IdleWatchdog(absl::Duration idle_limit);
+  // `idle_limit` <= 0: watches nothing (Watch objects are inert). Idle time is read on
+  // `clock` (not owned; it must outlive the watchdog), which is looked at every quarter of the
+  // limit (at most every second); `on_cut` (may be empty) runs, on the watchdog's thread, for
+  // each call it cancels.
+  IdleWatchdog(absl::Duration idle_limit, const Clock& clock,
+               std::function<void()> on_cut = nullptr);
   // Stops the watching thread; every Watch must be gone by then.
   ~IdleWatchdog();
   IdleWatchdog(const IdleWatchdog&) = delete;
@@ -59,6 +66,8 @@ class IdleWatchdog {
   void Loop();
 
   const absl::Duration limit_;
+  const Clock& clock_;
+  const std::function<void()> on_cut_;
   mutable absl::Mutex mutex_;
   int64_t next_id_ ABSL_GUARDED_BY(mutex_) = 0;
   absl::flat_hash_map<int64_t, Entry> calls_ ABSL_GUARDED_BY(mutex_);

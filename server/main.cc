@@ -56,7 +56,7 @@ ABSL_FLAG(int64_t, upload_memory_bytes, -1,
           "budget; -1 = 1/8 of this machine's memory or of its container's limit; 0 = no limit");
 ABSL_FLAG(double, stall_seconds, 300,
           "a call that makes no progress for this long is cancelled: its upload receives "
-          "nothing, or its client reads none of the events written to it; 0 = never");
+          "under 16 KiB, or its client reads none of the events written to it; 0 = never");
 ABSL_FLAG(double, result_ttl_seconds, 3600, "how long finished jobs and results are kept");
 ABSL_FLAG(double, grace_seconds, 30, "on SIGTERM, how long running jobs may finish");
 ABSL_FLAG(std::string, on_disconnect, "continue",

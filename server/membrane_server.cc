@@ -35,8 +35,9 @@ std::unique_ptr<JobStore> MakeStore(const std::string& dir) {
 
 }  // namespace
 
-MembraneServer::MembraneServer(ServerOptions options)
+MembraneServer::MembraneServer(ServerOptions options, const Clock* clock)
     : options_(std::move(options)),
+      clock_(clock != nullptr ? *clock : real_clock_),
       upload_memory_(options_.upload_memory_bytes),
       store_(MakeStore(options_.store_dir)),
       memory_(options_.memory_budget_bytes),
@@ -45,7 +46,7 @@ MembraneServer::MembraneServer(ServerOptions options)
                  [this](const std::shared_ptr<Job>& job) {
                    runner_.Run(job, JobThreads(options_, scheduler_.running()));
                  }),
-      service_(options_, *store_, scheduler_, upload_memory_, metrics_) {
+      service_(options_, *store_, scheduler_, upload_memory_, metrics_, clock_) {
   disk_store_ = dynamic_cast<DiskJobStore*>(store_.get());
 }
 
@@ -121,8 +122,9 @@ void MembraneServer::Shutdown(absl::Duration grace) {
   if (shut_down_) return;
   shut_down_ = true;
   LogEvent("server_stopping", {{"grace_seconds", absl::StrCat(absl::ToDoubleSeconds(grace))}});
-  if (server_ != nullptr) server_->GetHealthCheckService()->SetServingStatus(false);
+  // Refusing first: once health says NOT_SERVING, no new job is taken.
   service_.StopAccepting();
+  if (server_ != nullptr) server_->GetHealthCheckService()->SetServingStatus(false);
   scheduler_.Shutdown(grace);
   // The jobs' ends are on disk before the process may exit.
   if (disk_store_ != nullptr) disk_store_->Flush();
@@ -142,6 +144,7 @@ absl::Status MembraneServer::StartMetrics() {
     s.workers = options_.workers;
     s.memory_reserved_bytes = memory_.reserved();
     s.memory_budget_bytes = std::max<int64_t>(options_.memory_budget_bytes, 0);
+    s.memory_waiting_jobs = memory_.waiting();
     s.upload_held_bytes = upload_memory_.held();
     s.upload_memory_bytes = std::max<int64_t>(options_.upload_memory_bytes, 0);
     return s;

@@ -11,6 +11,7 @@
 #include "prometheus/exposer.h"
 
 #include "absl/status/statusor.h"
+#include "server/clock.h"
 #include "server/disk_job_store.h"
 #include "server/in_memory_job_store.h"
 #include "server/job_runner.h"
@@ -25,7 +26,9 @@ namespace membrane::server {
 
 class MembraneServer {
  public:
-  explicit MembraneServer(ServerOptions options);
+  // `clock` (not owned; null: the real clock) times the results' TTL and the stall watchdog,
+  // and must outlive the server.
+  explicit MembraneServer(ServerOptions options, const Clock* clock = nullptr);
   // Shutdown(0) unless it was called.
   ~MembraneServer();
 
@@ -56,6 +59,8 @@ class MembraneServer {
   absl::Status StartMetrics();
 
   const ServerOptions options_;
+  const RealClock real_clock_;
+  const Clock& clock_;
   // Before everything that counts in it: the store's jobs report their end to it.
   ServerMetrics metrics_;
   // Before the store: jobs hold parts of it until they are destroyed.

@@ -12,6 +12,11 @@ int64_t MemoryBudget::reserved() const {
   return reserved_;
 }
 
+int MemoryBudget::waiting() const {
+  absl::MutexLock lock(&mutex_);
+  return waiting_;
+}
+
 int64_t DefaultMemoryBudget(int64_t total_bytes) {
   return total_bytes > 0 ? total_bytes / 4 * 3 : 0;
 }
@@ -45,6 +50,7 @@ absl::Status MemoryBudget::Share::Add(int64_t bytes, const CancelToken& cancel) 
     return b.reserved_ + bytes <= b.total_ || stuck();
   };
   if (holder) ++b.waiting_holders_;
+  ++b.waiting_;
   absl::Status status = absl::OkStatus();
   while (!b.mutex_.AwaitWithTimeout(absl::Condition(&ready), absl::Milliseconds(50))) {
     if (cancel.cancelled()) {
@@ -59,6 +65,7 @@ absl::Status MemoryBudget::Share::Add(int64_t bytes, const CancelToken& cancel) 
         bytes, b.reserved_, b.total_));
   }
   if (holder) --b.waiting_holders_;
+  --b.waiting_;
   if (!status.ok()) return status;
   b.reserved_ += bytes;
   if (!holder) ++b.holders_;

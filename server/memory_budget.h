@@ -43,6 +43,8 @@ class MemoryBudget {
 
   // The bytes reserved by all shares now (for the metrics).
   int64_t reserved() const ABSL_LOCKS_EXCLUDED(mutex_);
+  // The shares waiting in Add now (for the metrics, and for tests to wait on).
+  int waiting() const ABSL_LOCKS_EXCLUDED(mutex_);
 
  private:
   const int64_t total_;
@@ -50,6 +52,7 @@ class MemoryBudget {
   int64_t reserved_ ABSL_GUARDED_BY(mutex_) = 0;
   int holders_ ABSL_GUARDED_BY(mutex_) = 0;          // shares holding bytes
   int waiting_holders_ ABSL_GUARDED_BY(mutex_) = 0;  // of those, the ones waiting in Add
+  int waiting_ ABSL_GUARDED_BY(mutex_) = 0;          // shares waiting in Add, holders or not
 };
 
 // The budget membraned takes when --memory-budget-bytes is not given: 3/4 of `total_bytes`

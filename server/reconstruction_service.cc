@@ -6,7 +6,6 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "absl/time/clock.h"
 #include "proto/crc32c.h"
 #include "proto/job_routing.h"
 #include "server/bearer_token.h"
@@ -53,7 +52,7 @@ std::string ReconstructionService::NewJobId() {
 
 std::shared_ptr<Job> ReconstructionService::FindJob(const std::string& id) {
   // Expiry is lazy: every lookup first drops the results past their time.
-  store_.RemoveFinishedBefore(absl::Now() - absl::Seconds(options_.result_ttl_seconds));
+  store_.RemoveFinishedBefore(clock_.Now() - absl::Seconds(options_.result_ttl_seconds));
   return store_.Find(id);
 }
 
@@ -72,9 +71,9 @@ grpc::Status ReconstructionService::ReadUpload(
   IdleWatchdog::Watch watch = stall_watchdog_.Start(context);
   auto idle = [&] {
     return grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED,
-                        absl::StrFormat("nothing of the upload arrived for %g s "
+                        absl::StrFormat("the upload made no progress (%d bytes) for %g s "
                                         "(--stall-seconds): call cancelled",
-                                        options_.stall_seconds));
+                                        kStallProgressBytes, options_.stall_seconds));
   };
   v1::ReconstructRequest request;
   if (!stream->Read(&request) || !request.has_header()) {
@@ -112,10 +111,17 @@ grpc::Status ReconstructionService::ReadUpload(
   // announces much and sends a byte holds little.
   const uint64_t first = std::min<uint64_t>(header.upload_bytes(), 4 << 20);
   uint32_t crc = 0;
+  uint64_t since_progress = 0;  // bytes since the watchdog was last told of progress
   v1::ReconstructRequest chunk;
   while (stream->Read(&chunk)) {
-    watch.Touch();
     if (!chunk.has_chunk()) return InvalidArgument("UploadHeader sent twice");
+    // What was still to come when this chunk arrived (upload.size() never passes the header's).
+    const uint64_t to_come = header.upload_bytes() - upload.size();
+    since_progress += chunk.chunk().size();
+    if (since_progress > 0 && since_progress >= std::min(kStallProgressBytes, to_come)) {
+      watch.Touch();
+      since_progress = 0;
+    }
     if (upload.size() + chunk.chunk().size() > header.upload_bytes()) {
       return InvalidArgument(absl::StrFormat("the upload is longer than the %d bytes announced",
                                              header.upload_bytes()));
@@ -255,7 +261,7 @@ grpc::Status ReconstructionService::ListJobs(grpc::ServerContext* context,
                           options_.replica);
     }
   }
-  store_.RemoveFinishedBefore(absl::Now() - absl::Seconds(options_.result_ttl_seconds));
+  store_.RemoveFinishedBefore(clock_.Now() - absl::Seconds(options_.result_ttl_seconds));
   for (const std::shared_ptr<Job>& job : store_.List()) *response->add_jobs() = job->Snapshot();
   return grpc::Status::OK;
 }

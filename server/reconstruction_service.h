@@ -4,6 +4,7 @@
 #define MEMBRANE_SERVER_RECONSTRUCTION_SERVICE_H_
 
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "absl/synchronization/mutex.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
 #include "server/job_scheduler.h"
+#include "server/clock.h"
 #include "server/job_store.h"
 #include "server/idle_watchdog.h"
 #include "server/server_metrics.h"
@@ -20,18 +22,24 @@
 
 namespace membrane::server {
 
+// The upload bytes that count as progress against --stall-seconds (ReadUpload): a client
+// sending less than this in that long (under 55 bytes a second with the default 300 s) is cut.
+inline constexpr uint64_t kStallProgressBytes = 16 << 10;
+
 class ReconstructionService final : public v1::Reconstruction::Service {
  public:
-  // `options`, `store`, `scheduler`, `upload_memory` and `metrics` (not owned) must outlive
-  // the service.
+  // `options`, `store`, `scheduler`, `upload_memory`, `metrics` and `clock` (not owned) must
+  // outlive the service. `clock` times the results' TTL and the stalls.
   ReconstructionService(const ServerOptions& options, JobStore& store, JobScheduler& scheduler,
-                        UploadMemory& upload_memory, ServerMetrics& metrics)
+                        UploadMemory& upload_memory, ServerMetrics& metrics, const Clock& clock)
       : options_(options),
         store_(store),
         scheduler_(scheduler),
         upload_memory_(upload_memory),
         metrics_(metrics),
-        stall_watchdog_(absl::Seconds(options.stall_seconds)) {}
+        clock_(clock),
+        stall_watchdog_(absl::Seconds(options.stall_seconds), clock,
+                        [&metrics] { metrics.CallStalled(); }) {}
 
   // From now on Reconstruct answers UNAVAILABLE (graceful shutdown); other calls still work,
   // so that clients can fetch their results.
@@ -53,8 +61,9 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   // Reads the header and the chunks of an upload; checks parameters, size and checksum. The
   // buffer's bytes are held in the memory for uploads (`hold`) as it grows: RESOURCE_EXHAUSTED
   // at the header when the upload can never fit, with a retry delay when it does not fit now.
-  // The call is cancelled when nothing arrives for options_.stall_seconds (DEADLINE_EXCEEDED,
-  // for the log).
+  // The call is cancelled when its upload makes no progress for options_.stall_seconds
+  // (DEADLINE_EXCEEDED, for the log). Progress is bytes: kStallProgressBytes, or the rest of
+  // the upload, since the last progress; empty chunks, or a byte now and then, are none.
   grpc::Status ReadUpload(grpc::ServerContext* context,
                           grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
                           v1::Parameters& parameters, std::string& upload,
@@ -79,6 +88,7 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   JobScheduler& scheduler_;
   UploadMemory& upload_memory_;
   ServerMetrics& metrics_;
+  const Clock& clock_;
   // Ends calls stalled for options_.stall_seconds: an upload receiving nothing, or a write of
   // an event that the client does not read (flow control holds the write).
   IdleWatchdog stall_watchdog_;

@@ -60,7 +60,12 @@ ServerMetrics::ServerMetrics()
                       .Name("membrane_mesh_bytes_total")
                       .Help("Draco bytes of the meshes made")
                       .Register(*registry_)
-                      .Add({})) {
+                      .Add({})),
+      stalled_(prometheus::BuildCounter()
+                   .Name("membrane_calls_stalled_total")
+                   .Help("Calls cancelled for making no progress for --stall-seconds")
+                   .Register(*registry_)
+                   .Add({})) {
   auto& stages = prometheus::BuildHistogram()
                      .Name("membrane_stage_seconds")
                      .Help("Seconds of one stage of one job")
@@ -92,6 +97,8 @@ void ServerMetrics::JobFinished(v1::JobState state, absl::StatusCode code, doubl
   mesh_bytes_.Increment(static_cast<double>(mesh_bytes));
 }
 
+void ServerMetrics::CallStalled() { stalled_.Increment(); }
+
 void ServerMetrics::StageFinished(PipelineStage stage, double seconds) {
   stage_seconds_[static_cast<size_t>(stage)]->Observe(seconds);
 }
@@ -107,6 +114,8 @@ std::vector<prometheus::MetricFamily> ServerStateCollector::Collect() const {
             static_cast<double>(s.memory_reserved_bytes)),
       Gauge("membrane_memory_budget_bytes", "The running jobs' budget; 0: no limit",
             static_cast<double>(s.memory_budget_bytes)),
+      Gauge("membrane_memory_waiting_jobs", "Running jobs waiting for memory others hold",
+            s.memory_waiting_jobs),
       Gauge("membrane_upload_held_bytes", "Bytes held by uploads arriving, queued or decoding",
             static_cast<double>(s.upload_held_bytes)),
       Gauge("membrane_upload_memory_bytes", "The uploads' pool; 0: no limit",

@@ -36,6 +36,9 @@ class ServerMetrics {
   // membrane_mesh_bytes_total.
   void JobFinished(v1::JobState state, absl::StatusCode code, double seconds,
                    uint64_t mesh_bytes);
+  // A call cancelled for making no progress for --stall-seconds (IdleWatchdog):
+  // membrane_calls_stalled_total.
+  void CallStalled();
   // membrane_stage_seconds{stage}: one observation per stage a job finished.
   void StageFinished(PipelineStage stage, double seconds);
 
@@ -50,6 +53,7 @@ class ServerMetrics {
   prometheus::Family<prometheus::Counter>& finished_;
   prometheus::Family<prometheus::Histogram>& job_seconds_;
   prometheus::Counter& mesh_bytes_;
+  prometheus::Counter& stalled_;
   std::array<prometheus::Histogram*, 7> stage_seconds_{};  // by PipelineStage
 };
 
@@ -62,6 +66,7 @@ struct ServerState {
   int workers = 0;
   int64_t memory_reserved_bytes = 0;
   int64_t memory_budget_bytes = 0;
+  int memory_waiting_jobs = 0;
   int64_t upload_held_bytes = 0;
   int64_t upload_memory_bytes = 0;
 };

@@ -313,19 +313,22 @@ TEST_F(EndToEndTest, StoreDirKeepsResultsAcrossACrash) {
   auto slow = RunInBackground({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("s.ply"),
                                "--server", address_, "--voxel-size", "0.008", "-q"},
                               "slow");
-  // The slow job is the second to start.
+  // The slow job is the second to start. Bounded generously: on a loaded machine the client
+  // reads and uploads its cloud slowly, and a kill before the job runs tests nothing.
   std::string log;
-  for (int i = 0; i < 200; ++i) {
+  const auto started_twice = [&] {
     log = ReadText(log_);
     const size_t first = log.find("event=job_started");
-    if (first != std::string::npos &&
-        log.find("event=job_started", first + 1) != std::string::npos)
-      break;
-    absl::SleepFor(absl::Milliseconds(100));
-  }
+    return first != std::string::npos &&
+           log.find("event=job_started", first + 1) != std::string::npos;
+  };
+  const absl::Time end = absl::Now() + absl::Seconds(120);
+  while (!started_twice() && absl::Now() < end) absl::SleepFor(absl::Milliseconds(50));
+  ASSERT_TRUE(started_twice()) << log;
   server_->Signal(SIGKILL);
   server_->Wait(10);
-  slow->Wait(30);
+  slow->Signal(SIGKILL);  // its client is not under test: it would retry for a while
+  slow->Wait(10);
   std::string running;
   const std::regex accepted("event=job_accepted job=([0-9a-f]+)");
   for (auto it = std::sregex_iterator(log.begin(), log.end(), accepted);

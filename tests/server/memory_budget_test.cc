@@ -36,8 +36,10 @@ TEST(MemoryBudget, GrowthWaitsUntilAnotherJobEnds) {
     EXPECT_TRUE(grower.Add(30, cancel).ok());
     granted = true;
   });
-  absl::SleepFor(absl::Milliseconds(200));
-  EXPECT_FALSE(granted);  // 50 + 40 + 30 > 100: waits while the other job runs
+  // 50 + 40 + 30 > 100: waits while the other job runs.
+  while (budget.waiting() == 0 && !granted) std::this_thread::yield();
+  EXPECT_FALSE(granted);
+  EXPECT_EQ(budget.waiting(), 1);
   other.reset();          // the other job ends
   t.join();
   EXPECT_TRUE(granted);

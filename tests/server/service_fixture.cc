@@ -58,8 +58,17 @@ ServiceTest::~ServiceTest() {
   for (std::thread& t : background_) t.join();
 }
 
+bool WaitFor(const std::function<bool()>& done, double seconds) {
+  const absl::Time end = absl::Now() + absl::Seconds(seconds);
+  while (!done()) {
+    if (absl::Now() > end) return false;
+    absl::SleepFor(absl::Milliseconds(10));
+  }
+  return true;
+}
+
 void ServiceTest::StartServer() {
-  server_ = std::make_unique<server::MembraneServer>(options_);
+  server_ = std::make_unique<server::MembraneServer>(options_, &clock_);
   absl::StatusOr<int> port = server_->Start("127.0.0.1:0");
   ASSERT_TRUE(port.ok()) << port.status();
   address_ = "127.0.0.1:" + std::to_string(*port);
@@ -88,6 +97,8 @@ v1::Parameters ServiceTest::SlowParameters() {
 
 namespace {
 
+// Sends the header and the chunks of `upload` as `tweaks` say; closes the upload unless
+// tweaks.stall.
 void SendUpload(grpc::ClientReaderWriter<v1::ReconstructRequest, v1::JobEvent>& stream,
                 const std::string& upload, const v1::Parameters& parameters,
                 const UploadTweaks& tweaks) {
@@ -103,8 +114,7 @@ void SendUpload(grpc::ClientReaderWriter<v1::ReconstructRequest, v1::JobEvent>& 
     chunk.set_chunk(sent.substr(at, 1 << 20));
     if (!stream.Write(chunk)) break;
   }
-  if (tweaks.stall_seconds > 0) absl::SleepFor(absl::Seconds(tweaks.stall_seconds));
-  stream.WritesDone();
+  if (!tweaks.stall) stream.WritesDone();
 }
 
 void SetDeadline(grpc::ClientContext& context, double seconds) {
@@ -121,10 +131,41 @@ CallResult ServiceTest::Reconstruct(const std::string& upload, const v1::Paramet
   auto stream = stub_->Reconstruct(&context);
   SendUpload(*stream, upload, parameters, tweaks);
   CallResult result;
-  v1::JobEvent event;
-  while (stream->Read(&event)) result.events.push_back(event);
+  const auto read_all = [&] {
+    v1::JobEvent event;
+    while (stream->Read(&event)) result.events.push_back(event);
+  };
+  if (tweaks.stall) {
+    // One writer beside the one reader, as gRPC allows; the writes fail once the call ends.
+    const std::string trickle(tweaks.trickle_bytes, 't');
+    WhileTimeFlies(
+        tweaks.stall_step,
+        [&] {
+          if (!tweaks.trickle) return;
+          v1::ReconstructRequest chunk;
+          chunk.set_chunk(trickle);
+          stream->Write(chunk);
+        },
+        read_all);
+  } else {
+    read_all();
+  }
   result.status = stream->Finish();
   return result;
+}
+
+void ServiceTest::WhileTimeFlies(absl::Duration step, const std::function<void()>& tick,
+                                 const std::function<void()>& call) {
+  absl::Notification done;
+  std::thread time([&] {
+    while (!done.WaitForNotificationWithTimeout(absl::Milliseconds(20))) {
+      clock_.Advance(step);
+      if (tick) tick();
+    }
+  });
+  call();
+  done.Notify();
+  time.join();
 }
 
 std::string ServiceTest::StartJobInBackground(const std::string& upload,

@@ -3,14 +3,21 @@
 #ifndef MEMBRANE_TESTS_SERVER_SERVICE_FIXTURE_H_
 #define MEMBRANE_TESTS_SERVER_SERVICE_FIXTURE_H_
 
+#include <atomic>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include "absl/time/clock.h"
+#include "absl/time/time.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
+#include "server/clock.h"
 #include "server/membrane_server.h"
 
 namespace membrane::testing {
@@ -34,8 +41,31 @@ struct UploadTweaks {
   int64_t announced_bytes = -1;  // >= 0: the header's size instead of the real one
   bool wrong_checksum = false;
   size_t send_bytes = SIZE_MAX;  // send only this many bytes of the upload
-  double stall_seconds = 0;      // then wait this long before closing the upload
+  // Then keep the upload open until the server ends the call, while the server's clock runs
+  // (ServiceTest::WhileTimeFlies, a step of stall_step), sending a chunk of `trickle_bytes`
+  // (0: an empty one) after each step when `trickle`.
+  bool stall = false;
+  absl::Duration stall_step = absl::Seconds(10);
+  bool trickle = false;
+  size_t trickle_bytes = 0;
 };
+
+// The server's clock in tests: real time plus an offset that the test moves forward.
+class TestClock final : public server::Clock {
+ public:
+  absl::Time Now() const override {
+    return absl::Now() + absl::Nanoseconds(offset_ns_.load(std::memory_order_relaxed));
+  }
+  void Advance(absl::Duration d) {
+    offset_ns_.fetch_add(absl::ToInt64Nanoseconds(d), std::memory_order_relaxed);
+  }
+
+ private:
+  std::atomic<int64_t> offset_ns_{0};
+};
+
+// Polls `done` every 10 ms for up to `seconds`; whether it became true.
+bool WaitFor(const std::function<bool()>& done, double seconds);
 
 class ServiceTest : public ::testing::Test {
  protected:
@@ -44,8 +74,14 @@ class ServiceTest : public ::testing::Test {
   ServiceTest();
   ~ServiceTest() override;
 
-  // Starts the server with options_; fails the test when it cannot listen.
+  // Starts the server with options_ and clock_; fails the test when it cannot listen.
   void StartServer();
+
+  // Runs `call` while clock_ moves forward by `step` every 20 ms of real time, running `tick`
+  // (may be empty) after each step: minutes of a stalled client pass in a moment. Returns when
+  // `call` does.
+  void WhileTimeFlies(absl::Duration step, const std::function<void()>& tick,
+                      const std::function<void()>& call);
 
   // A Draco point cloud of `shape` with `points` points (lossless).
   static std::string DracoCloud(const std::string& shape, int points);
@@ -69,6 +105,7 @@ class ServiceTest : public ::testing::Test {
   static v1::Parameters SlowParameters();
 
   server::ServerOptions options_;
+  TestClock clock_;
   std::unique_ptr<server::MembraneServer> server_;
   std::string address_;
   std::unique_ptr<v1::Reconstruction::Stub> stub_;

@@ -101,10 +101,9 @@ int Main(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   // One malloc arena for the process. `reconstruct --local` checks the mesh on a second thread
-  // while it encodes; with an arena of its own that thread faulted in fresh pages instead of
-  // reusing what the earlier stages freed (MALLOC_ARENA_MAX=1 against the default, 5
-  // alternated runs, medians: the check 0.36 -> 0.23 s and the whole run 1.27 -> 1.05 s on
-  // rocker-arm-scan; 0.16 -> 0.14 s and 0.54 -> 0.52 s on fandisk-variable). Two threads
+  // while it encodes; with an arena of its own that thread would fault in fresh pages instead
+  // of reusing what the earlier stages freed (on rocker-arm-scan the check takes 0.23 s with
+  // one arena and 0.36 s with glibc's default, the whole run 1.05 s and 1.27 s). Two threads
   // hardly contend for one arena.
   // The server keeps glibc's default: its workers allocate in parallel.
   mallopt(M_ARENA_MAX, 1);

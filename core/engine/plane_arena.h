@@ -1,8 +1,8 @@
 // One block of memory on transparent huge pages that the work planes of a shrink are cut from.
 //
 // The teapot-class grid (1.4 M voxels) has planes of 177 KB: too small for a huge page each,
-// so each of the 21 work planes was 43 fresh 4 KB pages, and on this VM those faults took
-// 9 ms of every 110 ms shrink (measured). Cut from one block aligned to and advised for huge
+// so each of the 21 work planes would be 43 fresh 4 KB pages, and on this VM those faults
+// take 9 ms of a 110 ms shrink (measured). Cut from one block aligned to and advised for huge
 // pages, the 21 planes fault two 2 MB pages instead. Memory is taken in order and given back
 // only when the arena is destroyed.
 #ifndef MEMBRANE_CORE_ENGINE_PLANE_ARENA_H_

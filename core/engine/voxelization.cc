@@ -56,8 +56,8 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points) {
   // Coplanar (or collinear): the covariance matrix's smallest eigenvalue is zero next to its
   // largest. With l1 >= l2 >= l3, det / (sum of the principal 2x2 minors) is about l3 when l3
   // is small, and the trace about l1, so the test does not depend on the model's scale, nor
-  // on how elongated it is: comparing det with the cube of the mean eigenvalue, as before, also
-  // called a round blob with one stray point far away "coplanar".
+  // on how elongated it is. Comparing det with the cube of the mean eigenvalue would also call
+  // a round blob with one stray point far away "coplanar".
   double mean[3] = {0, 0, 0};
   for (const Point3f& p : points)
     for (int d = 0; d < 3; ++d) mean[d] += p[d];

@@ -12,7 +12,7 @@ namespace membrane {
 namespace {
 
 // One byte per voxel, touched once: 2 MB pages where the kernel gives them (the 4 KB page faults
-// of these four grid-sized arrays were as long as the filling itself).
+// of these four grid-sized arrays would take as long as the filling itself).
 using Mask = std::vector<char, HugePageAllocator<char>>;
 
 // mask := for each voxel, the AND (erode) or OR (dilate) of the mask over its 3x3x3 box, as

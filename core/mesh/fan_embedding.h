@@ -1,7 +1,7 @@
 // A cheap sufficient test that the triangles around one vertex of a closed manifold mesh do not
 // overlap each other: the fast path of the fit's per-move check (point_fitting.h,
 // membrane-quality.md recipe 3 step 5), where the exhaustive test of every pair of the moved
-// vertex's triangles was a third of the fit's cost.
+// vertex's triangles would be a third of the fit's cost.
 #ifndef MEMBRANE_CORE_MESH_FAN_EMBEDDING_H_
 #define MEMBRANE_CORE_MESH_FAN_EMBEDDING_H_
 

@@ -1,6 +1,7 @@
 // exp(-x) four floats at a time, for the Gaussian weights of the point fitting
 // (near_point_sums.h, point_fitting.h): no table and no branch, so it compiles to SIMD
-// instructions; a library call per weight was a tenth of the fit (5 million weights per cloud).
+// instructions; a library call per weight would be a tenth of the fit (5 million weights per
+// cloud).
 #ifndef MEMBRANE_CORE_MESH_FAST_EXP_H_
 #define MEMBRANE_CORE_MESH_FAST_EXP_H_
 

@@ -55,7 +55,7 @@ void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companio
     *companion = std::move(moved);
   }
   // Faces by their lowest new vertex, stably: a counting sort, linear where a comparison sort
-  // of the faces was a tenth of the surface nets.
+  // of the faces would take a tenth of the surface nets.
   std::vector<int32_t> start(nv + 1, 0);
   for (auto& f : mesh.faces) {
     for (int32_t& v : f) v = new_id[v];

@@ -1,6 +1,6 @@
 // The Gaussian-weighted plane sums of the points near one surface vertex, in float, four points
 // at a time: the inner loop of the fit's target (point_fitting.h; membrane-quality.md recipe 3
-// step 5, "gather points within 2 voxels, Gaussian weights"). Point by point in double it was
+// step 5, "gather points within 2 voxels, Gaussian weights"). Point by point in double it would be
 // half of the fit. The weights are a smoothing kernel: float's 1e-7 relative error moves a
 // target by far less than the float32 rounding of the vertex it is written to.
 #ifndef MEMBRANE_CORE_MESH_NEAR_POINT_SUMS_H_

@@ -89,8 +89,8 @@ class PointRowGrid {
   double cell_;
   std::array<double, 3> lo_{0, 0, 0};
   std::array<int64_t, 3> dims_{0, 0, 0};
-  // Large and touched once: 2 MB pages where the kernel gives them (4 KB page faults were
-  // about a tenth of the surface's time on the shared virtual machine).
+  // Large and touched once: 2 MB pages where the kernel gives them (4 KB page faults would
+  // be about a tenth of the surface's time on the shared virtual machine).
   template <typename T>
   using BigVector = std::vector<T, HugePageAllocator<T>>;
   BigVector<uint32_t> start_;  // per cell, its first point; one more at the end

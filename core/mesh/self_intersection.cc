@@ -14,7 +14,7 @@ namespace membrane {
 namespace {
 
 // The search's big arrays, fresh on every call: 2 MB pages where the kernel gives them (their
-// 4 KB page faults were a quarter of the search's time on the shared virtual machine).
+// 4 KB page faults would be a quarter of the search's time on the shared virtual machine).
 template <typename T>
 using BigVector = std::vector<T, HugePageAllocator<T>>;
 
@@ -57,7 +57,7 @@ struct Participants {
 using CellCoord = std::array<int64_t, 3>;
 
 
-// std::floor for the cell indices, inline: the library call was a tenth of building the cells.
+// std::floor for the cell indices, inline: the library call would be a tenth of building the cells.
 // Exact for |v| < 2^62, far beyond any cell index here (at most 2^20 cells per axis).
 int64_t Floor(double v) {
   const int64_t t = static_cast<int64_t>(v);

@@ -210,8 +210,8 @@ VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
   const VoxelState* states = grid.states().data();
   // The lattice corners met so far, by (x, y) in two planes: the quads of the voxels of layer z
   // have their corners in lattice layers z and z + 1 (plane z & 1 and (z + 1) & 1), so a layer
-  // is forgotten once the scan has left it. Dense: a hash map here was a third of the
-  // extraction.
+  // is forgotten once the scan has left it. Dense: a hash map here would take a third
+  // of the extraction.
   const int64_t plane_size = int64_t{grid.dim(0)} * grid.dim(1);
   std::array<std::vector<CornerEntry>, 2> corners = {std::vector<CornerEntry>(plane_size),
                                                      std::vector<CornerEntry>(plane_size)};

@@ -49,10 +49,10 @@ absl::Status EmptySurfaceError(const ReconstructionReport& report) {
 // made Draco's encode twice as slow, most of it in page faults).
 // Crossings the surface step already searched for are taken, not searched again: the smooth
 // surface's fit ends with a search of the whole mesh on its final positions, and repeating it
-// was most of the check (0.071 -> 0.020 s on fandisk-variable, 2 threads). Where the check
+// would be most of the check (tests/bench/2026-12-01-surface-threads.txt). Where the check
 // does search (cuberille), the search gets all `threads`: it is longer than the encode (0.1 s
 // against 0.03 s on a mesh of fandisk-variable's size), and leaving the encode a core of its
-// own made the whole run slower (wall 0.366 -> 0.336 s with all threads, 2 cores).
+// own would leave that core idle once the encode is done.
 absl::Status CheckAndWriteStage(const BuiltSurface& surface, const PositionGrid& grid,
                                 int threads, const CancelToken& cancel, MeshSink& sink,
                                 ReconstructionReport& report, ReconstructionObserver& observer) {

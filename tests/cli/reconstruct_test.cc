@@ -103,7 +103,8 @@ TEST_F(ReconstructTest, ScatteredPointsAreWarnedAboutWithAVoxelSizeThatSuitsThem
 }
 
 // A scan in UTM coordinates: read in double and moved near 0, reconstructed there, and written
-// back at its coordinates. As float32 (0.25 m apart at the northing) it was refused.
+// back at its coordinates. Read as float32 (0.25 m apart at the northing), it would be
+// refused.
 TEST_F(ReconstructTest, GeoreferencedCloudComesBackAtItsCoordinates) {
   const std::string sphere = dir_.File("sphere.ply");
   ASSERT_EQ(Run({"synth", "sphere", "-o", sphere, "--points", "5000"}).exit_code, 0);
@@ -176,8 +177,8 @@ TEST_F(ReconstructTest, CuberilleSurfaceToDracoIsClosed) {
   EXPECT_THAT(check.out, HasSubstr("closed: yes"));
 }
 
-// The .drc file holds positions on an 11-bit grid. Before the surface was built on that grid,
-// the check judged the float positions and the file held others: this cloud's file then had 57
+// The .drc file holds positions on an 11-bit grid, and the surface is built and checked on
+// that grid. Checked in float32 and quantized afterwards, this cloud's file would hold 57
 // crossing face pairs while the statistics said 0.
 TEST_F(ReconstructTest, DracoFileChecksAsTheStatisticsSay) {
   const std::string cloud = dir_.File("cube.ply");

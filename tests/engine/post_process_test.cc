@@ -42,8 +42,8 @@ TEST(ConnectInsideHardVoxels, ASealedInteriorLeavesTheWallAsItIs) {
 }
 
 // An interior wider than the search's reach (64 steps, 200k voxels): each wall voxel's search
-// is cut short, and the interior is then flooded once and known sealed. Before, every one of
-// the 100k wall voxels searched 200k voxels of it again (hours).
+// is cut short, and the interior is then flooded once and known sealed. Without that, each of
+// the 100k wall voxels would search 200k voxels of it again (hours).
 TEST(ConnectInsideHardVoxels, AWideSealedInteriorEnds) {
   VoxelGrid grid = HollowBox(140);
   absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, nullptr);

@@ -128,8 +128,7 @@ TEST(PointFitting, RepairsInputCrossingsTowardTheFallback) {
   // An input that crosses itself: a ball's surface nets (clean: the fallback) with three
   // vertices pushed through the ball and out of its far side. With the moves switched off
   // (max_offset 0) only the fallback repair can clean it. (Raw surface nets of random solids
-  // no longer serve: with exact predicates none of 1600 crosses itself; the crossings seen
-  // there before were rounding.)
+  // cannot serve: with exact predicates none of 1600 crosses itself.)
   UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(BallGrid(16, 5.3));
   ASSERT_TRUE(FindIntersectingFaces(nets.mesh).empty());
   for (size_t v : {size_t{0}, nets.mesh.vertices.size() / 3, 2 * nets.mesh.vertices.size() / 3}) {

@@ -150,8 +150,9 @@ std::string GridOf(const std::string& json) {
 }
 
 // The default 11-bit upload merges points closer than its step, and formula (1) counts
-// distinct points: the server used to pick a coarser grid than --local (3M sphere points:
-// 693^3 instead of 712^3). The client now sends the formula-(1) voxel of the cloud as read.
+// distinct points, so on the upload alone the server would pick a coarser grid than --local
+// (3M sphere points: 693^3 instead of 712^3). The client sends the formula-(1) voxel of the
+// cloud as read.
 TEST_F(EndToEndTest, DefaultUploadGetsLocalsGridWhenQuantizationMergesPoints) {
   StartServer();
   absl::StatusOr<PointCloud> sphere = ReadPointCloud(Synth("sphere", 20000));

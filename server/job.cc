@@ -17,7 +17,8 @@ Job::Job(std::string id, std::string peer, v1::Parameters parameters, std::strin
       created_at_(absl::Now()),
       on_finish_(std::move(on_finish)),
       upload_(std::move(upload)),
-      upload_hold_(std::move(upload_hold)) {}
+      upload_hold_(std::move(upload_hold)),
+      mesh_(std::make_shared<const std::string>()) {}
 
 std::shared_ptr<Job> Job::Restore(const v1::Job& snapshot, std::vector<v1::JobEvent> events,
                                   std::string statistics_json, v1::MeshSummary summary,
@@ -33,7 +34,8 @@ std::shared_ptr<Job> Job::Restore(const v1::Job& snapshot, std::vector<v1::JobEv
   job->events_ = std::move(events);
   job->statistics_json_ = std::move(statistics_json);
   job->mesh_summary_ = std::move(summary);
-  job->mesh_ = std::move(mesh);
+  job->mesh_ = std::make_shared<const std::string>(std::move(mesh));
+  job->mesh_crc32c_ = Crc32c(*job->mesh_);
   job->state_ = snapshot.state();
   job->status_ = FromRpcStatus(snapshot.error());
   job->finished_at_ = at(snapshot.finished_unix_seconds());
@@ -65,7 +67,7 @@ v1::Job Job::Snapshot() const {
   if (!status_.ok()) *job.mutable_error() = ToRpcStatus(status_);
   job.set_peer(peer_);
   job.set_upload_bytes(upload_bytes_);
-  job.set_mesh_bytes(mesh_.size());
+  job.set_mesh_bytes(mesh_->size());
   job.set_created_unix_seconds(absl::ToDoubleSeconds(created_at_ - absl::UnixEpoch()));
   if (DoneLocked()) {
     job.set_finished_unix_seconds(absl::ToDoubleSeconds(finished_at_ - absl::UnixEpoch()));
@@ -113,7 +115,8 @@ void Job::Succeed(std::string statistics_json, v1::MeshSummary summary, std::str
   if (DoneLocked()) return;
   statistics_json_ = std::move(statistics_json);
   mesh_summary_ = std::move(summary);
-  mesh_ = std::move(mesh);
+  mesh_ = std::make_shared<const std::string>(std::move(mesh));
+  mesh_crc32c_ = Crc32c(*mesh_);
   FinishLocked(v1::SUCCEEDED, absl::OkStatus());
 }
 
@@ -145,7 +148,7 @@ void Job::FinishLocked(v1::JobState state, const absl::Status& status) {
   upload_.shrink_to_fit();
   upload_hold_.Release();
   finished_at_ = absl::Now();
-  if (on_finish_) on_finish_(state, status, finished_at_ - created_at_, mesh_.size());
+  if (on_finish_) on_finish_(state, status, finished_at_ - created_at_, mesh_->size());
 }
 
 size_t Job::WaitForEvents(size_t next, absl::Duration timeout,
@@ -159,24 +162,42 @@ size_t Job::WaitForEvents(size_t next, absl::Duration timeout,
   return std::max(next, events_.size());
 }
 
-std::vector<v1::JobEvent> Job::ClosingEvents(size_t chunk_bytes) const {
+std::optional<Job::Outcome> Job::Closing() const {
   absl::MutexLock lock(&mutex_);
-  std::vector<v1::JobEvent> events;
-  if (!DoneLocked()) return events;
+  if (!DoneLocked()) return std::nullopt;
+  Outcome outcome;
   if (state_ == v1::SUCCEEDED) {
-    v1::ResultHeader* result = events.emplace_back().mutable_result();
+    v1::ResultHeader* result = outcome.result.emplace().mutable_result();
     result->set_statistics_json(statistics_json_);
-    result->set_mesh_bytes(mesh_.size());
-    result->set_mesh_crc32c(Crc32c(mesh_));
+    result->set_mesh_bytes(mesh_->size());
+    result->set_mesh_crc32c(mesh_crc32c_);
     *result->mutable_mesh() = mesh_summary_;
-    for (size_t at = 0; at < mesh_.size(); at += chunk_bytes) {
-      events.emplace_back().set_mesh_chunk(mesh_.substr(at, chunk_bytes));
-    }
+    outcome.mesh = mesh_;
   }
-  v1::JobDone* done = events.emplace_back().mutable_done();
+  v1::JobDone* done = outcome.done.mutable_done();
   done->set_state(state_);
   *done->mutable_status() = ToRpcStatus(status_);
+  return outcome;
+}
+
+std::vector<v1::JobEvent> Job::ClosingEvents(size_t chunk_bytes) const {
+  std::vector<v1::JobEvent> events;
+  std::optional<Outcome> outcome = Closing();
+  if (!outcome.has_value()) return events;
+  if (outcome->result.has_value()) {
+    events.push_back(std::move(*outcome->result));
+    for (size_t at = 0; at < outcome->mesh->size(); at += chunk_bytes) {
+      events.push_back(MeshChunkEvent(*outcome->mesh, at, chunk_bytes));
+    }
+  }
+  events.push_back(std::move(outcome->done));
   return events;
+}
+
+v1::JobEvent MeshChunkEvent(const std::string& mesh, size_t at, size_t chunk_bytes) {
+  v1::JobEvent event;
+  event.set_mesh_chunk(mesh.data() + at, std::min(chunk_bytes, mesh.size() - at));
+  return event;
 }
 
 absl::Time Job::finished_at() const {

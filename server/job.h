@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,8 +87,20 @@ class Job {
   size_t WaitForEvents(size_t next, absl::Duration timeout, std::vector<v1::JobEvent>& out) const
       ABSL_LOCKS_EXCLUDED(mutex_);
 
+  // How a finished job ended, for its followers: the ResultHeader event (SUCCEEDED only), the
+  // mesh (SUCCEEDED only; one immutable buffer shared by every follower, not a copy each),
+  // and the JobDone event.
+  struct Outcome {
+    std::optional<v1::JobEvent> result;
+    std::shared_ptr<const std::string> mesh;
+    v1::JobEvent done;
+  };
+  // The outcome of a finished job; nullopt while the job runs.
+  std::optional<Outcome> Closing() const ABSL_LOCKS_EXCLUDED(mutex_);
+
   // The closing events of a finished job: ResultHeader, mesh chunks of at most `chunk_bytes`
-  // (SUCCEEDED only), then JobDone. Empty while the job runs.
+  // (SUCCEEDED only), then JobDone. Empty while the job runs. The chunks copy the mesh: for
+  // one writer at a time (the store), not for every follower (Closing, MeshChunkEvent).
   std::vector<v1::JobEvent> ClosingEvents(size_t chunk_bytes) const ABSL_LOCKS_EXCLUDED(mutex_);
 
   // The stage and generation events so far.
@@ -119,10 +132,15 @@ class Job {
   absl::Status status_ ABSL_GUARDED_BY(mutex_);
   std::string statistics_json_ ABSL_GUARDED_BY(mutex_);
   v1::MeshSummary mesh_summary_ ABSL_GUARDED_BY(mutex_);
-  std::string mesh_ ABSL_GUARDED_BY(mutex_);
+  // Never null; shared with the followers streaming it (Closing), so never changed in place.
+  std::shared_ptr<const std::string> mesh_ ABSL_GUARDED_BY(mutex_);
+  uint32_t mesh_crc32c_ ABSL_GUARDED_BY(mutex_) = 0;  // of *mesh_, once, not per follower
   absl::Time finished_at_ ABSL_GUARDED_BY(mutex_) = absl::InfinitePast();
   std::string cancel_reason_ ABSL_GUARDED_BY(mutex_);
 };
+
+// The MeshChunk event of the bytes [at, at + chunk_bytes) of `mesh` (fewer at its end).
+v1::JobEvent MeshChunkEvent(const std::string& mesh, size_t at, size_t chunk_bytes);
 
 }  // namespace membrane::server
 

@@ -1,6 +1,7 @@
 #include "server/job_follower.h"
 
 #include <chrono>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,11 +48,19 @@ grpc::Status FollowJob(Job& job, grpc::ServerContext& context, FollowPolicy poli
       if (!write(event)) return CallEnded(job, context, policy);
     }
     if (!done) continue;
-    std::vector<v1::JobEvent> closing = job.ClosingEvents(kMeshChunkBytes);
-    for (const v1::JobEvent& event : closing) {
-      if (!write(event)) return CallEnded(job, context, policy);
+    // The mesh is the job's one buffer: each chunk is copied into its message as it is
+    // written, so a follower holds a chunk of it, not the whole.
+    const std::optional<Job::Outcome> outcome = job.Closing();
+    if (outcome->result.has_value()) {
+      if (!write(*outcome->result)) return CallEnded(job, context, policy);
+      for (size_t at = 0; at < outcome->mesh->size(); at += kMeshChunkBytes) {
+        if (!write(MeshChunkEvent(*outcome->mesh, at, kMeshChunkBytes))) {
+          return CallEnded(job, context, policy);
+        }
+      }
     }
-    const google::rpc::Status& status = closing.back().done().status();
+    if (!write(outcome->done)) return CallEnded(job, context, policy);
+    const google::rpc::Status& status = outcome->done.done().status();
     return grpc::Status(static_cast<grpc::StatusCode>(status.code()), status.message());
   }
 }

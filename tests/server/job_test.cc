@@ -1,0 +1,62 @@
+// A job's outcome as its followers get it: one shared mesh buffer, however many follow.
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "proto/crc32c.h"
+#include "server/job.h"
+
+namespace membrane::server {
+namespace {
+
+std::shared_ptr<Job> SucceededJob(std::string mesh) {
+  auto job = std::make_shared<Job>("0123456789abcdef", "peer", v1::Parameters(), "upload");
+  EXPECT_TRUE(job->Start());
+  job->Succeed("{}", v1::MeshSummary(), std::move(mesh));
+  return job;
+}
+
+TEST(Job, FollowersShareOneMeshBufferInsteadOfCopyingIt) {
+  std::string mesh(3 << 20, '\0');
+  for (size_t i = 0; i < mesh.size(); ++i) mesh[i] = static_cast<char>(i * 7);
+  const std::shared_ptr<Job> job = SucceededJob(mesh);
+  const std::optional<Job::Outcome> first = job->Closing();
+  const std::optional<Job::Outcome> second = job->Closing();
+  ASSERT_TRUE(first.has_value() && second.has_value());
+  ASSERT_TRUE(first->result.has_value());
+  EXPECT_EQ(first->mesh.get(), second->mesh.get());
+  EXPECT_TRUE(*first->mesh == mesh);
+  EXPECT_EQ(first->result->result().mesh_bytes(), mesh.size());
+  EXPECT_EQ(first->result->result().mesh_crc32c(), Crc32c(mesh));
+  EXPECT_EQ(first->done.done().state(), v1::SUCCEEDED);
+}
+
+TEST(Job, ClosingEventsChunkTheMeshWholeAndInOrder) {
+  const std::string mesh = std::string(2500, 'a') + std::string(10, 'b');
+  const std::vector<v1::JobEvent> events = SucceededJob(mesh)->ClosingEvents(1000);
+  ASSERT_EQ(events.size(), 1u + 3u + 1u);  // result, 1000 + 1000 + 510 bytes, done
+  EXPECT_TRUE(events.front().has_result());
+  std::string joined;
+  for (size_t i = 1; i + 1 < events.size(); ++i) joined += events[i].mesh_chunk();
+  EXPECT_TRUE(joined == mesh);
+  EXPECT_EQ(events[3].mesh_chunk().size(), 510u);
+  EXPECT_TRUE(events.back().has_done());
+}
+
+TEST(Job, RunningJobHasNoOutcomeAndAFailedOneNoMesh) {
+  auto job = std::make_shared<Job>("0123456789abcdef", "peer", v1::Parameters(), "upload");
+  ASSERT_TRUE(job->Start());
+  EXPECT_FALSE(job->Closing().has_value());
+  EXPECT_TRUE(job->ClosingEvents(1000).empty());
+  job->Fail(absl::InvalidArgumentError("a degenerate cloud"));
+  const std::optional<Job::Outcome> outcome = job->Closing();
+  ASSERT_TRUE(outcome.has_value());
+  EXPECT_FALSE(outcome->result.has_value());
+  EXPECT_EQ(outcome->mesh, nullptr);
+  EXPECT_EQ(outcome->done.done().state(), v1::FAILED);
+  EXPECT_EQ(outcome->done.done().status().message(), "a degenerate cloud");
+}
+
+}  // namespace
+}  // namespace membrane::server

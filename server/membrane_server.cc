@@ -27,6 +27,11 @@ constexpr int kMaxMessageBytes = 4 << 20;  // gRPC's default, stated: chunks kee
 // default), on top of --max-calls.
 constexpr int kPollerThreads = 2;
 
+// The metrics endpoint's threads (each serves one connection at a time), and how long one may
+// wait for a request to arrive whole. A scrape's request is one packet on a LAN.
+constexpr int kMetricsThreads = 4;
+constexpr int kMetricsRequestTimeoutMs = 2000;
+
 // The store of `dir`: in memory only when it is empty.
 std::unique_ptr<JobStore> MakeStore(const std::string& dir) {
   if (dir.empty()) return std::make_unique<InMemoryJobStore>();
@@ -151,7 +156,13 @@ absl::Status MembraneServer::StartMetrics() {
   });
   // prometheus-cpp reports a port it cannot bind by throwing: the one exception caught here.
   try {
-    exposer_ = std::make_unique<prometheus::Exposer>(options_.metrics_listen, /*num_threads=*/1);
+    // Several scrapes at once (Prometheus, a person with curl, a second Prometheus), and a
+    // request that is not sent whole within kMetricsRequestTimeoutMs gives its thread back:
+    // civetweb's default of one thread waiting 30 s let one half-sent request block them all.
+    exposer_ = std::make_unique<prometheus::Exposer>(std::vector<std::string>{
+        "listening_ports", options_.metrics_listen,
+        "num_threads", absl::StrCat(kMetricsThreads),
+        "request_timeout_ms", absl::StrCat(kMetricsRequestTimeoutMs)});
   } catch (const std::exception& e) {
     return absl::UnavailableError(absl::StrCat("cannot serve metrics on ", options_.metrics_listen,
                                                " (--metrics-listen): ", e.what()));

@@ -15,6 +15,14 @@ std::string HttpGet(int port, const std::string& path);
 // exposition; -1 when absent.
 double MetricValue(const std::string& exposition, const std::string& series);
 
+// A connection to 127.0.0.1:`port` that sends the start of a GET and no more, as a stalled or
+// hostile client would; its descriptor, or -1.
+int OpenHalfSentRequest(int port);
+
+// Whether the server ends the connection `fd` (closes it, or answers and closes) within
+// `seconds`; closes `fd` either way.
+bool ServerEndsConnection(int fd, double seconds);
+
 }  // namespace membrane::testing
 
 #endif  // MEMBRANE_TESTS_SERVER_HTTP_GET_H_

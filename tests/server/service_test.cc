@@ -441,6 +441,24 @@ TEST_F(ServiceTest, MetricsCountJobsRefusalsAndStages) {
   EXPECT_EQ(MetricValue(m, "membrane_jobs_running"), 0) << m;
 }
 
+// The metrics endpoint serves scrapes beside requests that never arrive whole: twice as many
+// of those as it has threads do not block a scrape, and each is ended by its request timeout.
+TEST_F(ServiceTest, HalfSentMetricsRequestsDoNotBlockScrapes) {
+  options_.metrics_listen = "127.0.0.1:0";
+  StartServer();
+  const int port = server_->metrics_port();
+  std::vector<int> stalled;
+  for (int i = 0; i < 8; ++i) {
+    stalled.push_back(OpenHalfSentRequest(port));
+    ASSERT_GE(stalled.back(), 0);
+  }
+  // HttpGet gives up after 5 s without an answer.
+  for (int scrape = 0; scrape < 3; ++scrape) {
+    EXPECT_EQ(MetricValue(HttpGet(port, "/metrics"), "membrane_workers"), 1) << scrape;
+  }
+  for (const int fd : stalled) EXPECT_TRUE(ServerEndsConnection(fd, 20));
+}
+
 // An address that cannot be bound fails the start, naming the flag.
 TEST_F(ServiceTest, UnboundMetricsAddressFailsTheStart) {
   options_.metrics_listen = "256.0.0.1:1";

@@ -76,9 +76,16 @@ int Main(int argc, char** argv) {
                "membrane");
   app.footer(kExitStatusHelp);
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("membrane ") + MEMBRANE_VERSION + " (" +
+                                        MEMBRANE_BUILD_TYPE + " build)");
   const std::vector<Command> commands = {AddReconstructCommand(app), AddSynthCommand(app),
                                          AddCheckCommand(app), AddConvertCommand(app),
                                          AddJobsCommand(app), AddHealthCommand(app)};
+  // No command at all: the usage, as other command-line tools print it, and a usage error.
+  if (argc <= 1) {
+    std::fprintf(stderr, "%s", app.help().c_str());
+    return kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -9,6 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/io/file_bytes.h"
 #include "core/io/token_file.h"
+#include "proto/endpoint_address.h"
 #include "proto/job_routing.h"
 
 namespace membrane::client {
@@ -26,6 +27,10 @@ CLI::Option* AddConnectionFlags(CLI::App& app, ConnectionFlags& flags) {
 
 absl::StatusOr<ServerConnection> LoadServerConnection(const ConnectionFlags& flags) {
   ServerConnection c;
+  if (absl::Status s = CheckEndpointAddress("--server", flags.server, PortZero::kRefused);
+      !s.ok()) {
+    return s;
+  }
   c.address = flags.server;
   if (!flags.token_file.empty()) {
     absl::StatusOr<std::string> token = ReadTokenFile(flags.token_file);

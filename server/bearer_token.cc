@@ -1,5 +1,6 @@
 #include "server/bearer_token.h"
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 
 namespace membrane::server {
@@ -26,8 +27,12 @@ grpc::Status CheckBearerToken(const grpc::ServerContext& context, absl::string_v
                         "this server needs a bearer token (\"authorization: Bearer <token>\"; "
                         "membrane --token-file FILE)");
   }
-  const absl::string_view given(found->second.data(), found->second.size());
-  if (!ConstantTimeEqual(given, absl::StrCat("Bearer ", expected))) {
+  absl::string_view given(found->second.data(), found->second.size());
+  // RFC 7235 auth schemes are case-insensitive: "bearer", "BEARER" and "Bearer" are one scheme.
+  constexpr absl::string_view kScheme = "bearer ";
+  const bool bearer = absl::StartsWithIgnoreCase(given, kScheme);
+  if (bearer) given.remove_prefix(kScheme.size());
+  if (!bearer || !ConstantTimeEqual(given, expected)) {
     return grpc::Status(grpc::StatusCode::UNAUTHENTICATED, "the bearer token is not this server's");
   }
   return grpc::Status::OK;

@@ -13,8 +13,11 @@
 
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
+#include "absl/flags/reflection.h"
 #include "absl/flags/usage.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_replace.h"
 #include "core/io/file_bytes.h"
 #include "core/io/token_file.h"
 #include "core/pipeline/machine_memory.h"
@@ -204,7 +207,50 @@ std::vector<char*> UnderscoreFlagNames(int argc, char** argv, std::vector<std::s
   return out;
 }
 
+// "membraned VERSION (BUILD_TYPE build)", from the build (server/CMakeLists.txt).
+std::string VersionLine() {
+  return absl::StrCat("membraned ", MEMBRANE_VERSION, " (", MEMBRANE_BUILD_TYPE, " build)");
+}
+
+// The flags of this file, written as operators type them (--grace-seconds), with their
+// defaults: Abseil's own --help lists only flags of files named after the program, which
+// server/main.cc is not.
+void PrintHelp() {
+  std::printf("Usage: membraned [--FLAG=VALUE ...]\n%s\n\nFlags:\n",
+              "The membrane reconstruction server (proto/membrane/v1). Runs until SIGTERM or "
+              "SIGINT, then lets running jobs finish for --grace-seconds.");
+  std::vector<const absl::CommandLineFlag*> flags;
+  for (const auto& [name, flag] : absl::GetAllFlags()) {
+    if (absl::EndsWith(flag->Filename(), "server/main.cc")) flags.push_back(flag);
+  }
+  std::sort(flags.begin(), flags.end(), [](const auto* a, const auto* b) {
+    return a->Name() < b->Name();
+  });
+  for (const absl::CommandLineFlag* flag : flags) {
+    std::printf("  --%s (default: %s)\n      %s\n",
+                absl::StrReplaceAll(flag->Name(), {{"_", "-"}}).c_str(),
+                flag->DefaultValue().empty() ? "\"\"" : flag->DefaultValue().c_str(),
+                flag->Help().c_str());
+  }
+  std::printf("  --help\n      print this help and exit\n  --version\n      print the version "
+              "and exit\n\nExit status: 0 stopped by a signal; 2 a flag is wrong; 4 it cannot "
+              "listen or open its store.\n");
+}
+
 int Main(int argc, char** argv) {
+  // --help and --version are answered before Abseil parses: its own ones filter the flags by
+  // the program's file name and exit with 1.
+  for (int i = 1; i < argc; ++i) {
+    const absl::string_view arg = argv[i];
+    if (arg == "--help" || arg == "-h" || arg == "--helpfull") {
+      PrintHelp();
+      return 0;
+    }
+    if (arg == "--version") {
+      std::printf("%s\n", VersionLine().c_str());
+      return 0;
+    }
+  }
   absl::SetProgramUsageMessage("membrane reconstruction server; see --help");
   std::vector<std::string> storage;
   std::vector<char*> args = UnderscoreFlagNames(argc, argv, storage);
@@ -222,7 +268,7 @@ int Main(int argc, char** argv) {
   absl::StatusOr<int> port = server.Start(absl::GetFlag(FLAGS_listen));
   if (!port.ok()) {
     std::fprintf(stderr, "membraned: %s\n", std::string(port.status().message()).c_str());
-    return 4;
+    return absl::IsInvalidArgument(port.status()) ? 2 : 4;
   }
   int signal_number = 0;
   sigwait(&stop_signals, &signal_number);

@@ -17,6 +17,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "proto/endpoint_address.h"
 #include "server/server_log.h"
 
 namespace membrane::server {
@@ -61,6 +62,16 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   // A decoder child that dies while its stdin is being fed must cost an EPIPE, not the
   // server: SIGPIPE is ignored process-wide (gRPC needs the same for its sockets).
   signal(SIGPIPE, SIG_IGN);
+  if (absl::Status s = CheckEndpointAddress("--listen", address, PortZero::kAllowed); !s.ok()) {
+    return s;
+  }
+  if (!options_.metrics_listen.empty()) {
+    if (absl::Status s = CheckEndpointAddress("--metrics-listen", options_.metrics_listen,
+                                              PortZero::kAllowed);
+        !s.ok()) {
+      return s;
+    }
+  }
   if (disk_store_ != nullptr) {
     if (absl::StatusOr<int> loaded = disk_store_->Load(); !loaded.ok()) return loaded.status();
   }
@@ -75,6 +86,9 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
     credentials = grpc::SslServerCredentials(ssl);
   }
   builder.AddListeningPort(address, credentials, &port);
+  // gRPC sets SO_REUSEPORT by default: a second membraned on a port in use would start and
+  // take half of the connections, each seeing the other's jobs as NOT_FOUND. Refuse instead.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.SetMaxReceiveMessageSize(kMaxMessageBytes);
   // The sync server gives each open call a thread: without a bound, a flood of calls (or of
   // uploads that never end) would create threads until the process dies. Past it, gRPC answers
@@ -91,7 +105,8 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   builder.RegisterService(&service_);
   server_ = builder.BuildAndStart();
   if (server_ == nullptr || port == 0) {
-    return absl::UnavailableError(absl::StrCat("cannot listen on ", address));
+    return absl::UnavailableError(
+        absl::StrCat("cannot listen on ", address, " (in use by another process?)"));
   }
   if (!options_.metrics_listen.empty()) {
     if (absl::Status s = StartMetrics(); !s.ok()) {
@@ -100,6 +115,9 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
       return s;
     }
   }
+  // Probes ask for the server ("") or for the service by name; both answer SERVING.
+  server_->GetHealthCheckService()->SetServingStatus(v1::Reconstruction::service_full_name(),
+                                                     true);
   server_->GetHealthCheckService()->SetServingStatus(true);
   LogEvent("server_started", {{"address", address},
                               {"port", absl::StrCat(port)},

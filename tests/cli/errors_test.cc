@@ -53,6 +53,27 @@ TEST_F(ErrorsTest, HelpExitsZero) {
   EXPECT_THAT(r.out, HasSubstr("--initial-plate"));
 }
 
+TEST_F(ErrorsTest, VersionNamesTheReleaseAndTheBuild) {
+  const CliResult r = Run({"--version"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, std::string("membrane ") + MEMBRANE_VERSION + " (" + MEMBRANE_BUILD_TYPE +
+                       " build)\n");
+}
+
+TEST_F(ErrorsTest, NoCommandPrintsTheUsageAsAUsageError) {
+  const CliResult r = Run({});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("reconstruct"));
+  EXPECT_THAT(r.err, HasSubstr("Exit status"));
+}
+
+TEST_F(ErrorsTest, ServerPortOutOfRangeIsInvalidInputBeforeConnecting) {
+  const CliResult r = Run({"jobs", "list", "--server", "127.0.0.1:99999"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err),
+              ElementsAre(HasSubstr("--server '127.0.0.1:99999': port '99999' is not a number")));
+}
+
 TEST_F(ErrorsTest, MissingInputFileIsInvalidInput) {
   const CliResult r =
       Run({"reconstruct", dir_.File("absent.ply"), "-o", dir_.File("out.ply"), "--local"});

@@ -508,6 +508,28 @@ TEST_F(EndToEndTest, NegativeMemoryBudgetIsRefusedAtStart) {
       << ReadText(dir_.File("bad.err"));
 }
 
+TEST_F(EndToEndTest, MembranedHelpListsItsFlagsAndVersionNamesTheBuild) {
+  Subprocess help({MEMBRANED_BINARY, "--help"}, dir_.File("help.out"), dir_.File("help.err"));
+  EXPECT_EQ(help.Wait(10), 0);
+  const std::string text = ReadText(dir_.File("help.out"));
+  for (const char* flag : {"--listen", "--grace-seconds", "--store-dir", "--token-file"}) {
+    EXPECT_NE(text.find(flag), std::string::npos) << flag << " missing from:\n" << text;
+  }
+  Subprocess version({MEMBRANED_BINARY, "--version"}, dir_.File("v.out"), dir_.File("v.err"));
+  EXPECT_EQ(version.Wait(10), 0);
+  EXPECT_EQ(ReadText(dir_.File("v.out")),
+            std::string("membraned ") + MEMBRANE_VERSION + " (" + MEMBRANE_BUILD_TYPE + " build)\n");
+}
+
+TEST_F(EndToEndTest, ListenAddressWithAPortOutOfRangeIsAFlagError) {
+  Subprocess bad({MEMBRANED_BINARY, "--listen=127.0.0.1:99999"}, dir_.File("bad.out"),
+                 dir_.File("bad.err"));
+  EXPECT_EQ(bad.Wait(10), 2);
+  EXPECT_NE(ReadText(dir_.File("bad.err")).find("port '99999' is not a number in 0..65535"),
+            std::string::npos)
+      << ReadText(dir_.File("bad.err"));
+}
+
 TEST_F(EndToEndTest, TokenIsNeededOnEveryCallButHealth) {
   WriteText(dir_.File("token"), "  s3cret-token\n");
   WriteText(dir_.File("wrong"), "not-the-token\n");

@@ -206,13 +206,15 @@ CallResult ServiceTest::Watch(const std::string& job_id, double deadline_seconds
   return result;
 }
 
-std::string ServiceTest::Health() {
+std::string ServiceTest::Health(const std::string& service) {
   auto health = grpc::health::v1::Health::NewStub(
       grpc::CreateChannel(address_, grpc::InsecureChannelCredentials()));
   grpc::ClientContext context;
   SetDeadline(context, 5);
+  grpc::health::v1::HealthCheckRequest request;
+  request.set_service(service);
   grpc::health::v1::HealthCheckResponse response;
-  const grpc::Status status = health->Check(&context, {}, &response);
+  const grpc::Status status = health->Check(&context, request, &response);
   if (!status.ok()) return "ERROR " + status.error_message();
   return grpc::health::v1::HealthCheckResponse::ServingStatus_Name(response.status());
 }

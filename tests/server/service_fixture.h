@@ -98,8 +98,9 @@ class ServiceTest : public ::testing::Test {
   // WatchJob until the job ends, bounded by `deadline_seconds`.
   CallResult Watch(const std::string& job_id, double deadline_seconds = 60);
 
-  // The health service's answer: SERVING, NOT_SERVING, ...
-  std::string Health();
+  // The health service's answer for `service` ("" = the whole server): SERVING,
+  // NOT_SERVING, ... or "ERROR <message>" when the call fails (NOT_FOUND for an unknown name).
+  std::string Health(const std::string& service = "");
 
   // Parameters of a job that runs for many seconds (a fine grid), for cancel and queue tests.
   static v1::Parameters SlowParameters();

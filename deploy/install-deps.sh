@@ -27,6 +27,7 @@ TEST=(
 BENCH=(
   libbenchmark-dev
   python3-open3d             # the peer measured beside us in tests/bench
+  python3-scipy              # the eval tools' scorer (accuracy_table.py)
 )
 CONTAINER=(
   podman runc                # runc: crun cannot set this machine's rlimits (test-container.sh)

@@ -72,4 +72,69 @@ NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
   return out;
 }
 
+HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
+                                       const FrameWeights& weights) {
+  const V4f ox = SplatV4f(weights.origin[0]), oy = SplatV4f(weights.origin[1]),
+            oz = SplatV4f(weights.origin[2]);
+  V4f ax[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) ax[i][k] = SplatV4f(weights.axes[i][k]);
+  const V4f r2 = SplatV4f(weights.radius2);
+  const V4f a = SplatV4f(weights.inv_2s2), b = SplatV4f(weights.inv_2n2);
+  const V4i lane = {0, 1, 2, 3};
+  const V4f zero = SplatV4f(0);
+  // The 15 moments of u^i v^j, then the 6 of h u^i v^j, then h^2 (HeightFieldSums' order).
+  V4f m[15], hm[6], shh = zero;
+  for (V4f& x : m) x = zero;
+  for (V4f& x : hm) x = zero;
+  V4i count = {0, 0, 0, 0};
+  const float* xs = grid.xs();
+  const float* ys = grid.ys();
+  const float* zs = grid.zs();
+  const Vec3d centre{weights.origin[0], weights.origin[1], weights.origin[2]};
+  grid.ForEachRun(centre, radius, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin; i < end; i += kLanes) {
+      const V4f dx = Load(xs + i) - ox, dy = Load(ys + i) - oy, dz = Load(zs + i) - oz;
+      const V4f u = dx * ax[0][0] + dy * ax[0][1] + dz * ax[0][2];
+      const V4f v = dx * ax[1][0] + dy * ax[1][1] + dz * ax[1][2];
+      const V4f h = dx * ax[2][0] + dy * ax[2][1] + dz * ax[2][2];
+      const V4f uu = u * u, uv = u * v, vv = v * v, h2 = h * h;
+      const V4f t2 = uu + vv;
+      const V4i inside = (t2 + h2 <= r2) & (lane < static_cast<int32_t>(end - i));
+      const V4f w =
+          std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(t2 * a + h2 * b)) & inside);
+      count -= inside;
+      const V4f wu = w * u, wv = w * v, wuu = w * uu, wvv = w * vv, wuv = w * uv, wh = w * h;
+      m[0] += w;
+      m[1] += wu;
+      m[2] += wv;
+      m[3] += wuu;
+      m[4] += wuv;
+      m[5] += wvv;
+      m[6] += wuu * u;
+      m[7] += wuu * v;
+      m[8] += wvv * u;
+      m[9] += wvv * v;
+      m[10] += wuu * uu;
+      m[11] += wuu * uv;
+      m[12] += wuu * vv;
+      m[13] += wvv * uv;
+      m[14] += wvv * vv;
+      hm[0] += wh;
+      hm[1] += wh * u;
+      hm[2] += wh * v;
+      hm[3] += wh * uu;
+      hm[4] += wh * uv;
+      hm[5] += wh * vv;
+      shh += wh * h;
+    }
+  });
+  HeightFieldSums out;
+  out.count = count[0] + count[1] + count[2] + count[3];
+  for (int k = 0; k < 15; ++k) out.uv[k] = Sum(m[k]);
+  for (int k = 0; k < 6; ++k) out.huv[k] = Sum(hm[k]);
+  out.hh = Sum(shh);
+  return out;
+}
+
 }  // namespace membrane

@@ -1,4 +1,5 @@
-// The Gaussian-weighted plane sums of the points near one surface vertex, in float, four points
+// The Gaussian-weighted plane sums (and, in a vertex's frame, the height-field sums of
+// height_quadric.h) of the points near one surface vertex, in float, four points
 // at a time: the inner loop of the fit's target (point_fitting.h; membrane-quality.md recipe 3
 // step 5, "gather points within 2 voxels, Gaussian weights"). Point by point in double it would be
 // half of the fit. The weights are a smoothing kernel: float's 1e-7 relative error moves a
@@ -10,6 +11,7 @@
 #include <cstdint>
 
 #include "core/geometry/point_cloud.h"
+#include "core/mesh/height_quadric.h"
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_row_grid.h"
 
@@ -34,6 +36,23 @@ struct NearPointResult {
 // (in float, returned in double) and their count.
 NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
                                 const NearPointWeights& weights);
+
+// The same weights in a vertex's frame: each offset d = point - origin (model units) becomes
+// (u, v, h) = (d.axes[0], d.axes[1], d.axes[2]), the axes orthogonal with a common length
+// 1 / scale (so u, v, h are in units of `scale`: voxels for the fit), h along the normal.
+struct FrameWeights {
+  Point3f origin;
+  std::array<std::array<float, 3>, 3> axes{};  // tangent, tangent, normal
+  float radius2 = 0;                           // in frame units
+  float inv_2s2 = 0;                           // in frame units, across the normal
+  float inv_2n2 = 0;                           // in frame units, along it
+};
+
+// Over the points that ForEachRun(origin, radius) lists (radius in model units), those with
+// u^2 + v^2 + h^2 <= radius2, weighted w = exp(-(u^2 + v^2) inv_2s2 - h^2 inv_2n2): the height
+// field sums of height_quadric.h (in float, returned in double) and their count.
+HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
+                                       const FrameWeights& weights);
 
 }  // namespace membrane
 

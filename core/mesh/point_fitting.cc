@@ -180,6 +180,7 @@ class Fitter {
     });
     for (SlabWork& w : work) {
       clock_ = std::max(clock_, w.clock);
+      stats.quadric_targets += w.stats.quadric_targets;
       stats.plane_targets += w.stats.plane_targets;
       stats.umbrella_targets += w.stats.umbrella_targets;
       stats.refused += w.stats.refused;
@@ -220,8 +221,9 @@ class Fitter {
   }
 
   Vec3d Target(int32_t v, int round, FitStats& stats) const {
-    const Vec3d x = Pos(v);
     const Vec3d normal = VertexNormal(v);
+    if (options_.quadric && SquaredNorm(normal) > 0) return CurvedTarget(v, round, normal, stats);
+    const Vec3d x = Pos(v);
     const double inv_2s2 = 1.0 / (2 * options_.sigma * options_.sigma * l_ * l_);
     // The first round's weights are isotropic.
     const double inv_2n2 =
@@ -247,6 +249,51 @@ class Fitter {
     }
     ++stats.umbrella_targets;
     return x + options_.umbrella_step * (RingMean(v) - x);
+  }
+
+  // Target() with options_.quadric, for a vertex whose normal is `normal` (unit): the points
+  // are weighed in the vertex's frame, in voxels; the quadric's height at the vertex moves it
+  // along the normal. Where the quadric is not trusted, the plane of the same sums, as in
+  // Target().
+  Vec3d CurvedTarget(int32_t v, int round, const Vec3d& normal, FitStats& stats) const {
+    const Vec3d x = Pos(v);
+    // An orthonormal tangent basis from the normal without a branch on its direction (Duff et
+    // al., "Building an Orthonormal Basis, Revisited", 2017): the frame, and so the target,
+    // depends on the normal alone.
+    const double sign = std::copysign(1.0, normal[2]);
+    const double p = -1.0 / (sign + normal[2]);
+    const double q = normal[0] * normal[1] * p;
+    const Vec3d t1{1 + sign * normal[0] * normal[0] * p, sign * q, -sign * normal[0]};
+    const Vec3d t2{q, sign + normal[1] * normal[1] * p, -normal[1]};
+    const Vec3d axes[3] = {t1, t2, normal};
+    FrameWeights weights;
+    weights.origin = mesh_.vertices[v];
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) weights.axes[i][k] = static_cast<float>(axes[i][k] / l_);
+    const double s = options_.sigma, ns = round >= 1 ? options_.normal_sigma : s;
+    weights.radius2 = static_cast<float>(options_.search_radius * options_.search_radius);
+    weights.inv_2s2 = static_cast<float>(1.0 / (2 * s * s));
+    weights.inv_2n2 = static_cast<float>(1.0 / (2 * ns * ns));
+    const HeightFieldSums sums =
+        WeighNearPointsInFrame(points_, options_.search_radius * l_, weights);
+    if (sums.count < options_.min_points || !(sums.weight() > 0)) {
+      ++stats.umbrella_targets;
+      return x + options_.umbrella_step * (RingMean(v) - x);
+    }
+    if (sums.count >= options_.quadric_min_points) {
+      if (const auto quadric = FitHeightQuadric(sums, options_.quadric_limits)) {
+        ++stats.quadric_targets;
+        return x + (quadric->height() * l_) * normal;
+      }
+    }
+    ++stats.plane_targets;
+    const PlaneFitAccumulator acc = sums.PlaneSums();
+    const auto plane = acc.Fit();
+    // In frame coordinates (voxels): the vertex is the origin, the normal (0, 0, 1).
+    const Vec3d c = plane ? plane->centroid : (1.0 / acc.weight()) * acc.WeightedSum();
+    const Vec3d n = plane ? plane->normal : Vec3d{0, 0, 1};
+    const Vec3d local = Dot(c, n) * n;
+    return x + l_ * (local[0] * t1 + local[1] * t2 + local[2] * normal);
   }
 
   // The checks that need only the vertex's own triangles: non-zero area, normal on the side of
@@ -471,13 +518,19 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
   if (!(voxel_size > 0) || !std::isfinite(voxel_size))
     return absl::InvalidArgumentError(absl::StrCat("voxel size ", voxel_size, " is not positive"));
   if (o.rounds < 0 || !(o.search_radius > 0) || !(o.sigma > 0) || !(o.normal_sigma > 0) ||
-      o.min_points < 3 || !(o.umbrella_step >= 0 && o.umbrella_step <= 1) || !(o.max_offset >= 0) ||
+      o.min_points < 3 || o.quadric_min_points < 6 ||
+      !(o.quadric_limits.min_tangent_spread >= 0) || !(o.quadric_limits.max_slope >= 0) ||
+      !(o.quadric_limits.max_curvature >= 0) || !(o.umbrella_step >= 0 && o.umbrella_step <= 1) ||
+      !(o.max_offset >= 0) ||
       !(o.min_move >= 0) || o.output_grid.bits < 0 || o.output_grid.bits > 30 ||
       !(o.output_grid.box.range > 0) || !std::isfinite(o.output_grid.box.range))
     return absl::InvalidArgumentError(
         absl::StrCat("fit options out of range: rounds ", o.rounds, ", search_radius ",
                      o.search_radius, ", sigma ", o.sigma, ", normal_sigma ", o.normal_sigma,
-                     ", min_points ", o.min_points, ", umbrella_step ", o.umbrella_step,
+                     ", min_points ", o.min_points, ", quadric_min_points ",
+                     o.quadric_min_points, ", quadric limits (spread, slope, curvature) ",
+                     o.quadric_limits.min_tangent_spread, ", ", o.quadric_limits.max_slope, ", ",
+                     o.quadric_limits.max_curvature, ", umbrella_step ", o.umbrella_step,
                      ", max_offset ", o.max_offset, ", min_move ", o.min_move,
                      ", output grid bits ", o.output_grid.bits, " range ", o.output_grid.box.range));
   return absl::OkStatus();

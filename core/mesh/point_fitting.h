@@ -15,6 +15,7 @@
 #include "core/geometry/position_grid.h"
 #include "core/geometry/triangle_mesh.h"
 #include "core/mesh/cancel_fn.h"
+#include "core/mesh/height_quadric.h"
 
 namespace membrane {
 
@@ -27,6 +28,12 @@ struct FitOptions {
   // (narrower) sigma instead, so the opposite sheet of a thin part does not pull.
   double normal_sigma = 0.6;
   int min_points = 6;          // fewer points: umbrella step instead of a plane fit
+  // Curved targets: the projection on a height-field quadric fitted in the vertex's frame
+  // (height_quadric.h) where at least quadric_min_points points are near and the quadric
+  // passes quadric_limits; the plane elsewhere. Off: the plane wherever min_points are near.
+  bool quadric = true;
+  int quadric_min_points = 12;
+  HeightQuadricLimits quadric_limits;
   double umbrella_step = 0.5;  // fraction of the way to the 1-ring mean
   double max_offset = 1.5;     // a vertex never moves farther from its surface-nets position
   double min_move = 1e-3;      // smaller moves are not worth a check
@@ -40,6 +47,7 @@ struct FitOptions {
 };
 
 struct FitStats {
+  int64_t quadric_targets = 0;    // targets from a quadric fit (over all rounds)
   int64_t plane_targets = 0;      // targets from a plane fit (over all rounds)
   int64_t umbrella_targets = 0;   // targets from the umbrella step
   int64_t moves = 0;              // moves kept
@@ -60,9 +68,11 @@ struct FitStats {
 // Effect: moves vertices only (faces unchanged), in `rounds` passes over the vertices (each
 // pass fits slabs 4 voxels thick across the longest axis, the even ones and then the odd ones,
 // each in vertex index order; SurfaceNets numbers vertices along a space-filling curve; the
-// slabs of one parity run side by side on options.threads): target = projection on
-// the weighted PCA plane of the points near the vertex (>= min_points of them), else an
-// umbrella step; the target is clamped to max_offset from the vertex's input position; the move
+// slabs of one parity run side by side on options.threads): target = the point of the
+// weighted height-field quadric of the points near the vertex, in the frame of its normal,
+// above or below it (options.quadric, >= quadric_min_points of them and within the limits),
+// else the projection on their weighted PCA plane (>= min_points of them), else an umbrella
+// step; the target is clamped to max_offset from the vertex's input position; the move
 // is tried at 1, 1/2, 1/4 of the way and taken at the first where every triangle of the vertex
 // keeps a non-zero area and a positive dot product with its input normal, and no two of them
 // overlap. The last pass ends with an intersection search around the faces the passes moved,

@@ -85,5 +85,67 @@ TEST(NearPointSums, EveryPointOfALongRunCountsOnce) {
   EXPECT_NEAR(got.acc.WeightedSum()[0], 0.0, 1e-5);
 }
 
+TEST(NearPointSums, FrameSumsMatchTheDoubleSumsPointByPoint) {
+  // A curved noisy sheet in model units (voxel 0.1), queried in tilted frames whose axes have
+  // length 1 / voxel: every moment of height_quadric.h against the same sums in double.
+  const double voxel = 0.1;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(-1, 1), noise(-0.005f, 0.005f);
+  std::vector<Point3f> points(20000);
+  for (Point3f& p : points) {
+    const float x = u(rng), y = u(rng);
+    p = {x, y, 0.3f * x * x - 0.2f * x * y + noise(rng)};
+  }
+  const double radius = 2 * voxel;
+  const PointRowGrid grid(points, radius / 2);
+  const double n[3] = {0.1, -0.2, std::sqrt(1 - 0.05)};
+  // A tangent basis of n.
+  double t1[3] = {n[2], 0, -n[0]};
+  const double l1 = std::sqrt(t1[0] * t1[0] + t1[2] * t1[2]);
+  for (double& c : t1) c /= l1;
+  const double t2[3] = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
+                        n[0] * t1[1] - n[1] * t1[0]};
+  const double* axes[3] = {t1, t2, n};
+  for (int q = 0; q < 100; ++q) {
+    FrameWeights w;
+    const float x = 0.7f * u(rng), y = 0.7f * u(rng);
+    w.origin = {x, y, 0.3f * x * x - 0.2f * x * y + 0.1f * u(rng)};
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) w.axes[i][k] = static_cast<float>(axes[i][k] / voxel);
+    w.radius2 = 4;
+    w.inv_2s2 = 0.5f;
+    w.inv_2n2 = q % 2 ? 1.0f / (2 * 0.6f * 0.6f) : 0.5f;
+    const HeightFieldSums got = WeighNearPointsInFrame(grid, radius, w);
+    HeightFieldSums want;
+    for (const Point3f& p : points) {
+      const double d[3] = {double(p[0]) - w.origin[0], double(p[1]) - w.origin[1],
+                           double(p[2]) - w.origin[2]};
+      double c[3];
+      for (int i = 0; i < 3; ++i)
+        c[i] = (d[0] * axes[i][0] + d[1] * axes[i][1] + d[2] * axes[i][2]) / voxel;
+      if (c[0] * c[0] + c[1] * c[1] + c[2] * c[2] > w.radius2) continue;
+      const double wt =
+          std::exp(-(c[0] * c[0] + c[1] * c[1]) * w.inv_2s2 - c[2] * c[2] * w.inv_2n2);
+      ++want.count;
+      for (int i = 0; i <= 4; ++i)
+        for (int j = 0; i + j <= 4; ++j)
+          want.uv[HeightFieldSums::Index(i, j)] += wt * std::pow(c[0], i) * std::pow(c[1], j);
+      for (int i = 0; i <= 2; ++i)
+        for (int j = 0; i + j <= 2; ++j)
+          want.huv[HeightFieldSums::Index(i, j)] +=
+              wt * c[2] * std::pow(c[0], i) * std::pow(c[1], j);
+      want.hh += wt * c[2] * c[2];
+    }
+    // Points within float rounding of the ball's surface may fall either way: allow one.
+    ASSERT_NEAR(got.count, want.count, 1) << "query " << q;
+    if (got.count != want.count) continue;
+    // Moments up to degree 4 of coordinates up to 2: scale the tolerance by 16 * weight.
+    const double tol = 1e-4 * (want.uv[0] + 1e-9) * 16;
+    for (int k = 0; k < 15; ++k) EXPECT_NEAR(got.uv[k], want.uv[k], tol) << q << " uv " << k;
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(got.huv[k], want.huv[k], tol) << q << " huv " << k;
+    EXPECT_NEAR(got.hh, want.hh, tol) << q;
+  }
+}
+
 }  // namespace
 }  // namespace membrane

@@ -1,0 +1,82 @@
+#include "core/mesh/height_quadric.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace membrane {
+namespace {
+
+// The basis 1, u, v, u^2, uv, v^2 as powers (i, j) of u^i v^j.
+constexpr int kPowU[6] = {0, 1, 0, 2, 1, 0};
+constexpr int kPowV[6] = {0, 0, 1, 0, 1, 2};
+// A Cholesky pivot below this fraction of its diagonal entry: the normal equations do not
+// determine that coefficient.
+constexpr double kMinPivot = 1e-7;
+
+}  // namespace
+
+PlaneFitAccumulator HeightFieldSums::PlaneSums() const {
+  const int u = Index(1, 0), v = Index(0, 1), uu = Index(2, 0), uvi = Index(1, 1),
+            vv = Index(0, 2);
+  return PlaneFitAccumulator::FromSums(
+      uv[0], {uv[u], uv[v], huv[0]},
+      {uv[uu], uv[uvi], huv[Index(1, 0)], uv[vv], huv[Index(0, 1)], hh});
+}
+
+std::optional<HeightQuadric> FitHeightQuadric(const HeightFieldSums& s,
+                                              const HeightQuadricLimits& limits) {
+  const double w = s.weight();
+  if (!(w > 0)) return std::nullopt;
+  // Tangential spread: the smaller eigenvalue of the weighted (u, v) covariance.
+  const double mu = s.uv[HeightFieldSums::Index(1, 0)] / w,
+               mv = s.uv[HeightFieldSums::Index(0, 1)] / w;
+  const double cuu = s.uv[HeightFieldSums::Index(2, 0)] / w - mu * mu,
+               cuv = s.uv[HeightFieldSums::Index(1, 1)] / w - mu * mv,
+               cvv = s.uv[HeightFieldSums::Index(0, 2)] / w - mv * mv;
+  const double half_trace = 0.5 * (cuu + cvv);
+  const double root = std::sqrt(0.25 * (cuu - cvv) * (cuu - cvv) + cuv * cuv);
+  const double spread2 = half_trace - root;
+  if (!(spread2 >= limits.min_tangent_spread * limits.min_tangent_spread)) return std::nullopt;
+
+  // Normal equations M x = r, M[p][q] = sum w phi_p phi_q, r[p] = sum w h phi_p; solved by
+  // Cholesky in place.
+  double m[6][6], r[6];
+  for (int p = 0; p < 6; ++p) {
+    for (int q = 0; q < 6; ++q)
+      m[p][q] = s.uv[HeightFieldSums::Index(kPowU[p] + kPowU[q], kPowV[p] + kPowV[q])];
+    r[p] = s.huv[HeightFieldSums::Index(kPowU[p], kPowV[p])];
+  }
+  for (int k = 0; k < 6; ++k) {
+    const double diagonal = m[k][k];
+    double d = diagonal;
+    for (int j = 0; j < k; ++j) d -= m[k][j] * m[k][j];
+    if (!(d > kMinPivot * diagonal)) return std::nullopt;
+    const double l = std::sqrt(d);
+    m[k][k] = l;
+    for (int i = k + 1; i < 6; ++i) {
+      double x = m[i][k];
+      for (int j = 0; j < k; ++j) x -= m[i][j] * m[k][j];
+      m[i][k] = x / l;
+    }
+  }
+  double y[6];
+  for (int i = 0; i < 6; ++i) {
+    double x = r[i];
+    for (int j = 0; j < i; ++j) x -= m[i][j] * y[j];
+    y[i] = x / m[i][i];
+  }
+  HeightQuadric q;
+  for (int i = 5; i >= 0; --i) {
+    double x = y[i];
+    for (int j = i + 1; j < 6; ++j) x -= m[j][i] * q.coefficients[j];
+    q.coefficients[i] = x / m[i][i];
+  }
+  const auto& c = q.coefficients;
+  if (!std::isfinite(c[0])) return std::nullopt;
+  if (c[1] * c[1] + c[2] * c[2] > limits.max_slope * limits.max_slope) return std::nullopt;
+  const double bend = std::max({std::fabs(2 * c[3]), std::fabs(c[4]), std::fabs(2 * c[5])});
+  if (!(bend <= limits.max_curvature)) return std::nullopt;
+  return q;
+}
+
+}  // namespace membrane

@@ -1,0 +1,225 @@
+#!/usr/bin/python3
+"""Accuracy of membrane and Open3D Poisson on the eval tools' protocols, one table per run.
+
+For each model (default: stanford-bunny, rocker-arm, spot) and protocol (default: uniform,
+variable, holes, scanner) it makes the cloud with ../shared/tools/eval/sample.py exactly as the
+eval README says (100k points, seed 1, up y, the README's protocol arguments), reconstructs it
+with `membrane reconstruct CLOUD -o OUT.ply --local -q --threads 1` (and with a --baseline
+binary too, when given: the "before" column), runs tests/bench/open3d_poisson.py (depth 9, one
+thread) on the same cloud, and scores every mesh with eval_mesh.py (--gt the model,
+--points the cloud, --voxel the membrane's voxel size).
+
+Columns per mesh: Chamfer-L1 in % of the reference's diagonal, F-score at 1%, CPU seconds of
+the whole process (user + system, from wait4: reading, writing and Python's start-up
+included for Poisson), and `ok` = closed, manifold, oriented, outward and no
+self-intersection by the scorer, with the genus per shell. For the membrane also the share of
+input points within sqrt(3) L of the mesh (`fid`).
+
+Clouds, Poisson meshes and Poisson scores are cached in --cache (default
+$MEMBRANE_BENCH_CACHE, else <repo>/../cache): they do not depend on membrane, so only the first
+run pays for them. Membrane meshes are written to a temporary folder.
+
+  /usr/bin/python3 tests/bench/accuracy_table.py --membrane build/client/membrane \
+      [--baseline OLD/client/membrane] [--models spot] [--protocols uniform,holes] \
+      [--no-poisson] [--out tests/bench/accuracy-YYYY-MM-DD.txt]
+
+Run it with Debian's interpreter (python3-numpy, python3-scipy, python3-open3d).
+"""
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+PROTOCOL_ARGS = {
+    'uniform': [],
+    'variable': ['--factor', '30', '--hotspots', '3'],
+    'holes': ['--holes', '3', '--hole-radius', '0.08'],
+    'scanner': ['--views', '8', '--noise', '0.0005'],
+}
+
+
+def run(cmd, env=None):
+    """Runs cmd to its end; returns (returncode, stdout, stderr)."""
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    return proc.returncode, proc.stdout, proc.stderr
+
+
+def cpu_of(fn):
+    """fn()'s result and the CPU seconds (user + system) of the children it ran and reaped:
+    one child at a time, so the growth of RUSAGE_CHILDREN is that child's."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    result = fn()
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return result, cpu
+
+
+def make_cloud(args, model, protocol):
+    path = os.path.join(args.cache, 'clouds', f'{model}-{protocol}.ply')
+    if os.path.exists(path):
+        return path
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    cmd = [args.python, os.path.join(args.eval, 'sample.py'),
+           os.path.join(args.shared, 'data', 'models', f'{model}.obj'), path,
+           '--protocol', protocol, '--n', '100000', '--seed', '1', '--up', 'y'
+           ] + PROTOCOL_ARGS[protocol]
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    return path
+
+
+def score(args, mesh, model, cloud, voxel):
+    cmd = [args.python, os.path.join(args.eval, 'eval_mesh.py'), mesh,
+           '--gt', os.path.join(args.shared, 'data', 'models', f'{model}.obj'),
+           '--points', cloud, '--json']
+    if voxel:
+        cmd += ['--voxel', repr(voxel)]
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+    rep = json.loads(out)
+    g, t = rep.get('geometry', {}), rep.get('topology', {})
+    row = {
+        'chamfer': g.get('chamfer_l1_pct'),
+        'f1': g.get('fscore@1pct'),
+        'ok': bool(t.get('closed') and t.get('edge_manifold') and t.get('vertex_manifold') and
+                   t.get('consistently_oriented') and t.get('outward') and
+                   rep.get('self_intersecting') is False),
+        'genus': [s.get('genus') for s in t.get('shells', [])],
+    }
+    row['fid'] = rep.get('fidelity', {}).get('within@sqrt3_voxel')
+    return row
+
+
+def membrane_row(args, binary, model, cloud, tmp, tag):
+    out = os.path.join(tmp, f'{model}-{os.path.basename(cloud)}-{tag}.ply')
+    stats = out + '.json'
+    cmd = [binary, 'reconstruct', cloud, '-o', out, '--local', '-q', '--threads', '1',
+           '--stats-json', stats]
+    (rc, _, err), cpu = cpu_of(lambda: run(cmd))
+    if rc != 0:
+        return {'error': f'membrane exit {rc}: {err.strip()[:200]}'}
+    with open(stats) as fh:
+        voxel = json.load(fh)['voxel_size']
+    row = score(args, out, model, cloud, voxel)
+    row['cpu'] = cpu
+    row['voxel'] = voxel
+    return row
+
+
+def poisson_row(args, model, protocol, cloud):
+    cached = os.path.join(args.cache, 'poisson', f'{model}-{protocol}.json')
+    if os.path.exists(cached):
+        with open(cached) as fh:
+            return json.load(fh)
+    os.makedirs(os.path.dirname(cached), exist_ok=True)
+    mesh = cached[:-5] + '.ply'
+    env = dict(os.environ, OMP_NUM_THREADS='1')
+    cmd = [args.python, os.path.join(REPO, 'tests', 'bench', 'open3d_poisson.py'), cloud,
+           '--threads', '1', '--write-mesh', mesh]
+    (rc, _, err), cpu = cpu_of(lambda: run(cmd, env))
+    if rc != 0:
+        return {'error': f'poisson exit {rc}: {err.strip()[:200]}'}
+    row = score(args, mesh, model, cloud, None)
+    row['cpu'] = cpu
+    with open(cached, 'w') as fh:
+        json.dump(row, fh)
+    return row
+
+
+WIDTH = 43
+
+
+def fmt(row):
+    if row is None:
+        return ' ' * WIDTH
+    if 'error' in row:
+        return f"{row['error'][:WIDTH]:>{WIDTH}}"
+    genus = ','.join(str(g) for g in row['genus'][:3]) + ('..' if len(row['genus']) > 3 else '')
+    fid = f"{row['fid']:6.4f}" if row.get('fid') is not None else ' ' * 6
+    return (f"{row['chamfer']:7.4f} {row['f1']:6.4f} {row['cpu']:6.2f} "
+            f"{'ok' if row['ok'] else 'BAD':>3} g{genus:<6} {fid}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument('--membrane', default=os.path.join(REPO, 'build', 'client', 'membrane'))
+    ap.add_argument('--baseline', help='a second membrane binary: the "before" column')
+    ap.add_argument('--models', default='stanford-bunny,rocker-arm,spot')
+    ap.add_argument('--protocols', default='uniform,variable,holes,scanner')
+    ap.add_argument('--shared', default=os.environ.get('MEMBRANE_SHARED_DIR',
+                                                       os.path.join(REPO, '..', 'shared')))
+    ap.add_argument('--eval', help='the eval tools (default: SHARED/tools/eval)')
+    ap.add_argument('--cache', default=os.environ.get('MEMBRANE_BENCH_CACHE',
+                                                      os.path.join(REPO, '..', 'cache')))
+    ap.add_argument('--python', default='/usr/bin/python3')
+    ap.add_argument('--no-poisson', action='store_true')
+    ap.add_argument('--out', help='also write the table here')
+    args = ap.parse_args()
+    args.eval = args.eval or os.path.join(args.shared, 'tools', 'eval')
+    for tool in ('sample.py', 'eval_mesh.py'):
+        if not os.path.exists(os.path.join(args.eval, tool)):
+            print(f'{os.path.join(args.eval, tool)}: not found (--shared or --eval)',
+                  file=sys.stderr)
+            return 2
+    for binary in filter(None, [args.membrane, args.baseline]):
+        if not os.access(binary, os.X_OK):
+            print(f'{binary}: not an executable membrane client', file=sys.stderr)
+            return 2
+
+    lines = []
+
+    def emit(text):
+        print(text, flush=True)
+        lines.append(text)
+
+    emit(f"# accuracy_table.py {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
+         f"load average {os.getloadavg()[0]:.1f}")
+    emit(f"# membrane (after): {args.membrane}")
+    if args.baseline:
+        emit(f"# baseline (before): {args.baseline}")
+    emit('# per mesh: Chamfer-L1 % of diag, F@1%, CPU s, scorer topology ok, genus per shell, '
+         'share of input points within sqrt(3) L (membrane)')
+    head = (f"{'cloud':24} {'before':>{WIDTH}} | {'after':>{WIDTH}} | {'Poisson d9':>{WIDTH}} | "
+            "after/Poisson Chamfer")
+    emit(head)
+    results = []
+    failed = False
+    with tempfile.TemporaryDirectory(prefix='accuracy-') as tmp:
+        for model in args.models.split(','):
+            for protocol in args.protocols.split(','):
+                cloud = make_cloud(args, model, protocol)
+                before = (membrane_row(args, args.baseline, model, cloud, tmp, 'before')
+                          if args.baseline else None)
+                after = membrane_row(args, args.membrane, model, cloud, tmp, 'after')
+                poisson = None if args.no_poisson else poisson_row(args, model, protocol, cloud)
+                failed |= 'error' in after
+                ratio = ''
+                if poisson and 'error' not in poisson and 'error' not in after:
+                    ratio = f"{after['chamfer'] / poisson['chamfer']:5.2f}"
+                emit(f"{model + '/' + protocol:24} {fmt(before)} | {fmt(after)} | "
+                     f"{fmt(poisson)} | {ratio}")
+                results.append((model, protocol, before, after, poisson))
+    emit('# means over the clouds above (Chamfer %, F@1%, CPU s)')
+    for protocol in args.protocols.split(','):
+        cols = []
+        for k in (2, 3, 4):
+            rows = [r[k] for r in results if r[1] == protocol and r[k] and 'error' not in r[k]]
+            if not rows:
+                cols.append(' ' * 21)
+                continue
+            n = len(rows)
+            cols.append(f"{sum(r['chamfer'] for r in rows) / n:7.4f} "
+                        f"{sum(r['f1'] for r in rows) / n:6.4f} "
+                        f"{sum(r['cpu'] for r in rows) / n:6.2f}")
+        emit(f"{'mean ' + protocol:24} before {cols[0]} | after {cols[1]} | Poisson {cols[2]}")
+    if args.out:
+        with open(args.out, 'w') as fh:
+            fh.write('\n'.join(lines) + '\n')
+    return 1 if failed else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

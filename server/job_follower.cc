@@ -14,7 +14,8 @@ namespace {
 constexpr size_t kMeshChunkBytes = 1 << 20;  // well under gRPC's 4 MB message limit
 constexpr std::chrono::seconds kDeadlineSlack{2};
 
-grpc::Status CallEnded(Job& job, grpc::ServerContext& context, FollowPolicy policy) {
+grpc::Status CallEnded(Job& job, grpc::ServerContext& context, const std::string& peer,
+                       FollowPolicy policy) {
   // The server's deadline is the client's timeout counted from when the call's headers
   // arrived, so it trails the client's own by the transit time (tens to hundreds of ms on a
   // loaded machine): a call that ends just before it was ended by the client's deadline.
@@ -26,7 +27,7 @@ grpc::Status CallEnded(Job& job, grpc::ServerContext& context, FollowPolicy poli
     job.RequestCancel("the client disconnected (--on-disconnect=cancel)");
   }
   LogEvent("call_dropped", {{"job", job.id()},
-                            {"peer", context.peer()},
+                            {"peer", peer},
                             {"deadline_expired", deadline_expired ? "true" : "false"}});
   return deadline_expired ? grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED, "deadline expired")
                           : grpc::Status(grpc::StatusCode::CANCELLED, "call cancelled");
@@ -34,32 +35,33 @@ grpc::Status CallEnded(Job& job, grpc::ServerContext& context, FollowPolicy poli
 
 }  // namespace
 
-grpc::Status FollowJob(Job& job, grpc::ServerContext& context, FollowPolicy policy,
+grpc::Status FollowJob(Job& job, grpc::ServerContext& context, const std::string& peer,
+                       FollowPolicy policy,
                        const std::function<bool(const v1::JobEvent&)>& write) {
   size_t next = 0;
   while (true) {
-    if (context.IsCancelled()) return CallEnded(job, context, policy);
+    if (context.IsCancelled()) return CallEnded(job, context, peer, policy);
     // Read `done` first: no event is added after the job ends, so the events fetched next
     // are then all of them.
     const bool done = job.done();
     std::vector<v1::JobEvent> events;
     next = job.WaitForEvents(next, done ? absl::ZeroDuration() : absl::Milliseconds(50), events);
     for (const v1::JobEvent& event : events) {
-      if (!write(event)) return CallEnded(job, context, policy);
+      if (!write(event)) return CallEnded(job, context, peer, policy);
     }
     if (!done) continue;
     // The mesh is the job's one buffer: each chunk is copied into its message as it is
     // written, so a follower holds a chunk of it, not the whole.
     const std::optional<Job::Outcome> outcome = job.Closing();
     if (outcome->result.has_value()) {
-      if (!write(*outcome->result)) return CallEnded(job, context, policy);
+      if (!write(*outcome->result)) return CallEnded(job, context, peer, policy);
       for (size_t at = 0; at < outcome->mesh->size(); at += kMeshChunkBytes) {
         if (!write(MeshChunkEvent(*outcome->mesh, at, kMeshChunkBytes))) {
-          return CallEnded(job, context, policy);
+          return CallEnded(job, context, peer, policy);
         }
       }
     }
-    if (!write(outcome->done)) return CallEnded(job, context, policy);
+    if (!write(outcome->done)) return CallEnded(job, context, peer, policy);
     const google::rpc::Status& status = outcome->done.done().status();
     return grpc::Status(static_cast<grpc::StatusCode>(status.code()), status.message());
   }

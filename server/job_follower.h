@@ -3,6 +3,7 @@
 #define MEMBRANE_SERVER_JOB_FOLLOWER_H_
 
 #include <functional>
+#include <string>
 
 #include <grpcpp/server_context.h>
 
@@ -19,9 +20,12 @@ struct FollowPolicy {
 // Writes each event of `job` from its first one through `write` (false: the caller is gone),
 // then its closing events (result, mesh chunks, JobDone). Polls the call every 50 ms, so a
 // dropped caller or an expired deadline is seen (and the job cancelled per `policy`) within
-// 100 ms. Returns the job's final status for the call: OK, or the status the job ended with;
-// CANCELLED or DEADLINE_EXCEEDED when the call ended first.
-grpc::Status FollowJob(Job& job, grpc::ServerContext& context, FollowPolicy policy,
+// 100 ms, and logged as `call_dropped` with `peer`, the caller's address taken when the call
+// began (a cancelled call's context no longer knows it). Returns the job's final status for
+// the call: OK, or the status the job ended with; CANCELLED or DEADLINE_EXCEEDED when the
+// call ended first.
+grpc::Status FollowJob(Job& job, grpc::ServerContext& context, const std::string& peer,
+                       FollowPolicy policy,
                        const std::function<bool(const v1::JobEvent&)>& write);
 
 }  // namespace membrane::server

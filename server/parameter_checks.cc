@@ -7,6 +7,7 @@
 #include "absl/strings/str_format.h"
 #include "core/engine/plate_schedule.h"
 #include "core/io/coordinate_shift.h"
+#include "server/client_text.h"
 
 namespace membrane::server {
 namespace {
@@ -55,7 +56,7 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
     absl::StatusOr<PlateSchedule> schedule = ParsePlateSchedule(p.schedule());
     if (!schedule.ok()) {
       return absl::InvalidArgumentError(
-          absl::StrCat("schedule '", p.schedule(), "' is not one of: halving, linear"));
+          absl::StrCat("schedule '", ClientText(p.schedule()), "' is not one of: halving, linear"));
     }
     r.shrink.schedule = *schedule;
   }
@@ -63,7 +64,7 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
     absl::StatusOr<SurfaceKind> surface = ParseSurfaceKind(p.surface());
     if (!surface.ok()) {
       return absl::InvalidArgumentError(
-          absl::StrCat("surface '", p.surface(), "' is not one of: smooth, cuberille"));
+          absl::StrCat("surface '", ClientText(p.surface()), "' is not one of: smooth, cuberille"));
     }
     r.surface = *surface;
   }

@@ -9,6 +9,7 @@
 #include "proto/crc32c.h"
 #include "proto/job_routing.h"
 #include "server/bearer_token.h"
+#include "server/client_text.h"
 #include "server/job_follower.h"
 #include "server/parameter_checks.h"
 #include "server/rpc_status.h"
@@ -36,11 +37,13 @@ grpc::Status WrongReplica(absl::string_view asked, const std::string& this_repli
 grpc::Status JobNotFound(const std::string& id, const std::string& this_replica) {
   const absl::string_view owner = ReplicaOfJobId(id);
   if (!owner.empty() && owner != this_replica) {
-    return WrongReplica(absl::StrCat("no job '", id, "' here: it belongs to replica '", owner, "'"),
+    return WrongReplica(absl::StrCat("no job '", ClientText(id), "' here: it belongs to replica '",
+                                     ClientText(owner), "'"),
                         this_replica);
   }
-  return grpc::Status(grpc::StatusCode::NOT_FOUND,
-                      absl::StrCat("no job '", id, "' (unknown, or its result expired)"));
+  return grpc::Status(
+      grpc::StatusCode::NOT_FOUND,
+      absl::StrCat("no job '", ClientText(id), "' (unknown, or its result expired)"));
 }
 
 }  // namespace
@@ -159,6 +162,8 @@ grpc::Status ReconstructionService::Reconstruct(
     metrics_.ReconstructRefused(static_cast<absl::StatusCode>(s.error_code()));
     return s;
   };
+  // Taken now: once the call is cancelled (a stall, a drop) its context no longer knows it.
+  const std::string peer = context->peer();
   if (grpc::Status s = Authenticate(*context); !s.ok()) return refused(s);
   if (!accepting_) {
     return refused(ToGrpcStatusWithRetry(
@@ -169,7 +174,7 @@ grpc::Status ReconstructionService::Reconstruct(
   std::string upload;
   UploadMemory::Hold hold;
   if (grpc::Status s = ReadUpload(context, stream, parameters, upload, hold); !s.ok()) {
-    LogEvent("upload_rejected", {{"peer", context->peer()},
+    LogEvent("upload_rejected", {{"peer", peer},
                                  {"code", absl::StrCat(s.error_code())},
                                  {"message", s.error_message()}});
     return refused(s);
@@ -179,21 +184,21 @@ grpc::Status ReconstructionService::Reconstruct(
   JobStore& store = store_;
   const std::string id = NewJobId();
   auto job = std::make_shared<Job>(
-      id, context->peer(), parameters, std::move(upload), std::move(hold),
+      id, peer, parameters, std::move(upload), std::move(hold),
       [&metrics, &store, id](v1::JobState state, const absl::Status& status, absl::Duration age,
                              uint64_t mesh_bytes) {
         metrics.JobFinished(state, status.code(), absl::ToDoubleSeconds(age), mesh_bytes);
         store.Finished(id);
       });
   if (absl::Status s = scheduler_.Submit(job); !s.ok()) {
-    LogEvent("job_refused", {{"peer", context->peer()}, {"message", std::string(s.message())}});
+    LogEvent("job_refused", {{"peer", peer}, {"message", std::string(s.message())}});
     return refused(ToGrpcStatusWithRetry(s, absl::Seconds(options_.retry_delay_seconds)));
   }
   metrics_.JobAccepted(upload_bytes);
   store_.Add(job);
   const v1::Job snapshot = job->Snapshot();
   LogEvent("job_accepted", {{"job", job->id()},
-                            {"peer", context->peer()},
+                            {"peer", peer},
                             {"upload_bytes", absl::StrCat(upload_bytes)},
                             {"queue_position", absl::StrCat(snapshot.queue_position())}});
   v1::JobEvent accepted;
@@ -201,11 +206,12 @@ grpc::Status ReconstructionService::Reconstruct(
   accepted.mutable_accepted()->set_queue_position(snapshot.queue_position());
   const FollowPolicy policy{options_.on_disconnect == DisconnectPolicy::kCancel};
   if (!WriteUnlessStalled(context, [&] { return stream->Write(accepted); })) {
-    return FollowJob(*job, *context, policy, [](const v1::JobEvent&) { return false; });
+    return FollowJob(*job, *context, peer, policy, [](const v1::JobEvent&) { return false; });
   }
-  return FollowJob(*job, *context, policy, [this, context, stream](const v1::JobEvent& event) {
-    return WriteUnlessStalled(context, [&] { return stream->Write(event); });
-  });
+  return FollowJob(*job, *context, peer, policy,
+                   [this, context, stream](const v1::JobEvent& event) {
+                     return WriteUnlessStalled(context, [&] { return stream->Write(event); });
+                   });
 }
 
 grpc::Status ReconstructionService::GetJob(grpc::ServerContext* context,
@@ -223,14 +229,15 @@ grpc::Status ReconstructionService::WatchJob(grpc::ServerContext* context,
   if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
   std::shared_ptr<Job> job = FindJob(request->job_id());
   if (job == nullptr) return JobNotFound(request->job_id(), options_.replica);
-  LogEvent("job_watched", {{"job", job->id()}, {"peer", context->peer()}});
+  const std::string peer = context->peer();
+  LogEvent("job_watched", {{"job", job->id()}, {"peer", peer}});
   v1::JobEvent snapshot;
   *snapshot.mutable_snapshot() = job->Snapshot();
   if (!WriteUnlessStalled(context, [&] { return writer->Write(snapshot); })) {
     return grpc::Status(grpc::StatusCode::CANCELLED, "call cancelled");
   }
   // A watcher going away never cancels the job: only its own Reconstruct call may.
-  return FollowJob(*job, *context, FollowPolicy{},
+  return FollowJob(*job, *context, peer, FollowPolicy{},
                    [this, context, writer](const v1::JobEvent& event) {
                      return WriteUnlessStalled(context, [&] { return writer->Write(event); });
                    });
@@ -257,8 +264,9 @@ grpc::Status ReconstructionService::ListJobs(grpc::ServerContext* context,
   if (asked != context->client_metadata().end()) {
     const std::string name(asked->second.data(), asked->second.size());
     if (name != options_.replica) {
-      return WrongReplica(absl::StrCat("the jobs of replica '", name, "' were asked for"),
-                          options_.replica);
+      return WrongReplica(
+          absl::StrCat("the jobs of replica '", ClientText(name), "' were asked for"),
+          options_.replica);
     }
   }
   store_.RemoveFinishedBefore(clock_.Now() - absl::Seconds(options_.result_ttl_seconds));

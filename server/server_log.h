@@ -12,8 +12,9 @@
 namespace membrane::server {
 
 // Writes "ts=<unix seconds> event=<event> k1=v1 k2=v2 ..." and a newline to stderr in one
-// write, so lines of concurrent jobs never interleave. Values with spaces or quotes are
-// quoted.
+// write, so lines of concurrent jobs never interleave. A value is cut after 2 KiB (saying its
+// length), its control bytes are written as \xHH, and it is quoted ("...", with \" and \\) when
+// it holds a space, a quote, a backslash or such a byte, or is empty.
 void LogEvent(absl::string_view event,
               std::initializer_list<std::pair<absl::string_view, std::string>> fields);
 

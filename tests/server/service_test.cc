@@ -259,6 +259,42 @@ TEST_F(ServiceTest, UnknownJobIsNotFound) {
   EXPECT_EQ(Watch("nope").status.error_code(), grpc::StatusCode::NOT_FOUND);
 }
 
+// Whatever a client sends comes back bounded and escaped: a status carrying a 3 MiB schedule
+// or a 1 MiB job id would not fit gRPC's 8 KB of trailers, and the client would see
+// RESOURCE_EXHAUSTED instead of what is wrong.
+TEST_F(ServiceTest, HugeOrHostileStringsComeBackBoundedInTheRightStatus) {
+  StartServer();
+  v1::Parameters p;
+  p.set_schedule("\x1b[2J" + std::string(3 << 20, 'h'));
+  const CallResult r = Reconstruct(DracoCloud("sphere", 1000), p);
+  EXPECT_EQ(r.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_LT(r.status.error_message().size(), 512u);
+  EXPECT_NE(r.status.error_message().find("schedule '\\x1b[2Jhhh"), std::string::npos)
+      << r.status.error_message();
+  EXPECT_NE(r.status.error_message().find("...(3145732 bytes)' is not one of: halving, linear"),
+            std::string::npos)
+      << r.status.error_message();
+  v1::Parameters q;
+  q.set_surface(std::string(1 << 20, '\0'));
+  const CallResult s = Reconstruct(DracoCloud("sphere", 1000), q);
+  EXPECT_EQ(s.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(s.status.error_message().find("surface '\\x00\\x00"), std::string::npos);
+
+  const std::string id = std::string(1 << 20, 'a') + "\n";
+  grpc::ClientContext context;
+  v1::GetJobRequest request;
+  request.set_job_id(id);
+  v1::Job job;
+  const grpc::Status get = stub_->GetJob(&context, request, &job);
+  EXPECT_EQ(get.error_code(), grpc::StatusCode::NOT_FOUND) << get.error_message().size();
+  EXPECT_LT(get.error_message().size(), 512u);
+  const CallResult watch = Watch("membraned-9." + id);
+  EXPECT_EQ(watch.status.error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_NE(watch.status.error_message().find("it belongs to replica 'membraned-9'"),
+            std::string::npos)
+      << watch.status.error_message();
+}
+
 // A named replica's job ids carry its name; a call about another replica's job, which a
 // balancer routed wrongly, is NOT_FOUND with both names and the header to route on.
 TEST_F(ServiceTest, NamedReplicaPrefixesItsJobIdsAndNamesTheOwnerOfOthers) {
@@ -610,6 +646,7 @@ TEST_F(ServiceTest, StalledUploadIsCancelledAndItsMemoryGivenBack) {
   UploadTweaks stall;
   stall.send_bytes = cloud.size() / 2;
   stall.stall = true;
+  ::testing::internal::CaptureStderr();
   const CallResult stalled = Reconstruct(cloud, {}, stall, 30);
   // Cancelled by the server: else the call would have run into its deadline.
   EXPECT_EQ(stalled.status.error_code(), grpc::StatusCode::CANCELLED)
@@ -617,6 +654,10 @@ TEST_F(ServiceTest, StalledUploadIsCancelledAndItsMemoryGivenBack) {
   EXPECT_TRUE(stalled.JobId().empty());
   const CallResult next = Reconstruct(cloud, {}, {}, 30);
   EXPECT_TRUE(next.status.ok()) << next.status.error_message();
+  // Logged (before the memory the next upload needed came back) with the caller's address,
+  // which the cancelled call's context no longer knows.
+  const std::string log = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(log.find("event=upload_rejected peer=ipv4:127.0.0.1:"), std::string::npos) << log;
 }
 
 // Progress is bytes: a client that keeps its upload open with empty chunks, or with a few
@@ -683,6 +724,7 @@ TEST_F(ServiceTest, ClientThatReadsNothingIsCutOffAndTheJobGoesOn) {
       },
       60);
   ASSERT_EQ(job.state(), v1::SUCCEEDED);
+  ::testing::internal::CaptureStderr();
   // Then past the stall limit with the mesh unread, until the server has cut the call.
   WhileTimeFlies(absl::Seconds(20), nullptr, [&] {
     EXPECT_TRUE(WaitFor(
@@ -700,6 +742,13 @@ TEST_F(ServiceTest, ClientThatReadsNothingIsCutOffAndTheJobGoesOn) {
   const CallResult watched = Watch(job.id());
   EXPECT_TRUE(watched.status.ok()) << watched.status.error_message();
   EXPECT_FALSE(watched.Mesh().empty());
+  // Logged with the caller's address, which the cancelled call's context no longer knows; by
+  // the time the server has stopped, which waits for every handler.
+  server_->Shutdown(absl::ZeroDuration());
+  const std::string log = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(log.find("event=call_dropped job=" + job.id() + " peer=ipv4:127.0.0.1:"),
+            std::string::npos)
+      << log;
 }
 
 TEST_F(ServiceTest, QueuedJobReportsItsPosition) {

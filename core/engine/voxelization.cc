@@ -1,7 +1,10 @@
 #include "core/engine/voxelization.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
@@ -26,6 +29,86 @@ int64_t DistinctPointCount(absl::Span<const Point3f> points) {
 double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points) {
   return EstimateVoxelSize(bounds, DistinctPointCount(points));
 }
+
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+Vec3 Sub(const Point3f& a, const Point3f& b) {
+  return {double(a[0]) - b[0], double(a[1]) - b[1], double(a[2]) - b[2]};
+}
+Vec3 Cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double Dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// The spacing of float32 values at the magnitude of `p`'s largest coordinate.
+double FloatStep(const Point3f& p) {
+  const float m = std::max({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])});
+  return static_cast<double>(std::nextafter(m, HUGE_VALF)) - m;
+}
+
+// InvalidArgument when `points` (not all equal, finite) lie on one line or in one plane,
+// which bound no solid. Geometric, in the manner of quickhull's first simplex: a, then b the
+// point farthest from a, c the farthest from the line ab; the points are collinear when all
+// are on ab, coplanar when all are on the plane abc. "On" allows for float32 rounding: 2 steps
+// at the point's own magnitude and at a's and c's, and at b's scaled by how far along ab the
+// point is (a point exactly on a plane, rounded, is within 0.87 of a step of it, and so are
+// the three that give the plane). Too little allowance only lets a plane through to the
+// voxelizer, which then finds no solid in it; too much would call a small solid far from
+// the origin flat. No spread statistic can say this: a round blob
+// with one point far away has a covariance as thin as a plane's, and is no plane.
+absl::Status CheckSpansASolid(absl::Span<const Point3f> points) {
+  const Point3f& a = points.front();
+  size_t b_index = 0;
+  double b_distance = -1;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Vec3 ap = Sub(points[i], a);
+    if (const double d = Dot(ap, ap); d > b_distance) b_distance = d, b_index = i;
+  }
+  const Point3f& b = points[b_index];
+  const Vec3 ab = Sub(b, a);
+  const double ab_length = std::sqrt(b_distance);
+  // The rounding allowance at `p` of a line or plane through a, b and `third`.
+  auto allowance = [&](const Point3f& p, double third_step) {
+    const Vec3 ap = Sub(p, a);
+    return 2 * (FloatStep(p) + FloatStep(a) + third_step +
+                FloatStep(b) * std::sqrt(Dot(ap, ap)) / ab_length);
+  };
+  size_t c_index = 0;
+  double c_distance = -1, line_excess = -1;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Vec3 n = Cross(Sub(points[i], a), ab);
+    const double d = std::sqrt(Dot(n, n)) / ab_length;
+    if (d > c_distance) c_distance = d, c_index = i;
+    line_excess = std::max(line_excess, d - allowance(points[i], 0));
+  }
+  if (line_excess <= 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "the %d points are collinear (none farther than %g from one line): a line bounds no "
+        "solid",
+        points.size(), c_distance));
+  }
+  const Point3f& c = points[c_index];
+  Vec3 normal = Cross(ab, Sub(c, a));
+  const double normal_length = std::sqrt(Dot(normal, normal));
+  for (double& v : normal) v /= normal_length;
+  double d_distance = 0, plane_excess = -1;
+  for (const Point3f& p : points) {
+    const double d = std::fabs(Dot(Sub(p, a), normal));
+    d_distance = std::max(d_distance, d);
+    plane_excess = std::max(plane_excess, d - allowance(p, FloatStep(c)));
+  }
+  if (plane_excess <= 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "the %d points are coplanar (none farther than %g from one plane): a plane bounds no "
+        "solid",
+        points.size(), d_distance));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
 
 absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points) {
   if (points.empty()) return absl::InvalidArgumentError("the point cloud has no points");
@@ -53,31 +136,7 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points) {
         "all %d points are equal (%g, %g, %g): a point bounds no solid", points.size(),
         box.min[0], box.min[1], box.min[2]));
   }
-  // Coplanar (or collinear): the covariance matrix's smallest eigenvalue is zero next to its
-  // largest. With l1 >= l2 >= l3, det / (sum of the principal 2x2 minors) is about l3 when l3
-  // is small, and the trace about l1, so the test does not depend on the model's scale, nor
-  // on how elongated it is. Comparing det with the cube of the mean eigenvalue would also call
-  // a round blob with one stray point far away "coplanar".
-  double mean[3] = {0, 0, 0};
-  for (const Point3f& p : points)
-    for (int d = 0; d < 3; ++d) mean[d] += p[d];
-  for (double& m : mean) m /= static_cast<double>(points.size());
-  double c[3][3] = {};
-  for (const Point3f& p : points) {
-    const double q[3] = {p[0] - mean[0], p[1] - mean[1], p[2] - mean[2]};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) c[i][j] += q[i] * q[j];
-  }
-  const double det = c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) -
-                     c[0][1] * (c[1][0] * c[2][2] - c[1][2] * c[2][0]) +
-                     c[0][2] * (c[1][0] * c[2][1] - c[1][1] * c[2][0]);
-  const double minors = c[0][0] * c[1][1] - c[0][1] * c[1][0] + c[1][1] * c[2][2] -
-                        c[1][2] * c[2][1] + c[0][0] * c[2][2] - c[0][2] * c[2][0];
-  const double trace = c[0][0] + c[1][1] + c[2][2];
-  if (det <= 1e-9 * minors * trace) {
-    return absl::InvalidArgumentError(absl::StrFormat(
-        "the %d points are coplanar (or collinear): a plane bounds no solid", points.size()));
-  }
+  if (absl::Status s = CheckSpansASolid(points); !s.ok()) return s;
   return box;
 }
 
@@ -100,6 +159,32 @@ absl::Status CheckPositionPrecision(const Box3d& bounds, double voxel_size) {
       "cloud near the origin (subtract its centre), or give its coordinates in double (text, or "
       "PLY or PCD doubles: membrane then moves it itself)",
       reach, spacing, voxel_size));
+}
+
+// Mesh positions are float32, on a cube of the grid's largest side from its origin (the
+// output grid, core/mesh/output_grid.h): coordinates near float32's largest value (3.4e38)
+// would put that cube's far side, or its length, at infinity. InvalidArgument naming the
+// cloud's range and the grid's when they do not fit in 0.99 of it.
+absl::Status CheckGridFitsFloat(const Box3d& bounds, double voxel_size, const double cells[3]) {
+  constexpr double kLimit = 0.99 * std::numeric_limits<float>::max();
+  const double side = voxel_size * std::max({cells[0], cells[1], cells[2]});
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (int d = 0; d < 3; ++d) {
+    const double origin = bounds.min[d] - VoxelGrid::kPadding * voxel_size;
+    low = std::min(low, origin);
+    high = std::max(high, origin + side);
+  }
+  if (std::max({side, std::fabs(low), std::fabs(high)}) <= kLimit) return absl::OkStatus();
+  double cloud_low = bounds.min[0], cloud_high = bounds.max[0];
+  for (int d = 1; d < 3; ++d) {
+    cloud_low = std::min(cloud_low, bounds.min[d]);
+    cloud_high = std::max(cloud_high, bounds.max[d]);
+  }
+  return absl::InvalidArgumentError(absl::StrFormat(
+      "the coordinates span [%.3g, %.3g]: at voxel size %.3g the grid around them spans "
+      "[%.3g, %.3g] (a cube of side %.3g), past the +-%.3g that float32 mesh positions can hold; scale the "
+      "cloud down or move it toward the origin",
+      cloud_low, cloud_high, voxel_size, low, high, side, kLimit));
 }
 
 }  // namespace
@@ -133,6 +218,8 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
         "voxel size %g gives a %.0fx%.0fx%.0f grid (%.3g voxels), over the voxel budget of %.3g",
         l, cells[0], cells[1], cells[2], total, static_cast<double>(options.voxel_budget)));
   }
+
+  if (absl::Status s = CheckGridFitsFloat(*bounds, l, cells); !s.ok()) return s;
 
   Voxelization v;
   v.bounds = *bounds;

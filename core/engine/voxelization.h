@@ -51,8 +51,9 @@ int64_t DistinctPointCount(absl::Span<const Point3f> points);
 double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points);
 
 // Bounding box of `points`. InvalidArgument when there are no points, when some coordinates
-// are NaN or infinite (with their count), when all points are equal, or when they are
-// coplanar (a plane bounds no solid).
+// are NaN or infinite (with their count), when all points are equal, or when they lie on one
+// line or in one plane (up to float32 rounding): neither bounds a solid (a solid with a few
+// points far from it is no plane).
 absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points);
 
 // Builds the voxel grid and the initial membrane for `points`. Each axis gets
@@ -61,7 +62,8 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points);
 // floor((p - bounds.min) / l) + kPadding.
 // Errors: InvalidArgument for degenerate points (see CheckedBounds), a voxel size that is not
 // finite and positive, or coordinates so far from the origin that float32 positions there are
-// more than a quarter of a voxel apart (naming both); ResourceExhausted, naming the grid and
+// more than a quarter of a voxel apart (naming both), or so large that the grid around them
+// passes float32's range (naming both ranges); ResourceExhausted, naming the grid and
 // the budget, when the grid would exceed options.voxel_budget. Nothing is allocated before the
 // budget check.
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,

@@ -10,6 +10,7 @@ namespace membrane {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 PointCloud Cube8() {
   PointCloud c;
@@ -125,6 +126,48 @@ TEST(Voxelization, ElongatedCloudsAreNotCoplanar) {
     for (int a = 0; a < 8; ++a)
       rod.push_back({float(i), float(std::cos(a * 0.785398)), float(std::sin(a * 0.785398))});
   EXPECT_TRUE(CheckedBounds(rod).ok()) << CheckedBounds(rod).status();
+}
+
+// A unit sphere of `n` points, shifted by `offset` on every axis and scaled by `scale`.
+std::vector<Point3f> Sphere(int n, double offset = 0, double scale = 1) {
+  std::vector<Point3f> sphere;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.399963 * i, z = 1.0 - 2.0 * (i + 0.5) / n;
+    const double r = std::sqrt(1 - z * z);
+    sphere.push_back({float(scale * (offset + r * std::cos(t))),
+                      float(scale * (offset + r * std::sin(t))), float(scale * (offset + z))});
+  }
+  return sphere;
+}
+
+// However far the stray point (up to float32's largest), a sphere is a solid: the voxelizer
+// then says what it does see (a grid too coarse to hold one), never "coplanar".
+TEST(Voxelization, SpherePlusOneFarPointIsNotCoplanar) {
+  for (const float far : {1e3f, 1e7f, 1e20f, 2e38f}) {
+    std::vector<Point3f> cloud = Sphere(10000);
+    cloud.push_back({far, 0, 0});
+    const absl::StatusOr<Box3d> bounds = CheckedBounds(cloud);
+    EXPECT_TRUE(bounds.ok()) << far << ": " << bounds.status();
+    EXPECT_THAT(Voxelize(cloud, {}).status().message(), Not(HasSubstr("coplanar"))) << far;
+  }
+}
+
+TEST(Voxelization, PointsOnALineAreCollinear) {
+  std::vector<Point3f> p;
+  for (int i = 0; i < 50; ++i) p.push_back({float(i), float(2 * i), float(-i)});
+  auto v = Voxelize(p, {});
+  ASSERT_EQ(v.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(v.status().message(), HasSubstr("the 50 points are collinear"));
+}
+
+// Float32 reaches 3.4e38: a cloud whose grid would pass it is told so with its range, not a
+// failure of some later stage about an infinite box.
+TEST(Voxelization, CoordinatesPastFloatRangeAreInvalidArgumentNamingTheRange) {
+  EXPECT_TRUE(Voxelize(Sphere(10000, 0, 1.5e38), {}).ok());
+  auto v = Voxelize(Sphere(10000, 0, 2e38), {});
+  ASSERT_EQ(v.status().code(), absl::StatusCode::kInvalidArgument) << v.status();
+  EXPECT_THAT(v.status().message(), HasSubstr("the coordinates span [-2e+38, 2e+38]"));
+  EXPECT_THAT(v.status().message(), HasSubstr("past the +-3.37e+38 that float32 mesh"));
 }
 
 TEST(Voxelization, CoordinatesTooFarForFloatPrecisionAreInvalidArgument) {

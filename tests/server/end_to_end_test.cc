@@ -315,13 +315,17 @@ TEST_F(EndToEndTest, StoreDirKeepsResultsAcrossACrash) {
                                "--server", address_, "--voxel-size", "0.008", "-q"},
                               "slow");
   // The slow job is the second to start. Bounded generously: on a loaded machine the client
-  // reads and uploads its cloud slowly, and a kill before the job runs tests nothing.
+  // reads and uploads its cloud slowly, and a kill before the job runs tests nothing. Its
+  // job_accepted line, which names it, may come after job_started (the worker can start it
+  // while the handler writes it to the store).
   std::string log;
+  const auto twice = [&](const std::string& event) {
+    const size_t first = log.find(event);
+    return first != std::string::npos && log.find(event, first + 1) != std::string::npos;
+  };
   const auto started_twice = [&] {
     log = ReadText(log_);
-    const size_t first = log.find("event=job_started");
-    return first != std::string::npos &&
-           log.find("event=job_started", first + 1) != std::string::npos;
+    return twice("event=job_started") && twice("event=job_accepted");
   };
   const absl::Time end = absl::Now() + absl::Seconds(120);
   while (!started_twice() && absl::Now() < end) absl::SleepFor(absl::Milliseconds(50));

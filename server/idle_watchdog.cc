@@ -20,10 +20,14 @@ IdleWatchdog::~IdleWatchdog() {
 }
 
 IdleWatchdog::Watch IdleWatchdog::Start(grpc::ServerContext* context) {
+  return Start([context] { context->TryCancel(); });
+}
+
+IdleWatchdog::Watch IdleWatchdog::Start(std::function<void()> cancel) {
   if (limit_ <= absl::ZeroDuration()) return Watch(nullptr, 0);
   absl::MutexLock lock(&mutex_);
   const int64_t id = next_id_++;
-  calls_[id] = Entry{context, clock_.Now()};
+  calls_[id] = Entry{std::move(cancel), clock_.Now()};
   return Watch(this, id);
 }
 
@@ -56,8 +60,8 @@ void IdleWatchdog::Loop() {
     const absl::Time now = clock_.Now();
     for (auto& [id, entry] : calls_) {
       if (entry.fired || now - entry.last <= limit_) continue;
-      // Under the lock: the Watch, and so the context, cannot go away meanwhile.
-      entry.context->TryCancel();
+      // Under the lock: the Watch, and so what `cancel` reaches, cannot go away meanwhile.
+      entry.cancel();
       entry.fired = true;
       if (on_cut_) on_cut_();
     }

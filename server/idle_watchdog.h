@@ -2,7 +2,8 @@
 // made no progress that long (what counts as progress is the caller's: bytes, for uploads), or
 // a call whose client has read nothing of an event written to it that long, is cancelled. So
 // a stalled client (alive enough to answer keepalive pings) cannot hold a call thread, or its
-// upload's memory, for ever. One thread watches every call.
+// upload's memory, for ever. One thread watches every call. The same mechanism bounds a job's
+// running time (--max-job-seconds): a watch that is never touched fires once its limit passes.
 #ifndef MEMBRANE_SERVER_IDLE_WATCHDOG_H_
 #define MEMBRANE_SERVER_IDLE_WATCHDOG_H_
 
@@ -33,8 +34,8 @@ class IdleWatchdog {
   IdleWatchdog(const IdleWatchdog&) = delete;
   IdleWatchdog& operator=(const IdleWatchdog&) = delete;
 
-  // One call under watch from its creation to its destruction, which must come before the
-  // call's context is destroyed (the handler's scope).
+  // One call (or job) under watch from its creation to its destruction, which must come
+  // before what its cancel function reaches is destroyed (the handler's scope).
   class Watch {
    public:
     ~Watch();
@@ -52,14 +53,17 @@ class IdleWatchdog {
     int64_t id_;
   };
 
-  // Starts watching the call of `context`, as of now.
+  // Starts watching the call of `context`, as of now: TryCancel ends it.
   Watch Start(grpc::ServerContext* context) ABSL_LOCKS_EXCLUDED(mutex_);
+  // Starts watching something that `cancel` ends, as of now. `cancel` runs once, on the
+  // watchdog's thread under its lock: it must not touch the watchdog or its watches.
+  Watch Start(std::function<void()> cancel) ABSL_LOCKS_EXCLUDED(mutex_);
 
   absl::Duration idle_limit() const { return limit_; }
 
  private:
   struct Entry {
-    grpc::ServerContext* context;
+    std::function<void()> cancel;
     absl::Time last;
     bool fired = false;
   };

@@ -130,14 +130,21 @@ void Job::Fail(const absl::Status& status) {
 void Job::RequestCancel(const std::string& reason) {
   absl::MutexLock lock(&mutex_);
   if (DoneLocked()) return;
-  if (cancel_reason_.empty()) cancel_reason_ = reason;
+  if (cancel_status_.ok()) cancel_status_ = absl::CancelledError(reason);
   cancel_.Cancel();
   if (state_ == v1::QUEUED) FinishLocked(v1::CANCELLED, absl::CancelledError(reason));
 }
 
-std::string Job::cancel_reason() const {
+void Job::ExceedDeadline(const std::string& reason) {
   absl::MutexLock lock(&mutex_);
-  return cancel_reason_;
+  if (DoneLocked() || !cancel_status_.ok()) return;
+  cancel_status_ = absl::DeadlineExceededError(reason);
+  cancel_.Cancel();
+}
+
+absl::Status Job::cancel_status() const {
+  absl::MutexLock lock(&mutex_);
+  return cancel_status_;
 }
 
 void Job::FinishLocked(v1::JobState state, const absl::Status& status) {

@@ -79,8 +79,13 @@ class Job {
   // a QUEUED job ends CANCELLED at once; a RUNNING one has its token fired and ends when the
   // worker sees it (within 100 ms). Ignored once the job is done.
   void RequestCancel(const std::string& reason) ABSL_LOCKS_EXCLUDED(mutex_);
-  // The reason given to the first RequestCancel, for the worker's Cancelled status.
-  std::string cancel_reason() const ABSL_LOCKS_EXCLUDED(mutex_);
+  // Asks a RUNNING job to stop because it ran too long: its token fires as for a cancel, and
+  // it ends FAILED with DeadlineExceeded `reason` (cancel_status). Ignored once the job is
+  // done or a cancel was asked for.
+  void ExceedDeadline(const std::string& reason) ABSL_LOCKS_EXCLUDED(mutex_);
+  // The status a job whose token fired ends with: Cancelled with the reason given to the
+  // first RequestCancel, or ExceedDeadline's DeadlineExceeded; OK when neither was asked.
+  absl::Status cancel_status() const ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Waits up to `timeout` for events past the first `next` or for the end of the job, then
   // appends the events past `next` to `out` and returns how many there are now in all.
@@ -136,7 +141,7 @@ class Job {
   std::shared_ptr<const std::string> mesh_ ABSL_GUARDED_BY(mutex_);
   uint32_t mesh_crc32c_ ABSL_GUARDED_BY(mutex_) = 0;  // of *mesh_, once, not per follower
   absl::Time finished_at_ ABSL_GUARDED_BY(mutex_) = absl::InfinitePast();
-  std::string cancel_reason_ ABSL_GUARDED_BY(mutex_);
+  absl::Status cancel_status_ ABSL_GUARDED_BY(mutex_);
 };
 
 // The MeshChunk event of the bytes [at, at + chunk_bytes) of `mesh` (fewer at its end).

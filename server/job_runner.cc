@@ -18,6 +18,7 @@
 #include "server/memory_budget_gate.h"
 #include "server/parameter_checks.h"
 #include "server/server_log.h"
+#include "server/time_limit_gate.h"
 #include "server/upload_source.h"
 
 namespace membrane::server {
@@ -45,11 +46,18 @@ int JobThreads(const ServerOptions& options, int running_jobs) {
 void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   if (!job->Start()) return;  // cancelled while queued
   LogEvent("job_started", {{"job", job->id()}, {"peer", job->peer()}});
+  // Its token fires past --max-job-seconds of running; the job then ends DEADLINE_EXCEEDED.
+  const IdleWatchdog::Watch deadline = deadlines_.Start([job, limit = options_.max_job_seconds] {
+    job->ExceedDeadline(absl::StrFormat(
+        "the job ran past the server's --max-job-seconds of %g s; use a larger voxel_size or "
+        "fewer quantization bits",
+        limit));
+  });
   const Stopwatch total;
   const auto fail = [&](const absl::Status& status) {
     absl::Status final_status = status;
-    if (status.code() == absl::StatusCode::kCancelled && !job->cancel_reason().empty()) {
-      final_status = absl::CancelledError(job->cancel_reason());
+    if (status.code() == absl::StatusCode::kCancelled && !job->cancel_status().ok()) {
+      final_status = job->cancel_status();
     }
     job->Fail(final_status);
     LogEvent("job_finished",
@@ -72,7 +80,9 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   limits.subject = "the upload";
   UploadSource source(*job, std::move(limits), settings->origin);
   // Held until the job ends.
-  MemoryBudgetGate gate(memory_);
+  MemoryBudgetGate memory_gate(memory_);
+  TimeLimitGate gate(memory_gate, options_.max_job_seconds,
+                     settings->reconstruction.output_quantization_bits);
   DracoMeshSink sink(settings->mesh_encoding.compression_level);
   JobEventObserver observer(*job, &metrics_);
   // A grid over the budget: the message says which job fields change it.

@@ -7,6 +7,7 @@
 
 #include <memory>
 
+#include "server/idle_watchdog.h"
 #include "server/job.h"
 #include "server/memory_budget.h"
 #include "server/server_metrics.h"
@@ -21,15 +22,19 @@ int JobThreads(const ServerOptions& options, int running_jobs);
 
 class JobRunner {
  public:
-  // `options`, `memory` and `metrics` (not owned) must outlive the runner.
-  JobRunner(const ServerOptions& options, MemoryBudget& memory, ServerMetrics& metrics)
-      : options_(options), memory_(memory), metrics_(metrics) {}
+  // `options`, `memory`, `metrics` and `deadlines` (not owned) must outlive the runner.
+  // `deadlines` watches each running job for options.max_job_seconds.
+  JobRunner(const ServerOptions& options, MemoryBudget& memory, ServerMetrics& metrics,
+            IdleWatchdog& deadlines)
+      : options_(options), memory_(memory), metrics_(metrics), deadlines_(deadlines) {}
 
   // Runs `job` to its end (QUEUED -> RUNNING -> SUCCEEDED / FAILED / CANCELLED) on the
   // calling thread; returns at once when the job was cancelled while queued. Statuses a job
   // can end with: InvalidArgument (bad parameters, an upload the decoder rejects or dies on,
   // a degenerate cloud), ResourceExhausted (points, voxels or memory over the server's
-  // limits), Cancelled (with the reason given to Job::RequestCancel), Internal.
+  // limits, or a floor of seconds over options.max_job_seconds), Cancelled (with the reason
+  // given to Job::RequestCancel), DeadlineExceeded (running past options.max_job_seconds),
+  // Internal.
   // `threads` is the job's ReconstructionOptions::threads (JobThreads).
   void Run(const std::shared_ptr<Job>& job, int threads) const;
 
@@ -37,6 +42,7 @@ class JobRunner {
   const ServerOptions& options_;
   MemoryBudget& memory_;
   ServerMetrics& metrics_;
+  IdleWatchdog& deadlines_;
 };
 
 }  // namespace membrane::server

@@ -47,7 +47,8 @@ MembraneServer::MembraneServer(ServerOptions options, const Clock* clock)
       upload_memory_(options_.upload_memory_bytes),
       store_(MakeStore(options_.store_dir)),
       memory_(options_.memory_budget_bytes),
-      runner_(options_, memory_, metrics_),
+      job_deadlines_(absl::Seconds(options_.max_job_seconds), clock_),
+      runner_(options_, memory_, metrics_, job_deadlines_),
       scheduler_(options_.workers, options_.queue,
                  [this](const std::shared_ptr<Job>& job) {
                    runner_.Run(job, JobThreads(options_, scheduler_.running()));
@@ -130,6 +131,7 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
                                                                  " cores)")},
                               {"queue", absl::StrCat(options_.queue)},
                               {"max_calls", absl::StrCat(options_.max_calls)},
+                              {"max_job_seconds", absl::StrCat(options_.max_job_seconds)},
                               {"memory_budget_bytes", absl::StrCat(options_.memory_budget_bytes)},
                               {"memory_budget_from", options_.memory_budget_source.empty()
                                                          ? "options"

@@ -70,6 +70,8 @@ class MembraneServer {
   std::unique_ptr<JobStore> store_;
   DiskJobStore* disk_store_ = nullptr;
   MemoryBudget memory_;
+  // Before the runner, which watches each running job with it (--max-job-seconds).
+  IdleWatchdog job_deadlines_;
   JobRunner runner_;
   JobScheduler scheduler_;
   ReconstructionService service_;

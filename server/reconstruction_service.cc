@@ -14,6 +14,7 @@
 #include "server/parameter_checks.h"
 #include "server/rpc_status.h"
 #include "server/server_log.h"
+#include "server/time_limit_gate.h"
 
 namespace membrane::server {
 namespace {
@@ -88,6 +89,9 @@ grpc::Status ReconstructionService::ReadUpload(
   parameters = header.parameters();
   if (absl::StatusOr<JobSettings> s = CheckParameters(parameters, options_.voxel_budget); !s.ok()) {
     return ToGrpcStatus(s.status());
+  }
+  if (absl::Status s = CheckEncodeTime(parameters, options_.max_job_seconds); !s.ok()) {
+    return ToGrpcStatus(s);
   }
   if (header.upload_bytes() == 0) return InvalidArgument("the upload is empty (0 bytes)");
   if (header.upload_bytes() > static_cast<uint64_t>(options_.max_upload_bytes)) {

@@ -379,6 +379,50 @@ TEST_F(ServiceTest, CancelJobStopsARunningJobWithin100MsAndFreesTheWorker) {
   EXPECT_TRUE(next.status.ok()) << next.status.error_message();
 }
 
+// --max-job-seconds: a job running past it ends FAILED DEADLINE_EXCEEDED, and the worker is
+// free again.
+TEST_F(ServiceTest, JobRunningPastMaxJobSecondsFailsDeadlineExceeded) {
+  options_.max_job_seconds = 60;
+  StartServer();
+  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  ASSERT_FALSE(id.empty());
+  ASSERT_TRUE(WaitForStage(*stub_, id, "shrink"));
+  clock_.Advance(absl::Seconds(61));
+  const v1::Job done = WaitUntilDone(*stub_, id, 30);
+  EXPECT_EQ(done.state(), v1::FAILED);
+  EXPECT_EQ(done.error().code(), static_cast<int>(grpc::StatusCode::DEADLINE_EXCEEDED));
+  EXPECT_NE(done.error().message().find("--max-job-seconds of 60 s"), std::string::npos)
+      << done.error().message();
+  const CallResult next = Reconstruct(DracoCloud("sphere", 2000), {}, {}, 20);
+  EXPECT_TRUE(next.status.ok()) << next.status.error_message();
+}
+
+// What the estimates say cannot finish within --max-job-seconds is refused before it runs:
+// Draco's 30-bit encoding at the upload's header, a fine grid before it is allocated.
+TEST_F(ServiceTest, JobsOverMaxJobSecondsByTheEstimatesAreRefusedBeforeTheyRun) {
+  options_.max_job_seconds = 5;
+  StartServer();
+  v1::Parameters fine_bits;
+  fine_bits.set_quantization(30);
+  const CallResult bits = Reconstruct(DracoCloud("sphere", 3000), fine_bits);
+  EXPECT_EQ(bits.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_TRUE(bits.JobId().empty());
+  EXPECT_NE(bits.status.error_message().find("quantization 30 takes at least 26.8 s to encode"),
+            std::string::npos)
+      << bits.status.error_message();
+  v1::Parameters fine_grid;
+  fine_grid.set_voxel_size(0.003);  // about 300M voxels: at least 6 s
+  const CallResult grid = Reconstruct(DracoCloud("sphere", 3000), fine_grid);
+  EXPECT_EQ(grid.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(grid.FinalState(), v1::FAILED);
+  EXPECT_NE(grid.status.error_message().find("over the server's --max-job-seconds of 5 s"),
+            std::string::npos)
+      << grid.status.error_message();
+  for (const v1::JobEvent& e : grid.events) {
+    EXPECT_FALSE(e.has_stage() && e.stage().stage() == "shrink") << "the job ran";
+  }
+}
+
 TEST_F(ServiceTest, ExpiredDeadlineCancelsTheJob) {
   StartServer();
   const CallResult r = Reconstruct(DracoCloud("sphere", 30000), SlowParameters(), {}, 1.5);

@@ -23,6 +23,7 @@ TEST=(
   openssl                    # the TLS test makes its own self-signed certificate
   nginx-light                # the balancer test runs deploy/nginx/nginx.conf
   python3-yaml python3-kubernetes  # the manifest test (tests/deploy): YAML, the API schema
+  python3-jsonschema         # the statistics JSON against proto/membrane/v1/statistics.schema.json
 )
 BENCH=(
   libbenchmark-dev

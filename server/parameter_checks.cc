@@ -70,9 +70,10 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
   }
   r.relax = !p.no_relax();
   // The mesh is built and checked on the grid of the encoding it is returned in.
-  r.output_quantization_bits = p.quantization();
-  settings.mesh_encoding.position_quantization_bits = p.quantization();
-  settings.mesh_encoding.compression_level = p.compression_level();
+  // Unset means the default encoding (DracoOptions'), as for `membrane reconstruct`.
+  if (p.has_quantization()) settings.mesh_encoding.position_quantization_bits = p.quantization();
+  if (p.has_compression_level()) settings.mesh_encoding.compression_level = p.compression_level();
+  r.output_quantization_bits = settings.mesh_encoding.position_quantization_bits;
   return settings;
 }
 

@@ -15,7 +15,8 @@ class Backoff {
   Backoff(absl::Duration initial, absl::Duration max) : next_(initial), max_(max) {}
 
   // The delay before the next attempt: the larger of the backoff and `server_hint` (a
-  // RetryInfo), never beyond `max` unless the server asked for more.
+  // RetryInfo), plus up to 20% jitter; never beyond 1.2 `max` unless the server asked for
+  // more.
   absl::Duration Next(std::optional<absl::Duration> server_hint);
 
  private:

@@ -11,7 +11,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
-#include "client/backoff.h"
+#include "client/retry_wait.h"
 #include "client/cloud_origin.h"
 #include "client/input_files.h"
 #include "client/io_errors.h"
@@ -27,9 +27,13 @@ namespace membrane::client {
 namespace {
 
 constexpr size_t kChunkBytes = 1 << 20;  // well under gRPC's 4 MB message limit
+// Attempts at a server never heard from (`jobs watch` at a wrong address).
 constexpr int kMaxAttempts = 5;
 // How long a job's follower keeps trying an unreachable server after its last event.
 constexpr absl::Duration kReattachPatience = absl::Seconds(120);
+// How long a client without --timeout waits for a server it never reached: a wrong address
+// fails within seconds.
+constexpr absl::Duration kFirstContactPatience = absl::Seconds(4);
 // Jobs the server may lose to restarts (ending UNAVAILABLE) before the client gives up.
 constexpr int kMaxSubmissions = 3;
 
@@ -50,22 +54,16 @@ void SetDeadline(grpc::ClientContext& context, absl::Time deadline) {
   if (deadline != absl::InfiniteFuture()) context.set_deadline(ToChrono(deadline));
 }
 
-// Sleeps `delay` unless that passes `deadline`; false when it would.
-bool SleepBefore(absl::Duration delay, absl::Time deadline) {
-  if (absl::Now() + delay >= deadline) return false;
-  absl::SleepFor(delay);
-  return true;
-}
-
 absl::Status DeadlineStatus(const RemoteParams& params) {
   return absl::DeadlineExceededError(
       absl::StrFormat("timed out after %g s", absl::ToDoubleSeconds(params.timeout)));
 }
 
-// One Reconstruct call: the upload, then the events into `sink`.
+// One Reconstruct call: the upload, then the events into `sink`. `reached` tells whether the
+// header went out, which needs a connection to the server.
 grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams& params,
                              const Upload& upload_cloud, absl::Time deadline,
-                             JobEventSink& sink) {
+                             JobEventSink& sink, bool& reached) {
   const std::string& upload = upload_cloud.bytes;
   grpc::ClientContext context;
   SetDeadline(context, deadline);
@@ -76,6 +74,7 @@ grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams&
   header.mutable_header()->set_upload_bytes(upload.size());
   header.mutable_header()->set_upload_crc32c(Crc32c(upload));
   bool sending = stream->Write(header);
+  reached = sending;
   for (size_t at = 0; sending && at < upload.size(); at += kChunkBytes) {
     v1::ReconstructRequest chunk;
     chunk.set_chunk(upload.substr(at, kChunkBytes));
@@ -139,8 +138,9 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
 
 absl::Status WatchUntilDone(const ServerConnection& server, const std::string& job_id,
                             absl::Time deadline, JobEventSink& sink) {
-  auto stub = v1::Reconstruction::NewStub(Connect(server));
-  Backoff backoff(absl::Milliseconds(200), absl::Seconds(5));
+  std::shared_ptr<grpc::Channel> channel = Connect(server);
+  auto stub = v1::Reconstruction::NewStub(channel);
+  RetryWait wait(*channel);
   // A server that restarts (a pod rescheduled, a crash) is back within a minute or two: one
   // heard from (this job's events, or its acceptance) is tried that long after its last event.
   // One never heard from (a wrong address) is given up on after a few attempts.
@@ -165,12 +165,13 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
     if (status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED || absl::Now() >= deadline) {
       return absl::DeadlineExceededError(absl::StrCat("timed out following job ", job_id));
     }
-    const bool patient =
-        heard ? absl::Now() - last_heard <= kReattachPatience : attempt < kMaxAttempts;
-    if (status.error_code() != grpc::StatusCode::UNAVAILABLE || !patient ||
-        !SleepBefore(backoff.Next(RetryDelayOf(status)), deadline)) {
+    if (status.error_code() != grpc::StatusCode::UNAVAILABLE) {
       return FromGrpcStatus(status, server.address);
     }
+    if (!heard && attempt >= kMaxAttempts) return FromGrpcStatus(status, server.address);
+    const absl::Time until =
+        heard ? std::min(deadline, last_heard + kReattachPatience) : deadline;
+    if (!wait.Wait(status, until)) return FromGrpcStatus(status, server.address);
   }
 }
 
@@ -209,25 +210,43 @@ namespace {
 // Submits `upload` (retrying a busy or unreachable server) and follows its job to the end,
 // re-attaching when the call breaks. OK once `sink` holds the job's end, whatever it is; else
 // why the job could not be followed (DeadlineExceeded at `deadline`).
-absl::Status SubmitAndFollow(v1::Reconstruction::Stub& stub, const RemoteParams& params,
-                             const Upload& upload, absl::Time deadline, JobEventSink& sink,
-                             ProgressPrinter& progress) {
-  Backoff backoff(absl::Milliseconds(250), absl::Seconds(8));
+absl::Status SubmitAndFollow(grpc::Channel& channel, v1::Reconstruction::Stub& stub,
+                             const RemoteParams& params, const Upload& upload,
+                             absl::Time deadline, JobEventSink& sink, ProgressPrinter& progress) {
+  RetryWait wait(channel);
+  // Busy servers are asked again until the deadline. So are unreachable ones when the user
+  // gave a --timeout; without one, a server heard from in this run (a restart) is waited for
+  // up to kReattachPatience after it was last heard, and one never heard from (a wrong
+  // address) for kFirstContactPatience.
+  const bool timeout_given = deadline != absl::InfiniteFuture();
+  const absl::Time started = absl::Now();
+  absl::Time last_heard = absl::InfinitePast();
   for (int attempt = 1; !sink.accepted(); ++attempt) {
-    const grpc::Status status = ReconstructOnce(stub, params, upload, deadline, sink);
+    bool reached = false;
+    const grpc::Status status = ReconstructOnce(stub, params, upload, deadline, sink, reached);
     if (sink.accepted() || status.ok()) break;
     if (status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED) return DeadlineStatus(params);
     if (!IsRetryable(status)) return FromGrpcStatus(status, params.server.address);
-    const absl::Duration delay = backoff.Next(RetryDelayOf(status));
-    if (attempt >= kMaxAttempts || !SleepBefore(delay, deadline)) {
-      // Busy or gone through every attempt: "unavailable" for the exit code (4).
+    if (reached || !Unreachable(status)) last_heard = absl::Now();
+    last_heard = std::max(last_heard, wait.connected_at());
+    const bool heard = last_heard != absl::InfinitePast();
+    absl::Time until = deadline;
+    if (!timeout_given && Unreachable(status)) {
+      until = heard ? last_heard + kReattachPatience : started + kFirstContactPatience;
+    }
+    progress.Finish(absl::StrFormat("server %s (%s); retrying%s",
+                                    Unreachable(status) ? "unreachable" : "busy",
+                                    status.error_message(),
+                                    Unreachable(status) ? " once it is reachable" : ""));
+    if (!wait.Wait(status, until)) {
+      // The next attempt would come after the deadline: timed out (exit 4), as the user said.
+      if (until == deadline && timeout_given) return DeadlineStatus(params);
+      // Busy or gone for as long as this client waits: "unavailable" for the exit code (4).
       return absl::UnavailableError(absl::StrFormat(
           "server %s still unavailable or busy after %d attempts (%s); start membraned there, "
           "try later, or use --local",
           params.server.address, attempt, status.error_message()));
     }
-    progress.Finish(absl::StrFormat("server busy or unavailable (%s); retrying in %.1f s",
-                                    status.error_message(), absl::ToDoubleSeconds(delay)));
   }
   if (!sink.done()) {
     // The call broke after the job was accepted: the job runs on; follow it by its id.
@@ -248,10 +267,12 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
   absl::StatusOr<Upload> upload = ReadAndEncode(params, outcome, progress);
   if (!upload.ok()) return upload.status();
 
-  auto stub = v1::Reconstruction::NewStub(Connect(params.server));
+  std::shared_ptr<grpc::Channel> channel = Connect(params.server);
+  auto stub = v1::Reconstruction::NewStub(channel);
   for (int submission = 1;; ++submission) {
     JobEventSink sink(progress);
-    if (absl::Status s = SubmitAndFollow(*stub, params, *upload, deadline, sink, progress);
+    if (absl::Status s =
+            SubmitAndFollow(*channel, *stub, params, *upload, deadline, sink, progress);
         !s.ok()) {
       return s;
     }

@@ -55,9 +55,12 @@ struct RemoteOutcome {
 // and faces equal --local's up to Draco's reordering (tests/server LosslessUpload...). With
 // quantized uploads (the default 11 bits) each coordinate moves by at most
 // DracoEncoding::max_position_error, and the mesh may differ from --local's by about that.
-// Calls refused before the job is accepted (UNAVAILABLE; RESOURCE_EXHAUSTED with a RetryInfo)
-// are repeated with exponential backoff honouring the server's delay, 5 attempts at most and
-// within the timeout; a call that breaks after acceptance is resumed with WatchJob the same way.
+// Calls refused before the job is accepted are repeated (RetryWait): a busy server
+// (RESOURCE_EXHAUSTED with a RetryInfo, or out of call threads; UNAVAILABLE with a RetryInfo
+// while it shuts down) after its delay or a backoff, with jitter, until the timeout (for ever
+// without one); an unreachable one as soon as it can be connected to again, until the timeout,
+// or without one for 2 minutes after it was last reached (a restart) and 4 s when it never was
+// (a wrong address). A call that breaks after acceptance is resumed with WatchJob.
 // Errors: the reader's status for an unreadable input; the server's status (INVALID_ARGUMENT,
 // RESOURCE_EXHAUSTED for its limits, ...) with a "server: " message; Unavailable when the
 // server stays unreachable or busy; DeadlineExceeded when the timeout expires; the job's
@@ -71,9 +74,9 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
 
 // Follows job `job_id` with WatchJob into `sink` until it ends, re-attaching after dropped
 // calls as RunRemoteReconstruction does, within `deadline`: an unreachable server is tried
-// again (backing off up to 5 s) for up to 2 minutes after the job's last event (or its
-// acceptance, when `sink` holds it), long enough for a restarted server to come back, and 5
-// times when it was never heard from; then Unavailable.
+// again as soon as it can be connected to, for up to 2 minutes after the job's last event (or
+// its acceptance, when `sink` holds it), long enough for a restarted server to come back, and
+// 5 times when it was never heard from; then Unavailable.
 absl::Status WatchUntilDone(const ServerConnection& server, const std::string& job_id,
                             absl::Time deadline, JobEventSink& sink);
 

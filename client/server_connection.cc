@@ -1,5 +1,6 @@
 #include "client/server_connection.h"
 
+#include <grpc/grpc.h>
 #include <grpcpp/create_channel.h>
 #include <grpcpp/security/credentials.h>
 
@@ -56,6 +57,11 @@ absl::StatusOr<ServerConnection> LoadServerConnection(const ConnectionFlags& fla
 std::shared_ptr<grpc::Channel> Connect(const ServerConnection& connection) {
   grpc::ChannelArguments args;
   args.SetMaxReceiveMessageSize(4 << 20);
+  // A lost connection is tried again at most a second apart (gRPC's default backs off to 2
+  // minutes): a client waiting for a restarted server (RetryWait) gets it within a second of
+  // its return.
+  args.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, 100);
+  args.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, 1000);
   std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
   if (!connection.tls_ca_pem.empty()) {
     grpc::SslCredentialsOptions ssl;

@@ -44,7 +44,8 @@ CLI::Option* AddConnectionFlags(CLI::App& app, ConnectionFlags& flags);
 absl::StatusOr<ServerConnection> LoadServerConnection(const ConnectionFlags& flags);
 
 // A channel to `connection.address`: TLS verified against `tls_ca_pem` when set, plaintext
-// otherwise (loopback, or a network the operator trusts).
+// otherwise (loopback, or a network the operator trusts). It reconnects at most a second
+// after losing its server.
 std::shared_ptr<grpc::Channel> Connect(const ServerConnection& connection);
 
 // Adds the bearer token, when there is one, to a call's metadata. Every call of the

@@ -27,12 +27,10 @@ namespace membrane::client {
 namespace {
 
 constexpr size_t kChunkBytes = 1 << 20;  // well under gRPC's 4 MB message limit
-// Attempts at a server never heard from (`jobs watch` at a wrong address).
-constexpr int kMaxAttempts = 5;
 // How long a job's follower keeps trying an unreachable server after its last event.
 constexpr absl::Duration kReattachPatience = absl::Seconds(120);
-// How long a client without --timeout waits for a server it never reached: a wrong address
-// fails within seconds.
+// How long a client waits for a server it never reached (without --timeout, when it submits):
+// a wrong address fails within seconds.
 constexpr absl::Duration kFirstContactPatience = absl::Seconds(4);
 // Jobs the server may lose to restarts (ending UNAVAILABLE) before the client gives up.
 constexpr int kMaxSubmissions = 3;
@@ -143,10 +141,11 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
   RetryWait wait(*channel);
   // A server that restarts (a pod rescheduled, a crash) is back within a minute or two: one
   // heard from (this job's events, or its acceptance) is tried that long after its last event.
-  // One never heard from (a wrong address) is given up on after a few attempts.
+  // One never heard from (a wrong address) is given up on after kFirstContactPatience.
   bool heard = sink.accepted();
-  absl::Time last_heard = absl::Now();
-  for (int attempt = 1;; ++attempt) {
+  const absl::Time started = absl::Now();
+  absl::Time last_heard = started;
+  while (true) {
     grpc::ClientContext context;
     SetDeadline(context, deadline);
     Authorize(context, server);
@@ -168,9 +167,8 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
     if (status.error_code() != grpc::StatusCode::UNAVAILABLE) {
       return FromGrpcStatus(status, server.address);
     }
-    if (!heard && attempt >= kMaxAttempts) return FromGrpcStatus(status, server.address);
-    const absl::Time until =
-        heard ? std::min(deadline, last_heard + kReattachPatience) : deadline;
+    const absl::Time until = std::min(
+        deadline, heard ? last_heard + kReattachPatience : started + kFirstContactPatience);
     if (!wait.Wait(status, until)) return FromGrpcStatus(status, server.address);
   }
 }

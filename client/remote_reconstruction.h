@@ -76,7 +76,7 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
 // calls as RunRemoteReconstruction does, within `deadline`: an unreachable server is tried
 // again as soon as it can be connected to, for up to 2 minutes after the job's last event (or
 // its acceptance, when `sink` holds it), long enough for a restarted server to come back, and
-// 5 times when it was never heard from; then Unavailable.
+// for 4 s when it was never heard from; then Unavailable.
 absl::Status WatchUntilDone(const ServerConnection& server, const std::string& job_id,
                             absl::Time deadline, JobEventSink& sink);
 

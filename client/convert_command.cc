@@ -1,6 +1,7 @@
 #include "client/convert_command.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <utility>
@@ -11,6 +12,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "client/flag_checks.h"
 #include "client/input_files.h"
 #include "client/io_errors.h"
 #include "core/io/draco_codec.h"
@@ -115,9 +117,17 @@ absl::Status RunConvert(const ConvertFlags& flags) {
   absl::StatusOr<FileFormat> out_format =
       AnyFormat(flags.output, FileUse::kWritePointCloud, FileUse::kWriteMesh);
   if (!out_format.ok()) return out_format.status();
+  if (absl::Status s = CheckOutputPath("OUTPUT", flags.output); !s.ok()) return s;
 
   absl::StatusOr<TriangleMesh> geometry = ReadGeometry(flags.input, *in_format);
   if (!geometry.ok()) return geometry.status();
+  // A text file that is no OBJ (or an empty PLY) parses as no points: an error, not a file of
+  // nothing reported as converted.
+  if (geometry->vertices.empty()) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("'", flags.input, "' holds no points (is it really a ",
+                     std::filesystem::path(flags.input).extension().string(), " file?)"));
+  }
   const bool keep_faces =
       !geometry->faces.empty() && FormatFromPath(flags.output, FileUse::kWriteMesh).ok();
   if (keep_faces) {

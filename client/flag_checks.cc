@@ -1,5 +1,7 @@
 #include "client/flag_checks.h"
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <system_error>
@@ -33,13 +35,28 @@ absl::Status CheckRealRange(absl::string_view flag, double value, double lo, dou
                     absl::StrFormat("%g", hi), note);
 }
 
-absl::Status CheckOutputDirectory(absl::string_view flag, const std::string& path) {
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  if (parent.empty()) return absl::OkStatus();
-  std::error_code error;  // a directory we cannot even stat counts as missing
-  if (std::filesystem::is_directory(parent, error)) return absl::OkStatus();
-  return absl::InvalidArgumentError(absl::StrCat(flag, ": cannot write '", path, "': directory '",
-                                                 parent.string(), "' does not exist"));
+absl::Status CheckOutputPath(absl::string_view flag, const std::string& path) {
+  std::error_code error;  // a path we cannot even stat counts as missing
+  if (std::filesystem::is_directory(path, error)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(flag, ": cannot write '", path, "': it is a directory"));
+  }
+  std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (parent.empty()) parent = ".";
+  if (!std::filesystem::is_directory(parent, error)) {
+    return absl::InvalidArgumentError(absl::StrCat(flag, ": cannot write '", path,
+                                                   "': directory '", parent.string(),
+                                                   "' does not exist"));
+  }
+  // An existing file must itself be writable; a new one needs a writable directory.
+  const bool exists = std::filesystem::exists(path, error);
+  if (access(exists ? path.c_str() : parent.c_str(), W_OK) != 0) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(flag, ": cannot write '", path, "': ",
+                     exists ? "the file is not writable"
+                            : absl::StrCat("directory '", parent.string(), "' is not writable")));
+  }
+  return absl::OkStatus();
 }
 
 }  // namespace membrane::client

@@ -20,10 +20,12 @@ absl::Status CheckIntRange(absl::string_view flag, int64_t value, int64_t lo, in
 absl::Status CheckRealRange(absl::string_view flag, double value, double lo, double hi,
                             absl::string_view note = "");
 
-// OK when the directory that would hold `path` exists (the current directory for a bare
-// name); otherwise InvalidArgument "-o: cannot write 'a/b.ply': directory 'a' does not
-// exist". Lets a long job fail at once rather than after its work, when the write fails.
-absl::Status CheckOutputDirectory(absl::string_view flag, const std::string& path);
+// OK when a file can be written at `path`: it is not a directory, and the directory that
+// would hold it (the current one for a bare name) exists and is writable. Otherwise
+// InvalidArgument naming the flag, e.g. "-o: cannot write 'a/b.ply': directory 'a' does not
+// exist" or "--stats-json: cannot write 'out': it is a directory". Creates nothing. Lets a
+// long job fail at once rather than after its work, when the write fails.
+absl::Status CheckOutputPath(absl::string_view flag, const std::string& path);
 
 }  // namespace membrane::client
 

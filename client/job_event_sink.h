@@ -4,7 +4,9 @@
 #ifndef MEMBRANE_CLIENT_JOB_EVENT_SINK_H_
 #define MEMBRANE_CLIENT_JOB_EVENT_SINK_H_
 
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -19,6 +21,11 @@ class JobEventSink {
  public:
   // `progress` (not owned) must outlive the sink.
   explicit JobEventSink(ProgressPrinter& progress) : progress_(progress) {}
+
+  // Called with the job id when the server accepts the job (on the consuming thread).
+  void set_on_accepted(std::function<void(const std::string&)> on_accepted) {
+    on_accepted_ = std::move(on_accepted);
+  }
 
   // Takes the next event of the stream.
   void Consume(const v1::JobEvent& event);
@@ -46,6 +53,7 @@ class JobEventSink {
   void ConsumeProgress(const v1::JobEvent& event);
 
   ProgressPrinter& progress_;
+  std::function<void(const std::string&)> on_accepted_;
   std::string job_id_;
   int progress_seen_ = 0;   // stage and generation events handled, over all calls
   int replay_index_ = 0;    // stage and generation events of the current call

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <grpcpp/client_context.h>
@@ -11,6 +12,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
+#include "client/flag_checks.h"
 #include "client/io_errors.h"
 #include "client/job_event_sink.h"
 #include "client/progress_printer.h"
@@ -97,6 +99,12 @@ absl::Status RunGet(const JobsFlags& flags, bool cancel) {
 }
 
 absl::Status RunWatch(const JobsFlags& flags) {
+  // The outputs are checked before the wait, which can be long, rather than after it.
+  for (const auto& [flag, path] : {std::pair{"-o", &flags.output},
+                                   std::pair{"--stats-json", &flags.stats_json}}) {
+    if (path->empty()) continue;
+    if (absl::Status s = CheckOutputPath(flag, *path); !s.ok()) return s;
+  }
   const absl::Time deadline =
       flags.timeout > 0 ? absl::Now() + absl::Seconds(flags.timeout) : absl::InfiniteFuture();
   absl::Status outcome;

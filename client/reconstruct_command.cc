@@ -15,6 +15,7 @@
 #include "absl/time/time.h"
 #include "client/deadline_timer.h"
 #include "client/flag_checks.h"
+#include "client/interrupt_watch.h"
 #include "client/io_errors.h"
 #include "client/local_reconstruction.h"
 #include "client/progress_printer.h"
@@ -59,6 +60,7 @@ struct ReconstructFlags {
   bool quiet = false;
   int64_t threads = 0;
   int64_t drop_after_events = 0;  // test hook of --server; see RemoteParams
+  std::string on_interrupt = "leave";
 };
 
 void DefineFlags(CLI::App& app, ReconstructFlags& f) {
@@ -103,6 +105,11 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
                  "cores of this machine (the mesh is the same for any value)")
       ->capture_default_str()
       ->needs(local);
+  app.add_option("--on-interrupt", f.on_interrupt,
+                 "with --server, what Ctrl-C does to an accepted job: leave it running (and "
+                 "print the `membrane jobs watch` command that gets its mesh) or cancel it")
+      ->check(CLI::IsMember({"leave", "cancel"}))
+      ->capture_default_str();
   // Hidden (empty group): lets the tests drop a --server call midway to exercise re-attaching.
   app.add_option("--drop-after-events", f.drop_after_events)->group("");
 }
@@ -113,7 +120,7 @@ absl::Status CheckFlagValues(const ReconstructFlags& f) {
       // Unknown extensions and missing directories fail here, before minutes of work.
       FormatFromPath(f.input, FileUse::kReadPointCloud).status(),
       FormatFromPath(f.output, FileUse::kWriteMesh).status(),
-      CheckOutputDirectory("-o", f.output),
+      CheckOutputPath("-o", f.output),
       std::isfinite(f.voxel_size) && f.voxel_size >= 0
           ? absl::OkStatus()
           : absl::InvalidArgumentError(absl::StrFormat(
@@ -126,7 +133,7 @@ absl::Status CheckFlagValues(const ReconstructFlags& f) {
       CheckIntRange("--voxel-budget", f.voxel_budget, 1, kMaxVoxelBudget),
       CheckIntRange("--memory-limit", f.memory_limit, -1, kMaxMemoryLimit,
                     "-1 = what is available, 0 = no limit"),
-      f.stats_json.empty() ? absl::OkStatus() : CheckOutputDirectory("--stats-json", f.stats_json),
+      f.stats_json.empty() ? absl::OkStatus() : CheckOutputPath("--stats-json", f.stats_json),
       CheckRealRange("--timeout", f.timeout, 0, kMaxTimeoutSeconds, "seconds; 0 = no limit"),
       CheckIntRange("--threads", f.threads, 0, kMaxReconstructionThreads, "0 = the cores"),
   };
@@ -211,8 +218,12 @@ absl::Status RunRemote(const ReconstructFlags& flags) {
   if (!server.ok()) return server.status();
   absl::StatusOr<RemoteOutcome> outcome;
   {
+    // Before any thread starts: see InterruptWatch.
+    InterruptWatch interrupts(*server, flags.output, flags.on_interrupt == "cancel");
+    RemoteParams params = RemoteParamsFromFlags(flags, *std::move(server));
+    params.on_accepted = [&interrupts](const std::string& id) { interrupts.JobAccepted(id); };
     ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
-    outcome = RunRemoteReconstruction(RemoteParamsFromFlags(flags, *std::move(server)), progress);
+    outcome = RunRemoteReconstruction(params, progress);
   }
   if (!outcome.ok()) return outcome.status();
   std::fputs(GenerationTable(outcome->generations).c_str(), stdout);

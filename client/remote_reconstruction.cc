@@ -269,6 +269,7 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
   auto stub = v1::Reconstruction::NewStub(channel);
   for (int submission = 1;; ++submission) {
     JobEventSink sink(progress);
+    sink.set_on_accepted(params.on_accepted);
     if (absl::Status s =
             SubmitAndFollow(*channel, *stub, params, *upload, deadline, sink, progress);
         !s.ok()) {

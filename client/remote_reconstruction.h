@@ -3,6 +3,7 @@
 #ifndef MEMBRANE_CLIENT_REMOTE_RECONSTRUCTION_H_
 #define MEMBRANE_CLIENT_REMOTE_RECONSTRUCTION_H_
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +32,8 @@ struct RemoteParams {
   // (PlanUpload).
   bool adapt_upload_bits = false;
   absl::Duration timeout = absl::InfiniteDuration();  // the whole command, retries included
+  // Told the job id when the server accepts the job (InterruptWatch::JobAccepted); may be empty.
+  std::function<void(const std::string&)> on_accepted;
   // Test hook: cancel the call after this many events of the job, then re-attach with
   // WatchJob as after a dropped connection. 0: never.
   int drop_after_events = 0;

@@ -94,6 +94,7 @@ absl::Status RunSynth(const SynthFlags& flags) {
       !f.ok()) {
     return f.status();
   }
+  if (absl::Status s = CheckOutputPath("-o", flags.output); !s.ok()) return s;
   absl::StatusOr<PointCloud> cloud = SynthesizeShape(*options);
   if (!cloud.ok()) return cloud.status();
   if (absl::Status s = WritePointCloud(*cloud, flags.output); !s.ok()) {

@@ -1,4 +1,5 @@
 // `membrane convert INPUT OUTPUT` between point cloud and mesh formats.
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <string>
@@ -120,6 +121,25 @@ TEST_F(ConvertTest, PointCloudToStlIsInvalidInput) {
   const CliResult r = Run({"convert", xyz, dir_.File("cloud.stl")});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("no faces")));
+}
+
+TEST_F(ConvertTest, TextFileNamedObjIsInvalidInputNotZeroPointsWritten) {
+  const std::string notes = dir_.File("notes.obj");
+  std::ofstream(notes) << "these are meeting notes, not a mesh\nsecond line\n";
+  const std::string out = dir_.File("notes.ply");
+  const CliResult r = Run({"convert", notes, out});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("holds no points")));
+  EXPECT_FALSE(std::ifstream(out).good()) << "nothing may be written";
+}
+
+TEST_F(ConvertTest, OutputThatIsADirectoryFailsBeforeReading) {
+  const std::string ply = dir_.File("cloud.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", ply, "--points", "500"}).exit_code, 0);
+  std::filesystem::create_directory(dir_.File("taken.xyz"));
+  const CliResult r = Run({"convert", ply, dir_.File("taken.xyz")});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("it is a directory")));
 }
 
 TEST_F(ConvertTest, UnknownOutputExtensionFailsBeforeReading) {

@@ -1,5 +1,6 @@
 // Every failure prints exactly one "membrane: ..." line and exits with the status of
 // design/contracts.md: 2 usage, 3 invalid input, 4 unavailable or timed out.
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -18,6 +19,7 @@ namespace {
 using ::testing::AllOf;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::SizeIs;
 
 class ErrorsTest : public ::testing::Test {
@@ -72,6 +74,26 @@ TEST_F(ErrorsTest, ServerPortOutOfRangeIsInvalidInputBeforeConnecting) {
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_THAT(ErrorLines(r.err),
               ElementsAre(HasSubstr("--server '127.0.0.1:99999': port '99999' is not a number")));
+}
+
+TEST_F(ErrorsTest, OutputsThatAreDirectoriesFailBeforeAnyWork) {
+  std::filesystem::create_directory(dir_.File("dir.ply"));
+  std::filesystem::create_directory(dir_.File("stats"));
+  const std::string cloud = SphereCloud();
+  const CliResult mesh_dir = Run({"reconstruct", cloud, "-o", dir_.File("dir.ply"), "--local"});
+  EXPECT_EQ(mesh_dir.exit_code, 3);
+  EXPECT_THAT(ErrorLines(mesh_dir.err), ElementsAre(HasSubstr("-o: cannot write")));
+  EXPECT_THAT(mesh_dir.err, Not(HasSubstr("shrink"))) << "the run must not have started";
+  const CliResult stats_dir = Run({"reconstruct", cloud, "-o", dir_.File("out.ply"), "--local",
+                                   "--stats-json", dir_.File("stats")});
+  EXPECT_EQ(stats_dir.exit_code, 3);
+  EXPECT_THAT(ErrorLines(stats_dir.err),
+              ElementsAre(HasSubstr("--stats-json: cannot write '" + dir_.File("stats") +
+                                    "': it is a directory")));
+  const CliResult watch_dir =
+      Run({"jobs", "watch", "0123456789abcdef", "-o", dir_.File("dir.ply")});
+  EXPECT_EQ(watch_dir.exit_code, 3) << "checked before connecting";
+  EXPECT_THAT(ErrorLines(watch_dir.err), ElementsAre(HasSubstr("it is a directory")));
 }
 
 TEST_F(ErrorsTest, MissingInputFileIsInvalidInput) {

@@ -435,6 +435,49 @@ TEST_F(EndToEndTest, TimeoutCancelsTheJobOnTheServer) {
   ExpectHealthy();
 }
 
+// Ctrl-C on `reconstruct --server` leaves the accepted job running and prints the command
+// that gets its mesh, or cancels it with --on-interrupt=cancel; either way one line, exit 130.
+TEST_F(EndToEndTest, InterruptLeavesTheJobRunningAndSaysHowToFollowIt) {
+  StartServer();
+  auto slow = RunInBackground({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("s.ply"),
+                               "--server", address_, "--voxel-size", "0.008"},
+                              "slow");
+  const std::string accepted = WaitForText(dir_.File("slow.err"), "accepted", 20);
+  ASSERT_NE(accepted.find("accepted"), std::string::npos) << accepted;
+  slow->Signal(SIGINT);
+  EXPECT_EQ(slow->Wait(10), 130);
+  const std::vector<std::string> errors = ErrorLines(ReadText(dir_.File("slow.err")));
+  ASSERT_EQ(errors.size(), 1u) << ReadText(dir_.File("slow.err"));
+  const CliResult list = Run({"jobs", "list", "--server", address_});
+  ASSERT_EQ(list.exit_code, 0);
+  const std::string id = list.out.substr(0, list.out.find(' '));
+  EXPECT_NE(errors[0].find("job " + id + " goes on"), std::string::npos) << errors[0];
+  EXPECT_NE(errors[0].find("membrane jobs watch " + id + " --server " + address_ + " -o " +
+                           dir_.File("s.ply")),
+            std::string::npos)
+      << errors[0];
+  const CliResult get = Run({"jobs", "get", id, "--server", address_});
+  EXPECT_EQ(get.out.find("state: CANCELLED"), std::string::npos) << get.out;
+  EXPECT_EQ(Run({"jobs", "cancel", id, "--server", address_}).exit_code, 0);
+}
+
+TEST_F(EndToEndTest, InterruptWithOnInterruptCancelCancelsTheJob) {
+  StartServer();
+  auto slow = RunInBackground({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("s.ply"),
+                               "--server", address_, "--voxel-size", "0.008",
+                               "--on-interrupt", "cancel"},
+                              "slow");
+  const std::string accepted = WaitForText(dir_.File("slow.err"), "accepted", 20);
+  ASSERT_NE(accepted.find("accepted"), std::string::npos) << accepted;
+  slow->Signal(SIGINT);
+  EXPECT_EQ(slow->Wait(10), 130);
+  const std::string err = ReadText(dir_.File("slow.err"));
+  EXPECT_NE(err.find("cancelled on " + address_), std::string::npos) << err;
+  EXPECT_NE(WaitForText(log_, "outcome=CANCELLED", 10).find("outcome=CANCELLED"),
+            std::string::npos);
+  ExpectHealthy();
+}
+
 TEST_F(EndToEndTest, JobsGetWatchAndUnknownIds) {
   StartServer();
   ASSERT_EQ(Run({"reconstruct", Synth("sphere", 3000), "-o", dir_.File("a.ply"), "--server",

@@ -37,6 +37,8 @@ std::optional<HeightQuadric> FitHeightQuadric(const HeightFieldSums& s,
   const double root = std::sqrt(0.25 * (cuu - cvv) * (cuu - cvv) + cuv * cuv);
   const double spread2 = half_trace - root;
   if (!(spread2 >= limits.min_tangent_spread * limits.min_tangent_spread)) return std::nullopt;
+  if (!(mu * mu + mv * mv <= limits.max_centroid_offset * limits.max_centroid_offset * spread2))
+    return std::nullopt;
 
   // Normal equations M x = r, M[p][q] = sum w phi_p phi_q, r[p] = sum w h phi_p; solved by
   // Cholesky in place.

@@ -33,7 +33,11 @@ struct HeightQuadricLimits {
   // The points' spread across the tangent plane, in voxels: the smaller standard deviation of
   // the weighted (u, v) must reach this, so that the quadratic terms are not extrapolated
   // from a strip of points.
-  double min_tangent_spread = 0.35;
+  double min_tangent_spread = 0.3;
+  // The weighted centroid of (u, v) within this many of those standard deviations of the
+  // vertex: a vertex beyond the points' footprint (past a data hole's rim, say) would be
+  // placed by extrapolation.
+  double max_centroid_offset = 1.0;
   // The fitted surface's slope at the vertex (|grad h|): steeper means the frame is far from
   // the surface's tangent plane and a height field over it is a poor model.
   double max_slope = 1.0;

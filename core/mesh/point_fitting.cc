@@ -270,21 +270,33 @@ class Fitter {
     weights.origin = mesh_.vertices[v];
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k) weights.axes[i][k] = static_cast<float>(axes[i][k] / l_);
-    const double s = options_.sigma, ns = round >= 1 ? options_.normal_sigma : s;
-    weights.radius2 = static_cast<float>(options_.search_radius * options_.search_radius);
-    weights.inv_2s2 = static_cast<float>(1.0 / (2 * s * s));
+    // Along the normal the first round's weights are those across it; the sparse try widens
+    // the weights across the normal only.
+    const double ns = round >= 1 ? options_.normal_sigma : options_.sigma;
     weights.inv_2n2 = static_cast<float>(1.0 / (2 * ns * ns));
-    const HeightFieldSums sums =
-        WeighNearPointsInFrame(points_, options_.search_radius * l_, weights);
-    if (sums.count < options_.min_points || !(sums.weight() > 0)) {
-      ++stats.umbrella_targets;
-      return x + options_.umbrella_step * (RingMean(v) - x);
-    }
+    const auto weigh = [&](double radius, double sigma) {
+      weights.radius2 = static_cast<float>(radius * radius);
+      weights.inv_2s2 = static_cast<float>(1.0 / (2 * sigma * sigma));
+      return WeighNearPointsInFrame(points_, radius * l_, weights);
+    };
+    const HeightFieldSums sums = weigh(options_.search_radius, options_.sigma);
     if (sums.count >= options_.quadric_min_points) {
       if (const auto quadric = FitHeightQuadric(sums, options_.quadric_limits)) {
         ++stats.quadric_targets;
         return x + (quadric->height() * l_) * normal;
       }
+    } else if (options_.sparse_radius > options_.search_radius) {
+      const HeightFieldSums wide = weigh(options_.sparse_radius, options_.sparse_sigma);
+      if (wide.count >= options_.quadric_min_points) {
+        if (const auto quadric = FitHeightQuadric(wide, options_.quadric_limits)) {
+          ++stats.quadric_targets;
+          return x + (quadric->height() * l_) * normal;
+        }
+      }
+    }
+    if (sums.count < options_.min_points || !(sums.weight() > 0)) {
+      ++stats.umbrella_targets;
+      return x + options_.umbrella_step * (RingMean(v) - x);
     }
     ++stats.plane_targets;
     const PlaneFitAccumulator acc = sums.PlaneSums();
@@ -520,17 +532,20 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
   if (o.rounds < 0 || !(o.search_radius > 0) || !(o.sigma > 0) || !(o.normal_sigma > 0) ||
       o.min_points < 3 || o.quadric_min_points < 6 ||
       !(o.quadric_limits.min_tangent_spread >= 0) || !(o.quadric_limits.max_slope >= 0) ||
+      !(o.quadric_limits.max_centroid_offset >= 0) ||
       !(o.quadric_limits.max_curvature >= 0) || !(o.umbrella_step >= 0 && o.umbrella_step <= 1) ||
-      !(o.max_offset >= 0) ||
+      !(o.sparse_radius >= 0) || !(o.sparse_sigma > 0) || !(o.max_offset >= 0) ||
       !(o.min_move >= 0) || o.output_grid.bits < 0 || o.output_grid.bits > 30 ||
       !(o.output_grid.box.range > 0) || !std::isfinite(o.output_grid.box.range))
     return absl::InvalidArgumentError(
         absl::StrCat("fit options out of range: rounds ", o.rounds, ", search_radius ",
                      o.search_radius, ", sigma ", o.sigma, ", normal_sigma ", o.normal_sigma,
                      ", min_points ", o.min_points, ", quadric_min_points ",
-                     o.quadric_min_points, ", quadric limits (spread, slope, curvature) ",
-                     o.quadric_limits.min_tangent_spread, ", ", o.quadric_limits.max_slope, ", ",
-                     o.quadric_limits.max_curvature, ", umbrella_step ", o.umbrella_step,
+                     o.quadric_min_points, ", quadric limits (spread, centroid, slope, bend) ",
+                     o.quadric_limits.min_tangent_spread, ", ",
+                     o.quadric_limits.max_centroid_offset, ", ", o.quadric_limits.max_slope, ", ",
+                     o.quadric_limits.max_curvature, ", sparse_radius ", o.sparse_radius,
+                     ", sparse_sigma ", o.sparse_sigma, ", umbrella_step ", o.umbrella_step,
                      ", max_offset ", o.max_offset, ", min_move ", o.min_move,
                      ", output grid bits ", o.output_grid.bits, " range ", o.output_grid.box.range));
   return absl::OkStatus();

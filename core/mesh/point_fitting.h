@@ -32,8 +32,13 @@ struct FitOptions {
   // (height_quadric.h) where at least quadric_min_points points are near and the quadric
   // passes quadric_limits; the plane elsewhere. Off: the plane wherever min_points are near.
   bool quadric = true;
-  int quadric_min_points = 12;
+  int quadric_min_points = 10;
   HeightQuadricLimits quadric_limits;
+  // Where fewer than quadric_min_points points are within search_radius (sparse data), the
+  // quadric is tried once more on the points within sparse_radius, weighted with
+  // sparse_sigma (0: no second try).
+  double sparse_radius = 4.0;
+  double sparse_sigma = 2.0;
   double umbrella_step = 0.5;  // fraction of the way to the 1-ring mean
   double max_offset = 1.5;     // a vertex never moves farther from its surface-nets position
   double min_move = 1e-3;      // smaller moves are not worth a check
@@ -65,23 +70,23 @@ struct FitStats {
 // Input: `mesh` as SurfaceNets() makes it (closed, manifold, outward, no self-intersections),
 // in model units; `voxel_size` > 0 the membrane's voxel edge; `points` the input cloud (model
 // units). `cancel` is polled every few thousand vertices.
-// Effect: moves vertices only (faces unchanged), in `rounds` passes over the vertices (each
-// pass fits slabs 4 voxels thick across the longest axis, the even ones and then the odd ones,
-// each in vertex index order; SurfaceNets numbers vertices along a space-filling curve; the
-// slabs of one parity run side by side on options.threads): target = the point of the
-// weighted height-field quadric of the points near the vertex, in the frame of its normal,
-// above or below it (options.quadric, >= quadric_min_points of them and within the limits),
-// else the projection on their weighted PCA plane (>= min_points of them), else an umbrella
-// step; the target is clamped to max_offset from the vertex's input position; the move
-// is tried at 1, 1/2, 1/4 of the way and taken at the first where every triangle of the vertex
-// keeps a non-zero area and a positive dot product with its input normal, and no two of them
-// overlap. The last pass ends with an intersection search around the faces the passes moved,
-// on the float32 positions that are written, on output_grid (so it is also recipe step 6's
+// Effect: moves vertices only (faces unchanged), in `rounds` passes over the vertices (each pass
+// fits slabs 4 voxels thick across the longest axis, the even ones and then the odd ones, each in
+// vertex index order; SurfaceNets numbers vertices along a space-filling curve; the slabs of one
+// parity run side by side on options.threads): target = the point of the weighted height-field
+// quadric of the points near the vertex, in the frame of its normal, above or below it
+// (options.quadric, >= quadric_min_points of them and within the limits; with fewer, the same from
+// the points within sparse_radius), else the projection on their weighted PCA plane (>= min_points
+// of them), else an umbrella step; the target is clamped to max_offset from the vertex's input
+// position; the move is tried at 1, 1/2, 1/4 of the way and taken at the first where every triangle
+// of the vertex keeps a non-zero area and a positive dot product with its input normal, and no two
+// of them overlap. The last pass ends with an intersection search around the faces the passes
+// moved, on the float32 positions that are written, on output_grid (so it is also recipe step 6's
 // rounding check, and the check of the encoding's quantization): the moved vertices of every
-// crossing pair back off through 1/2, 1/4 of the way, then to where they
-// started, until nothing crosses. Checking once at the end instead of once per move costs one
-// linear search instead of a grid query per vertex, and gives the same guarantee. The result
-// does not depend on options.threads.
+// crossing pair back off through 1/2, 1/4 of the way, then to where they started, until nothing
+// crosses. Checking once at the end instead of once per move costs one linear search instead of a
+// grid query per vertex, and gives the same guarantee. The result does not depend on
+// options.threads.
 // `fallback`, if not null, holds one position per vertex at which the mesh is known free of
 // self-intersections (SurfaceNetsBeforeRepair's); the input may then cross itself: that
 // search covers every face, and crossings that no move explains are repaired toward

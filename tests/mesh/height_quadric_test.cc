@@ -85,6 +85,11 @@ TEST(HeightQuadric, PlaneSumsAreTheSumsOfThePoints) {
 TEST(HeightQuadric, RefusesWhatItCannotTrust) {
   // A strip of points (all near v = 0): the v terms are extrapolated.
   EXPECT_FALSE(FitHeightQuadric(SumsOf(Sampled({0, 0, 0, 0.1, 0, 0}, 2, 0.05)), {}));
+  // The vertex beyond the points' footprint: points only at u in [1, 3].
+  std::vector<UVH> aside;
+  for (const UVH& p : Sampled({0, 0, 0, 0.1, 0, 0}, 2))
+    if (p.u >= 0) aside.push_back({p.u + 1, p.v, 0.1 * (p.u + 1) * (p.u + 1), p.w});
+  EXPECT_FALSE(FitHeightQuadric(SumsOf(aside), {}));
   // Steeper than 45 degrees: the frame is not the surface's.
   EXPECT_FALSE(FitHeightQuadric(SumsOf(Sampled({0, 1.5, 0, 0, 0, 0}, 2)), {}));
   // Bent sharper than the voxels resolve.

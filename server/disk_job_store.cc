@@ -1,13 +1,9 @@
 #include "server/disk_job_store.h"
 
-#include <dirent.h>
-#include <errno.h>
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstring>
+#include <map>
+#include <set>
 #include <utility>
 
 #include <google/protobuf/io/zero_copy_stream_impl_lite.h>
@@ -16,7 +12,6 @@
 #include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
-#include "core/io/file_bytes.h"
 #include "proto/crc32c.h"
 #include "server/rpc_status.h"
 #include "server/server_log.h"
@@ -25,111 +20,110 @@ namespace membrane::server {
 namespace {
 
 constexpr char kSuffix[] = ".job";
+constexpr char kUploadSuffix[] = ".upload";
+constexpr char kWriteCheck[] = ".write-check";
 constexpr size_t kChunkBytes = 1 << 20;
+// The header of an upload file: a delimited UploadHeader of two small fields.
+constexpr int64_t kUploadHeaderBytes = 64;
 
-std::string ErrnoText() { return std::strerror(errno); }
-
-// Writes `bytes` to `path` so that a crash leaves the old file or the new one, never a mix:
-// a temporary file, fsync, rename over `path`, fsync of the directory.
-absl::Status WriteDurably(const std::string& dir, const std::string& path,
-                          const std::string& bytes) {
-  const std::string temporary = path + ".tmp";
-  const int fd = open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-  if (fd < 0) return absl::UnavailableError(absl::StrCat(temporary, ": ", ErrnoText()));
-  size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const std::string error = ErrnoText();
-      close(fd);
-      unlink(temporary.c_str());
-      return absl::UnavailableError(absl::StrCat(temporary, ": ", error));
-    }
-    written += static_cast<size_t>(n);
-  }
-  const bool synced = fsync(fd) == 0;
-  const std::string sync_error = synced ? "" : ErrnoText();
-  close(fd);
-  if (!synced || rename(temporary.c_str(), path.c_str()) != 0) {
-    const std::string error = synced ? ErrnoText() : sync_error;
-    unlink(temporary.c_str());
-    return absl::UnavailableError(absl::StrCat(path, ": ", error));
-  }
-  if (const int dir_fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir_fd >= 0) {
-    fsync(dir_fd);
-    close(dir_fd);
-  }
-  return absl::OkStatus();
-}
-
-// The job a record describes: finished as it was, or, without a JobDone (the process stopped
-// first), FAILED as of `now`; `interrupted` says which.
-absl::StatusOr<std::shared_ptr<Job>> ParseRecord(const std::string& bytes, absl::Time now,
-                                                 bool& interrupted) {
-  google::protobuf::io::ArrayInputStream input(bytes.data(), static_cast<int>(bytes.size()));
+// What a record holds. Without a JobDone (`ended` false), the process stopped first.
+struct Record {
   v1::Job snapshot;
+  std::vector<v1::JobEvent> events;
+  bool ended = false;
+  v1::JobDone done;
+  std::string statistics;
+  v1::MeshSummary summary;
+  std::string mesh;
+};
+
+absl::StatusOr<Record> ParseRecord(const std::string& bytes) {
+  google::protobuf::io::ArrayInputStream input(bytes.data(), static_cast<int>(bytes.size()));
+  Record record;
   bool clean_eof = false;
-  if (!google::protobuf::util::ParseDelimitedFromZeroCopyStream(&snapshot, &input, &clean_eof)) {
+  if (!google::protobuf::util::ParseDelimitedFromZeroCopyStream(&record.snapshot, &input,
+                                                                &clean_eof)) {
     return absl::DataLossError("no job snapshot at its start");
   }
-  std::vector<v1::JobEvent> events;
-  std::string statistics, mesh;
-  v1::MeshSummary summary;
   const v1::ResultHeader* result = nullptr;
   v1::ResultHeader header;
-  const v1::JobDone* done = nullptr;
-  v1::JobDone done_event;
   for (;;) {
     v1::JobEvent event;
     if (!google::protobuf::util::ParseDelimitedFromZeroCopyStream(&event, &input, &clean_eof)) {
       if (clean_eof) break;
       return absl::DataLossError("an event is truncated or corrupted");
     }
-    if (done != nullptr) return absl::DataLossError("events after JobDone");
+    if (record.ended) return absl::DataLossError("events after JobDone");
     switch (event.event_case()) {
       case v1::JobEvent::kStage:
-      case v1::JobEvent::kGeneration: events.push_back(std::move(event)); break;
+      case v1::JobEvent::kGeneration: record.events.push_back(std::move(event)); break;
       case v1::JobEvent::kResult:
         header = event.result();
         result = &header;
         break;
-      case v1::JobEvent::kMeshChunk: mesh += event.mesh_chunk(); break;
+      case v1::JobEvent::kMeshChunk: record.mesh += event.mesh_chunk(); break;
       case v1::JobEvent::kDone:
-        done_event = event.done();
-        done = &done_event;
+        record.done = event.done();
+        record.ended = true;
         break;
       default: return absl::DataLossError("an event of an unknown kind");
     }
   }
-  interrupted = done == nullptr;
-  if (interrupted) {
-    const std::string was = absl::AsciiStrToLower(v1::JobState_Name(snapshot.state()));
-    *snapshot.mutable_error() = ToRpcStatus(absl::UnavailableError(absl::StrCat(
-        "membraned stopped while the job was ", was,
-        "; its upload was not kept: submit it again")));
-    snapshot.set_state(v1::FAILED);
-    snapshot.set_finished_unix_seconds(absl::ToDoubleSeconds(now - absl::UnixEpoch()));
-    return Job::Restore(snapshot, std::move(events), "", {}, "");
-  }
-  if (done->state() == v1::SUCCEEDED) {
+  if (record.ended && record.done.state() == v1::SUCCEEDED) {
     if (result == nullptr) return absl::DataLossError("a SUCCEEDED job without its result");
-    if (mesh.size() != result->mesh_bytes() || Crc32c(mesh) != result->mesh_crc32c()) {
+    if (record.mesh.size() != result->mesh_bytes() ||
+        Crc32c(record.mesh) != result->mesh_crc32c()) {
       return absl::DataLossError("the mesh does not match its size and CRC-32C");
     }
-    statistics = result->statistics_json();
-    summary = result->mesh();
+    record.statistics = result->statistics_json();
+    record.summary = result->mesh();
   }
-  snapshot.set_state(done->state());
-  *snapshot.mutable_error() = done->status();
-  return Job::Restore(snapshot, std::move(events), std::move(statistics), std::move(summary),
-                      std::move(mesh));
+  return record;
+}
+
+// The upload an upload file holds, checked against its header and the job's record.
+absl::StatusOr<std::string> ParseUpload(const std::string& bytes, uint64_t expected_bytes) {
+  google::protobuf::io::ArrayInputStream input(bytes.data(), static_cast<int>(bytes.size()));
+  v1::UploadHeader header;
+  if (!google::protobuf::util::ParseDelimitedFromZeroCopyStream(&header, &input, nullptr)) {
+    return absl::DataLossError("the upload's header is truncated or corrupted");
+  }
+  const std::string upload = bytes.substr(static_cast<size_t>(input.ByteCount()));
+  if (upload.size() != header.upload_bytes() || upload.size() != expected_bytes ||
+      Crc32c(upload) != header.upload_crc32c()) {
+    return absl::DataLossError(absl::StrCat("the upload (", upload.size(),
+                                            " bytes) does not match its size and CRC-32C"));
+  }
+  return upload;
+}
+
+// The job a finished record describes.
+std::shared_ptr<Job> Ended(Record record) {
+  record.snapshot.set_state(record.done.state());
+  *record.snapshot.mutable_error() = record.done.status();
+  return Job::Restore(record.snapshot, std::move(record.events), std::move(record.statistics),
+                      std::move(record.summary), std::move(record.mesh));
+}
+
+// An unfinished job that cannot run again (its upload is unreadable): FAILED as of `now`.
+std::shared_ptr<Job> Lost(Record record, absl::Time now, absl::string_view why) {
+  const std::string was = absl::AsciiStrToLower(v1::JobState_Name(record.snapshot.state()));
+  *record.snapshot.mutable_error() = ToRpcStatus(absl::UnavailableError(
+      absl::StrCat("membraned stopped while the job was ", was, "; its upload could not be read (",
+                   why, "): submit it again")));
+  record.snapshot.set_state(v1::FAILED);
+  record.snapshot.set_finished_unix_seconds(absl::ToDoubleSeconds(now - absl::UnixEpoch()));
+  return Job::Restore(record.snapshot, std::move(record.events), "", {}, "");
 }
 
 }  // namespace
 
-DiskJobStore::DiskJobStore(std::string dir)
-    : dir_(std::move(dir)), writer_([this] { WriterLoop(); }) {}
+DiskJobStore::DiskJobStore(std::string dir, DiskJobStoreOptions options,
+                           std::unique_ptr<StoreFiles> files)
+    : dir_(std::move(dir)),
+      options_(options),
+      files_(std::move(files)),
+      writer_([this] { WriterLoop(); }) {}
 
 DiskJobStore::~DiskJobStore() {
   {
@@ -143,62 +137,143 @@ std::string DiskJobStore::PathOf(const std::string& id) const {
   return absl::StrCat(dir_, "/", id, kSuffix);
 }
 
-absl::StatusOr<int> DiskJobStore::Load() {
-  if (mkdir(dir_.c_str(), 0700) != 0 && errno != EEXIST) {
-    return absl::UnavailableError(
-        absl::StrCat("cannot create the job store ", dir_, ": ", ErrnoText()));
-  }
-  DIR* listing = opendir(dir_.c_str());
-  if (listing == nullptr) {
-    return absl::UnavailableError(
-        absl::StrCat("cannot read the job store ", dir_, ": ", ErrnoText()));
-  }
-  std::vector<std::string> names;
-  while (const dirent* entry = readdir(listing)) names.emplace_back(entry->d_name);
-  closedir(listing);
-  const absl::Time now = absl::Now();
-  std::vector<std::shared_ptr<Job>> jobs;
-  std::vector<std::string> interrupted_ids;
-  for (const std::string& name : names) {
-    const std::string path = absl::StrCat(dir_, "/", name);
-    // A write the process did not finish: the record before it stands.
-    if (absl::EndsWith(name, ".tmp")) {
-      unlink(path.c_str());
-      continue;
-    }
-    if (!absl::EndsWith(name, kSuffix)) continue;
-    const std::string id = name.substr(0, name.size() - std::strlen(kSuffix));
-    absl::StatusOr<std::string> bytes = ReadFileBytes(path);
-    bool interrupted = false;
-    absl::StatusOr<std::shared_ptr<Job>> job =
-        bytes.ok() ? ParseRecord(*bytes, now, interrupted) : bytes.status();
-    if (job.ok() && (*job)->id() != id) {
-      job = absl::DataLossError(absl::StrCat("it holds job '", (*job)->id(), "'"));
-    }
-    if (!job.ok()) {
-      LogEvent("store_unreadable",
-               {{"file", path}, {"message", std::string(job.status().message())}});
-      continue;
-    }
-    if (interrupted) interrupted_ids.push_back(id);
-    jobs.push_back(*std::move(job));
-  }
-  // Oldest first, as they were added.
-  std::sort(jobs.begin(), jobs.end(), [](const auto& a, const auto& b) {
-    return a->Snapshot().created_unix_seconds() < b->Snapshot().created_unix_seconds();
-  });
-  for (std::shared_ptr<Job>& job : jobs) memory_.Add(std::move(job));
-  for (const std::string& id : interrupted_ids) Enqueue(id);
-  LogEvent("store_loaded", {{"dir", dir_},
-                            {"jobs", absl::StrCat(jobs.size())},
-                            {"interrupted", absl::StrCat(interrupted_ids.size())}});
-  return static_cast<int>(jobs.size());
+std::string DiskJobStore::UploadPathOf(const std::string& id) const {
+  return absl::StrCat(dir_, "/", id, kUploadSuffix);
 }
 
-void DiskJobStore::Add(std::shared_ptr<Job> job) {
+void DiskJobStore::SetWritableListener(std::function<void(bool writable)> listener) {
+  absl::MutexLock lock(&listener_mutex_);
+  listener_ = std::move(listener);
+}
+
+absl::StatusOr<DiskJobStore::Loaded> DiskJobStore::Load(const HookMaker& make_hook) {
+  if (absl::Status s = files_->MakeDirectory(dir_); !s.ok()) {
+    return absl::UnavailableError(absl::StrCat("cannot create the job store: ", s.message()));
+  }
+  // A store that cannot be written would accept nothing: better said at start-up.
+  const std::string check = absl::StrCat(dir_, "/", kWriteCheck);
+  const std::string page(4096, '\0');
+  if (absl::Status s = files_->Write(dir_, check, {page}); !s.ok()) {
+    return absl::UnavailableError(
+        absl::StrCat("the job store ", dir_, " cannot be written: ", s.message()));
+  }
+  files_->Remove(check).IgnoreError();
+  absl::StatusOr<std::vector<std::string>> names = files_->List(dir_);
+  if (!names.ok()) {
+    return absl::UnavailableError(absl::StrCat("cannot read the job store: ", names.status().message()));
+  }
+  std::set<std::string> uploads;  // ids with an upload file
+  std::vector<std::string> records;
+  for (const std::string& name : *names) {
+    // A write the process did not finish: the file before it stands.
+    if (absl::EndsWith(name, ".tmp")) {
+      files_->Remove(absl::StrCat(dir_, "/", name)).IgnoreError();
+    } else if (absl::EndsWith(name, kUploadSuffix)) {
+      uploads.insert(name.substr(0, name.size() - std::strlen(kUploadSuffix)));
+    } else if (absl::EndsWith(name, kSuffix)) {
+      records.push_back(name.substr(0, name.size() - std::strlen(kSuffix)));
+    }
+  }
+  const absl::Time now = absl::Now();
+  std::vector<std::shared_ptr<Job>> jobs;
+  std::vector<std::string> lost_ids;
+  std::set<std::string> keep_uploads;  // of resumed jobs, and of records left for a person
+  Loaded loaded;
+  for (const std::string& id : records) {
+    const std::string path = PathOf(id);
+    absl::StatusOr<std::string> bytes = files_->Read(path, options_.max_record_bytes);
+    absl::StatusOr<Record> record = bytes.ok() ? ParseRecord(*bytes) : bytes.status();
+    if (record.ok() && record->snapshot.id() != id) {
+      record = absl::DataLossError(absl::StrCat("it holds job '", record->snapshot.id(), "'"));
+    }
+    if (!record.ok()) {
+      LogEvent("store_unreadable",
+               {{"file", path}, {"message", std::string(record.status().message())}});
+      keep_uploads.insert(id);
+      continue;
+    }
+    if (record->ended) {
+      jobs.push_back(Ended(*std::move(record)));
+      continue;
+    }
+    absl::StatusOr<std::string> upload =
+        uploads.contains(id)
+            ? files_->Read(UploadPathOf(id), options_.max_upload_bytes + kUploadHeaderBytes)
+            : absl::NotFoundError("no upload file");
+    if (upload.ok()) upload = ParseUpload(*upload, record->snapshot.upload_bytes());
+    if (!upload.ok()) {
+      LogEvent("store_upload_unreadable",
+               {{"job", id}, {"message", std::string(upload.status().message())}});
+      lost_ids.push_back(id);
+      jobs.push_back(Lost(*std::move(record), now, upload.status().message()));
+      continue;
+    }
+    std::shared_ptr<Job> job = Job::Resume(record->snapshot, *std::move(upload), make_hook(id));
+    job->RequireEndRecord();
+    keep_uploads.insert(id);
+    loaded.resumed.push_back(job);
+    jobs.push_back(std::move(job));
+  }
+  // An upload without a record (a crash inside Add: its client never heard of the job) or
+  // whose job has ended (a crash before its removal).
+  for (const std::string& id : uploads) {
+    if (!keep_uploads.contains(id)) files_->Remove(UploadPathOf(id)).IgnoreError();
+  }
+  // Oldest first, as they were added.
+  const auto older = [](const auto& a, const auto& b) {
+    return a->Snapshot().created_unix_seconds() < b->Snapshot().created_unix_seconds();
+  };
+  std::sort(jobs.begin(), jobs.end(), older);
+  std::sort(loaded.resumed.begin(), loaded.resumed.end(), older);
+  loaded.jobs = static_cast<int>(jobs.size());
+  for (std::shared_ptr<Job>& job : jobs) memory_.Add(std::move(job)).IgnoreError();
+  for (const std::string& id : lost_ids) Enqueue(id);
+  LogEvent("store_loaded", {{"dir", dir_},
+                            {"jobs", absl::StrCat(loaded.jobs)},
+                            {"resumed", absl::StrCat(loaded.resumed.size())},
+                            {"lost", absl::StrCat(lost_ids.size())}});
+  return loaded;
+}
+
+absl::Status DiskJobStore::Add(std::shared_ptr<Job> job) {
   const std::string id = job->id();
-  memory_.Add(std::move(job));
-  WaitFor(Enqueue(id));
+  job->RequireEndRecord();
+  // The upload first: a record without its upload could not be run again.
+  absl::Status s;
+  job->ReadUpload([&](absl::string_view upload) {
+    v1::UploadHeader header;
+    header.set_upload_bytes(upload.size());
+    header.set_upload_crc32c(Crc32c(upload));
+    std::string prefix;
+    google::protobuf::io::StringOutputStream output(&prefix);
+    if (!google::protobuf::util::SerializeDelimitedToZeroCopyStream(header, &output)) {
+      s = absl::InternalError("cannot serialize the upload's header");
+      return;
+    }
+    s = files_->Write(dir_, UploadPathOf(id), {prefix, upload});
+  });
+  bool ended = false;
+  if (s.ok()) s = Write(*job, ended);
+  if (!s.ok()) {
+    files_->Remove(UploadPathOf(id)).IgnoreError();
+    LogEvent("store_write_failed", {{"job", id}, {"message", std::string(s.message())}});
+    SetWritable(false);
+    return absl::UnavailableError(
+        absl::StrCat("the job store ", dir_, " cannot be written: ", s.message()));
+  }
+  SetWritable(true);
+  return memory_.Add(std::move(job));
+}
+
+void DiskJobStore::Remove(const std::string& id) {
+  memory_.Remove(id);
+  files_->Remove(PathOf(id)).IgnoreError();
+  files_->Remove(UploadPathOf(id)).IgnoreError();
+}
+
+bool DiskJobStore::writable() const {
+  absl::MutexLock lock(&mutex_);
+  return writable_;
 }
 
 std::shared_ptr<Job> DiskJobStore::Find(const std::string& id) const { return memory_.Find(id); }
@@ -207,7 +282,10 @@ std::vector<std::shared_ptr<Job>> DiskJobStore::List() const { return memory_.Li
 
 int DiskJobStore::RemoveFinishedBefore(absl::Time cutoff) {
   const std::vector<std::shared_ptr<Job>> expired = memory_.TakeFinishedBefore(cutoff);
-  for (const std::shared_ptr<Job>& job : expired) unlink(PathOf(job->id()).c_str());
+  for (const std::shared_ptr<Job>& job : expired) {
+    files_->Remove(PathOf(job->id())).IgnoreError();
+    files_->Remove(UploadPathOf(job->id())).IgnoreError();
+  }
   return static_cast<int>(expired.size());
 }
 
@@ -215,6 +293,7 @@ void DiskJobStore::Finished(const std::string& id) { Enqueue(id); }
 
 int64_t DiskJobStore::Enqueue(const std::string& id) {
   absl::MutexLock lock(&mutex_);
+  if (closed_) return asked_;
   pending_.push_back(id);
   return ++asked_;
 }
@@ -228,6 +307,12 @@ void DiskJobStore::Flush() {
   WaitFor(last);
 }
 
+void DiskJobStore::Close() {
+  Flush();
+  absl::MutexLock lock(&mutex_);
+  closed_ = true;
+}
+
 void DiskJobStore::WaitFor(int64_t ticket) {
   // Writes run in the order asked for: once `done_` reaches the ticket, that one is done.
   absl::MutexLock lock(&mutex_);
@@ -237,37 +322,117 @@ void DiskJobStore::WaitFor(int64_t ticket) {
   mutex_.Await(absl::Condition(&written));
 }
 
+void DiskJobStore::SetWritable(bool writable) {
+  {
+    absl::MutexLock lock(&mutex_);
+    if (writable_ == writable) return;
+    writable_ = writable;
+    if (writable) {
+      // The ends that failed are written again, in the order they failed.
+      for (std::string& id : unwritten_) {
+        pending_.push_back(std::move(id));
+        ++asked_;
+      }
+      unwritten_.clear();
+    }
+  }
+  LogEvent(writable ? "store_writable" : "store_unwritable", {{"dir", dir_}});
+  absl::MutexLock lock(&listener_mutex_);
+  // The state now, not `writable`: a change that raced this one is told last.
+  bool now = false;
+  {
+    absl::MutexLock state_lock(&mutex_);
+    now = writable_;
+  }
+  if (listener_) listener_(now);
+}
+
+void DiskJobStore::Probe() {
+  const std::string check = absl::StrCat(dir_, "/", kWriteCheck);
+  const std::string page(4096, '\0');
+  if (files_->Write(dir_, check, {page}).ok()) {
+    files_->Remove(check).IgnoreError();
+    SetWritable(true);
+  }
+}
+
 void DiskJobStore::WriterLoop() {
   for (;;) {
     std::string id;
+    bool probe = false;
     {
       absl::MutexLock lock(&mutex_);
       const auto ready = [this]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) {
         return !pending_.empty() || stopping_;
       };
-      mutex_.Await(absl::Condition(&ready));
-      if (pending_.empty()) return;  // stopping, and everything written
-      id = std::move(pending_.front());
-      pending_.pop_front();
-    }
-    // The job as it is now: a later change enqueues another write, so the last write holds
-    // the last state. A job expired meanwhile is not written back.
-    if (const std::shared_ptr<Job> job = memory_.Find(id)) {
-      if (absl::Status s = Write(*job); !s.ok()) {
-        LogEvent("store_write_failed", {{"job", id}, {"message", std::string(s.message())}});
+      const auto ready_or_failing = [this]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) {
+        return !pending_.empty() || stopping_ || !writable_;
+      };
+      if (writable_) {
+        mutex_.Await(absl::Condition(&ready_or_failing));
+      } else {
+        // While the disk fails, a probe every interval in which nothing is asked for.
+        probe = !mutex_.AwaitWithTimeout(absl::Condition(&ready), options_.probe_interval);
+      }
+      if (!probe) {
+        if (pending_.empty()) {
+          if (stopping_) return;  // everything written
+          continue;               // the disk just failed: wait with probes
+        }
+        id = std::move(pending_.front());
+        pending_.pop_front();
       }
     }
+    if (probe) {
+      Probe();
+      continue;
+    }
+    WriteRecord(id);
     absl::MutexLock lock(&mutex_);
     ++done_;
   }
 }
 
-absl::Status DiskJobStore::Write(const Job& job) const {
+void DiskJobStore::WriteRecord(const std::string& id) {
+  // The job as it is now: a later change enqueues another write, so the last write holds
+  // the last state. A job expired meanwhile is not written back.
+  const std::shared_ptr<Job> job = memory_.Find(id);
+  if (job == nullptr) return;
+  bool ended = false;
+  if (absl::Status s = Write(*job, ended); !s.ok()) {
+    LogEvent("store_write_failed", {{"job", id}, {"message", std::string(s.message())}});
+    if (absl::IsResourceExhausted(s)) {
+      // Too large to be read back: no disk will take it. Delivered from memory; after a
+      // restart the job runs again from its upload.
+      job->MarkEndRecorded();
+      return;
+    }
+    if (ended) {
+      {
+        absl::MutexLock lock(&mutex_);
+        unwritten_.push_back(id);
+      }
+      // Its record still says unfinished and its upload stays: a crash now runs it again, so
+      // the end that followers deliver is never undone.
+      job->MarkEndRecorded();
+    }
+    SetWritable(false);
+    return;
+  }
+  SetWritable(true);
+  if (ended) {
+    files_->Remove(UploadPathOf(id)).IgnoreError();
+    job->MarkEndRecorded();
+  }
+}
+
+absl::Status DiskJobStore::Write(const Job& job, bool& ended) const {
   // The closing events first: a job that ends in between then has a done snapshot and no
-  // JobDone, which reads as interrupted until the write its end enqueued replaces it.
+  // JobDone, which reads as unfinished until the write its end enqueued replaces it.
   const std::vector<v1::JobEvent> closing = job.ClosingEvents(kChunkBytes);
   const std::vector<v1::JobEvent> events = job.Events();
   const v1::Job snapshot = job.Snapshot();
+  ended = !closing.empty();
   std::string bytes;
   {
     google::protobuf::io::StringOutputStream output(&bytes);
@@ -277,7 +442,12 @@ absl::Status DiskJobStore::Write(const Job& job) const {
         ok = ok && google::protobuf::util::SerializeDelimitedToZeroCopyStream(event, &output);
     if (!ok) return absl::InternalError("cannot serialize the job");
   }
-  return WriteDurably(dir_, PathOf(job.id()), bytes);
+  if (static_cast<int64_t>(bytes.size()) > options_.max_record_bytes) {
+    return absl::ResourceExhaustedError(absl::StrCat("the record of ", bytes.size(),
+                                                     " bytes is over the store's limit of ",
+                                                     options_.max_record_bytes));
+  }
+  return files_->Write(dir_, PathOf(job.id()), {bytes});
 }
 
 }  // namespace membrane::server

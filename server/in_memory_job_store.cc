@@ -6,9 +6,15 @@
 
 namespace membrane::server {
 
-void InMemoryJobStore::Add(std::shared_ptr<Job> job) {
+absl::Status InMemoryJobStore::Add(std::shared_ptr<Job> job) {
   absl::MutexLock lock(&mutex_);
   jobs_.push_back(std::move(job));
+  return absl::OkStatus();
+}
+
+void InMemoryJobStore::Remove(const std::string& id) {
+  absl::MutexLock lock(&mutex_);
+  std::erase_if(jobs_, [&id](const std::shared_ptr<Job>& job) { return job->id() == id; });
 }
 
 std::shared_ptr<Job> InMemoryJobStore::Find(const std::string& id) const {

@@ -14,7 +14,8 @@ namespace membrane::server {
 
 class InMemoryJobStore : public JobStore {
  public:
-  void Add(std::shared_ptr<Job> job) override ABSL_LOCKS_EXCLUDED(mutex_);
+  absl::Status Add(std::shared_ptr<Job> job) override ABSL_LOCKS_EXCLUDED(mutex_);
+  void Remove(const std::string& id) override ABSL_LOCKS_EXCLUDED(mutex_);
   std::shared_ptr<Job> Find(const std::string& id) const override ABSL_LOCKS_EXCLUDED(mutex_);
   std::vector<std::shared_ptr<Job>> List() const override ABSL_LOCKS_EXCLUDED(mutex_);
   int RemoveFinishedBefore(absl::Time cutoff) override ABSL_LOCKS_EXCLUDED(mutex_);

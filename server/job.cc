@@ -42,6 +42,19 @@ std::shared_ptr<Job> Job::Restore(const v1::Job& snapshot, std::vector<v1::JobEv
   return job;
 }
 
+std::shared_ptr<Job> Job::Resume(const v1::Job& snapshot, std::string upload,
+                                 FinishHook on_finish) {
+  auto job = std::make_shared<Job>(snapshot.id(), snapshot.peer(), snapshot.parameters(),
+                                   std::move(upload), UploadMemory::Hold{}, std::move(on_finish));
+  job->created_at_ = absl::UnixEpoch() + absl::Seconds(snapshot.created_unix_seconds());
+  return job;
+}
+
+void Job::ReadUpload(const std::function<void(absl::string_view)>& read) const {
+  absl::MutexLock lock(&mutex_);
+  read(upload_);
+}
+
 std::vector<v1::JobEvent> Job::Events() const {
   absl::MutexLock lock(&mutex_);
   return events_;
@@ -86,6 +99,25 @@ bool Job::done() const {
   return DoneLocked();
 }
 
+bool Job::closed() const {
+  absl::MutexLock lock(&mutex_);
+  return ClosedLocked();
+}
+
+bool Job::ClosedLocked() const {
+  return DoneLocked() && (end_recorded_ || !end_record_required_);
+}
+
+void Job::RequireEndRecord() {
+  absl::MutexLock lock(&mutex_);
+  end_record_required_ = true;
+}
+
+void Job::MarkEndRecorded() {
+  absl::MutexLock lock(&mutex_);
+  end_recorded_ = true;
+}
+
 bool Job::DoneLocked() const {
   return state_ == v1::SUCCEEDED || state_ == v1::FAILED || state_ == v1::CANCELLED;
 }
@@ -122,7 +154,7 @@ void Job::Succeed(std::string statistics_json, v1::MeshSummary summary, std::str
 
 void Job::Fail(const absl::Status& status) {
   absl::MutexLock lock(&mutex_);
-  if (DoneLocked()) return;
+  if (DoneLocked() || interrupted_) return;
   FinishLocked(status.code() == absl::StatusCode::kCancelled ? v1::CANCELLED : v1::FAILED,
                status);
 }
@@ -133,6 +165,18 @@ void Job::RequestCancel(const std::string& reason) {
   if (cancel_status_.ok()) cancel_status_ = absl::CancelledError(reason);
   cancel_.Cancel();
   if (state_ == v1::QUEUED) FinishLocked(v1::CANCELLED, absl::CancelledError(reason));
+}
+
+void Job::Interrupt() {
+  absl::MutexLock lock(&mutex_);
+  if (DoneLocked()) return;
+  interrupted_ = true;
+  cancel_.Cancel();
+}
+
+bool Job::interrupted() const {
+  absl::MutexLock lock(&mutex_);
+  return interrupted_;
 }
 
 void Job::ExceedDeadline(const std::string& reason) {
@@ -162,7 +206,7 @@ size_t Job::WaitForEvents(size_t next, absl::Duration timeout,
                           std::vector<v1::JobEvent>& out) const {
   absl::MutexLock lock(&mutex_);
   auto ready = [this, next]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) {
-    return events_.size() > next || DoneLocked();
+    return events_.size() > next || ClosedLocked();
   };
   mutex_.AwaitWithTimeout(absl::Condition(&ready), timeout);
   for (size_t i = next; i < events_.size(); ++i) out.push_back(events_[i]);

@@ -13,6 +13,7 @@
 
 #include "absl/base/thread_annotations.h"
 #include "absl/status/status.h"
+#include "absl/strings/string_view.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
 #include "core/engine/cancel_token.h"
@@ -42,6 +43,12 @@ class Job {
                                       std::string statistics_json, v1::MeshSummary summary,
                                       std::string mesh);
 
+  // A job the previous process accepted and did not end, to run again from its kept
+  // `upload`: QUEUED, with the id, peer, parameters and creation time of `snapshot`, and no
+  // events (the run starts over). Its upload holds no UploadMemory.
+  static std::shared_ptr<Job> Resume(const v1::Job& snapshot, std::string upload,
+                                     FinishHook on_finish);
+
   Job(const Job&) = delete;
   Job& operator=(const Job&) = delete;
 
@@ -56,11 +63,26 @@ class Job {
   // the upload is decoded (and gone). Ending the job does it too.
   void ReleaseUploadHold() ABSL_LOCKS_EXCLUDED(mutex_);
   uint64_t upload_bytes() const { return upload_bytes_; }
+  // Calls `read` with the upload (empty once taken), under the job's lock: `read` must not
+  // call the job. For a store that keeps the upload beside the job.
+  void ReadUpload(const std::function<void(absl::string_view)>& read) const
+      ABSL_LOCKS_EXCLUDED(mutex_);
 
   // The resource as GetJob returns it.
   v1::Job Snapshot() const ABSL_LOCKS_EXCLUDED(mutex_);
   v1::JobState state() const ABSL_LOCKS_EXCLUDED(mutex_);
   bool done() const ABSL_LOCKS_EXCLUDED(mutex_);
+
+  // Followers deliver a job's end (ResultHeader, mesh, JobDone) only once it is closed: done,
+  // and, when a durable store asked for it (RequireEndRecord), its end written down
+  // (MarkEndRecorded), so that no client is told of an end that a crash would undo.
+  bool closed() const ABSL_LOCKS_EXCLUDED(mutex_);
+  // From now on the job closes only once MarkEndRecorded is called. Call before the job can
+  // end (before it is queued).
+  void RequireEndRecord() ABSL_LOCKS_EXCLUDED(mutex_);
+  // The store has written the job's end (or has given up writing it and keeps what lets it
+  // run the job again): followers may deliver it.
+  void MarkEndRecorded() ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Updates the queue position (1 = next) of a QUEUED job.
   void SetQueuePosition(int position) ABSL_LOCKS_EXCLUDED(mutex_);
@@ -87,7 +109,14 @@ class Job {
   // first RequestCancel, or ExceedDeadline's DeadlineExceeded; OK when neither was asked.
   absl::Status cancel_status() const ABSL_LOCKS_EXCLUDED(mutex_);
 
-  // Waits up to `timeout` for events past the first `next` or for the end of the job, then
+  // Stops the job's run for a server that stops and keeps the job to run it again when it
+  // starts (a durable store): the cancel token fires, and a Fail that follows (the run's
+  // Cancelled, or any other) is ignored, so the job does not end here; a Succeed still ends
+  // it. Ignored once the job is done.
+  void Interrupt() ABSL_LOCKS_EXCLUDED(mutex_);
+  bool interrupted() const ABSL_LOCKS_EXCLUDED(mutex_);
+
+  // Waits up to `timeout` for events past the first `next` or for the job to close, then
   // appends the events past `next` to `out` and returns how many there are now in all.
   size_t WaitForEvents(size_t next, absl::Duration timeout, std::vector<v1::JobEvent>& out) const
       ABSL_LOCKS_EXCLUDED(mutex_);
@@ -116,6 +145,7 @@ class Job {
 
  private:
   bool DoneLocked() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  bool ClosedLocked() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   void FinishLocked(v1::JobState state, const absl::Status& status)
       ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
 
@@ -142,6 +172,9 @@ class Job {
   uint32_t mesh_crc32c_ ABSL_GUARDED_BY(mutex_) = 0;  // of *mesh_, once, not per follower
   absl::Time finished_at_ ABSL_GUARDED_BY(mutex_) = absl::InfinitePast();
   absl::Status cancel_status_ ABSL_GUARDED_BY(mutex_);
+  bool end_record_required_ ABSL_GUARDED_BY(mutex_) = false;
+  bool end_recorded_ ABSL_GUARDED_BY(mutex_) = false;
+  bool interrupted_ ABSL_GUARDED_BY(mutex_) = false;
 };
 
 // The MeshChunk event of the bytes [at, at + chunk_bytes) of `mesh` (fewer at its end).

@@ -42,8 +42,9 @@ grpc::Status FollowJob(Job& job, grpc::ServerContext& context, const std::string
   while (true) {
     if (context.IsCancelled()) return CallEnded(job, context, peer, policy);
     // Read `done` first: no event is added after the job ends, so the events fetched next
-    // are then all of them.
-    const bool done = job.done();
+    // are then all of them. Closed, not merely done: the end is delivered once the store has
+    // written it (Job::closed).
+    const bool done = job.closed();
     std::vector<v1::JobEvent> events;
     next = job.WaitForEvents(next, done ? absl::ZeroDuration() : absl::Milliseconds(50), events);
     for (const v1::JobEvent& event : events) {

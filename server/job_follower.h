@@ -18,7 +18,8 @@ struct FollowPolicy {
 };
 
 // Writes each event of `job` from its first one through `write` (false: the caller is gone),
-// then its closing events (result, mesh chunks, JobDone). Polls the call every 50 ms, so a
+// then its closing events (result, mesh chunks, JobDone) once the job is closed (Job::closed:
+// its end written down by a durable store). Polls the call every 50 ms, so a
 // dropped caller or an expired deadline is seen (and the job cancelled per `policy`) within
 // 100 ms, and logged as `call_dropped` with `peer`, the caller's address taken when the call
 // began (a cancelled call's context no longer knows it). Returns the job's final status for

@@ -55,6 +55,12 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   });
   const Stopwatch total;
   const auto fail = [&](const absl::Status& status) {
+    if (job->interrupted()) {
+      // The server stops and keeps the job for its next start: it has not ended.
+      LogEvent("job_interrupted", {{"job", job->id()},
+                                   {"seconds", absl::StrFormat("%.3f", total.Seconds())}});
+      return;
+    }
     absl::Status final_status = status;
     if (status.code() == absl::StatusCode::kCancelled && !job->cancel_status().ok()) {
       final_status = job->cancel_status();

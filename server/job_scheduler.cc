@@ -16,21 +16,41 @@ JobScheduler::~JobScheduler() { Shutdown(absl::ZeroDuration()); }
 
 absl::Status JobScheduler::Submit(std::shared_ptr<Job> job) {
   absl::MutexLock lock(&mutex_);
-  if (stopping_) return absl::UnavailableError("the server is shutting down; try another replica");
   // Jobs cancelled while queued leave their place now rather than when a worker reaches them:
   // else they would fill the queue for nothing.
   if (std::erase_if(queue_, [](const std::shared_ptr<Job>& j) { return j->done(); }) > 0) {
     RenumberQueueLocked();
   }
-  // Jobs waiting beyond the idle workers count against the queue.
-  if (queue_.size() + running_.size() >= workers_.size() + queue_capacity_) {
-    return absl::ResourceExhaustedError(absl::StrFormat(
-        "the server is busy: queue full (%d jobs waiting, %d running)", queue_.size(),
-        running_.size()));
-  }
+  if (absl::Status s = CheckRoomLocked(); !s.ok()) return s;
   queue_.push_back(std::move(job));
   RenumberQueueLocked();
   return absl::OkStatus();
+}
+
+absl::Status JobScheduler::CheckRoom() const {
+  absl::MutexLock lock(&mutex_);
+  return CheckRoomLocked();
+}
+
+absl::Status JobScheduler::CheckRoomLocked() const {
+  if (stopping_) return absl::UnavailableError("the server is shutting down; try another replica");
+  // Jobs waiting beyond the idle workers count against the queue; those cancelled while
+  // waiting do not.
+  const size_t waiting = static_cast<size_t>(
+      std::count_if(queue_.begin(), queue_.end(), [](const auto& j) { return !j->done(); }));
+  if (waiting + running_.size() >= workers_.size() + queue_capacity_) {
+    return absl::ResourceExhaustedError(absl::StrFormat(
+        "the server is busy: queue full (%d jobs waiting, %d running)", waiting,
+        running_.size()));
+  }
+  return absl::OkStatus();
+}
+
+void JobScheduler::Resume(std::shared_ptr<Job> job) {
+  absl::MutexLock lock(&mutex_);
+  if (stopping_) return;
+  queue_.push_back(std::move(job));
+  RenumberQueueLocked();
 }
 
 void JobScheduler::RenumberQueueLocked() {
@@ -60,21 +80,27 @@ void JobScheduler::WorkerLoop() {
   }
 }
 
-void JobScheduler::Shutdown(absl::Duration grace) {
+void JobScheduler::Shutdown(absl::Duration grace, Unfinished unfinished) {
   if (joined_) return;
   {
     absl::MutexLock lock(&mutex_);
     stopping_ = true;
-    for (const std::shared_ptr<Job>& job : queue_) {
-      job->RequestCancel("the server shut down before the job started");
+    if (unfinished == Unfinished::kCancel) {
+      for (const std::shared_ptr<Job>& job : queue_) {
+        job->RequestCancel("the server shut down before the job started");
+      }
     }
     queue_.clear();
     auto idle = [this]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_) { return running_.empty(); };
     if (!mutex_.AwaitWithTimeout(absl::Condition(&idle), grace)) {
       for (const std::shared_ptr<Job>& job : running_) {
-        job->RequestCancel(absl::StrFormat(
-            "the server shut down; the job did not finish within the %g s grace period",
-            absl::ToDoubleSeconds(grace)));
+        if (unfinished == Unfinished::kKeep) {
+          job->Interrupt();
+        } else {
+          job->RequestCancel(absl::StrFormat(
+              "the server shut down; the job did not finish within the %g s grace period",
+              absl::ToDoubleSeconds(grace)));
+        }
       }
     }
   }

@@ -34,10 +34,23 @@ class JobScheduler {
   // waiting)" when the queue is full (jobs cancelled while queued do not count: they leave
   // the queue here); Unavailable "shutting down" once Shutdown has begun.
   absl::Status Submit(std::shared_ptr<Job> job) ABSL_LOCKS_EXCLUDED(mutex_);
+  // What Submit would answer now (OK: it would queue the job): a check before the costly part
+  // of accepting a job (writing its upload), which Submit's own answer still decides.
+  absl::Status CheckRoom() const ABSL_LOCKS_EXCLUDED(mutex_);
+  // Queues `job`, accepted by an earlier process (DiskJobStore::Load), whatever the queue
+  // holds: it was accepted within that process's limits. Ignored once Shutdown has begun.
+  void Resume(std::shared_ptr<Job> job) ABSL_LOCKS_EXCLUDED(mutex_);
 
-  // Stops accepting jobs and cancels the queued ones ("server shutting down"); lets the
-  // running ones finish for up to `grace`, then cancels them and joins the workers.
-  void Shutdown(absl::Duration grace) ABSL_LOCKS_EXCLUDED(mutex_);
+  // What Shutdown does with the jobs it does not let finish.
+  enum class Unfinished {
+    kCancel,  // they end CANCELLED ("the server shut down ..."): nothing would run them again
+    kKeep,    // queued ones are left as they are and running ones interrupted (Job::Interrupt),
+              // so that a durable store keeps them unfinished for the next start
+  };
+  // Stops accepting jobs and takes the queued ones out of the queue; lets the running ones
+  // finish for up to `grace`, then stops them; `unfinished` says how. Joins the workers.
+  void Shutdown(absl::Duration grace, Unfinished unfinished = Unfinished::kCancel)
+      ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Jobs waiting for a worker (not those cancelled while waiting), and jobs on a worker.
   int queued() const ABSL_LOCKS_EXCLUDED(mutex_);
@@ -46,6 +59,7 @@ class JobScheduler {
  private:
   void WorkerLoop() ABSL_LOCKS_EXCLUDED(mutex_);
   void RenumberQueueLocked() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  absl::Status CheckRoomLocked() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
 
   const int queue_capacity_;
   const RunFn run_;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "absl/status/status.h"
 #include "absl/time/time.h"
 #include "server/job.h"
 
@@ -16,8 +17,15 @@ namespace membrane::server {
 class JobStore {
  public:
   virtual ~JobStore() = default;
-  // Adds `job`, whose id must be new.
-  virtual void Add(std::shared_ptr<Job> job) = 0;
+  // Adds `job`, whose id must be new, once the store holds what it needs to finish it after
+  // a crash (a durable store: the job and its upload, on disk). OK then; Unavailable naming
+  // the cause when it cannot (a read-only or full disk), and the job is not added.
+  virtual absl::Status Add(std::shared_ptr<Job> job) = 0;
+  // Forgets the job `id`, added but then not queued after all (the queue filled meanwhile).
+  virtual void Remove(const std::string& id) = 0;
+  // False while the store knows that Add would fail (its disk cannot be written): the
+  // server then refuses jobs before their upload, and health says NOT_SERVING.
+  virtual bool writable() const { return true; }
   // The job with `id`, or null when unknown or expired.
   virtual std::shared_ptr<Job> Find(const std::string& id) const = 0;
   // Every job held, newest first.

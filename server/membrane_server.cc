@@ -18,6 +18,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "proto/endpoint_address.h"
+#include "server/job_end_hook.h"
 #include "server/server_log.h"
 
 namespace membrane::server {
@@ -33,19 +34,26 @@ constexpr int kPollerThreads = 2;
 constexpr int kMetricsThreads = 4;
 constexpr int kMetricsRequestTimeoutMs = 2000;
 
-// The store of `dir`: in memory only when it is empty.
-std::unique_ptr<JobStore> MakeStore(const std::string& dir) {
-  if (dir.empty()) return std::make_unique<InMemoryJobStore>();
-  return std::make_unique<DiskJobStore>(dir);
+// The store of options.store_dir: in memory only when it is empty.
+std::unique_ptr<JobStore> MakeStore(const ServerOptions& options,
+                                    std::unique_ptr<StoreFiles> files) {
+  if (options.store_dir.empty()) return std::make_unique<InMemoryJobStore>();
+  DiskJobStoreOptions store;
+  store.max_upload_bytes = options.max_upload_bytes;
+  // A disk that fails is tried again as often as refused clients are told to come back.
+  store.probe_interval = absl::Seconds(std::max(options.retry_delay_seconds, 0.1));
+  return std::make_unique<DiskJobStore>(options.store_dir, store,
+                                        files != nullptr ? std::move(files) : PosixStoreFiles());
 }
 
 }  // namespace
 
-MembraneServer::MembraneServer(ServerOptions options, const Clock* clock)
+MembraneServer::MembraneServer(ServerOptions options, const Clock* clock,
+                               std::unique_ptr<StoreFiles> store_files)
     : options_(std::move(options)),
       clock_(clock != nullptr ? *clock : real_clock_),
       upload_memory_(options_.upload_memory_bytes),
-      store_(MakeStore(options_.store_dir)),
+      store_(MakeStore(options_, std::move(store_files))),
       memory_(options_.memory_budget_bytes),
       job_deadlines_(absl::Seconds(options_.max_job_seconds), clock_),
       runner_(options_, memory_, metrics_, job_deadlines_),
@@ -73,8 +81,13 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
       return s;
     }
   }
+  std::vector<std::shared_ptr<Job>> resumed;
   if (disk_store_ != nullptr) {
-    if (absl::StatusOr<int> loaded = disk_store_->Load(); !loaded.ok()) return loaded.status();
+    disk_store_->SetWritableListener([this](bool) { UpdateHealth(); });
+    absl::StatusOr<DiskJobStore::Loaded> loaded = disk_store_->Load(
+        [this](const std::string& id) { return JobEndHook(metrics_, *store_, id); });
+    if (!loaded.ok()) return loaded.status();
+    resumed = std::move(loaded->resumed);
   }
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
@@ -116,10 +129,17 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
       return s;
     }
   }
-  // Probes ask for the server ("") or for the service by name; both answer SERVING.
-  server_->GetHealthCheckService()->SetServingStatus(v1::Reconstruction::service_full_name(),
-                                                     true);
-  server_->GetHealthCheckService()->SetServingStatus(true);
+  // Queued once the server is sure to start: a failed start leaves them on disk untouched.
+  for (std::shared_ptr<Job>& job : resumed) {
+    LogEvent("job_resumed", {{"job", job->id()}, {"peer", job->peer()}});
+    scheduler_.Resume(std::move(job));
+  }
+  {
+    absl::MutexLock lock(&health_mutex_);
+    started_ = true;
+    serving_ = true;
+  }
+  UpdateHealth();
   LogEvent("server_started", {{"address", address},
                               {"port", absl::StrCat(port)},
                               {"metrics_port", absl::StrCat(metrics_port_)},
@@ -146,18 +166,33 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
 void MembraneServer::Shutdown(absl::Duration grace) {
   if (shut_down_) return;
   shut_down_ = true;
-  LogEvent("server_stopping", {{"grace_seconds", absl::StrCat(absl::ToDoubleSeconds(grace))}});
+  bool started = false;
+  {
+    absl::MutexLock lock(&health_mutex_);
+    started = started_;
+    serving_ = false;
+  }
+  // A server that never started (its Start failed and said why) stops without a word.
+  if (started) {
+    LogEvent("server_stopping", {{"grace_seconds", absl::StrCat(absl::ToDoubleSeconds(grace))}});
+  }
   // Refusing first: once health says NOT_SERVING, no new job is taken.
   service_.StopAccepting();
-  if (server_ != nullptr) server_->GetHealthCheckService()->SetServingStatus(false);
-  scheduler_.Shutdown(grace);
-  // The jobs' ends are on disk before the process may exit.
-  if (disk_store_ != nullptr) disk_store_->Flush();
+  UpdateHealth();
+  if (disk_store_ != nullptr) {
+    // A crash and a stop leave the same store: what did not end runs at the next start.
+    scheduler_.Shutdown(grace, JobScheduler::Unfinished::kKeep);
+    // The ends of the jobs that finished are on disk before the process may exit, and
+    // nothing the open calls do to the others (a cancel on disconnect) is written.
+    disk_store_->Close();
+  } else {
+    scheduler_.Shutdown(grace, JobScheduler::Unfinished::kCancel);
+  }
   if (server_ != nullptr) {
     // The open calls see their jobs ended and write the outcome; a second is plenty.
     server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(1));
   }
-  LogEvent("server_stopped", {});
+  if (started) LogEvent("server_stopped", {});
 }
 
 absl::Status MembraneServer::StartMetrics() {
@@ -172,6 +207,7 @@ absl::Status MembraneServer::StartMetrics() {
     s.memory_waiting_jobs = memory_.waiting();
     s.upload_held_bytes = upload_memory_.held();
     s.upload_memory_bytes = std::max<int64_t>(options_.upload_memory_bytes, 0);
+    s.store_writable = store_->writable();
     return s;
   });
   // prometheus-cpp reports a port it cannot bind by throwing: the one exception caught here.
@@ -192,6 +228,17 @@ absl::Status MembraneServer::StartMetrics() {
   const std::vector<int> ports = exposer_->GetListeningPorts();
   metrics_port_ = ports.empty() ? 0 : ports.front();
   return absl::OkStatus();
+}
+
+void MembraneServer::UpdateHealth() {
+  // Under the lock, so that two updates cannot land in the opposite order.
+  absl::MutexLock lock(&health_mutex_);
+  if (!started_) return;
+  const bool serving = serving_ && store_->writable();
+  // Probes ask for the server ("") or for the service by name; both answer the same.
+  server_->GetHealthCheckService()->SetServingStatus(v1::Reconstruction::service_full_name(),
+                                                     serving);
+  server_->GetHealthCheckService()->SetServingStatus(serving);
 }
 
 void MembraneServer::Wait() {

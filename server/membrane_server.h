@@ -10,7 +10,9 @@
 
 #include "prometheus/exposer.h"
 
+#include "absl/base/thread_annotations.h"
 #include "absl/status/statusor.h"
+#include "absl/synchronization/mutex.h"
 #include "server/clock.h"
 #include "server/disk_job_store.h"
 #include "server/in_memory_job_store.h"
@@ -21,31 +23,37 @@
 #include "server/reconstruction_service.h"
 #include "server/server_metrics.h"
 #include "server/server_options.h"
+#include "server/store_files.h"
 
 namespace membrane::server {
 
 class MembraneServer {
  public:
   // `clock` (not owned; null: the real clock) times the results' TTL and the stall watchdog,
-  // and must outlive the server.
-  explicit MembraneServer(ServerOptions options, const Clock* clock = nullptr);
+  // and must outlive the server. `store_files` replaces the file operations of the disk store
+  // (options.store_dir): a test's that fail; null for this machine's.
+  explicit MembraneServer(ServerOptions options, const Clock* clock = nullptr,
+                          std::unique_ptr<StoreFiles> store_files = nullptr);
   // Shutdown(0) unless it was called.
   ~MembraneServer();
 
   MembraneServer(const MembraneServer&) = delete;
   MembraneServer& operator=(const MembraneServer&) = delete;
 
-  // Loads the jobs of options.store_dir when set (DiskJobStore::Load), then listens on
-  // `address` ("127.0.0.1:0" picks a free port), health SERVING, and serves
+  // Loads the jobs of options.store_dir when set (DiskJobStore::Load) and queues again those
+  // the previous process did not end, then listens on `address` ("127.0.0.1:0" picks a free
+  // port), health SERVING (NOT_SERVING while the store's disk cannot be written), and serves
   // Prometheus metrics on options.metrics_listen (HTTP, path /metrics) when set; ignores
   // SIGPIPE in this process (see decode_subprocess.h). Returns the bound port of `address`;
-  // Unavailable when the store cannot be read or either address cannot be bound.
+  // Unavailable when the store cannot be created, read or written, or either address cannot
+  // be bound.
   absl::StatusOr<int> Start(const std::string& address);
 
-  // Graceful shutdown: health NOT_SERVING, new Reconstruct calls UNAVAILABLE, queued jobs
-  // cancelled, running ones given `grace` to finish and then cancelled, their ends written to
-  // the store's directory; then the calls still open get a second to deliver their outcome
-  // and the server stops.
+  // Graceful shutdown: health NOT_SERVING, new Reconstruct calls UNAVAILABLE, running jobs
+  // given `grace` to finish, their ends written to the store's directory. The others: with a
+  // store directory, queued jobs and those still running after `grace` (interrupted) stay
+  // unfinished in it, for the next start to run; in memory only, they end CANCELLED. Then the
+  // calls still open get a second to deliver what they can and the server stops.
   void Shutdown(absl::Duration grace);
 
   // Blocks until Shutdown has stopped the gRPC server.
@@ -57,6 +65,9 @@ class MembraneServer {
  private:
   // Starts exposer_ on options_.metrics_listen.
   absl::Status StartMetrics();
+  // Sets the health service's status: SERVING once started, unless stopping or the store
+  // cannot be written.
+  void UpdateHealth() ABSL_LOCKS_EXCLUDED(health_mutex_);
 
   const ServerOptions options_;
   const RealClock real_clock_;
@@ -81,6 +92,10 @@ class MembraneServer {
   std::unique_ptr<prometheus::Exposer> exposer_;
   int metrics_port_ = 0;
   bool shut_down_ = false;
+  absl::Mutex health_mutex_;
+  // server_ is built and stays (set once Start succeeds; other threads read server_ after).
+  bool started_ ABSL_GUARDED_BY(health_mutex_) = false;
+  bool serving_ ABSL_GUARDED_BY(health_mutex_) = false;  // started and not stopping
 };
 
 }  // namespace membrane::server

@@ -10,6 +10,7 @@
 #include "proto/job_routing.h"
 #include "server/bearer_token.h"
 #include "server/client_text.h"
+#include "server/job_end_hook.h"
 #include "server/job_follower.h"
 #include "server/parameter_checks.h"
 #include "server/rpc_status.h"
@@ -174,6 +175,18 @@ grpc::Status ReconstructionService::Reconstruct(
         absl::UnavailableError("the server is shutting down; try again or another replica"),
         absl::Seconds(options_.retry_delay_seconds)));
   }
+  // A job is accepted only once it is durable: while the store's disk fails, say so before
+  // the client sends its upload.
+  const auto store_refused = [&](const absl::Status& s) {
+    metrics_.StoreRefused();
+    LogEvent("job_refused", {{"peer", peer}, {"message", std::string(s.message())}});
+    return refused(ToGrpcStatusWithRetry(s, absl::Seconds(options_.retry_delay_seconds)));
+  };
+  if (!store_.writable()) {
+    return store_refused(absl::UnavailableError(
+        "the job store cannot be written (read-only or full disk); try again later or another "
+        "replica"));
+  }
   v1::Parameters parameters;
   std::string upload;
   UploadMemory::Hold hold;
@@ -184,22 +197,22 @@ grpc::Status ReconstructionService::Reconstruct(
     return refused(s);
   }
   const uint64_t upload_bytes = upload.size();
-  ServerMetrics& metrics = metrics_;
-  JobStore& store = store_;
   const std::string id = NewJobId();
-  auto job = std::make_shared<Job>(
-      id, peer, parameters, std::move(upload), std::move(hold),
-      [&metrics, &store, id](v1::JobState state, const absl::Status& status, absl::Duration age,
-                             uint64_t mesh_bytes) {
-        metrics.JobFinished(state, status.code(), absl::ToDoubleSeconds(age), mesh_bytes);
-        store.Finished(id);
-      });
-  if (absl::Status s = scheduler_.Submit(job); !s.ok()) {
+  auto job = std::make_shared<Job>(id, peer, parameters, std::move(upload),
+                                   std::move(hold), JobEndHook(metrics_, store_, id));
+  const auto queue_refused = [&](const absl::Status& s) {
     LogEvent("job_refused", {{"peer", peer}, {"message", std::string(s.message())}});
     return refused(ToGrpcStatusWithRetry(s, absl::Seconds(options_.retry_delay_seconds)));
+  };
+  // The queue's answer before the store's write, so that a busy server writes nothing; the
+  // write before the job is queued, so that no worker runs a job the store does not hold.
+  if (absl::Status s = scheduler_.CheckRoom(); !s.ok()) return queue_refused(s);
+  if (absl::Status s = store_.Add(job); !s.ok()) return store_refused(s);
+  if (absl::Status s = scheduler_.Submit(job); !s.ok()) {
+    store_.Remove(id);
+    return queue_refused(s);
   }
   metrics_.JobAccepted(upload_bytes);
-  store_.Add(job);
   const v1::Job snapshot = job->Snapshot();
   LogEvent("job_accepted", {{"job", job->id()},
                             {"peer", peer},

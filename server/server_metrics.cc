@@ -38,6 +38,12 @@ ServerMetrics::ServerMetrics()
                    .Name("membrane_reconstruct_refused_total")
                    .Help("Reconstruct calls that made no job, by status code")
                    .Register(*registry_)),
+      store_refused_(prometheus::BuildCounter()
+                         .Name("membrane_store_refused_total")
+                         .Help("Reconstruct calls refused because the job store could not "
+                               "write their job")
+                         .Register(*registry_)
+                         .Add({})),
       accepted_(prometheus::BuildCounter()
                     .Name("membrane_jobs_accepted_total")
                     .Help("Jobs accepted (queued)")
@@ -84,6 +90,8 @@ void ServerMetrics::ReconstructRefused(absl::StatusCode code) {
   refused_.Add({{"code", absl::StatusCodeToString(code)}}).Increment();
 }
 
+void ServerMetrics::StoreRefused() { store_refused_.Increment(); }
+
 void ServerMetrics::JobAccepted(uint64_t upload_bytes) {
   accepted_.Increment();
   upload_bytes_.Increment(static_cast<double>(upload_bytes));
@@ -120,6 +128,10 @@ std::vector<prometheus::MetricFamily> ServerStateCollector::Collect() const {
             static_cast<double>(s.upload_held_bytes)),
       Gauge("membrane_upload_memory_bytes", "The uploads' pool; 0: no limit",
             static_cast<double>(s.upload_memory_bytes)),
+      Gauge("membrane_store_writable",
+            "1 when the job store can be written (or there is no disk store); 0 while its "
+            "disk fails, when jobs are refused",
+            s.store_writable ? 1 : 0),
   };
 }
 

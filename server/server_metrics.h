@@ -29,6 +29,9 @@ class ServerMetrics {
   // A Reconstruct call that made no job (refused upload, full queue, no token, shutting
   // down), by its status code: membrane_reconstruct_refused_total{code}.
   void ReconstructRefused(absl::StatusCode code);
+  // A Reconstruct call refused because its job could not be written to the store (a
+  // read-only or full disk): membrane_store_refused_total. Also counted by ReconstructRefused.
+  void StoreRefused();
   // membrane_jobs_accepted_total, membrane_upload_bytes_total.
   void JobAccepted(uint64_t upload_bytes);
   // Once per job, whatever ended it: membrane_jobs_finished_total{state, code},
@@ -48,6 +51,7 @@ class ServerMetrics {
  private:
   std::shared_ptr<prometheus::Registry> registry_;
   prometheus::Family<prometheus::Counter>& refused_;
+  prometheus::Counter& store_refused_;
   prometheus::Counter& accepted_;
   prometheus::Counter& upload_bytes_;
   prometheus::Family<prometheus::Counter>& finished_;
@@ -69,6 +73,7 @@ struct ServerState {
   int memory_waiting_jobs = 0;
   int64_t upload_held_bytes = 0;
   int64_t upload_memory_bytes = 0;
+  bool store_writable = true;  // false while a durable store's disk cannot be written
 };
 
 // A Prometheus collectable giving `read()`'s ServerState as membrane_* gauges. `read` is

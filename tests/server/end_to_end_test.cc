@@ -309,8 +309,8 @@ TEST_F(EndToEndTest, MetricsEndpointCountsAJob) {
 }
 
 // membraned --store-dir killed outright (no shutdown at all): once restarted on the same
-// directory it serves the finished job's mesh again, and says of the job it was running that
-// it must be submitted again.
+// directory it serves the finished job's mesh again, and runs the job it was running again,
+// under its id, from the upload it kept.
 TEST_F(EndToEndTest, StoreDirKeepsResultsAcrossACrash) {
   const std::string store = "--store-dir=" + dir_.File("jobs");
   StartServer({store});
@@ -355,21 +355,24 @@ TEST_F(EndToEndTest, StoreDirKeepsResultsAcrossACrash) {
   MembranedProcess restarted = StartMembraned(dir_, "restarted", {store});
   ASSERT_FALSE(restarted.address.empty());
   address_ = restarted.address;
-  EXPECT_NE(ReadText(restarted.log).find("event=store_loaded"), std::string::npos);
+  const std::string restarted_log = ReadText(restarted.log);
+  EXPECT_NE(restarted_log.find("event=store_loaded"), std::string::npos);
+  EXPECT_NE(restarted_log.find("event=job_resumed job=" + running), std::string::npos)
+      << restarted_log;
   const CliResult watch = Run({"jobs", "watch", finished, "-o", dir_.File("again.ply"),
                                "--server", address_, "-q"});
   EXPECT_EQ(watch.exit_code, 0) << watch.err;
   EXPECT_TRUE(ReadText(dir_.File("again.ply")) == ReadText(dir_.File("m.ply")))
       << "the stored mesh differs";
-  const CliResult get = Run({"jobs", "get", running, "--server", address_});
-  EXPECT_NE(get.out.find("state: FAILED"), std::string::npos) << get.out;
-  EXPECT_NE(get.out.find("submit it again"), std::string::npos) << get.out;
+  const CliResult resumed = Run({"jobs", "watch", running, "-o", dir_.File("resumed.ply"),
+                                 "--server", address_, "-q"});
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(Run({"check", dir_.File("resumed.ply")}).exit_code, 0);
 }
 
-// A client whose job the server lost (killed and restarted on the same address and store
-// while the job ran) learns it from the restored job's UNAVAILABLE end, sends its cloud again,
-// and gets its mesh.
-TEST_F(EndToEndTest, ClientSendsItsCloudAgainWhenTheServerLostTheJob) {
+// A client whose job was running when the server was killed (and restarted on the same
+// address and store) follows its job by id to its mesh: the same job, not a second one.
+TEST_F(EndToEndTest, ClientGetsItsMeshFromTheSameJobAfterACrash) {
   const std::string store = "--store-dir=" + dir_.File("jobs");
   StartServer({store});
   const std::string cloud = Synth("sphere", 20000);
@@ -377,7 +380,9 @@ TEST_F(EndToEndTest, ClientSendsItsCloudAgainWhenTheServerLostTheJob) {
                                  address_, "--voxel-size", "0.012", "--timeout", "120"},
                                 "client");
   // Logged once the job is on disk, before the client hears it was accepted.
-  ASSERT_NE(WaitForText(log_, "event=job_accepted", 20).find("job_accepted"), std::string::npos);
+  const std::string log = WaitForText(log_, "event=job_accepted", 20);
+  std::smatch id;
+  ASSERT_TRUE(std::regex_search(log, id, std::regex("event=job_accepted job=([0-9a-f]+)"))) << log;
   server_->Signal(SIGKILL);
   server_->Wait(10);
   MembranedProcess restarted =
@@ -385,7 +390,11 @@ TEST_F(EndToEndTest, ClientSendsItsCloudAgainWhenTheServerLostTheJob) {
   ASSERT_EQ(restarted.address, address_);
   EXPECT_EQ(client->Wait(120), 0) << ReadText(dir_.File("client.err"));
   const std::string err = ReadText(dir_.File("client.err"));
-  EXPECT_NE(err.find("submit it again; sending the cloud again"), std::string::npos) << err;
+  EXPECT_EQ(err.find("sending the cloud again"), std::string::npos) << err;
+  const std::string restarted_log = ReadText(restarted.log);
+  EXPECT_NE(restarted_log.find("event=job_resumed job=" + id[1].str()), std::string::npos)
+      << restarted_log;
+  EXPECT_EQ(restarted_log.find("event=job_accepted"), std::string::npos) << restarted_log;
   EXPECT_EQ(Run({"check", dir_.File("m.ply")}).exit_code, 0);
 }
 
@@ -423,6 +432,68 @@ TEST_F(EndToEndTest, ClientWaitsForAServerThatComesBack) {
   EXPECT_EQ(Run({"check", dir_.File("refused.ply")}).exit_code, 0);
   EXPECT_EQ(Run({"check", dir_.File("late.ply")}).exit_code, 0);
   slow->Wait(30);
+}
+
+// SIGTERM leaves the store as a crash does: the running job finishes within the grace period,
+// the queued one stays queued on disk and runs at the next start, under its id.
+TEST_F(EndToEndTest, StopKeepsQueuedJobsForTheNextStart) {
+  const std::string store = "--store-dir=" + dir_.File("jobs");
+  StartServer({store, "--grace-seconds=60"});
+  const std::string cloud = Synth("sphere", 20000);
+  // Long enough that the second job is accepted while it runs, well within the grace period.
+  auto first = RunInBackground({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("a.ply"),
+                                "--server", address_, "--voxel-size", "0.008", "-q"},
+                               "first");
+  std::string log = WaitForText(log_, "event=job_started", 20);
+  std::smatch started;
+  ASSERT_TRUE(std::regex_search(log, started, std::regex("event=job_started job=([0-9a-f]+)")))
+      << log;
+  const std::string running_id = started[1].str();
+  auto second = RunInBackground({"reconstruct", cloud, "-o", dir_.File("b.ply"), "--server",
+                                 address_, "-q"},
+                                "second");
+  // The other job accepted (a job's job_accepted line may follow its job_started).
+  std::string queued_id;
+  const std::regex accepted("event=job_accepted job=([0-9a-f]+)");
+  for (int i = 0; i < 200 && queued_id.empty(); ++i) {
+    log = ReadText(log_);
+    for (auto it = std::sregex_iterator(log.begin(), log.end(), accepted);
+         it != std::sregex_iterator(); ++it) {
+      if ((*it)[1].str() != running_id) queued_id = (*it)[1].str();
+    }
+    if (queued_id.empty()) absl::SleepFor(absl::Milliseconds(100));
+  }
+  ASSERT_FALSE(queued_id.empty()) << log;
+  server_->Signal(SIGTERM);
+  EXPECT_EQ(server_->Wait(60), 0);
+  log = ReadText(log_);
+  EXPECT_NE(log.find("outcome=OK"), std::string::npos) << log;  // the running job finished
+  EXPECT_EQ(log.find("outcome=CANCELLED"), std::string::npos) << log;
+  EXPECT_EQ(first->Wait(30), 0) << ReadText(dir_.File("first.err"));
+  second->Signal(SIGKILL);
+  second->Wait(10);
+  MembranedProcess restarted = StartMembraned(dir_, "restarted", {store});
+  ASSERT_FALSE(restarted.address.empty());
+  EXPECT_NE(ReadText(restarted.log).find("event=job_resumed job=" + queued_id),
+            std::string::npos)
+      << log << ReadText(restarted.log);
+  const CliResult watch = Run({"jobs", "watch", queued_id, "-o", dir_.File("b.ply"),
+                               "--server", restarted.address, "-q"});
+  EXPECT_EQ(watch.exit_code, 0) << watch.err;
+  EXPECT_EQ(Run({"check", dir_.File("b.ply")}).exit_code, 0);
+}
+
+// A store directory that cannot be written is a start-up error: one line, a non-zero exit.
+// /proc/self/fdinfo exists and refuses new files even to root.
+TEST_F(EndToEndTest, UnwritableStoreDirFailsTheStart) {
+  Subprocess server({MEMBRANED_BINARY, "--listen=127.0.0.1:0", "--store-dir=/proc/self/fdinfo"},
+                    dir_.File("ro.out"), dir_.File("ro.err"));
+  EXPECT_EQ(server.Wait(30), 4);
+  const std::string err = ReadText(dir_.File("ro.err"));
+  EXPECT_NE(err.find("membraned: the job store /proc/self/fdinfo cannot be written"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }
 
 TEST_F(EndToEndTest, TimeoutCancelsTheJobOnTheServer) {

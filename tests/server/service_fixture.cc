@@ -68,7 +68,7 @@ bool WaitFor(const std::function<bool()>& done, double seconds) {
 }
 
 void ServiceTest::StartServer() {
-  server_ = std::make_unique<server::MembraneServer>(options_, &clock_);
+  server_ = std::make_unique<server::MembraneServer>(options_, &clock_, std::move(store_files_));
   absl::StatusOr<int> port = server_->Start("127.0.0.1:0");
   ASSERT_TRUE(port.ok()) << port.status();
   address_ = "127.0.0.1:" + std::to_string(*port);
@@ -217,6 +217,25 @@ std::string ServiceTest::Health(const std::string& service) {
   const grpc::Status status = health->Check(&context, request, &response);
   if (!status.ok()) return "ERROR " + status.error_message();
   return grpc::health::v1::HealthCheckResponse::ServingStatus_Name(response.status());
+}
+
+bool ServiceTest::WaitForHealth(const std::string& status, double seconds) {
+  auto health = grpc::health::v1::Health::NewStub(
+      grpc::CreateChannel(address_, grpc::InsecureChannelCredentials()));
+  grpc::ClientContext context;
+  SetDeadline(context, seconds);
+  auto reader = health->Watch(&context, {});
+  grpc::health::v1::HealthCheckResponse response;
+  // Watch sends the status at once, then each change.
+  while (reader->Read(&response)) {
+    if (grpc::health::v1::HealthCheckResponse::ServingStatus_Name(response.status()) == status) {
+      context.TryCancel();
+      reader->Finish();
+      return true;
+    }
+  }
+  reader->Finish();
+  return false;
 }
 
 }  // namespace membrane::testing

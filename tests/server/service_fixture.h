@@ -101,12 +101,16 @@ class ServiceTest : public ::testing::Test {
   // The health service's answer for `service` ("" = the whole server): SERVING,
   // NOT_SERVING, ... or "ERROR <message>" when the call fails (NOT_FOUND for an unknown name).
   std::string Health(const std::string& service = "");
+  // Watches the health service until it answers `status` (true) or `seconds` pass (false).
+  bool WaitForHealth(const std::string& status, double seconds = 30);
 
   // Parameters of a job that runs for many seconds (a fine grid), for cancel and queue tests.
   static v1::Parameters SlowParameters();
 
   server::ServerOptions options_;
   TestClock clock_;
+  // The disk store's file operations for StartServer (a test's that fail); null: the real ones.
+  std::unique_ptr<server::StoreFiles> store_files_;
   std::unique_ptr<server::MembraneServer> server_;
   std::string address_;
   std::unique_ptr<v1::Reconstruction::Stub> stub_;

@@ -24,6 +24,7 @@ TEST=(
   nginx-light                # the balancer test runs deploy/nginx/nginx.conf
   python3-yaml python3-kubernetes  # the manifest test (tests/deploy): YAML, the API schema
   python3-jsonschema         # the statistics JSON against proto/membrane/v1/statistics.schema.json
+  python3-grpcio python3-protobuf  # client/python, tested against a live membraned
 )
 BENCH=(
   libbenchmark-dev

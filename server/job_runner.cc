@@ -10,6 +10,7 @@
 #include "absl/strings/str_format.h"
 #include "core/io/decode_subprocess.h"
 #include "core/pipeline/draco_mesh_sink.h"
+#include "core/pipeline/ply_mesh_sink.h"
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/stats_json.h"
 #include "core/pipeline/stopwatch.h"
@@ -89,7 +90,9 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   MemoryBudgetGate memory_gate(memory_);
   TimeLimitGate gate(memory_gate, options_.max_job_seconds,
                      settings->reconstruction.output_quantization_bits);
-  DracoMeshSink sink(settings->mesh_encoding.compression_level);
+  DracoMeshSink draco_sink(settings->mesh_encoding.compression_level);
+  PlyMeshSink ply_sink;
+  MeshSink& sink = settings->ply_mesh ? static_cast<MeshSink&>(ply_sink) : draco_sink;
   JobEventObserver observer(*job, &metrics_);
   // A grid over the budget: the message says which job fields change it.
   ErrorContext errors;
@@ -99,7 +102,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
       RunReconstruction(settings->reconstruction, {source, gate, sink, observer}, errors,
                         job->cancel_token());
   if (!report.ok()) return fail(report.status());
-  std::string mesh = sink.TakeBytes();
+  std::string mesh = settings->ply_mesh ? ply_sink.TakeBytes() : draco_sink.TakeBytes();
   const size_t mesh_bytes = mesh.size();
   job->Succeed(StatsJson(*report), MeshSummaryOf(report->mesh), std::move(mesh));
   LogEvent("job_finished", {{"job", job->id()},

@@ -74,6 +74,20 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
   if (p.has_quantization()) settings.mesh_encoding.position_quantization_bits = p.quantization();
   if (p.has_compression_level()) settings.mesh_encoding.compression_level = p.compression_level();
   r.output_quantization_bits = settings.mesh_encoding.position_quantization_bits;
+  switch (p.mesh_format()) {
+    case v1::MESH_FORMAT_UNSPECIFIED:
+    case v1::MESH_FORMAT_DRACO:
+      break;
+    case v1::MESH_FORMAT_PLY:
+      // PLY holds float32: the surface is built and checked on float32's grid.
+      settings.ply_mesh = true;
+      r.output_quantization_bits = 0;
+      break;
+    default:
+      return absl::InvalidArgumentError(absl::StrCat(
+          "mesh_format ", static_cast<int>(p.mesh_format()),
+          " is not one of: 0 (unset: Draco), 1 (MESH_FORMAT_DRACO), 2 (MESH_FORMAT_PLY)"));
+  }
   return settings;
 }
 

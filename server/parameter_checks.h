@@ -13,7 +13,8 @@ namespace membrane::server {
 
 struct JobSettings {
   ReconstructionOptions reconstruction;
-  DracoOptions mesh_encoding;  // of the result mesh
+  DracoOptions mesh_encoding;  // of the result mesh, when it is Draco
+  bool ply_mesh = false;       // the result mesh as binary PLY (Parameters.mesh_format)
   Origin3d origin{0, 0, 0};    // the upload's origin (Parameters.origin), for the statistics
 };
 

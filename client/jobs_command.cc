@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include <google/protobuf/message.h>
+#include <google/protobuf/util/json_util.h>
 #include <grpcpp/client_context.h>
 
 #include "CLI/CLI.hpp"
@@ -36,6 +38,7 @@ struct JobsFlags {
   std::string stats_json;  // watch: where to write the statistics
   double timeout = 30;     // per call; watch: for the whole job (0 = no limit)
   bool quiet = false;
+  bool json = false;       // list, get, cancel: the proto's JSON mapping on stdout
 };
 
 // A one-call context with the --timeout deadline, routed to the job's replica.
@@ -50,6 +53,17 @@ std::unique_ptr<grpc::ClientContext> CallContext(const JobsFlags& flags) {
 }
 
 std::string StateName(v1::JobState state) { return v1::JobState_Name(state); }
+
+// `message` in the proto3 JSON mapping (field names as in the .proto, enums by name), one
+// object per line, for scripts: `membrane jobs list --json | jq`.
+void PrintJson(const google::protobuf::Message& message) {
+  google::protobuf::util::JsonPrintOptions options;
+  options.preserve_proto_field_names = true;
+  std::string json;
+  // Only a message with unknown Any types fails to print; ours have none.
+  if (!google::protobuf::util::MessageToJsonString(message, &json, options).ok()) json = "{}";
+  std::printf("%s\n", json.c_str());
+}
 
 void PrintJob(const v1::Job& job) {
   std::printf("id: %s\nstate: %s\nqueue_position: %d\nstage: %s\nerror: %s\npeer: %s\n"
@@ -72,6 +86,10 @@ absl::Status RunList(const JobsFlags& flags) {
   if (!flags.replica.empty()) context->AddMetadata(kReplicaHeader, flags.replica);
   const grpc::Status status = stub->ListJobs(context.get(), {}, &response);
   if (!status.ok()) return FromGrpcStatus(status, flags.server.address);
+  if (flags.json) {
+    PrintJson(response);
+    return absl::OkStatus();
+  }
   for (const v1::Job& job : response.jobs()) {
     std::printf("%s %s %s %llu %s\n", job.id().c_str(), StateName(job.state()).c_str(),
                 job.stage().empty() ? "-" : job.stage().c_str(),
@@ -94,6 +112,10 @@ absl::Status RunGet(const JobsFlags& flags, bool cancel) {
     status = stub->GetJob(CallContext(flags).get(), request, &job);
   }
   if (!status.ok()) return FromGrpcStatus(status, flags.server.address);
+  if (flags.json) {
+    PrintJson(job);
+    return absl::OkStatus();
+  }
   PrintJob(job);
   return absl::OkStatus();
 }
@@ -157,6 +179,9 @@ Command AddJobsCommand(CLI::App& parent) {
   watch->add_option("--stats-json", flags->stats_json, "write the job's statistics here");
   watch->add_flag("-q,--quiet", flags->quiet, "no progress lines on stderr");
   CLI::App* cancel = AddJobsSubcommand(*jobs, "cancel", "ask a job to stop", flags, true);
+  for (CLI::App* app : {list, get, cancel}) {
+    app->add_flag("--json", flags->json, "print the answer as JSON (the proto's JSON mapping)");
+  }
   return Command{jobs, [=] {
                    absl::StatusOr<ServerConnection> server =
                        LoadServerConnection(flags->connection);

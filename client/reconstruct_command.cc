@@ -99,7 +99,9 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   app.add_option("--stats-json", f.stats_json, "write the statistics JSON to this file");
   app.add_option("--timeout", f.timeout, "give up after this many seconds (exit 4); 0 = never")
       ->capture_default_str();
-  app.add_flag("-q,--quiet", f.quiet, "no progress lines on stderr");
+  app.add_flag("-q,--quiet", f.quiet,
+               "no progress lines on stderr and no generation table on stdout (the summary "
+               "line and errors stay)");
   app.add_option("--threads", f.threads,
                  "with --local: threads of the surface fit and the mesh check, [0, 256]; 0 = the "
                  "cores of this machine (the mesh is the same for any value)")
@@ -226,7 +228,7 @@ absl::Status RunRemote(const ReconstructFlags& flags) {
     outcome = RunRemoteReconstruction(params, progress);
   }
   if (!outcome.ok()) return outcome.status();
-  std::fputs(GenerationTable(outcome->generations).c_str(), stdout);
+  if (!flags.quiet) std::fputs(GenerationTable(outcome->generations).c_str(), stdout);
   std::fputs(RemoteSummaryLine(*outcome).c_str(), stdout);
   std::fflush(stdout);
   std::fputs(WarningLines(outcome->warnings).c_str(), stderr);
@@ -258,7 +260,7 @@ absl::Status RunReconstruct(const ReconstructFlags& flags) {
     }
     return report.status();
   }
-  std::fputs(GenerationTable(report->generations).c_str(), stdout);
+  if (!flags.quiet) std::fputs(GenerationTable(report->generations).c_str(), stdout);
   std::fputs(SummaryLine(*report).c_str(), stdout);
   std::fflush(stdout);
   std::fputs(WarningLines(report->warnings).c_str(), stderr);

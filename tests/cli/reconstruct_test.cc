@@ -71,6 +71,17 @@ TEST_F(ReconstructTest, SphereGivesOneClosedGenusZeroShell) {
   EXPECT_EQ(Genus(report), std::vector<int>{0});
 }
 
+TEST_F(ReconstructTest, QuietLeavesOnlyTheSummaryLineOnStdout) {
+  const std::string cloud = dir_.File("sphere.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "5000"}).exit_code, 0);
+  const CliResult r = Run({"reconstruct", cloud, "-o", dir_.File("m.ply"), "--local", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("plate size |"), std::string::npos) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("hard voxels"));
+  EXPECT_EQ(r.err, "");
+}
+
 // Radial noise of 0.05 on a unit sphere scatters the points over two voxels: the run succeeds
 // but says, after its summary and even with --quiet, that the membrane may have false handles
 // and which voxel size suits such points; the statistics hold the same sentence. With that

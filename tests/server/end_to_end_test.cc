@@ -564,6 +564,15 @@ TEST_F(EndToEndTest, JobsGetWatchAndUnknownIds) {
   EXPECT_EQ(watch.exit_code, 0) << watch.err;
   EXPECT_EQ(Run({"check", dir_.File("again.drc")}).exit_code, 0);
   EXPECT_EQ(Run({"jobs", "get", "nope", "--server", address_}).exit_code, 3);
+  // --json: the proto's JSON mapping, one object per line, for scripts.
+  const CliResult list_json = Run({"jobs", "list", "--server", address_, "--json"});
+  ASSERT_EQ(list_json.exit_code, 0) << list_json.err;
+  EXPECT_EQ(list_json.out.rfind("{\"jobs\":[{", 0), 0u) << list_json.out;
+  EXPECT_NE(list_json.out.find("\"id\":\"" + id + "\""), std::string::npos) << list_json.out;
+  const CliResult get_json = Run({"jobs", "get", id, "--server", address_, "--json"});
+  ASSERT_EQ(get_json.exit_code, 0) << get_json.err;
+  EXPECT_NE(get_json.out.find("\"state\":\"SUCCEEDED\""), std::string::npos) << get_json.out;
+  EXPECT_EQ(std::count(get_json.out.begin(), get_json.out.end(), '\n'), 1) << get_json.out;
 }
 
 // A georeferenced scan goes up in its moved float32 positions with its origin beside them, and

@@ -53,8 +53,7 @@ absl::Status Verdict(const std::string& path, const MeshReport& r) {
 }
 
 absl::Status RunCheck(const CheckFlags& flags) {
-  const CancelToken not_cancelled;
-  absl::StatusOr<TriangleMesh> mesh = ReadInputMesh(flags.mesh, not_cancelled);
+  absl::StatusOr<TriangleMesh> mesh = ReadInputMesh(flags.mesh, CancelToken::Never());
   if (!mesh.ok()) return FileErrorAsInvalidInput(mesh.status());
   // A face-less file is a point cloud; calling it "closed" (no edge is open) would mislead.
   if (mesh->faces.empty()) {

@@ -63,9 +63,8 @@ absl::StatusOr<TriangleMesh> ReadGeometry(const std::string& path, FileFormat fo
   if (!bytes.ok()) return FileErrorAsInvalidInput(bytes.status());
   absl::StatusOr<bool> holds_mesh = HoldsMesh(format, *bytes, path);
   if (!holds_mesh.ok()) return holds_mesh.status();
-  const CancelToken not_cancelled;
-  if (*holds_mesh) return ParseInputMesh(*bytes, format, path, not_cancelled);
-  absl::StatusOr<PointCloud> cloud = ParseInputCloud(*bytes, format, path, not_cancelled);
+  if (*holds_mesh) return ParseInputMesh(*bytes, format, path, CancelToken::Never());
+  absl::StatusOr<PointCloud> cloud = ParseInputCloud(*bytes, format, path, CancelToken::Never());
   if (!cloud.ok()) return cloud.status();
   TriangleMesh points_only;
   points_only.vertices = std::move(cloud->points);

@@ -7,7 +7,7 @@
 #include <mutex>
 #include <thread>
 
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 
 namespace membrane::client {
 

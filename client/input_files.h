@@ -8,7 +8,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
 #include "core/io/file_format.h"

@@ -8,7 +8,7 @@
 
 #include "absl/status/statusor.h"
 #include "client/progress_printer.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/io/draco_codec.h"
 #include "core/pipeline/reconstruction_options.h"
 #include "core/pipeline/reconstruction_report.h"

@@ -95,8 +95,8 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
                                      ProgressPrinter& progress) {
   const Stopwatch watch;
   progress.Begin(absl::StrCat("decode: reading ", params.input));
-  const CancelToken not_cancelled;  // the job does not exist yet: nothing to cancel
-  absl::StatusOr<PointCloud> cloud = ReadInputCloud(params.input, not_cancelled);
+  // The job does not exist yet: nothing to cancel.
+  absl::StatusOr<PointCloud> cloud = ReadInputCloud(params.input, CancelToken::Never());
   if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
   if (absl::Status s = CheckOutputKeepsOrigin(cloud->origin, params.output); !s.ok()) return s;
   Upload upload;

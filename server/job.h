@@ -16,7 +16,7 @@
 #include "absl/strings/string_view.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "membrane/v1/reconstruction.pb.h"
 #include "server/upload_memory.h"
 

@@ -9,7 +9,7 @@
 #include "absl/base/thread_annotations.h"
 #include "absl/status/status.h"
 #include "absl/synchronization/mutex.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 
 namespace membrane::server {
 

@@ -10,12 +10,6 @@
 #include "core/engine/topology_guard.h"
 
 namespace membrane {
-namespace {
-
-bool Cancelled(const CancelToken* cancel) { return cancel != nullptr && cancel->cancelled(); }
-
-}  // namespace
-
 // The planes of a closed-form generation, named.
 struct ClosedFormPlanes {
   explicit ClosedFormPlanes(WorkPlanes& p)
@@ -32,7 +26,7 @@ struct ClosedFormPlanes {
 
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
                                                           const ChainOptions& options,
-                                                          const CancelToken* cancel,
+                                                          const CancelToken& cancel,
                                                           WorkPlanes& planes) {
   const int n = options.plate_size;
   const auto st = grid.strides();
@@ -46,7 +40,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   const FlatBitset& interior = ws.interior;
   FlatBitset& out0 = ws.out0;
   FillStatePlane(grid.states(), StatePredicate::kOutside, out0);
-  if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+  if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
   // FREE: cells a plate may cover: no hard or frozen voxel, off the array border. Inside
   // and boundary only prune no-op plates (fast-shrink.md section 4), so both count.
   FlatBitset& free_cells = ws.free_cells;
@@ -67,7 +61,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   squares[2]->ErodeRun(n, st[1]);                  // z: in-plane x, y
   bool square_fits[3];
   for (int a = 0; a < 3; ++a) square_fits[a] = squares[a]->any();
-  if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+  if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
 
   FlatBitset& back = ws.back;
   FlatBitset& reach = ws.reach;
@@ -77,7 +71,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     ++outcome.rounds;
     for (int a = 0; a < 3; ++a) {
       if (!square_fits[a]) continue;
-      if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+      if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
       const int64_t sa = st[a], su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
       // Plates whose back square (one layer behind, against the front) is all outside. Both
       // fronts of the axis use the same eroded plane: a step of the least fixed point only
@@ -85,14 +79,14 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
       // than between them) reaches the same fixed point.
       back.ErodeRunFrom(out, n, su);
       back.ErodeRun(n, sv);
-      if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+      if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
       // Dig straight on: a plate whose back plate was contracted fits if its square is free.
       reach.AssignAndShifted(*squares[a], back, sa);
       reach.SpreadAlong(*squares[a], sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
       reach_back.AssignAndShifted(*squares[a], back, -sa);
       reach_back.SpreadAlong(*squares[a], -sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
       reach.Or(reach_back);
-      if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+      if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
       // Cells covered by the plates reached (dilation distributes over the union).
       reach.DilateRun(n, sv);
       reach.DilateRun(n, su);
@@ -100,7 +94,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     }
   }
 
-  if (Cancelled(cancel)) return absl::CancelledError("cancelled in a closed-form generation");
+  if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
   // Apply: new outside voxels, and their inside 26-neighbours become boundary.
   FlatBitset& fresh = ws.fresh;
   fresh = out;
@@ -139,7 +133,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   bool cancelled = false;
   adjacent.ForEach([&](int64_t i) {
     if (cancelled || outcome.incursions > 0 || !IsHardOrFrozen(s[i])) return;
-    if ((++outcome.checks & 4095) == 0 && Cancelled(cancel)) cancelled = true;
+    if ((++outcome.checks & 4095) == 0 && cancel.cancelled()) cancelled = true;
     if (IncursionAt(grid, i, options.thick_wall_run)) ++outcome.incursions;
   });
   if (!cancelled && outcome.incursions == 0 && options.topology_guard) {
@@ -150,7 +144,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     const GuardOptions guard = GuardOptionsOf(options);
     near_hard.ForEach([&](int64_t i) {
       if (cancelled || outcome.guard_refusals > 0) return;
-      if ((++outcome.checks & 4095) == 0 && Cancelled(cancel)) cancelled = true;
+      if ((++outcome.checks & 4095) == 0 && cancel.cancelled()) cancelled = true;
       if (!GuardAllowsRemoval(grid, i, guard)) ++outcome.guard_refusals;
     });
   }

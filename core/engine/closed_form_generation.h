@@ -12,7 +12,7 @@
 #include <cstdint>
 
 #include "absl/status/statusor.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/contraction.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/voxel_grid.h"
@@ -40,7 +40,7 @@ inline constexpr int kClosedFormPlanes = 15;
 // overwritten.
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
                                                           const ChainOptions& options,
-                                                          const CancelToken* cancel,
+                                                          const CancelToken& cancel,
                                                           WorkPlanes& planes);
 
 }  // namespace membrane

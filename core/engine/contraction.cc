@@ -132,7 +132,7 @@ void ChainRunner::CommitConversions() {
 }
 
 ChainOutcome ChainRunner::Run(const Plate& start, const ChainOptions& options,
-                              const CancelToken* cancel, ChainCounters& counters) {
+                              const CancelToken& cancel, ChainCounters& counters) {
   options_ = options;
   counters_ = &counters;
   log_.clear();
@@ -161,7 +161,7 @@ ChainOutcome ChainRunner::Run(const Plate& start, const ChainOptions& options,
     stack_.push_back({start, 0});
   }
   while (!failed && !stack_.empty()) {
-    if (cancel != nullptr && cancel->cancelled()) {
+    if (cancel.cancelled()) {
       counters.undone_contractions += counters.contractions - contractions_before;
       UndoAll();
       return ChainOutcome::kCancelled;

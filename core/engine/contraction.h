@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "absl/container/flat_hash_set.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/plate.h"
 #include "core/engine/topology_guard.h"
 #include "core/engine/voxel_grid.h"
@@ -71,7 +71,7 @@ class ChainRunner {
   // the start plate's boundary soft voxels are frozen: kBacktracked. Otherwise the chain is
   // committed: kCommitted. When `cancel` fires, the chain is undone without freezing:
   // kCancelled. After any outcome the grid satisfies the membrane invariants it had before.
-  ChainOutcome Run(const Plate& start, const ChainOptions& options, const CancelToken* cancel,
+  ChainOutcome Run(const Plate& start, const ChainOptions& options, const CancelToken& cancel,
                    ChainCounters& counters);
 
   // Lowest and highest z (voxel coordinates) written by the last Run; lo > hi when none.

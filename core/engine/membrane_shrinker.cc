@@ -34,11 +34,11 @@ absl::Status CancelledIn(const GenerationStats& g) {
 // pass changes nothing (then no plate fits anywhere: every plate that fits now but did not at
 // the last snapshot contains a voxel that a chain of the pass changed).
 absl::Status RunGeneration(VoxelGrid& grid, PlaceFinder& finder, ChainRunner& runner,
-                           const ChainOptions& chain, const CancelToken* cancel,
+                           const ChainOptions& chain, const CancelToken& cancel,
                            GenerationStats& stats) {
   ChainCounters counters;
   for (;;) {
-    if (cancel != nullptr && cancel->cancelled()) return CancelledIn(stats);
+    if (cancel.cancelled()) return CancelledIn(stats);
     const std::optional<std::vector<int64_t>> snapshot = finder.Snapshot(chain.plate_size, cancel);
     if (!snapshot) return CancelledIn(stats);
     const std::vector<int64_t>& candidates = *snapshot;
@@ -117,17 +117,17 @@ void MeasureWeb(const VoxelGrid& grid, const StateCopy& first, HandleRetry& r) {
 // budget. False when cancelled (the reconstruction is then abandoned, half-copied states with
 // it).
 template <typename CopySlice>
-bool CopyInSlices(size_t count, const CancelToken* cancel, CopySlice copy) {
+bool CopyInSlices(size_t count, const CancelToken& cancel, CopySlice copy) {
   constexpr size_t kSlice = size_t{16} << 20;
   for (size_t begin = 0; begin < count; begin += kSlice) {
-    if (cancel != nullptr && cancel->cancelled()) return false;
+    if (cancel.cancelled()) return false;
     copy(begin, std::min(count, begin + kSlice));
   }
   return true;
 }
 
 // `to` becomes a copy of the grid's states (appended slice by slice: no zero fill first).
-bool CopyStates(const VoxelGrid& grid, StateCopy& to, const CancelToken* cancel) {
+bool CopyStates(const VoxelGrid& grid, StateCopy& to, const CancelToken& cancel) {
   const VoxelState* from = grid.states().data();
   to.clear();
   to.reserve(grid.states().size());
@@ -137,7 +137,7 @@ bool CopyStates(const VoxelGrid& grid, StateCopy& to, const CancelToken* cancel)
 }
 
 // The grid's states become `from`.
-bool CopyStates(const StateCopy& from, VoxelGrid& grid, const CancelToken* cancel) {
+bool CopyStates(const StateCopy& from, VoxelGrid& grid, const CancelToken& cancel) {
   VoxelState* to = grid.mutable_states().data();
   return CopyInSlices(from.size(), cancel, [&](size_t begin, size_t end) {
     std::copy(from.begin() + begin, from.begin() + end, to + begin);
@@ -148,10 +148,9 @@ absl::Status RetryCancelled() {
   return absl::CancelledError("reconstruction cancelled in the handle retry");
 }
 
-// ComputeVoxelTopology, polling `cancel` (may be null) between its passes.
-absl::StatusOr<VoxelTopology> Topology(const VoxelGrid& grid, const CancelToken* cancel) {
-  if (cancel == nullptr) return ComputeVoxelTopology(grid);
-  std::optional<VoxelTopology> topology = ComputeVoxelTopology(grid, *cancel);
+// ComputeVoxelTopology, polling `cancel` between its passes.
+absl::StatusOr<VoxelTopology> Topology(const VoxelGrid& grid, const CancelToken& cancel) {
+  std::optional<VoxelTopology> topology = ComputeVoxelTopology(grid, cancel);
   if (!topology) return RetryCancelled();
   return *std::move(topology);
 }
@@ -168,7 +167,7 @@ template <typename RunGenerationFn>
 absl::Status RetryHandles(VoxelGrid& grid, const StateCopy& before, double max_hard_rim,
                           const StateCounts& counts_before, size_t from, size_t to,
                           RunGenerationFn& run_generation,
-                          const GenerationCallback& on_generation, const CancelToken* cancel,
+                          const GenerationCallback& on_generation, const CancelToken& cancel,
                           StateCounts& counts, ShrinkResult& result) {
   const Clock::time_point t0 = Clock::now();
   HandleRetry& r = result.handle_retry;
@@ -269,7 +268,7 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
 
 absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions& options,
                                             const GenerationCallback& on_generation,
-                                            const CancelToken* cancel) {
+                                            const CancelToken& cancel) {
   if (absl::Status s = ValidateShrinkOptions(options); !s.ok()) return s;
   const Clock::time_point start = Clock::now();
   ShrinkResult result;

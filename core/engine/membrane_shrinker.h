@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/plate_schedule.h"
 #include "core/engine/post_process.h"
 #include "core/engine/voxel_grid.h"
@@ -99,12 +99,11 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& options);
 // `on_generation` sees every first-run row as it finishes, then, when a retry is kept, the
 // retry's rows, each replacing the earlier row of the same generation.
 // After success the membrane invariants hold (CheckMembraneInvariants) and `grid` holds the
-// final DMS. `on_generation` may be empty; `cancel` may be null. Cancelled when `cancel`
-// fires (within milliseconds; `grid` is then a valid but unfinished DMS); InvalidArgument for
-// bad options.
+// final DMS. `on_generation` may be empty. Cancelled when `cancel` fires (within
+// milliseconds; `grid` is then a valid but unfinished DMS); InvalidArgument for bad options.
 absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions& options,
                                             const GenerationCallback& on_generation,
-                                            const CancelToken* cancel);
+                                            const CancelToken& cancel);
 
 }  // namespace membrane
 

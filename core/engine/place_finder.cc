@@ -13,8 +13,7 @@ static_assert(kPlaceFinderPlanes <= WorkPlanes::kArenaPlanes);
 PlaceFinder::PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes)
     : grid_(grid), planes_(planes) {}
 
-std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelToken* cancel) {
-  auto cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
+std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelToken& cancel) {
   if (!planes_.Ensure(kPlaceFinderPlanes, cancel)) return std::nullopt;
   n_ = n;
   const auto st = grid_.strides();
@@ -27,7 +26,7 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   FlatBitset& bs = planes_.plane(13);
   FillStatePlane(grid_.states(), StatePredicate::kOutside, out);
   FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, bs);
-  if (cancelled()) return std::nullopt;
+  if (cancel.cancelled()) return std::nullopt;
   FlatBitset& free_cells = planes_.plane(14);  // outside or boundary soft, off the border
   free_cells.AssignOrAnd(out, bs, planes_.interior());
 
@@ -41,7 +40,7 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   FlatBitset& out_z = planes_.plane(16);
   free_z.ErodeRunFrom(free_cells, n, st[2]);
   out_z.ErodeRunFrom(out, n, st[2]);
-  if (cancelled()) return std::nullopt;
+  if (cancel.cancelled()) return std::nullopt;
   FlatBitset& free_x = free_cells;  // eroded in place: the plain planes are not needed again
   FlatBitset& out_x = out;
   free_x.ErodeRun(n, st[0]);
@@ -52,7 +51,7 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   FlatBitset& candidates = planes_.plane(17);
   FlatBitset& covered = planes_.plane(18);
   for (int a = 0; a < 3; ++a) {
-    if (cancelled()) return std::nullopt;
+    if (cancel.cancelled()) return std::nullopt;
     // In-plane axes (u, v) = (y, z), (z, x), (x, y): one more erosion of a shared plane.
     const bool from_z = a != 2;
     const int last_axis = a == 1 ? 0 : 1;

@@ -12,7 +12,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/plate.h"
 #include "core/engine/voxel_grid.h"
@@ -32,9 +32,9 @@ class PlaceFinder {
   // Takes a snapshot for plate size n >= 1 of the current grid: every plate whose cells are
   // all outside or boundary soft (not frozen), that lies off the array border, and whose back
   // side is all outside. Returns the candidates: boundary soft voxels covered by such a plate,
-  // in increasing voxel index. Polls `cancel` (may be null) between word passes: nullopt when
+  // in increasing voxel index. Polls `cancel` between word passes: nullopt when
   // it fired.
-  std::optional<std::vector<int64_t>> Snapshot(int n, const CancelToken* cancel);
+  std::optional<std::vector<int64_t>> Snapshot(int n, const CancelToken& cancel);
 
   // The plate the paper's list scan would take for candidate voxel `index` at the snapshot:
   // first orientation in kOrientations order, then smallest u0, then smallest v0. nullopt

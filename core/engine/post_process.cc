@@ -50,7 +50,7 @@ void Carve(VoxelGrid& grid, int64_t i) {
 }  // namespace
 
 absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
-                                                         const CancelToken* cancel,
+                                                         const CancelToken& cancel,
                                                          int max_path) {
   PostProcessStats stats;
   const auto st = grid.strides();
@@ -105,7 +105,7 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
       for (int64_t i : component) dead.set(i);
   };
   for (int64_t target : targets) {
-    if (cancel != nullptr && cancel->cancelled()) {
+    if (cancel.cancelled()) {
       return absl::CancelledError("reconstruction cancelled while connecting inside hard voxels");
     }
     if (!IsInside(grid.at(target))) continue;  // an earlier path reached it

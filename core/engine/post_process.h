@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "absl/status/statusor.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {
@@ -28,7 +28,7 @@ struct PostProcessStats {
 // together visit at most 4 voxels per grid voxel: past that, the remaining inside hard voxels
 // are left as they are (inside_hard_after counts them). Cancelled when `cancel` fires.
 absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
-                                                         const CancelToken* cancel,
+                                                         const CancelToken& cancel,
                                                          int max_path = 64);
 
 // Makes the membrane of each shell 6-connected (section 4.1: a DM is face-connected). The

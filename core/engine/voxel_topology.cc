@@ -159,7 +159,7 @@ int LabelShells(const VoxelGrid& grid, std::vector<int32_t>& label) {
 }
 
 VoxelTopology ComputeVoxelTopology(const VoxelGrid& grid) {
-  return *ComputeVoxelTopology(grid, CancelToken());
+  return *ComputeVoxelTopology(grid, CancelToken::Never());
 }
 
 std::optional<VoxelTopology> ComputeVoxelTopology(const VoxelGrid& grid,

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {

@@ -4,7 +4,7 @@
 
 namespace membrane {
 
-bool WorkPlanes::Ensure(int count, const CancelToken* cancel) {
+bool WorkPlanes::Ensure(int count, const CancelToken& cancel) {
   const int64_t nv = grid_.size();
   if (interior_.bits() != nv) interior_ = InteriorPlane(grid_);
   if (arena_ == nullptr && count > 0) {
@@ -17,7 +17,7 @@ bool WorkPlanes::Ensure(int count, const CancelToken* cancel) {
   while (static_cast<int>(planes_.size()) < count) {
     // Fresh pages are slow enough that twenty planes of a large grid take longer than a
     // cancel may wait.
-    if (cancel != nullptr && cancel->cancelled()) return false;
+    if (cancel.cancelled()) return false;
     planes_.push_back(std::make_unique<FlatBitset>(nv, arena_.get()));
   }
   return true;

@@ -10,7 +10,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/plane_arena.h"
 #include "core/engine/voxel_grid.h"
@@ -23,10 +23,10 @@ class WorkPlanes {
   explicit WorkPlanes(const VoxelGrid& grid) : grid_(grid) {}
 
   // Makes planes 0 .. count-1 and the interior plane available, one bit per voxel of the
-  // grid, allocating the missing ones (zeroed) and polling `cancel` (may be null) between
+  // grid, allocating the missing ones (zeroed) and polling `cancel` between
   // allocations: false when it fired. A plane's contents are whatever its last user left;
   // references from plane() stay valid when later calls add planes.
-  bool Ensure(int count, const CancelToken* cancel);
+  bool Ensure(int count, const CancelToken& cancel);
 
   // Planes cut from one huge-page arena (PlaneArena); more are allocated on their own.
   static constexpr int kArenaPlanes = 21;

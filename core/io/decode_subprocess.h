@@ -12,7 +12,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
 

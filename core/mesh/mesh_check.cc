@@ -98,7 +98,7 @@ bool SingleFan(const std::vector<std::pair<int32_t, int32_t>>& link, std::vector
 
 }  // namespace
 
-MeshReport CheckMesh(const TriangleMesh& mesh, const CancelFn& cancel, int threads,
+MeshReport CheckMesh(const TriangleMesh& mesh, const CancelToken& cancel, int threads,
                      const std::vector<std::pair<int32_t, int32_t>>* known_crossings) {
   MeshReport r;
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());

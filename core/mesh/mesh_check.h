@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/cancel_token.h"
 #include "core/geometry/triangle_mesh.h"
-#include "core/mesh/cancel_fn.h"
 
 namespace membrane {
 
@@ -54,7 +54,8 @@ struct MeshReport {
 // alone) share that search; the report does not depend on it. `known_crossings`, if not null,
 // must be FindIntersectingFaces(mesh) as found by whoever searched this very mesh last (the
 // smooth surface's fit: FitStats::crossings): the check counts it instead of searching again.
-MeshReport CheckMesh(const TriangleMesh& mesh, const CancelFn& cancel = nullptr, int threads = 1,
+MeshReport CheckMesh(const TriangleMesh& mesh, const CancelToken& cancel = CancelToken::Never(),
+                     int threads = 1,
                      const std::vector<std::pair<int32_t, int32_t>>* known_crossings = nullptr);
 
 // The report as one JSON object with snake_case keys ("closed", "manifold", "oriented",

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "absl/functional/function_ref.h"
-#include "core/mesh/cancel_fn.h"
+#include "core/base/cancel_token.h"
 
 namespace membrane {
 
@@ -23,26 +23,26 @@ namespace membrane {
 // with the workers it has.
 void RunTasks(int threads, int64_t tasks, absl::FunctionRef<void(int worker, int64_t task)> task);
 
-// Cancellation inside RunTasks: the caller's `cancel` is called from worker 0 (the calling
-// thread) only, so callbacks need not be thread-safe, and every worker sees the answer through
-// a shared flag. `cancel` must outlive this object.
+// Cancellation inside RunTasks: worker 0 (the calling thread) polls the caller's `cancel`,
+// and every worker sees the answer through a shared flag, so that the workers all stop at
+// once. `cancel` must outlive this object.
 class TaskCancel {
  public:
-  TaskCancel(const CancelFn& cancel, int threads, int period)
+  TaskCancel(const CancelToken& cancel, int threads, int period)
       : cancel_(cancel), period_(period), since_poll_(std::max(threads, 1), 0) {}
   // Counts one unit of `worker`'s work; every `period` units, worker 0 asks `cancel`. True
   // once it has fired.
   bool Poll(int worker) {
     if (++since_poll_[worker] == period_) {
       since_poll_[worker] = 0;
-      if (worker == 0 && Cancelled(cancel_)) fired_.store(true, std::memory_order_relaxed);
+      if (worker == 0 && cancel_.cancelled()) fired_.store(true, std::memory_order_relaxed);
     }
     return fired();
   }
   bool fired() const { return fired_.load(std::memory_order_relaxed); }
 
  private:
-  const CancelFn& cancel_;
+  const CancelToken& cancel_;
   const int period_;
   std::vector<int> since_poll_;  // per worker
   std::atomic<bool> fired_{false};

@@ -76,7 +76,7 @@ class Fitter {
     AssignSlabs();
   }
 
-  absl::Status Run(const CancelFn& cancel, FitStats& stats) {
+  absl::Status Run(const CancelToken& cancel, FitStats& stats) {
     for (int round = 0; round < options_.rounds; ++round)
       for (int parity = 0; parity < 2; ++parity)
         if (!RunPhase(round, parity, cancel, stats)) {
@@ -157,10 +157,10 @@ class Fitter {
   // Fits the slabs of one parity in one round, side by side on options_.threads. Returns false
   // when `cancel` fired (polled on the calling thread only); the phase's moves are then in
   // moved_ like the others.
-  bool RunPhase(int round, int parity, const CancelFn& cancel, FitStats& stats) {
+  bool RunPhase(int round, int parity, const CancelToken& cancel, FitStats& stats) {
     const int32_t slabs = static_cast<int32_t>(slab_start_.size()) - 1;
     const int32_t count = (slabs - parity + 1) / 2;
-    if (Cancelled(cancel)) return false;
+    if (cancel.cancelled()) return false;
     if (count <= 0) return true;
     std::vector<SlabWork> work(count);
     for (SlabWork& w : work) w.clock = clock_;
@@ -186,7 +186,7 @@ class Fitter {
       stats.refused += w.stats.refused;
       moved_.insert(moved_.end(), w.moved.begin(), w.moved.end());
     }
-    return !stop.fired() && !Cancelled(cancel);
+    return !stop.fired() && !cancel.cancelled();
   }
 
   bool Settled(int32_t v) const {
@@ -555,7 +555,8 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
 
 absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
                                      absl::Span<const Point3f> points, const FitOptions& options,
-                                     const CancelFn& cancel, const std::vector<Point3f>* fallback) {
+                                     const CancelToken& cancel,
+                                     const std::vector<Point3f>* fallback) {
   if (absl::Status s = ValidateOptions(voxel_size, options); !s.ok()) return s;
   FitStats stats;
   if (mesh.faces.empty()) return stats;

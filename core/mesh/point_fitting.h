@@ -11,10 +11,10 @@
 
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
+#include "core/base/cancel_token.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/position_grid.h"
 #include "core/geometry/triangle_mesh.h"
-#include "core/mesh/cancel_fn.h"
 #include "core/mesh/height_quadric.h"
 
 namespace membrane {
@@ -104,7 +104,7 @@ struct FitStats {
 absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
                                      absl::Span<const Point3f> points,
                                      const FitOptions& options = {},
-                                     const CancelFn& cancel = nullptr,
+                                     const CancelToken& cancel = CancelToken::Never(),
                                      const std::vector<Point3f>* fallback = nullptr);
 
 }  // namespace membrane

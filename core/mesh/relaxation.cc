@@ -37,7 +37,7 @@ ByteArray NewByteArray(int64_t n) {
 
 class Relaxer {
  public:
-  Relaxer(VoxelGrid& grid, int threshold, const CancelFn& cancel)
+  Relaxer(VoxelGrid& grid, int threshold, const CancelToken& cancel)
       : grid_(grid), threshold_(threshold), cancel_(cancel) {
     const auto st = grid.strides();
     int n = 0;
@@ -58,7 +58,7 @@ class Relaxer {
     const VoxelState* s = grid_.states().data();
     auto pass = [&](int64_t from, int64_t to, auto fn) -> absl::Status {
       for (int64_t begin = from; begin < to; begin += kVoxelsPerPoll) {
-        if (Cancelled(cancel_)) return Cancel();
+        if (cancel_.cancelled()) return Cancel();
         const int64_t end = std::min(to, begin + kVoxelsPerPoll);
         for (int64_t i = begin; i < end; ++i) fn(i);
       }
@@ -98,7 +98,7 @@ class Relaxer {
     }
     const auto& d = grid_.dims();
     for (int z = kPadding; z < d[2] - kPadding; ++z) {
-      if (Cancelled(cancel_)) return Cancel();
+      if (cancel_.cancelled()) return Cancel();
       for (int y = kPadding; y < d[1] - kPadding; ++y)
         for (int x = kPadding; x < d[0] - kPadding;) {
           const int64_t i = grid_.Index(x, y, z);
@@ -120,7 +120,7 @@ class Relaxer {
       }
       const int64_t v = b.items[b.next++];
       if (!Movable(v) || Key(v) != key) continue;  // stale entry
-      if (++steps % kPollSteps == 0 && Cancelled(cancel_)) return Cancel();
+      if (++steps % kPollSteps == 0 && cancel_.cancelled()) return Cancel();
       touched_.clear();
       const bool moved = sign < 0 ? StepInward(v, stats) : StepOutward(v, stats);
       if (!moved) continue;
@@ -232,7 +232,7 @@ class Relaxer {
 
   VoxelGrid& grid_;
   const int threshold_;
-  const CancelFn& cancel_;
+  const CancelToken& cancel_;
   std::array<int64_t, 26> offsets_{};
   ByteArray dlc_;
   std::array<Bucket, 27> buckets_;
@@ -252,7 +252,7 @@ int DiscreteLocalCurvature(const VoxelGrid& grid, const Coord& c) {
   return dlc;
 }
 
-absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelFn& cancel,
+absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelToken& cancel,
                                       const RelaxationOptions& options) {
   if (options.threshold < 1 || options.threshold > 26)
     return absl::InvalidArgumentError(

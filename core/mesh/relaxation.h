@@ -32,8 +32,8 @@
 #include <cstdint>
 
 #include "absl/status/statusor.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/voxel_grid.h"
-#include "core/mesh/cancel_fn.h"
 
 namespace membrane {
 
@@ -58,10 +58,10 @@ int DiscreteLocalCurvature(const VoxelGrid& grid, const Coord& c);
 // Input: a membrane grid (the engine's final DMS, invariants above holding), padding included.
 // Effect: phase 1, then phase 2, as above, in place. Deterministic.
 // Returns the counts of each phase. Errors: InvalidArgument when threshold is outside [1, 26];
-// Cancelled when `cancel` returned true (polled every few thousand steps and between the passes
+// Cancelled when `cancel` fired (polled every few thousand steps and between the passes
 // of the initial scan, so within milliseconds); the grid is then a valid membrane, relaxed in
 // part (every step is atomic).
-absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelFn& cancel,
+absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelToken& cancel,
                                       const RelaxationOptions& options = {});
 
 }  // namespace membrane

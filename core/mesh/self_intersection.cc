@@ -166,7 +166,7 @@ class SortedFaceCells {
 
 std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
                                                      const Participants& p, int threads,
-                                                     const CancelFn& cancel = nullptr) {
+                                                     const CancelToken& cancel) {
   std::vector<std::pair<int32_t, int32_t>> pairs;
   if (p.face.empty()) return pairs;
   const SortedFaceCells cells(p.box);
@@ -264,7 +264,7 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
 }  // namespace
 
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh,
-                                                               const CancelFn& cancel,
+                                                               const CancelToken& cancel,
                                                                int threads) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
@@ -290,7 +290,8 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
   for (int32_t f = 0; f < nf; ++f) n_dirty += dirty[f] != 0;
   // Mostly dirty: selecting the neighbourhood would cost more than searching everything.
   if (4 * n_dirty > nf) {
-    std::vector<std::pair<int32_t, int32_t>> pairs = FindIntersectingFaces(mesh, nullptr, threads);
+    std::vector<std::pair<int32_t, int32_t>> pairs =
+        FindIntersectingFaces(mesh, CancelToken::Never(), threads);
     std::erase_if(pairs, [&](const auto& p) { return !dirty[p.first] && !dirty[p.second]; });
     return pairs;
   }
@@ -352,7 +353,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
     p.box.push_back(b);
     p.dirty.push_back(0);
   }
-  return SearchPairs(mesh, p, threads);
+  return SearchPairs(mesh, p, threads, CancelToken::Never());
 }
 
 }  // namespace membrane

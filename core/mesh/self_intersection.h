@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/cancel_token.h"
 #include "core/geometry/triangle_mesh.h"
-#include "core/mesh/cancel_fn.h"
 
 namespace membrane {
 
@@ -22,9 +22,8 @@ namespace membrane {
 // `cancel` is polled every few thousand cells, on the calling thread only; once it fires the
 // pairs found so far are returned. `threads` (<= 1: the calling thread alone) share the cells;
 // the result does not depend on it.
-std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh,
-                                                               const CancelFn& cancel = nullptr,
-                                                               int threads = 1);
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(
+    const TriangleMesh& mesh, const CancelToken& cancel = CancelToken::Never(), int threads = 1);
 
 // The same, restricted to pairs with at least one face marked in `dirty` (one flag per face):
 // after moving a few vertices, the pairs that may have changed. Costs a linear scan of the

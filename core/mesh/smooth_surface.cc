@@ -20,7 +20,7 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
                                            absl::Span<const Point3f> points,
                                            const SmoothSurfaceOptions& options,
-                                           SmoothSurfaceStats* stats, const CancelFn& cancel) {
+                                           SmoothSurfaceStats* stats, const CancelToken& cancel) {
   SmoothSurfaceStats local;
   SmoothSurfaceStats& s = stats ? *stats : local;
   s = SmoothSurfaceStats{};
@@ -29,16 +29,16 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
   VoxelGrid grid = membrane;
   // Loose sheets go first so that cave filling cannot thicken a sheet into something kept.
   if (options.remove_loose_sheets) s.loose_sheet_voxels = RemoveLooseSheets(grid);
-  if (Cancelled(cancel)) return absl::CancelledError("surface cancelled");
+  if (cancel.cancelled()) return absl::CancelledError("surface cancelled");
   if (options.fill_caves) s.cave_voxels = FillCaves(grid);
-  if (Cancelled(cancel)) return absl::CancelledError("surface cancelled");
+  if (cancel.cancelled()) return absl::CancelledError("surface cancelled");
   if (options.bridging_scans > 0) {
     const BridgingResult bridging = BridgeDiagonalContacts(grid, options.bridging_scans);
     s.bridges = bridging.added;
     s.corner_contacts_left = bridging.remaining;
   }
   s.prepare_seconds = SecondsSince(start);
-  if (Cancelled(cancel)) return absl::CancelledError("surface cancelled");
+  if (cancel.cancelled()) return absl::CancelledError("surface cancelled");
 
   start = std::chrono::steady_clock::now();
   if (!options.fit) {

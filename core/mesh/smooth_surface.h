@@ -8,10 +8,10 @@
 
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
-#include "core/mesh/cancel_fn.h"
 #include "core/mesh/point_fitting.h"
 
 namespace membrane {
@@ -50,7 +50,7 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
                                            absl::Span<const Point3f> points,
                                            const SmoothSurfaceOptions& options = {},
                                            SmoothSurfaceStats* stats = nullptr,
-                                           const CancelFn& cancel = nullptr);
+                                           const CancelToken& cancel = CancelToken::Never());
 
 }  // namespace membrane
 

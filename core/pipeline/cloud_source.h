@@ -5,7 +5,7 @@
 #define MEMBRANE_CORE_PIPELINE_CLOUD_SOURCE_H_
 
 #include "absl/status/statusor.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/geometry/point_cloud.h"
 
 namespace membrane {

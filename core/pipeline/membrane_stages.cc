@@ -49,7 +49,7 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
     observer.GenerationFinished(g, planned);
   };
   absl::StatusOr<ShrinkResult> result =
-      ShrinkMembrane(grid, options.shrink, on_generation, &cancel);
+      ShrinkMembrane(grid, options.shrink, on_generation, cancel);
   if (!result.ok()) return result.status();
   report.generations = std::move(result->generations);
   report.post_process = result->post_process;
@@ -63,7 +63,7 @@ absl::Status RelaxStage(const CancelToken& cancel, VoxelGrid& grid, Reconstructi
                         ReconstructionObserver& observer) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kRelax, report);
-  absl::StatusOr<RelaxationStats> stats = Relax(grid, [&cancel] { return cancel.cancelled(); });
+  absl::StatusOr<RelaxationStats> stats = Relax(grid, cancel);
   if (!stats.ok()) return stats.status();
   report.relaxed = true;
   report.relaxation = *stats;

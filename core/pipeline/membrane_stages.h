@@ -7,7 +7,7 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/voxel_grid.h"
 #include "core/engine/voxelization.h"
 #include "core/geometry/point_cloud.h"

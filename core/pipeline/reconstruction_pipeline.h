@@ -8,7 +8,7 @@
 #define MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_PIPELINE_H_
 
 #include "absl/status/statusor.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/pipeline/cloud_source.h"
 #include "core/pipeline/error_context.h"
 #include "core/pipeline/mesh_sink.h"

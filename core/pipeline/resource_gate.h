@@ -9,7 +9,7 @@
 #include <cstdint>
 
 #include "absl/status/status.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/pipeline/membrane_counts.h"
 #include "core/pipeline/memory_estimate.h"
 

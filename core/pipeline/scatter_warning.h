@@ -12,7 +12,7 @@
 #include <string>
 
 #include "absl/types/span.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/point_density.h"
 #include "core/geometry/point_cloud.h"
 

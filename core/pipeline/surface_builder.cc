@@ -4,7 +4,6 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
-#include "core/mesh/cancel_fn.h"
 #include "core/mesh/cuberille.h"
 #include "core/mesh/smooth_surface.h"
 
@@ -23,7 +22,7 @@ const char* SurfaceKindName(SurfaceKind kind) {
 
 absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
-                                          const CancelToken* cancel, int threads) {
+                                          const CancelToken& cancel, int threads) {
   BuiltSurface built;
   if (kind == SurfaceKind::kCuberille) {
     built.mesh = Cuberille(membrane);
@@ -31,13 +30,12 @@ absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const Point
     return built;
   }
   // The fit writes every position on the grid itself.
-  const CancelFn cancelled = [cancel] { return cancel != nullptr && cancel->cancelled(); };
   SmoothSurfaceOptions options;
   options.fit_options.output_grid = grid;
   options.fit_options.threads = threads;
   SmoothSurfaceStats stats;
   absl::StatusOr<TriangleMesh> mesh =
-      SmoothSurface(membrane, cloud.points, options, &stats, cancelled);
+      SmoothSurface(membrane, cloud.points, options, &stats, cancel);
   if (!mesh.ok()) return mesh.status();
   built.mesh = *std::move(mesh);
   if (stats.fit.crossings_known) built.crossings = std::move(stats.fit.crossings);

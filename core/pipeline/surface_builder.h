@@ -10,12 +10,12 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
-#include "core/engine/cancel_token.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/position_grid.h"
-#include "core/mesh/output_grid.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/mesh/output_grid.h"
 
 namespace membrane {
 
@@ -43,12 +43,12 @@ struct BuiltSurface {
 // vertices in model units on `grid` (OutputGrid's; lossless: float32); `cloud` is what the
 // smooth surface is fitted to (SmoothSurface of core/mesh with its default options, fitting on
 // `grid`; Cuberille ignores it and is snapped to `grid`). A coarse grid can flatten or cross
-// faces: the caller's mesh check tells. Cancelled when `cancel` (may be null) fires during the
+// faces: the caller's mesh check tells. Cancelled when `cancel` fires during the
 // smooth surface. `threads` (<= 1: the calling thread) share the smooth surface's fit; the
 // mesh does not depend on it.
 absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
-                                          const CancelToken* cancel, int threads = 1);
+                                          const CancelToken& cancel, int threads = 1);
 
 }  // namespace membrane
 

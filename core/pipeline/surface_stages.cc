@@ -19,7 +19,7 @@ absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kSurface, report);
   absl::StatusOr<BuiltSurface> built =
-      BuildSurface(grid, cloud, options.surface, output_grid, &cancel, options.threads);
+      BuildSurface(grid, cloud, options.surface, output_grid, cancel, options.threads);
   if (!built.ok()) return built.status();
   report.quantization.bits = output_grid.bits;
   report.quantization.step = output_grid.step();
@@ -61,7 +61,7 @@ absl::Status CheckAndWriteStage(const BuiltSurface& surface, const PositionGrid&
   double check_seconds = 0;
   auto check = [&] {
     const Stopwatch watch;
-    checked = CheckMesh(surface.mesh, [&cancel] { return cancel.cancelled(); }, threads,
+    checked = CheckMesh(surface.mesh, cancel, threads,
                         surface.crossings ? &*surface.crossings : nullptr);
     check_seconds = watch.Seconds();
   };

@@ -383,7 +383,8 @@ Summary RunModel(const BenchOptions& o, const Model& m, bool open3d_available,
     hard = vox->hard_voxels;
     const double w0 = Now();
     const double c0 = ProcessCpu();
-    absl::StatusOr<ShrinkResult> result = ShrinkMembrane(vox->grid, ShrinkOptions{}, {}, nullptr);
+    absl::StatusOr<ShrinkResult> result =
+        ShrinkMembrane(vox->grid, ShrinkOptions{}, {}, CancelToken::Never());
     const double c1 = ProcessCpu();
     const double w1 = Now();
     if (!result.ok()) return fail(result.status(), "shrink");

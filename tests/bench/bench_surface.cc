@@ -303,7 +303,7 @@ std::vector<Row> RunCloud(const BenchOptions& o, const fs::path& file, bool run_
     DracoMeshSink sink(kFileCompressionLevel);
     NullReconstructionObserver observer;
     absl::StatusOr<ReconstructionReport> report = RunReconstruction(
-        options, {source, gate, sink, observer}, ErrorContext{}, CancelToken());
+        options, {source, gate, sink, observer}, ErrorContext{}, CancelToken::Never());
     if (!report.ok()) {
       row_failed(r, absl::StrCat("reconstruction: ", report.status().ToString()));
       continue;

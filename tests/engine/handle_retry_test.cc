@@ -65,7 +65,7 @@ TEST(HandleRetryTest, ReportsTheKeptRowsAfterTheFirstRunsRows) {
   std::vector<GenerationStats> seen;
   absl::StatusOr<ShrinkResult> result =
       ShrinkMembrane(vox->grid, NoTunnelRetry(),
-                     [&seen](const GenerationStats& g) { seen.push_back(g); }, nullptr);
+                     [&seen](const GenerationStats& g) { seen.push_back(g); }, CancelToken::Never());
   ASSERT_TRUE(result.ok()) << result.status();
   ASSERT_TRUE(result->handle_retry.kept);
   const size_t planned = result->generations.size();
@@ -99,7 +99,7 @@ TEST(HandleRetryTest, ACancelBeforeTheRetryStopsIt) {
         ++reported;
         if (g.plate_size == 1) cancel.Cancel();
       },
-      &cancel);
+      cancel);
   EXPECT_EQ(result.status().code(), absl::StatusCode::kCancelled) << result.status();
   EXPECT_NE(result.status().message().find("handle retry"), std::string::npos)
       << result.status();

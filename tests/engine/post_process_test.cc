@@ -33,7 +33,7 @@ int64_t CountState(const VoxelGrid& grid, VoxelState state) {
 TEST(ConnectInsideHardVoxels, ASealedInteriorLeavesTheWallAsItIs) {
   VoxelGrid grid = HollowBox(20);
   const std::vector<VoxelState> before = grid.states();
-  absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, nullptr);
+  absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, CancelToken::Never());
   ASSERT_TRUE(stats.ok()) << stats.status();
   EXPECT_EQ(stats->inside_hard_before, 18 * 18 * 18 - 16 * 16 * 16);
   EXPECT_EQ(stats->inside_hard_after, stats->inside_hard_before);
@@ -46,7 +46,7 @@ TEST(ConnectInsideHardVoxels, ASealedInteriorLeavesTheWallAsItIs) {
 // the 100k wall voxels would search 200k voxels of it again (hours).
 TEST(ConnectInsideHardVoxels, AWideSealedInteriorEnds) {
   VoxelGrid grid = HollowBox(140);
-  absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, nullptr);
+  absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, CancelToken::Never());
   ASSERT_TRUE(stats.ok()) << stats.status();
   EXPECT_EQ(stats->inside_hard_after, stats->inside_hard_before);
   EXPECT_EQ(stats->carved_voxels, 0);
@@ -60,7 +60,7 @@ TEST(ConnectInsideHardVoxels, AWideInteriorOpenFarAwayEndsWithinTheBudget) {
   VoxelGrid grid = HollowBox(n);
   grid.set(grid.Index(n / 2 + p, n / 2 + p, p), kBoundaryFrozen);
   grid.set(grid.Index(n / 2 + p, n / 2 + p, p + 1), kBoundarySoft);
-  absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, nullptr);
+  absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, CancelToken::Never());
   ASSERT_TRUE(stats.ok()) << stats.status();
   EXPECT_GT(stats->inside_hard_after, 0);
   EXPECT_EQ(stats->inside_hard_after, CountState(grid, kInsideHard));
@@ -76,7 +76,7 @@ TEST(ConnectInsideHardVoxels, AnOpeningConnectsTheWallNearItAndKeepsTheTopology)
   grid.set(grid.Index(n / 2 + p, n / 2 + p, p), kBoundaryFrozen);      // the opening
   grid.set(grid.Index(n / 2 + p, n / 2 + p, p + 1), kBoundarySoft);    // under it
   const VoxelTopology topology_before = ComputeVoxelTopology(grid);
-  absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, nullptr);
+  absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, CancelToken::Never());
   ASSERT_TRUE(stats.ok()) << stats.status();
   EXPECT_GT(stats->carved_voxels, 0);
   EXPECT_LT(stats->inside_hard_after, stats->inside_hard_before);

@@ -30,7 +30,8 @@ absl::StatusOr<ShrinkRun> ShrinkCloud(const PointCloud& cloud, double factor,
   if (!voxels.ok()) return voxels.status();
   ShrinkRun run;
   run.voxels = std::move(*voxels);
-  absl::StatusOr<ShrinkResult> result = ShrinkMembrane(run.voxels.grid, options, {}, nullptr);
+  absl::StatusOr<ShrinkResult> result =
+      ShrinkMembrane(run.voxels.grid, options, {}, CancelToken::Never());
   if (!result.ok()) return result.status();
   run.result = std::move(*result);
   run.topology = ComputeVoxelTopology(run.voxels.grid);

@@ -120,8 +120,9 @@ TEST(ShrinkStatistics, OneRowPerGenerationWithThePaperColumns) {
   PointCloud cloud = SynthCloud("sphere", kPropertyPoints);
   auto voxels = Voxelize(cloud.points, {});
   ASSERT_TRUE(voxels.ok());
-  auto result = ShrinkMembrane(voxels->grid, {}, [&](const GenerationStats& g) { seen.push_back(g); },
-                               nullptr);
+  auto result = ShrinkMembrane(voxels->grid, {},
+                               [&](const GenerationStats& g) { seen.push_back(g); },
+                               CancelToken::Never());
   ASSERT_TRUE(result.ok());
   ASSERT_EQ(seen.size(), result->generations.size());
   const int largest = *std::max_element(voxels->data_dims.begin(), voxels->data_dims.end());
@@ -246,7 +247,7 @@ TEST(ShrinkCancellation, CancelReturnsWithin100Milliseconds) {
     cancel.Cancel();
   });
   started = true;
-  auto result = ShrinkMembrane(voxels->grid, {}, {}, &cancel);
+  auto result = ShrinkMembrane(voxels->grid, {}, {}, cancel);
   const double returned_at_cpu = ThreadCpuSeconds(shrink_clock);
   canceller.join();
   ASSERT_EQ(result.status().code(), absl::StatusCode::kCancelled);

@@ -12,6 +12,7 @@
 #include "tests/mesh/mesh_builders.h"
 #include "tests/mesh/surface_expectations.h"
 #include "tests/mesh/test_grids.h"
+#include "tests/support/cpu_time_cancel.h"
 
 namespace membrane {
 namespace {
@@ -273,7 +274,7 @@ TEST(PointFitting, RepairsInputCrossingsTowardTheFallback) {
   FitOptions still;
   still.max_offset = 0;
   const absl::StatusOr<FitStats> stats =
-      FitToPoints(nets.mesh, 1.0, {}, still, nullptr, &nets.fallback);
+      FitToPoints(nets.mesh, 1.0, {}, still, CancelToken::Never(), &nets.fallback);
   ASSERT_TRUE(stats.ok()) << stats.status();
   EXPECT_GT(stats->repaired_vertices, 0);
   const MeshReport r = CheckMesh(nets.mesh);
@@ -293,7 +294,7 @@ TEST(PointFitting, ListsTheCrossingsThatAGridTooCoarseLeaves) {
     FitOptions options;
     options.output_grid = GridOverBox(bits, {0, 0, 0}, {16, 16, 16}, 1e-6);
     const absl::StatusOr<FitStats> stats =
-        FitToPoints(nets.mesh, 1.0, {}, options, nullptr, &nets.fallback);
+        FitToPoints(nets.mesh, 1.0, {}, options, CancelToken::Never(), &nets.fallback);
     ASSERT_TRUE(stats.ok()) << stats.status();
     EXPECT_TRUE(stats->crossings_known);
     EXPECT_EQ(stats->crossings, FindIntersectingFaces(nets.mesh)) << bits << " bits";
@@ -311,7 +312,9 @@ TEST(PointFitting, RejectsNonPositiveVoxelSize) {
 
 TEST(PointFitting, StopsWhenCancelled) {
   TriangleMesh m = SurfaceNets(BallGrid(24, 8.3));
-  const absl::StatusOr<FitStats> stats = FitToPoints(m, 1.0, {}, {}, [] { return true; });
+  CancelToken cancel;
+  cancel.Cancel();
+  const absl::StatusOr<FitStats> stats = FitToPoints(m, 1.0, {}, {}, cancel);
   EXPECT_EQ(stats.status().code(), absl::StatusCode::kCancelled);
   const MeshReport r = CheckMesh(m);
   EXPECT_TRUE(r.closed && r.manifold && r.oriented);
@@ -372,19 +375,20 @@ TEST(PointFitting, FacesLongerThanASlabFitAsOneSlabOnAnyThreadCount) {
 }
 
 TEST(PointFitting, StopsWhenCancelledMidwayOnSeveralThreads) {
-  // A ball of about 20k vertices fitted on 4 threads, cancelled at the sixth poll (between
-  // phases or inside one, where the calling thread polls every 4096 vertices): every move is
-  // undone and the mesh is its clean input again.
-  UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(BallGrid(72, 32.3));
-  ASSERT_GT(nets.mesh.vertices.size(), 15000u);
+  // A ball of about 80k vertices fitted on 4 threads (the calling thread's share takes about
+  // 0.1 s of its CPU time), cancelled after 5 ms of it (between phases or inside one, where
+  // the calling thread polls every 4096 vertices): every move is undone and the mesh is its
+  // clean input again.
+  UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(BallGrid(144, 64.6));
+  ASSERT_GT(nets.mesh.vertices.size(), 60000u);
   const TriangleMesh input = nets.mesh;
   FitOptions options;
   options.threads = 4;
-  int polls = 0;  // called on the calling thread only
-  const absl::StatusOr<FitStats> stats =
-      FitToPoints(nets.mesh, 1.0, {}, options, [&polls] { return ++polls >= 6; });
+  CancelToken cancel;
+  const CancelAfterThreadCpu canceller(cancel, 0.005);
+  const absl::StatusOr<FitStats> stats = FitToPoints(nets.mesh, 1.0, {}, options, cancel);
   EXPECT_EQ(stats.status().code(), absl::StatusCode::kCancelled);
-  EXPECT_GE(polls, 6);
+  EXPECT_GE(canceller.cancelled_at(), 0);
   EXPECT_TRUE(nets.mesh.vertices == input.vertices);
 }
 

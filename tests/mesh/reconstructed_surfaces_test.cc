@@ -44,7 +44,7 @@ void ExpectSurfaceMatchesMembrane(const PointCloud& cloud, Surface surface, cons
   auto run = testing::ShrinkCloud(cloud, 1.0);
   ASSERT_TRUE(run.ok()) << run.status();
   VoxelGrid& grid = run->voxels.grid;
-  ASSERT_TRUE(Relax(grid, nullptr).ok());
+  ASSERT_TRUE(Relax(grid, CancelToken::Never()).ok());
   const VoxelTopology membrane = ComputeVoxelTopology(grid);
   // Relaxation never changes the topology (decision 10).
   EXPECT_EQ(membrane.shells, run->topology.shells) << what;
@@ -59,7 +59,7 @@ void ExpectSurfaceMatchesMembrane(const PointCloud& cloud, Surface surface, cons
   } else {
     const PositionGrid file_grid = OutputGrid(grid, 11);
     absl::StatusOr<BuiltSurface> smooth =
-        BuildSurface(grid, cloud, SurfaceKind::kSmooth, file_grid, nullptr);
+        BuildSurface(grid, cloud, SurfaceKind::kSmooth, file_grid, CancelToken::Never());
     ASSERT_TRUE(smooth.ok()) << smooth.status();
     // The pipeline's check takes the fit's crossings instead of searching: they must be what a
     // search of the whole mesh finds.

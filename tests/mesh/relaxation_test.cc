@@ -1,13 +1,12 @@
 #include "core/mesh/relaxation.h"
 
-#include <time.h>
-
 #include <cmath>
 
 #include "core/engine/membrane_invariants.h"
 #include "core/engine/voxel_topology.h"
 #include "gtest/gtest.h"
 #include "tests/mesh/test_grids.h"
+#include "tests/support/cpu_time_cancel.h"
 
 namespace membrane {
 namespace {
@@ -38,7 +37,7 @@ void ExpectMembraneInvariants(const VoxelGrid& g) {
 }
 
 RelaxationStats RelaxOk(VoxelGrid& g) {
-  const absl::StatusOr<RelaxationStats> stats = Relax(g, nullptr);
+  const absl::StatusOr<RelaxationStats> stats = Relax(g, CancelToken::Never());
   EXPECT_TRUE(stats.ok()) << stats.status();
   return stats.ok() ? *stats : RelaxationStats{};
 }
@@ -176,35 +175,31 @@ TEST(Relaxation, RejectsThresholdOutOfRange) {
   VoxelGrid g = BallGrid(12, 3.5);
   RelaxationOptions options;
   options.threshold = 27;
-  EXPECT_EQ(Relax(g, nullptr, options).status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(Relax(g, CancelToken::Never(), options).status().code(), absl::StatusCode::kInvalidArgument);
 }
 
 TEST(Relaxation, StopsWhenCancelledAndLeavesAValidMembrane) {
   VoxelGrid g = SolidTorusGrid(40, 12, 4.5);
   FreezeWithSomeHard(g);
-  int polls = 0;
-  const absl::StatusOr<RelaxationStats> stats = Relax(g, [&] { return ++polls > 3; });
+  CancelToken cancel;
+  cancel.Cancel();
+  const absl::StatusOr<RelaxationStats> stats = Relax(g, cancel);
   EXPECT_EQ(stats.status().code(), absl::StatusCode::kCancelled);
   ExpectMembraneInvariants(g);
 }
 
-// Thread CPU time, so that a busy machine descheduling the test does not count as latency.
-double ThreadSeconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
+// Latency in the thread's CPU time, so that a busy machine descheduling the test does not
+// count as latency.
 TEST(Relaxation, CancelReturnsWithin100Milliseconds) {
   VoxelGrid g = BallGrid(200, 92);
   FreezeWithSomeHard(g);
   // Cancel requested 2 ms of work in (the whole relaxation of this grid takes less than 20 ms
   // of CPU since its scans skip eight voxels at a time; the DLC passes alone take longer than
   // 2 ms); measured from the request, not from the first poll after it.
-  const double requested = ThreadSeconds() + 0.002;
-  const absl::StatusOr<RelaxationStats> stats =
-      Relax(g, [&] { return ThreadSeconds() >= requested; });
-  const double latency = ThreadSeconds() - requested;
+  CancelToken cancel;
+  const CancelAfterThreadCpu canceller(cancel, 0.002);
+  const absl::StatusOr<RelaxationStats> stats = Relax(g, cancel);
+  const double latency = canceller.now() - canceller.cancelled_at();
   ASSERT_EQ(stats.status().code(), absl::StatusCode::kCancelled);
   EXPECT_LT(latency, 0.1);
 }

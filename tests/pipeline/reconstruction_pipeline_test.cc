@@ -97,7 +97,8 @@ struct Outcome {
 };
 
 Outcome RunWith(CloudSource& source, ResourceGate& gate, MeshSink& sink,
-            const ReconstructionOptions& options = {}, const CancelToken& cancel = {}) {
+            const ReconstructionOptions& options = {},
+            const CancelToken& cancel = CancelToken::Never()) {
   Outcome run;
   run.report = RunReconstruction(options, {source, gate, sink, run.log}, kContext, cancel);
   return run;

@@ -31,7 +31,8 @@ ReconstructionReport Reconstruct(const PointCloud& cloud, double voxel_size) {
   InMemoryMeshSink sink;
   NullReconstructionObserver observer;
   absl::StatusOr<ReconstructionReport> r =
-      RunReconstruction(options, {source, gate, sink, observer}, ErrorContext{}, CancelToken());
+      RunReconstruction(options, {source, gate, sink, observer}, ErrorContext{},
+                        CancelToken::Never());
   EXPECT_TRUE(r.ok()) << r.status();
   return r.value_or(ReconstructionReport{});
 }
@@ -75,7 +76,7 @@ TEST(ScatterWarning, PointsThatNoSizeTriedGathersAreAskedAbout) {
   const double l = FormulaVoxelSize(*bounds, cloud.points);
   const PointDensity density = MeasurePointDensity(cloud.points, *bounds, l);
   const std::optional<std::string> w =
-      ScatterWarning(cloud.points, *bounds, l, density, CancelToken(), /*size_steps=*/1);
+      ScatterWarning(cloud.points, *bounds, l, density, CancelToken::Never(), /*size_steps=*/1);
   ASSERT_TRUE(w.has_value());
   EXPECT_NE(w->find("do the points sample one surface?"), std::string::npos) << *w;
 }

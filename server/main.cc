@@ -26,6 +26,7 @@
 #include "core/pipeline/thread_limits.h"
 #include "proto/job_routing.h"
 #include "server/membrane_server.h"
+#include "server/memory_release.h"
 #include "server/memory_budget.h"
 #include "server/upload_memory.h"
 #include "server/server_options.h"
@@ -262,6 +263,7 @@ int Main(int argc, char** argv) {
   absl::ParseCommandLine(static_cast<int>(args.size()), args.data());
   ServerOptions options;
   if (!OptionsFromFlags(options)) return 2;
+  LimitMallocArenas();
   // Block the stop signals before any thread starts, so that only sigwait below sees them.
   sigset_t stop_signals;
   sigemptyset(&stop_signals);

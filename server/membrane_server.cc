@@ -19,6 +19,7 @@
 #include "absl/strings/str_cat.h"
 #include "proto/endpoint_address.h"
 #include "server/job_end_hook.h"
+#include "server/memory_release.h"
 #include "server/server_log.h"
 
 namespace membrane::server {
@@ -60,6 +61,8 @@ MembraneServer::MembraneServer(ServerOptions options, const Clock* clock,
       scheduler_(options_.workers, options_.queue,
                  [this](const std::shared_ptr<Job>& job) {
                    runner_.Run(job, JobThreads(options_, scheduler_.running()));
+                   // The job's grid, membrane and surface are freed: give their pages back.
+                   ReleaseFreedMemory();
                  }),
       service_(options_, *store_, scheduler_, upload_memory_, metrics_, clock_) {
   disk_store_ = dynamic_cast<DiskJobStore*>(store_.get());

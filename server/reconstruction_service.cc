@@ -14,6 +14,7 @@
 #include "server/job_follower.h"
 #include "server/parameter_checks.h"
 #include "server/rpc_status.h"
+#include "server/memory_release.h"
 #include "server/server_log.h"
 #include "server/time_limit_gate.h"
 
@@ -55,9 +56,16 @@ std::string ReconstructionService::NewJobId() {
   return MakeJobId(options_.replica, absl::Uniform<uint64_t>(id_random_));
 }
 
+void ReconstructionService::ExpireResults() {
+  // Expiry is lazy: every lookup first drops the results past their time, and their meshes'
+  // pages go back to the system.
+  if (store_.RemoveFinishedBefore(clock_.Now() - absl::Seconds(options_.result_ttl_seconds)) > 0) {
+    ReleaseFreedMemory();
+  }
+}
+
 std::shared_ptr<Job> ReconstructionService::FindJob(const std::string& id) {
-  // Expiry is lazy: every lookup first drops the results past their time.
-  store_.RemoveFinishedBefore(clock_.Now() - absl::Seconds(options_.result_ttl_seconds));
+  ExpireResults();
   return store_.Find(id);
 }
 
@@ -286,7 +294,7 @@ grpc::Status ReconstructionService::ListJobs(grpc::ServerContext* context,
           options_.replica);
     }
   }
-  store_.RemoveFinishedBefore(clock_.Now() - absl::Seconds(options_.result_ttl_seconds));
+  ExpireResults();
   for (const std::shared_ptr<Job>& job : store_.List()) *response->add_jobs() = job->Snapshot();
   return grpc::Status::OK;
 }

@@ -71,6 +71,8 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   // OK for a call with the configured bearer token (or when none is); UNAUTHENTICATED, logged
   // with the peer, otherwise.
   grpc::Status Authenticate(const grpc::ServerContext& context);
+  // Drops the jobs finished more than options_.result_ttl_seconds ago.
+  void ExpireResults();
   // The job with `id` after dropping expired ones, or null.
   std::shared_ptr<Job> FindJob(const std::string& id);
   std::string NewJobId() ABSL_LOCKS_EXCLUDED(id_mutex_);

@@ -27,6 +27,8 @@ class Subprocess {
   // Waits up to `seconds` for the exit; the exit status (128 + signal when killed), or -1 on
   // timeout (the process is then killed).
   int Wait(double seconds);
+  // Its process id (for /proc); -1 when it could not be started.
+  pid_t pid() const { return pid_; }
 
  private:
   pid_t pid_ = -1;

@@ -217,6 +217,21 @@ TEST(KillFaultTest, EveryAcceptedJobSucceedsThroughSigkills) {
                       << job->outcome.mesh.size() << " bytes, "
                       << expected[job->cloud].size() << " expected)";
   }
+  // What a client was given stays given: each result delivered before some kill is served
+  // again, the same, by the last server (an end is on disk before it is sent).
+  {
+    auto stub = Connect(address);
+    int changed = 0;
+    for (const std::unique_ptr<Followed>& job : jobs) {
+      if (job->outcome.state != v1::SUCCEEDED) continue;
+      const Outcome again = Follow(*stub, job->id, absl::Seconds(30));
+      const bool same = again.state == v1::SUCCEEDED && again.mesh == job->outcome.mesh;
+      changed += !same;
+      EXPECT_TRUE(same) << "job " << job->id << " was delivered SUCCEEDED, and is now "
+                        << v1::JobState_Name(again.state) << " " << again.message;
+    }
+    std::cerr << changed << " delivered results changed after the kills\n";
+  }
   // Each job accepted once: the servers' logs name no id twice in job_accepted, and every id
   // a client followed is among them.
   std::vector<std::string> accepted;

@@ -60,10 +60,11 @@ void IdleWatchdog::Loop() {
     const absl::Time now = clock_.Now();
     for (auto& [id, entry] : calls_) {
       if (entry.fired || now - entry.last <= limit_) continue;
+      // Counted first: whoever sees the call end sees it counted.
+      if (on_cut_) on_cut_();
       // Under the lock: the Watch, and so what `cancel` reaches, cannot go away meanwhile.
       entry.cancel();
       entry.fired = true;
-      if (on_cut_) on_cut_();
     }
   }
 }

@@ -118,15 +118,13 @@ void ChainRunner::Freeze(const Plate& p) {
 }
 
 void ChainRunner::CommitConversions() {
-  const auto st = grid_.strides();
+  const std::array<int64_t, 27>& offsets = grid_.block_offsets();
   VoxelState* s = grid_.mutable_states().data();
   for (const auto& [index, old] : log_) {
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          VoxelState& n = s[index + dx * st[0] + dy * st[1] + dz * st[2]];
-          if (IsInside(n)) n |= kBoundaryBit;
-        }
+    for (int64_t offset : offsets) {
+      VoxelState& n = s[index + offset];
+      if (IsInside(n)) n |= kBoundaryBit;
+    }
   }
   log_.clear();
 }

@@ -28,14 +28,11 @@ uint32_t N18Mask();
 // `index` must not lie on the array border.
 template <typename Pred>
 uint32_t NeighbourhoodMask(const VoxelGrid& grid, int64_t index, Pred pred) {
-  const auto st = grid.strides();
+  const std::array<int64_t, 27>& offsets = grid.block_offsets();
   const VoxelState* s = grid.states().data() + index;
   uint32_t mask = 0;
-  int bit = 0;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx, ++bit)
-        if (pred(s[dx * st[0] + dy * st[1] + dz * st[2]])) mask |= 1u << bit;
+  for (int k = 0; k < 27; ++k)
+    if (pred(s[offsets[k]])) mask |= 1u << k;
   return mask;
 }
 

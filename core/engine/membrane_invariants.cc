@@ -30,6 +30,7 @@ void Report(const VoxelGrid& grid, const char* what, const Violation& v, std::st
 absl::Status CheckMembraneInvariants(const VoxelGrid& grid, const InvariantOptions& options) {
   const auto& d = grid.dims();
   const auto st = grid.strides();
+  const std::array<int64_t, 27>& offsets = grid.block_offsets();
   const VoxelState* s = grid.states().data();
   Violation hard_outside, hard_lost, inside_touches, soft_exposed, border_not_outside;
   int64_t hard = 0;
@@ -48,13 +49,11 @@ absl::Status CheckMembraneInvariants(const VoxelGrid& grid, const InvariantOptio
           continue;
         }
         bool face_out = false, any_out = false;
-        for (int dz = -1; dz <= 1; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              if (!IsOutside(s[i + dx * st[0] + dy * st[1] + dz * st[2]])) continue;
-              any_out = true;
-              if ((dx != 0) + (dy != 0) + (dz != 0) == 1) face_out = true;
-            }
+        for (int k = 0; k < 27; ++k) {
+          if (!IsOutside(s[i + offsets[k]])) continue;
+          any_out = true;
+          if (IsFaceStep(k)) face_out = true;
+        }
         if (IsInside(v) && any_out) inside_touches.Add(i);
         if (options.require_property3 && IsBoundary(v) && face_out && v == kBoundarySoft) {
           soft_exposed.Add(i);

@@ -87,7 +87,6 @@ using StateCopy = std::vector<VoxelState, HugePageAllocator<VoxelState>>;
 // scanned object hangs on the hole's scanned edge (a torus 2.25-2.75x the formula-(1) size:
 // 89-94% hard; the spot scan's webs between its legs: 7%).
 void MeasureWeb(const VoxelGrid& grid, const StateCopy& first, HandleRetry& r) {
-  const auto st = grid.strides();
   const VoxelState* now = grid.states().data();
   std::vector<char> counted;
   int64_t rim = 0, hard = 0;
@@ -99,15 +98,13 @@ void MeasureWeb(const VoxelGrid& grid, const StateCopy& first, HandleRetry& r) {
         if (!is_web(i)) continue;
         ++r.web_voxels;
         if (counted.empty()) counted.assign(first.size(), 0);
-        for (int dz = -1; dz <= 1; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              const int64_t j = i + dx * st[0] + dy * st[1] + dz * st[2];
-              if (counted[j] || IsOutside(now[j]) || is_web(j)) continue;
-              counted[j] = 1;
-              ++rim;
-              hard += IsHard(now[j]);
-            }
+        for (int64_t offset : grid.block_offsets()) {
+          const int64_t j = i + offset;
+          if (counted[j] || IsOutside(now[j]) || is_web(j)) continue;
+          counted[j] = 1;
+          ++rim;
+          hard += IsHard(now[j]);
+        }
       }
   r.web_hard_rim = rim > 0 ? static_cast<double>(hard) / rim : 0.0;
 }

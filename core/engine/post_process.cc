@@ -34,17 +34,14 @@ bool HasOutsideFaceNeighbour(const VoxelState* s, int64_t i, const std::array<in
 
 // Makes voxel i outside and restores the invariants around it.
 void Carve(VoxelGrid& grid, int64_t i) {
-  const auto st = grid.strides();
+  const std::array<int64_t, 27>& offsets = grid.block_offsets();
   VoxelState* s = grid.mutable_states().data();
   s[i] = OutsideState(0);
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        VoxelState& n = s[i + dx * st[0] + dy * st[1] + dz * st[2]];
-        if (IsInside(n)) n |= kBoundaryBit;
-        const bool face = (dx != 0) + (dy != 0) + (dz != 0) == 1;
-        if (face && n == kBoundarySoft) n = kBoundaryFrozen;
-      }
+  for (int k = 0; k < 27; ++k) {
+    VoxelState& n = s[i + offsets[k]];
+    if (IsInside(n)) n |= kBoundaryBit;
+    if (IsFaceStep(k) && n == kBoundarySoft) n = kBoundaryFrozen;
+  }
 }
 
 }  // namespace

@@ -62,19 +62,18 @@ int64_t SilhouettePreshrink(VoxelGrid& grid) {
         }
       }
   // The new membrane: every non-outside voxel touching outside (26-adjacency) is boundary.
-  const auto st = grid.strides();
+  const std::array<int64_t, 27>& offsets = grid.block_offsets();
   VoxelState* s = grid.mutable_states().data();
   for (int z = 1; z + 1 < d[2]; ++z)
     for (int y = 1; y + 1 < d[1]; ++y)
       for (int x = 1; x + 1 < d[0]; ++x) {
         const int64_t i = grid.Index(x, y, z);
         if (!IsInside(s[i])) continue;
-        bool touches = false;
-        for (int dz = -1; dz <= 1 && !touches; ++dz)
-          for (int dy = -1; dy <= 1 && !touches; ++dy)
-            for (int dx = -1; dx <= 1 && !touches; ++dx)
-              touches = IsOutside(s[i + dx * st[0] + dy * st[1] + dz * st[2]]);
-        if (touches) s[i] |= kBoundaryBit;
+        for (int64_t offset : offsets)
+          if (IsOutside(s[i + offset])) {
+            s[i] |= kBoundaryBit;
+            break;
+          }
       }
   return carved;
 }

@@ -17,7 +17,7 @@ bool CutsOffSmallComponent(const VoxelGrid& grid, int64_t index, uint32_t outsid
                            int min_shell_voxels) {
   // Each local 26-component of the remaining non-outside neighbours, grown through the grid
   // (without the voxel itself) until it is known to be larger than the limit.
-  const auto st = grid.strides();
+  const std::array<int64_t, 27>& offsets = grid.block_offsets();
   const VoxelState* s = grid.states().data();
   uint32_t rest = ~outside & kAll27 & ~kCentreBit;
   std::vector<int64_t> seen, stack;
@@ -25,21 +25,19 @@ bool CutsOffSmallComponent(const VoxelGrid& grid, int64_t index, uint32_t outsid
     const uint32_t seed = rest & (~rest + 1);
     rest &= ~Flood26(seed, rest);
     const int b = std::countr_zero(seed);
-    const int64_t start = index + (b % 3 - 1) * st[0] + ((b / 3) % 3 - 1) * st[1] + (b / 9 - 1) * st[2];
+    const int64_t start = index + offsets[b];
     seen.assign(1, start);
     stack.assign(1, start);
     while (!stack.empty() && static_cast<int>(seen.size()) <= min_shell_voxels) {
       const int64_t v = stack.back();
       stack.pop_back();
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int64_t w = v + dx * st[0] + dy * st[1] + dz * st[2];
-            if (w == index || IsOutside(s[w]) ||
-                std::find(seen.begin(), seen.end(), w) != seen.end()) continue;
-            seen.push_back(w);
-            stack.push_back(w);
-          }
+      for (int64_t offset : offsets) {
+        const int64_t w = v + offset;
+        if (w == index || IsOutside(s[w]) || std::find(seen.begin(), seen.end(), w) != seen.end())
+          continue;
+        seen.push_back(w);
+        stack.push_back(w);
+      }
     }
     if (static_cast<int>(seen.size()) <= min_shell_voxels) return true;
   }
@@ -50,17 +48,14 @@ bool CutsOffSmallComponent(const VoxelGrid& grid, int64_t index, uint32_t outsid
 
 GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options) {
   constexpr GuardVerdict kRefused = GuardVerdict::kRefused, kAllowed = GuardVerdict::kAllowed;
-  const auto st = grid.strides();
+  const std::array<int64_t, 27>& offsets = grid.block_offsets();
   const VoxelState* s = grid.states().data() + index;
   uint32_t outside = 0, hard = 0;
-  int bit = 0;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx, ++bit) {
-        const VoxelState n = s[dx * st[0] + dy * st[1] + dz * st[2]];
-        if (IsOutside(n)) outside |= 1u << bit;
-        if (IsHard(n)) hard |= 1u << bit;
-      }
+  for (int k = 0; k < 27; ++k) {
+    const VoxelState n = s[offsets[k]];
+    if (IsOutside(n)) outside |= 1u << k;
+    if (IsHard(n)) hard |= 1u << k;
+  }
   outside &= ~kCentreBit;
   hard &= ~kCentreBit;
   // One outside neighbour, across a face: removing the voxel only dents the membrane.

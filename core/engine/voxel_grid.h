@@ -7,6 +7,7 @@
 #define MEMBRANE_CORE_ENGINE_VOXEL_GRID_H_
 
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -23,6 +24,21 @@ struct Coord {
   friend bool operator==(const Coord&, const Coord&) = default;
 };
 
+// The 3x3x3 block around a voxel as 27 steps (dx, dy, dz) in {-1, 0, 1}^3, x fastest: step k
+// is (k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1), and bit k of the block masks of local_topology.h.
+// Step kBlockCentre is the voxel itself, the other 26 are its neighbours.
+inline constexpr int kBlockCentre = 13;
+inline constexpr std::array<Coord, 27> kBlockSteps = [] {
+  std::array<Coord, 27> steps{};
+  for (int k = 0; k < 27; ++k) steps[k] = Coord{k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1};
+  return steps;
+}();
+// True for the 6 steps across a face of the voxel.
+constexpr bool IsFaceStep(int k) {
+  const Coord& d = kBlockSteps[k];
+  return (d.x != 0) + (d.y != 0) + (d.z != 0) == 1;
+}
+
 class VoxelGrid {
  public:
   static constexpr int kPadding = 2;
@@ -33,7 +49,14 @@ class VoxelGrid {
   VoxelGrid(std::array<int, 3> dims, std::array<double, 3> origin, double voxel_size,
             VoxelState fill = kInsideSoft)
       : dims_(dims), origin_(origin), voxel_size_(voxel_size),
-        states_(static_cast<size_t>(dims[0]) * dims[1] * dims[2], fill) {}
+        states_(static_cast<size_t>(dims[0]) * dims[1] * dims[2], fill) {
+    const std::array<int64_t, 3> st = strides();
+    for (int k = 0, n = 0; k < 27; ++k) {
+      const Coord& d = kBlockSteps[k];
+      block_offsets_[k] = d.x * st[0] + d.y * st[1] + d.z * st[2];
+      if (k != kBlockCentre) neighbour_offsets_[n++] = block_offsets_[k];
+    }
+  }
 
   // Size in voxels along x, y, z, padding included.
   const std::array<int, 3>& dims() const { return dims_; }
@@ -52,6 +75,11 @@ class VoxelGrid {
     return x + static_cast<int64_t>(dims_[0]) * (y + static_cast<int64_t>(dims_[1]) * z);
   }
   int64_t Index(const Coord& c) const { return Index(c.x, c.y, c.z); }
+  // Index offsets of the 3x3x3 block (kBlockSteps, in their order, the centre's 0 included)
+  // and of the 26 neighbours alone (the same order, the centre left out): index + offset is the
+  // voxel one step away, for any voxel not on the array border.
+  const std::array<int64_t, 27>& block_offsets() const { return block_offsets_; }
+  const std::array<int64_t, 26>& neighbour_offsets() const { return neighbour_offsets_; }
   Coord CoordOf(int64_t index) const {
     Coord c;
     c.x = static_cast<int>(index % dims_[0]);
@@ -69,10 +97,24 @@ class VoxelGrid {
            c.z == dims_[2] - 1;
   }
 
-  VoxelState at(int64_t index) const { return states_[static_cast<size_t>(index)]; }
-  VoxelState at(const Coord& c) const { return at(Index(c)); }
-  void set(int64_t index, VoxelState s) { states_[static_cast<size_t>(index)] = s; }
-  void set(const Coord& c, VoxelState s) { set(Index(c), s); }
+  // The state of a voxel in the array (checked in debug builds only: these are the engine's
+  // innermost reads and writes).
+  VoxelState at(int64_t index) const {
+    assert(index >= 0 && index < size());
+    return states_[static_cast<size_t>(index)];
+  }
+  VoxelState at(const Coord& c) const {
+    assert(Contains(c));
+    return at(Index(c));
+  }
+  void set(int64_t index, VoxelState s) {
+    assert(index >= 0 && index < size());
+    states_[static_cast<size_t>(index)] = s;
+  }
+  void set(const Coord& c, VoxelState s) {
+    assert(Contains(c));
+    set(Index(c), s);
+  }
 
   // Model-space centre of a voxel.
   std::array<double, 3> Center(const Coord& c) const {
@@ -88,6 +130,8 @@ class VoxelGrid {
   std::array<double, 3> origin_{0, 0, 0};
   double voxel_size_ = 1.0;
   std::vector<VoxelState> states_;
+  std::array<int64_t, 27> block_offsets_{};
+  std::array<int64_t, 26> neighbour_offsets_{};
 };
 
 }  // namespace membrane

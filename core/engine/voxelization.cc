@@ -10,6 +10,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
 #include "core/engine/point_density.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 
@@ -32,15 +33,8 @@ double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points) {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
-Vec3 Sub(const Point3f& a, const Point3f& b) {
-  return {double(a[0]) - b[0], double(a[1]) - b[1], double(a[2]) - b[2]};
-}
-Vec3 Cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double Dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+// a - b, in double.
+Vec3d Sub(const Point3f& a, const Point3f& b) { return ToVec3d(a) - ToVec3d(b); }
 
 // The spacing of float32 values at the magnitude of `p`'s largest coordinate.
 double FloatStep(const Point3f& p) {
@@ -63,22 +57,22 @@ absl::Status CheckSpansASolid(absl::Span<const Point3f> points) {
   size_t b_index = 0;
   double b_distance = -1;
   for (size_t i = 0; i < points.size(); ++i) {
-    const Vec3 ap = Sub(points[i], a);
+    const Vec3d ap = Sub(points[i], a);
     if (const double d = Dot(ap, ap); d > b_distance) b_distance = d, b_index = i;
   }
   const Point3f& b = points[b_index];
-  const Vec3 ab = Sub(b, a);
+  const Vec3d ab = Sub(b, a);
   const double ab_length = std::sqrt(b_distance);
   // The rounding allowance at `p` of a line or plane through a, b and `third`.
   auto allowance = [&](const Point3f& p, double third_step) {
-    const Vec3 ap = Sub(p, a);
+    const Vec3d ap = Sub(p, a);
     return 2 * (FloatStep(p) + FloatStep(a) + third_step +
                 FloatStep(b) * std::sqrt(Dot(ap, ap)) / ab_length);
   };
   size_t c_index = 0;
   double c_distance = -1, line_excess = -1;
   for (size_t i = 0; i < points.size(); ++i) {
-    const Vec3 n = Cross(Sub(points[i], a), ab);
+    const Vec3d n = Cross(Sub(points[i], a), ab);
     const double d = std::sqrt(Dot(n, n)) / ab_length;
     if (d > c_distance) c_distance = d, c_index = i;
     line_excess = std::max(line_excess, d - allowance(points[i], 0));
@@ -90,7 +84,7 @@ absl::Status CheckSpansASolid(absl::Span<const Point3f> points) {
         points.size(), c_distance));
   }
   const Point3f& c = points[c_index];
-  Vec3 normal = Cross(ab, Sub(c, a));
+  Vec3d normal = Cross(ab, Sub(c, a));
   const double normal_length = std::sqrt(Dot(normal, normal));
   for (double& v : normal) v /= normal_length;
   double d_distance = 0, plane_excess = -1;

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "core/mesh/self_intersection.h"
-#include "core/mesh/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 

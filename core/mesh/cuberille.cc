@@ -18,13 +18,6 @@ constexpr double kSplitOffset = 0.2;
 constexpr double kMidpointOffset = 0.2;
 constexpr double kChamfer = 0.25;
 
-Vec3d ToVec(const Coord& c) { return {double(c.x), double(c.y), double(c.z)}; }
-
-Vec3d Normalized(const Vec3d& v) {
-  const double n = Norm(v);
-  return n > 0 ? (1.0 / n) * v : Vec3d{0, 0, 0};
-}
-
 // Vertices in lattice units; chamfer points are appended after the boundary's vertex ids.
 class CuberilleBuilder {
  public:
@@ -32,15 +25,15 @@ class CuberilleBuilder {
     positions_.reserve(b.num_vertices());
     triangles_.reserve(2 * b.quads.size());  // plain quads; split ones add a few more
     for (const auto& v : b.fan_vertices) {
-      Vec3d p = ToVec(v.corner);
+      Vec3d p = LatticePosition(v.corner);
       if (NumFans(v.config) > 1 && !IsCornerContact(v.config))
         p = p + kSplitOffset * Normalized(FanOutsideDirection(v.config, v.fan));
       positions_.push_back(p);
     }
     for (const auto& m : b.midpoints) {
-      Vec3d mid = ToVec(m.edge_start);
+      Vec3d mid = LatticePosition(m.edge_start);
       mid[m.axis] += 0.5;
-      const Vec3d centre = ToVec(m.outside) + Vec3d{0.5, 0.5, 0.5};
+      const Vec3d centre = LatticePosition(m.outside) + Vec3d{0.5, 0.5, 0.5};
       positions_.push_back(mid + kMidpointOffset * Normalized(centre - mid));
     }
   }
@@ -87,7 +80,7 @@ class CuberilleBuilder {
     const int sign = toward[axis] > corner[axis] ? 1 : -1;
     auto [it, inserted] = chamfers_.try_emplace(std::pair<int32_t, int>{v, axis});
     if (inserted) {
-      Vec3d p = ToVec(corner);
+      Vec3d p = LatticePosition(corner);
       p[axis] += sign * kChamfer;
       it->second = static_cast<int32_t>(positions_.size());
       positions_.push_back(p);
@@ -103,7 +96,7 @@ class CuberilleBuilder {
       if (!IsCornerContact(fv.config) || fv.fan != 0) continue;
       const int32_t va = static_cast<int32_t>(i), vb = va + 1;  // the corner's two fans
       const int octant = FanSolidOctant(fv.config, 0);
-      const Vec3d centre = ToVec(fv.corner);
+      const Vec3d centre = LatticePosition(fv.corner);
       std::array<int32_t, 3> a, b;
       for (int axis = 0; axis < 3; ++axis) {
         Coord toward_a = fv.corner, toward_b = fv.corner;

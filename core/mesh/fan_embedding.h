@@ -10,7 +10,7 @@
 
 #include "absl/types/span.h"
 #include "core/geometry/triangle_mesh.h"
-#include "core/mesh/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 

@@ -7,26 +7,11 @@
 #include "core/engine/voxel_state_words.h"
 
 namespace membrane {
-namespace {
-
-std::array<int64_t, 26> NeighbourOffsets(const VoxelGrid& grid) {
-  const auto st = grid.strides();
-  std::array<int64_t, 26> off{};
-  int n = 0;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx)
-        if (dx != 0 || dy != 0 || dz != 0) off[n++] = dx * st[0] + dy * st[1] + dz * st[2];
-  return off;
-}
-
-}  // namespace
-
 int64_t RemoveLooseSheets(VoxelGrid& grid) {
   // A component holds an inside voxel iff one of its boundary voxels touches one: any 26-path
   // from a boundary voxel to the rest of its component leaves the boundary voxels through an
   // inside voxel. So flood the boundary voxels from those that touch an inside voxel.
-  const auto off = NeighbourOffsets(grid);
+  const std::array<int64_t, 26>& off = grid.neighbour_offsets();
   const VoxelState* s = grid.states().data();
   std::vector<char> kept(static_cast<size_t>(grid.size()), 0);
   std::vector<int64_t> stack;

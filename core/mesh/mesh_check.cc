@@ -9,7 +9,7 @@
 #include "absl/strings/str_join.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/triangle_intersection.h"
-#include "core/mesh/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 namespace {

@@ -6,7 +6,7 @@
 #include <array>
 #include <optional>
 
-#include "core/mesh/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 

@@ -14,7 +14,7 @@
 #include "core/mesh/point_row_grid.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/triangle_intersection.h"
-#include "core/mesh/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 namespace {

@@ -12,7 +12,7 @@
 #include "absl/types/span.h"
 #include "core/engine/huge_page_allocator.h"
 #include "core/geometry/point_cloud.h"
-#include "core/mesh/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 

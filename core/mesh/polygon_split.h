@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/mesh/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 

@@ -38,14 +38,7 @@ ByteArray NewByteArray(int64_t n) {
 class Relaxer {
  public:
   Relaxer(VoxelGrid& grid, int threshold, const CancelToken& cancel)
-      : grid_(grid), threshold_(threshold), cancel_(cancel) {
-    const auto st = grid.strides();
-    int n = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-          if (dx != 0 || dy != 0 || dz != 0) offsets_[n++] = dx * st[0] + dy * st[1] + dz * st[2];
-  }
+      : grid_(grid), threshold_(threshold), cancel_(cancel), offsets_(grid.neighbour_offsets()) {}
 
   // DLC of every voxel not on the array border, by three 1-D box sums of the categories, in
   // chunks between which `cancel` is polled (a 430^3 grid is 80M voxels per pass). The arrays
@@ -233,7 +226,7 @@ class Relaxer {
   VoxelGrid& grid_;
   const int threshold_;
   const CancelToken& cancel_;
-  std::array<int64_t, 26> offsets_{};
+  const std::array<int64_t, 26>& offsets_;
   ByteArray dlc_;
   std::array<Bucket, 27> buckets_;
   int sign_ = -1;
@@ -243,12 +236,9 @@ class Relaxer {
 }  // namespace
 
 int DiscreteLocalCurvature(const VoxelGrid& grid, const Coord& c) {
+  const int64_t i = grid.Index(c);
   int dlc = 0;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx)
-        if (dx != 0 || dy != 0 || dz != 0)
-          dlc += Category(grid.at(Coord{c.x + dx, c.y + dy, c.z + dz}));
+  for (int64_t offset : grid.neighbour_offsets()) dlc += Category(grid.at(i + offset));
   return dlc;
 }
 

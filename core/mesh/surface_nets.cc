@@ -20,13 +20,6 @@ constexpr double kSafeSplitOffset = 0.2;
 constexpr double kSafeMidpointOffset = 0.2;
 constexpr double kSafeCornerRetreat = 0.25;
 
-Vec3d ToVec(const Coord& c) { return {double(c.x), double(c.y), double(c.z)}; }
-
-Vec3d Normalized(const Vec3d& v) {
-  const double n = Norm(v);
-  return n > 0 ? (1.0 / n) * v : Vec3d{0, 0, 0};
-}
-
 Vec3d OctantDirection(int octant) {
   return {(octant & 1) ? 1.0 : -1.0, (octant & 2) ? 1.0 : -1.0, (octant & 4) ? 1.0 : -1.0};
 }
@@ -41,7 +34,7 @@ Placement Place(const VoxelBoundary& b) {
   p.nets.reserve(b.num_vertices());
   p.safe.reserve(b.num_vertices());
   for (const auto& v : b.fan_vertices) {
-    const Vec3d corner = ToVec(v.corner);
+    const Vec3d corner = LatticePosition(v.corner);
     p.nets.push_back(corner + FanCentroid(v.config, v.fan));
     Vec3d safe = corner;
     if (IsCornerContact(v.config)) {
@@ -54,9 +47,9 @@ Placement Place(const VoxelBoundary& b) {
     p.safe.push_back(safe);
   }
   for (const auto& m : b.midpoints) {
-    Vec3d face_centre = ToVec(m.edge_start);
+    Vec3d face_centre = LatticePosition(m.edge_start);
     face_centre[m.axis] += 0.5;
-    const Vec3d outside_centre = ToVec(m.outside) + Vec3d{0.5, 0.5, 0.5};
+    const Vec3d outside_centre = LatticePosition(m.outside) + Vec3d{0.5, 0.5, 0.5};
     p.nets.push_back(0.5 * (p.nets[m.ends[0]] + p.nets[m.ends[1]]) +
                      kMidpointPull * (outside_centre - face_centre));
     p.safe.push_back(face_centre + kSafeMidpointOffset * Normalized(outside_centre - face_centre));

@@ -18,7 +18,7 @@
 #include <array>
 #include <cstdint>
 
-#include "core/mesh/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 

@@ -22,9 +22,14 @@
 #include <vector>
 
 #include "core/engine/voxel_grid.h"
-#include "core/mesh/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
+
+// Lattice corner `c` in lattice units (voxels, from the array's corner).
+inline Vec3d LatticePosition(const Coord& c) {
+  return {static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)};
+}
 
 // Lattice corner (x, y, z) sits at model position origin + (x, y, z) * voxel_size, the lowest
 // corner of voxel (x, y, z). The 8 voxels around it are its octants: octant o has bit k set when

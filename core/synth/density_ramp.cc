@@ -5,10 +5,10 @@
 
 namespace membrane {
 
-DensityRamp::DensityRamp(const Vec3& direction, const Interval& extent, double ratio)
+DensityRamp::DensityRamp(const Vec3d& direction, const Interval& extent, double ratio)
     : direction_(direction), extent_(extent), log_ratio_(std::log(ratio)) {}
 
-double DensityRamp::Acceptance(const Vec3& p) const {
+double DensityRamp::Acceptance(const Vec3d& p) const {
   if (log_ratio_ == 0.0) return 1.0;
   const double s = (Dot(p, direction_) - extent_.lo) / (extent_.hi - extent_.lo);
   const double ramp = (s - 0.1) / 0.8;

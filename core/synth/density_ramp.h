@@ -3,7 +3,7 @@
 #define MEMBRANE_CORE_SYNTH_DENSITY_RAMP_H_
 
 #include "core/synth/surface_sampler.h"
-#include "core/synth/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 
@@ -16,14 +16,14 @@ class DensityRamp {
  public:
   // `direction`: unit vector; `extent`: range of Dot(p, direction) on the shape, lo < hi;
   // `ratio` >= 1 (1 accepts everything).
-  DensityRamp(const Vec3& direction, const Interval& extent, double ratio);
+  DensityRamp(const Vec3d& direction, const Interval& extent, double ratio);
 
   // Probability in [1/ratio, 1] of keeping a sample at `p` (model units). Points outside the
   // extent get the acceptance of the nearer end.
-  double Acceptance(const Vec3& p) const;
+  double Acceptance(const Vec3d& p) const;
 
  private:
-  Vec3 direction_;
+  Vec3d direction_;
   Interval extent_;
   double log_ratio_;
 };

@@ -22,9 +22,9 @@ PointCloud SampleSmoothShape(const SurfaceSampler& surface, const SynthLayout& l
     const SurfaceSample s = surface.Sample(rng);
     if (Uniform01(rng) >= ramp.Acceptance(s.position)) continue;
     if (holes.Removes(s.position)) continue;
-    Vec3 p = s.position;
+    Vec3d p = s.position;
     // Drawn only when asked for, so noise-free clouds skip the Box-Muller cost.
-    if (options.noise > 0.0) p = Add(p, Scale(s.normal, options.noise * StandardNormal(rng)));
+    if (options.noise > 0.0) p = p + options.noise * StandardNormal(rng) * s.normal;
     cloud.points.push_back(
         {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
   }

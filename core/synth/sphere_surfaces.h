@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "core/synth/surface_sampler.h"
-#include "core/synth/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 
@@ -16,7 +16,7 @@ inline constexpr double kTwoSpheresCentreDistance = 2.3;
 // ... placed symmetrically about the origin along the (1, 1, 1) diagonal: the centres' offset
 // projects to 2.3 * sqrt(2/3) = 1.88 < 2 on every axis plane, so every axis-aligned silhouette
 // of one sphere overlaps the other's, while the spheres stay 0.3 apart.
-std::array<Vec3, 2> TwoSpheresCentres();
+std::array<Vec3d, 2> TwoSpheresCentres();
 
 // capped-sphere: the unit sphere without the cap of this half-angle around +z. Its rim is a
 // circle of diameter 2 sin(25 deg) = 0.85, smaller than a first shrink plate.

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "core/synth/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 
@@ -15,13 +15,13 @@ inline constexpr double kHoleRadius = 0.15;
 class SurfaceHoles {
  public:
   // `centres`: points on the surface, model units; may be empty.
-  explicit SurfaceHoles(std::vector<Vec3> centres);
+  explicit SurfaceHoles(std::vector<Vec3d> centres);
 
   // True when `p` (model units, before noise) lies within kHoleRadius of some centre.
-  bool Removes(const Vec3& p) const;
+  bool Removes(const Vec3d& p) const;
 
  private:
-  std::vector<Vec3> centres_;  // sorted by x, so a query scans only a slab of width 2 radii
+  std::vector<Vec3d> centres_;  // sorted by x, so a query scans only a slab of width 2 radii
 };
 
 }  // namespace membrane

@@ -4,14 +4,14 @@
 
 #include <random>
 
-#include "core/synth/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 
 // A point on a surface with its outward unit normal (model units).
 struct SurfaceSample {
-  Vec3 position{};
-  Vec3 normal{};
+  Vec3d position{};
+  Vec3d normal{};
 };
 
 // A closed interval [lo, hi] of a coordinate along some direction, model units.
@@ -27,7 +27,7 @@ class SurfaceSampler {
   virtual SurfaceSample Sample(std::mt19937_64& rng) const = 0;
   // Range of Dot(p, direction) over the surface (or a documented superset); `direction` is a
   // unit vector.
-  virtual Interval ExtentAlong(const Vec3& direction) const = 0;
+  virtual Interval ExtentAlong(const Vec3d& direction) const = 0;
 };
 
 }  // namespace membrane

@@ -7,7 +7,7 @@
 #include "absl/status/statusor.h"
 #include "core/synth/surface_sampler.h"
 #include "core/synth/synth_options.h"
-#include "core/synth/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 
@@ -16,10 +16,10 @@ namespace membrane {
 struct SynthLayout {
   // Unit vector along which the density grows (see DensityRamp); drawn even when
   // density_ratio is 1.
-  Vec3 density_direction{0.0, 0.0, 1.0};
+  Vec3d density_direction{0.0, 0.0, 1.0};
   // options.holes points on the surface, drawn uniformly by area; each is the centre of a hole
   // of radius kHoleRadius (holes may overlap).
-  std::vector<Vec3> hole_centres;
+  std::vector<Vec3d> hole_centres;
 };
 
 // The layout SynthesizeShape(options) uses for `surface` (the surface of options.shape).

@@ -23,7 +23,7 @@ double StandardNormal(std::mt19937_64& rng) {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
 }
 
-Vec3 RandomUnitVector(std::mt19937_64& rng) {
+Vec3d RandomUnitVector(std::mt19937_64& rng) {
   // Archimedes: z is uniform on [-1, 1] for a uniform point on the sphere.
   const double z = 2.0 * Uniform01(rng) - 1.0;
   const double phi = 2.0 * std::numbers::pi * Uniform01(rng);

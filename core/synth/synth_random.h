@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <random>
 
-#include "core/synth/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 
@@ -27,7 +27,7 @@ double Uniform01(std::mt19937_64& rng);
 double StandardNormal(std::mt19937_64& rng);
 
 // Uniformly distributed unit vector. Consumes two draws.
-Vec3 RandomUnitVector(std::mt19937_64& rng);
+Vec3d RandomUnitVector(std::mt19937_64& rng);
 
 }  // namespace membrane
 

@@ -26,12 +26,12 @@ class TorusSurface : public SurfaceSampler {
     do {
       v = 2.0 * std::numbers::pi * Uniform01(rng);
     } while ((R + r) * Uniform01(rng) > R + r * std::cos(v));
-    const Vec3 radial = Add(Scale(e1_, std::cos(u)), Scale(e2_, std::sin(u)));
-    const Vec3 normal = Add(Scale(radial, std::cos(v)), Scale(axis_, std::sin(v)));
-    return {Add(Scale(radial, R), Scale(normal, r)), normal};
+    const Vec3d radial = std::cos(u) * e1_ + std::sin(u) * e2_;
+    const Vec3d normal = std::cos(v) * radial + std::sin(v) * axis_;
+    return {R * radial + r * normal, normal};
   }
 
-  Interval ExtentAlong(const Vec3& d) const override {
+  Interval ExtentAlong(const Vec3d& d) const override {
     // Support function: the centre circle reaches R |d projected on the ring's plane|, the
     // tube adds r.
     const double along_axis = Dot(axis_, d);
@@ -42,12 +42,12 @@ class TorusSurface : public SurfaceSampler {
   }
 
  private:
-  Vec3 axis_, e1_, e2_;  // right-handed frame: e1, e2 span the ring's plane
+  Vec3d axis_, e1_, e2_;  // right-handed frame: e1, e2 span the ring's plane
 };
 
 }  // namespace
 
-Vec3 TorusAxis() { return Normalized({1.0, 1.0, 1.0}); }
+Vec3d TorusAxis() { return Normalized({1.0, 1.0, 1.0}); }
 
 std::unique_ptr<SurfaceSampler> MakeTiltedTorus() { return std::make_unique<TorusSurface>(); }
 

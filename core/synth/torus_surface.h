@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "core/synth/surface_sampler.h"
-#include "core/synth/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 
@@ -22,7 +22,7 @@ inline constexpr double kTorusMajorRadius = 0.7;
 inline constexpr double kTorusMinorRadius = 0.45;
 
 // Unit axis of the torus, (1, 1, 1)/sqrt(3); the torus is centred at the origin.
-Vec3 TorusAxis();
+Vec3d TorusAxis();
 
 // The tilted torus, sampled uniformly by area.
 std::unique_ptr<SurfaceSampler> MakeTiltedTorus();

@@ -12,7 +12,7 @@ namespace {
 
 // Points of a unit-sphere cloud in ten slabs of equal height along `direction`. On a sphere
 // equal-height slabs have equal areas (Archimedes), so counts compare densities.
-std::array<int, 10> TenthCounts(const PointCloud& cloud, const Vec3& direction) {
+std::array<int, 10> TenthCounts(const PointCloud& cloud, const Vec3d& direction) {
   std::array<int, 10> tenth{};
   for (const Point3f& p : cloud.points) {
     const double t = Dot({p[0], p[1], p[2]}, direction);

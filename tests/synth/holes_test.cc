@@ -13,9 +13,9 @@
 namespace membrane {
 namespace {
 
-double NearestDistance(const PointCloud& cloud, const Vec3& q) {
+double NearestDistance(const PointCloud& cloud, const Vec3d& q) {
   double best = std::numeric_limits<double>::infinity();
-  for (const Point3f& p : cloud.points) best = std::min(best, Norm(Sub({p[0], p[1], p[2]}, q)));
+  for (const Point3f& p : cloud.points) best = std::min(best, Norm(ToVec3d(p) - q));
   return best;
 }
 
@@ -27,7 +27,7 @@ TEST_P(HolesTest, EachHoleIsAnEmptyPatchOfTheHoleRadiusBorderedByPoints) {
   const absl::StatusOr<SynthLayout> layout = SynthesizeLayout(options);
   ASSERT_TRUE(cloud.ok() && layout.ok());
   ASSERT_EQ(layout->hole_centres.size(), 4u);
-  for (const Vec3& centre : layout->hole_centres) {
+  for (const Vec3d& centre : layout->hole_centres) {
     const double nearest = NearestDistance(*cloud, centre);
     EXPECT_GE(nearest, kHoleRadius - 1e-5);  // float storage of the points
     EXPECT_LT(nearest, kHoleRadius + 0.03);  // a patch, not a missing region
@@ -48,7 +48,7 @@ TEST(HolesTest, WithoutHolesNoPatchOfTheSphereIsEmpty) {
   ASSERT_TRUE(cloud.ok());
   std::mt19937_64 rng(99);
   for (int i = 0; i < 300; ++i) {
-    const Vec3 probe = RandomUnitVector(rng);
+    const Vec3d probe = RandomUnitVector(rng);
     ASSERT_LT(NearestDistance(*cloud, probe), 0.05) << "probe " << i;
   }
 }
@@ -57,7 +57,7 @@ TEST(HolesTest, HoleCentresLieOnTheSurfaceAndDependOnTheSeed) {
   const absl::StatusOr<SynthLayout> a = SynthesizeLayout({.shape = "sphere", .holes = 3, .seed = 1});
   const absl::StatusOr<SynthLayout> b = SynthesizeLayout({.shape = "sphere", .holes = 3, .seed = 2});
   ASSERT_TRUE(a.ok() && b.ok());
-  for (const Vec3& c : a->hole_centres) EXPECT_NEAR(Norm(c), 1.0, 1e-12);
+  for (const Vec3d& c : a->hole_centres) EXPECT_NEAR(Norm(c), 1.0, 1e-12);
   EXPECT_NE(a->hole_centres, b->hole_centres);
 }
 

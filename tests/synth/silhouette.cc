@@ -5,17 +5,17 @@
 
 namespace membrane::testing {
 
-Silhouette::Silhouette(const Vec3& direction, double half_width, double pixel)
+Silhouette::Silhouette(const Vec3d& direction, double half_width, double pixel)
     : half_width_(half_width), pixel_(pixel), n_(static_cast<int>(std::ceil(2 * half_width / pixel))) {
   // Any vector not parallel to the direction seeds the basis.
-  const Vec3 seed = std::abs(direction[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  const Vec3d seed = std::abs(direction[0]) < 0.9 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
   u_ = Normalized(Cross(direction, seed));
   v_ = Cross(direction, u_);
   occupied_.assign(static_cast<size_t>(n_) * n_, 0);
 }
 
 void Silhouette::Add(const Point3f& p) {
-  const Vec3 q = {p[0], p[1], p[2]};
+  const Vec3d q = {p[0], p[1], p[2]};
   const int i = static_cast<int>(std::floor((Dot(q, u_) + half_width_) / pixel_));
   const int j = static_cast<int>(std::floor((Dot(q, v_) + half_width_) / pixel_));
   if (i < 0 || j < 0 || i >= n_ || j >= n_) return;

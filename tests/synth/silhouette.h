@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/geometry/point_cloud.h"
-#include "core/synth/vec3.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane::testing {
 
@@ -13,7 +13,7 @@ namespace membrane::testing {
 // unit `direction`, through the origin.
 class Silhouette {
  public:
-  Silhouette(const Vec3& direction, double half_width, double pixel);
+  Silhouette(const Vec3d& direction, double half_width, double pixel);
 
   // Marks the pixel under `p`; points projecting outside the window are ignored.
   void Add(const Point3f& p);
@@ -28,7 +28,7 @@ class Silhouette {
   bool Overlaps(const Silhouette& other) const;
 
  private:
-  Vec3 u_, v_;  // orthonormal basis of the image plane
+  Vec3d u_, v_;  // orthonormal basis of the image plane
   double half_width_, pixel_;
   int n_;  // pixels per side
   std::vector<char> occupied_;

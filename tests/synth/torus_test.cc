@@ -15,7 +15,7 @@ constexpr double R = kTorusMajorRadius, r = kTorusMinorRadius;
 
 // Distance of `p` from the torus's centre circle; r for a point on the surface.
 double TubeDistance(const Point3f& p) {
-  const Vec3 q = {p[0], p[1], p[2]};
+  const Vec3d q = {p[0], p[1], p[2]};
   const double h = Dot(q, TorusAxis());
   const double radial = std::sqrt(std::max(0.0, Dot(q, q) - h * h));
   return std::hypot(radial - R, h);
@@ -31,7 +31,7 @@ TEST(TorusTest, NoAxisSilhouetteShowsTheHole) {
   const absl::StatusOr<PointCloud> cloud = SynthesizeShape({.shape = "torus", .points = 300000});
   ASSERT_TRUE(cloud.ok());
   for (int axis = 0; axis < 3; ++axis) {
-    Vec3 d = {0, 0, 0};
+    Vec3d d = {0, 0, 0};
     d[axis] = 1;
     testing::Silhouette view(d, 1.3, 0.03);
     view.AddAll(*cloud);
@@ -63,7 +63,7 @@ TEST(TorusTest, IsUniformByAreaSoTheOuterHalfHoldsItsLargerShare) {
   ASSERT_TRUE(cloud.ok());
   int outer = 0;
   for (const Point3f& p : cloud->points) {
-    const Vec3 q = {p[0], p[1], p[2]};
+    const Vec3d q = {p[0], p[1], p[2]};
     const double h = Dot(q, TorusAxis());
     outer += std::sqrt(Dot(q, q) - h * h) > R;
   }

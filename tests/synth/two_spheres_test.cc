@@ -19,8 +19,8 @@ SplitCloud SplitBySphere(const PointCloud& cloud) {
   const auto centres = TwoSpheresCentres();
   SplitCloud split;
   for (const Point3f& p : cloud.points) {
-    const Vec3 q = {p[0], p[1], p[2]};
-    (Norm(Sub(q, centres[0])) < Norm(Sub(q, centres[1])) ? split.a : split.b).points.push_back(p);
+    const Vec3d q = {p[0], p[1], p[2]};
+    (Norm(q - centres[0]) < Norm(q - centres[1]) ? split.a : split.b).points.push_back(p);
   }
   return split;
 }
@@ -31,9 +31,9 @@ TEST(TwoSpheresTest, PointsLieOnTwoUnitSpheresSharingThePointsEvenly) {
   const auto centres = TwoSpheresCentres();
   const SplitCloud split = SplitBySphere(*cloud);
   for (const Point3f& p : split.a.points)
-    ASSERT_NEAR(Norm(Sub({p[0], p[1], p[2]}, centres[0])), 1.0, 1e-6);
+    ASSERT_NEAR(Norm(ToVec3d(p) - centres[0]), 1.0, 1e-6);
   for (const Point3f& p : split.b.points)
-    ASSERT_NEAR(Norm(Sub({p[0], p[1], p[2]}, centres[1])), 1.0, 1e-6);
+    ASSERT_NEAR(Norm(ToVec3d(p) - centres[1]), 1.0, 1e-6);
   EXPECT_NEAR(static_cast<double>(split.a.points.size()), 50000, 1000);
 }
 
@@ -43,20 +43,20 @@ TEST(TwoSpheresTest, SurfacesAreSeparatedByAGapOfPointThree) {
   const SplitCloud split = SplitBySphere(*cloud);
   // Only points facing the other sphere can be nearest: keep each sphere's cap of height 0.1
   // around its point nearest the other.
-  const Vec3 axis = Normalized(Sub(TwoSpheresCentres()[1], TwoSpheresCentres()[0]));
+  const Vec3d axis = Normalized(TwoSpheresCentres()[1] - TwoSpheresCentres()[0]);
   const auto facing = [&](const PointCloud& c, double sign) {
-    std::vector<Vec3> out;
+    std::vector<Vec3d> out;
     for (const Point3f& p : c.points) {
-      const Vec3 q = {p[0], p[1], p[2]};
+      const Vec3d q = {p[0], p[1], p[2]};
       if (sign * Dot(q, axis) < 0.25) out.push_back(q);
     }
     return out;
   };
-  const std::vector<Vec3> a = facing(split.a, -1), b = facing(split.b, 1);
+  const std::vector<Vec3d> a = facing(split.a, -1), b = facing(split.b, 1);
   ASSERT_FALSE(a.empty() || b.empty());
   double gap = std::numeric_limits<double>::infinity();
-  for (const Vec3& p : a)
-    for (const Vec3& q : b) gap = std::min(gap, Norm(Sub(p, q)));
+  for (const Vec3d& p : a)
+    for (const Vec3d& q : b) gap = std::min(gap, Norm(p - q));
   EXPECT_GE(gap, 0.3 - 1e-5);
   EXPECT_LT(gap, 0.32);
 }
@@ -66,7 +66,7 @@ TEST(TwoSpheresTest, EveryAxisSilhouetteOfOneSphereOverlapsTheOther) {
   ASSERT_TRUE(cloud.ok());
   const SplitCloud split = SplitBySphere(*cloud);
   for (int axis = 0; axis < 3; ++axis) {
-    Vec3 d = {0, 0, 0};
+    Vec3d d = {0, 0, 0};
     d[axis] = 1;
     testing::Silhouette a(d, 2.0, 0.02), b(d, 2.0, 0.02);
     a.AddAll(split.a);
@@ -74,7 +74,7 @@ TEST(TwoSpheresTest, EveryAxisSilhouetteOfOneSphereOverlapsTheOther) {
     EXPECT_TRUE(a.Overlaps(b)) << "axis " << axis;
     // The overlap is geometric, not a sampling accident: the projected centre distance
     // 2.3 sqrt(2/3) = 1.88 is below the sum of the radii.
-    const Vec3 offset = Sub(TwoSpheresCentres()[1], TwoSpheresCentres()[0]);
+    const Vec3d offset = TwoSpheresCentres()[1] - TwoSpheresCentres()[0];
     EXPECT_LT(std::sqrt(Dot(offset, offset) - offset[axis] * offset[axis]), 1.9);
   }
 }

@@ -28,7 +28,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
                                                           const ChainOptions& options,
                                                           const CancelToken& cancel,
                                                           WorkPlanes& planes) {
-  const int n = options.plate_size;
+  const int n = options.plate_size();
   const auto st = grid.strides();
   const int64_t strides[3] = {st[0], st[1], st[2]};
   ClosedFormOutcome outcome;
@@ -134,14 +134,14 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   adjacent.ForEach([&](int64_t i) {
     if (cancelled || outcome.incursions > 0 || !IsHardOrFrozen(s[i])) return;
     if ((++outcome.checks & 4095) == 0 && cancel.cancelled()) cancelled = true;
-    if (IncursionAt(grid, i, options.thick_wall_run)) ++outcome.incursions;
+    if (IncursionAt(grid, i, options.rules.thick_wall_run)) ++outcome.incursions;
   });
-  if (!cancelled && outcome.incursions == 0 && options.topology_guard) {
+  if (!cancelled && outcome.incursions == 0 && options.rules.topology_guard) {
     FlatBitset& near_hard = ws.near_hard;
     FillStatePlane(grid.states(), StatePredicate::kHard, near_hard);
     near_hard.Dilate26(strides, ws.scratch_a);
     near_hard.And(fresh);
-    const GuardOptions guard = GuardOptionsOf(options);
+    const GuardOptions& guard = options.guard;
     near_hard.ForEach([&](int64_t i) {
       if (cancelled || outcome.guard_refusals > 0) return;
       if ((++outcome.checks & 4095) == 0 && cancel.cancelled()) cancelled = true;

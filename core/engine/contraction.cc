@@ -66,8 +66,8 @@ bool ChainRunner::Contract(int o, int layer, const Region& r) {
     int64_t i = CellIndex(o, layer, u, r.v_lo);
     for (int v = r.v_lo; v <= r.v_hi; ++v, i += sv) {
       if (IsOutside(s[i])) continue;
-      if (options_.topology_guard) {
-        const GuardVerdict verdict = ClassifyRemoval(grid_, i, GuardOptionsOf(options_));
+      if (options_.rules.topology_guard) {
+        const GuardVerdict verdict = ClassifyRemoval(grid_, i, options_.guard);
         if (verdict == GuardVerdict::kRefused) {
           ++guard_refused_;
           return false;
@@ -91,7 +91,8 @@ bool ChainRunner::Contract(int o, int layer, const Region& r) {
     for (int u = cu_lo - 1; u <= cu_hi + 1; ++u) {
       int64_t i = CellIndex(o, l, u, cv_lo - 1);
       for (int v = cv_lo - 1; v <= cv_hi + 1; ++v, i += sv) {
-        if (IsHardOrFrozen(s[i]) && IncursionAt(grid_, i, options_.thick_wall_run)) return false;
+        if (IsHardOrFrozen(s[i]) && IncursionAt(grid_, i, options_.rules.thick_wall_run))
+          return false;
       }
     }
   }
@@ -105,7 +106,7 @@ void ChainRunner::UndoAll() {
 }
 
 void ChainRunner::Freeze(const Plate& p) {
-  const int n = options_.plate_size;
+  const int n = options_.plate_size();
   VoxelState* s = grid_.mutable_states().data();
   for (int u = p.u0; u < p.u0 + n; ++u)
     for (int v = p.v0; v < p.v0 + n; ++v) {
@@ -139,7 +140,7 @@ ChainOutcome ChainRunner::Run(const Plate& start, const ChainOptions& options,
   z_lo_ = grid_.dim(2);
   z_hi_ = -1;
   guard_refused_ = 0;
-  const int n = options.plate_size;
+  const int n = options.plate_size();
   const Region full{start.u0, start.u0 + n - 1, start.v0, start.v0 + n - 1};
   bool movable = false;
   if (!RegionOk(start.orientation, start.layer, full, /*lenient=*/false, movable) || !movable ||
@@ -212,8 +213,9 @@ ChainOutcome ChainRunner::Run(const Plate& start, const ChainOptions& options,
     movable = false;
     if (!RegionOk(o, t.layer, cells, /*lenient=*/true, movable) || !movable) continue;
     if (check_back && !BackOk(o, t.layer, back)) continue;
-    if (move == kFront && n <= options.depth_bound_max_plate && options.depth_bound > 0 &&
-        (t.layer - start.layer) * orient.sign > options.depth_bound) {
+    if (move == kFront && n <= options.rules.depth_bound_max_plate &&
+        options.rules.depth_bound > 0 &&
+        (t.layer - start.layer) * orient.sign > options.rules.depth_bound) {
       depth_refused = true;
       failed = true;
       break;

@@ -21,33 +21,25 @@
 
 namespace membrane {
 
+// What counts as an incursion, and whether the topology guard runs (ShrinkOptions::chain).
+struct ChainRules {
+  int depth_bound = 3;            // algorithm-notes 14: at small n, deeper front moves count as
+                                  // incursions; 0 = unbounded (the paper)
+  int depth_bound_max_plate = 2;  // the plate sizes the depth bound applies to: n <= this
+  int thick_wall_run = 3;         // algorithm-notes 15: longest hard run of the thick-wall
+                                  // incursion test; 1 = the paper's test only
+  bool topology_guard = true;     // algorithm-notes 12
+};
+
+// One generation's chains: its plate size n is guard.plate_size.
 struct ChainOptions {
-  int plate_size = 1;          // n
-  int generation_label = 1;    // written into the voxels this generation turns outside
-  int depth_bound = 3;         // at small n, deeper front moves count as incursions; 0 = unbounded
-  int depth_bound_max_plate = 1;  // the plate sizes the depth bound applies to: n <= this
-  int thick_wall_run = 3;      // longest hard run of the thick-wall incursion test; 1 = paper
-  bool topology_guard = true;  // algorithm-notes 12
-  int guard_tunnel_min_plate = 5;  // tunnels away from hard voxels are allowed from this n
-  int min_shell_voxels = 32;       // a split may not cut off a component this small
-  int guard_short_loop_min_plate = 3;  // short-loop tunnels from this n (GuardOptions); 0 = off
-  int guard_short_loop_steps = 6;      // ...within this many outside steps
-  int guard_wall_notch_min_plate = 2;  // ...and beside a wall from this n; 0 = off
-  // Count the removals the handle retry's strict sizes would refuse (GuardOptions).
-  bool classify_strict = false;
-  int strict_tunnel_min_plate = 7;
-  int strict_short_loop_min_plate = 4;
+  int generation_label = 1;  // written into the voxels this generation turns outside
+  ChainRules rules;
+  GuardOptions guard;        // its plate size; its sizes are used when rules.topology_guard
+  int plate_size() const { return guard.plate_size; }
 };
 
 // kSkipped: the start plate no longer fits (nothing changed).
-// The guard's part of the chain options.
-inline GuardOptions GuardOptionsOf(const ChainOptions& o) {
-  return GuardOptions{o.plate_size, o.guard_tunnel_min_plate, o.min_shell_voxels,
-                      o.guard_short_loop_min_plate, o.guard_short_loop_steps,
-                      o.guard_wall_notch_min_plate, o.classify_strict,
-                      o.strict_tunnel_min_plate, o.strict_short_loop_min_plate};
-}
-
 enum class ChainOutcome { kCommitted, kBacktracked, kCancelled, kSkipped };
 
 // Counters a chain adds to.

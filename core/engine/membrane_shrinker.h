@@ -1,6 +1,13 @@
 // The discrete membrane shrinking (paper sections 4.3 and 7): generations of recursive
 // contractions with plates of decreasing size, from the initial membrane on the exterior faces
 // to the final discrete membrane set (DMS).
+//
+// MembraneShrinker runs the steps in the paper's order; each lives in a file of its own: the
+// plate sizes and generation labels (Algorithm 1) in plate_schedule.h, the silhouette
+// pre-shrink (algorithm-notes 3) in silhouette.h, a generation's snapshots of fitting plates
+// in place_finder.h and its recursive contractions (Function 1) in contraction.h, or its
+// closed form in closed_form_generation.h, the handle retry in handle_retry.h, the section 7
+// post-process in post_process.h.
 #ifndef MEMBRANE_CORE_ENGINE_MEMBRANE_SHRINKER_H_
 #define MEMBRANE_CORE_ENGINE_MEMBRANE_SHRINKER_H_
 
@@ -10,39 +17,18 @@
 
 #include "absl/status/statusor.h"
 #include "core/base/cancel_token.h"
-#include "core/engine/plate_schedule.h"
+#include "core/engine/contraction.h"
+#include "core/engine/huge_page_allocator.h"
+#include "core/engine/place_finder.h"
 #include "core/engine/post_process.h"
+#include "core/engine/shrink_options.h"
+#include "core/engine/state_planes.h"
 #include "core/engine/voxel_grid.h"
+#include "core/engine/work_planes.h"
 
 namespace membrane {
 
-struct ShrinkOptions {
-  PlateSchedule schedule = PlateSchedule::kHalving;
-  int initial_plate = 0;            // 0: from the grid (Algorithm 1)
-  int depth_bound = 3;              // algorithm-notes 14; 0 = unbounded (the paper)
-  int depth_bound_max_plate = 2;    // ...applied to plate sizes up to this one
-  int thick_wall_run = 3;           // algorithm-notes 15; 1 = the paper's test only
-  bool topology_guard = true;       // algorithm-notes 12
-  int guard_tunnel_min_plate = 5;   // notes 12: tunnels away from hard voxels from this n
-  int guard_short_loop_min_plate = 3;  // below that, short-loop tunnels from this n; 0 = off
-  int guard_short_loop_steps = 6;      // ...sides joined within this many outside steps
-  int guard_wall_notch_min_plate = 2;  // ...and beside a wall from this n; 0 = off
-  int closed_form_min_plate = 8;    // generations with n >= this try the closed form; 0 = never
-  bool silhouette_preshrink = false;  // algorithm-notes 3 (Fig. 21b); off by default
-  bool connect_inside_hard = true;  // section 7 post-process
-  // The handle retry (docs/engine-decisions.md): when the shrink ends with handles, the
-  // generations from the first plate below retry_tunnel_min_plate run again with tunnels away
-  // from the data only from that plate size and short-loop tunnels only from
-  // retry_short_loop_min_plate; the result with fewer handles and no fewer shells is kept,
-  // unless what it closed is a membrane across a scanned hole: at least retry_max_hard_rim of
-  // the voxels bordering it are hard (> 1: never refused on that ground).
-  bool retry_handles = true;
-  int retry_tunnel_min_plate = 7;
-  int retry_short_loop_min_plate = 4;
-  double retry_max_hard_rim = 0.75;
-};
-
-// What the handle retry did (ShrinkOptions::retry_handles).
+// What the handle retry did (ShrinkOptions::retry, handle_retry.h).
 struct HandleRetry {
   bool ran = false;          // the first result had handles, so the generations ran again
   bool kept = false;         // the retry's result replaced the first
@@ -90,9 +76,6 @@ struct ShrinkResult {
 // Called after every generation, on the shrinking thread.
 using GenerationCallback = std::function<void(const GenerationStats&)>;
 
-// Validates options: InvalidArgument naming the field and its allowed range.
-absl::Status ValidateShrinkOptions(const ShrinkOptions& options);
-
 // Shrinks the initial membrane of `grid` (as built by Voxelize) into the final DMS.
 // `generations` holds the rows of the generations kept: after a kept handle retry, the retry's
 // rows (handle_retry set) replace the first run's from HandleRetry::from_generation on.
@@ -104,6 +87,77 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& options);
 absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions& options,
                                             const GenerationCallback& on_generation,
                                             const CancelToken& cancel);
+
+// The grid's states and their counts at one point of the shrink. The states are on huge
+// pages: a 70 M voxel copy would otherwise spend longer in 4 KB page faults than in copying.
+struct ShrinkCheckpoint {
+  std::vector<VoxelState, HugePageAllocator<VoxelState>> states;
+  StateCounts counts;
+};
+
+// The guard sizes a generation runs with: the options' or the handle retry's strict ones
+// (StrictGuardSizes).
+enum class TunnelRules { kDefault, kStrict };
+
+// The state of one shrink, and its steps in the paper's order: Run calls them. It holds the
+// grid, the plate sizes and labels of its generations, the state counts after the last one,
+// and the work planes, place finder and chain runner every generation reuses.
+class MembraneShrinker {
+ public:
+  // Keeps references to `grid` (as built by Voxelize), `options` (valid by
+  // ValidateShrinkOptions) and `cancel`, which must outlive the shrinker. Takes the plate sizes
+  // and labels of the grid's data box (Algorithm 1); allocates no planes yet.
+  MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options, const CancelToken& cancel);
+
+  MembraneShrinker(const MembraneShrinker&) = delete;
+  MembraneShrinker& operator=(const MembraneShrinker&) = delete;
+
+  // The whole shrink, as ShrinkMembrane states it: the silhouette pre-shrink (when enabled),
+  // every generation, the handle retry (handle_retry.h), the section 7 post-process.
+  absl::StatusOr<ShrinkResult> Run(const GenerationCallback& on_generation);
+
+  // Generation g (0-based) with the guard sizes of `rules`: its closed form where that applies
+  // (closed_form_generation.h), otherwise snapshots and chains until a pass changes nothing.
+  // Appends the generation's row to `rows`. Under the default rules from the first generation
+  // the handle retry may run again, the row counts the removals the strict sizes would refuse.
+  // Cancelled when the token fires (the grid is then a valid but unfinished DMS).
+  absl::Status RunGeneration(size_t g, TunnelRules rules, std::vector<GenerationStats>& rows);
+
+  // `to` becomes a copy of the grid's states and their counts; the grid's states and counts
+  // become `from`. Both poll the token between slices of the copy: false when it fired (the shrink
+  // is then abandoned, a half-copied grid with it).
+  bool Save(ShrinkCheckpoint& to) const;
+  bool Restore(const ShrinkCheckpoint& from);
+
+  const VoxelGrid& grid() const { return grid_; }
+  const ShrinkOptions& options() const { return options_; }
+  const CancelToken& cancel() const { return cancel_; }
+  size_t generations() const { return sizes_.size(); }
+
+ private:
+  // The chains of generation g under `rules`: plate size, label, rules and guard sizes.
+  ChainOptions ChainOptionsFor(size_t g, TunnelRules rules) const;
+  // Snapshots of every fitting plate, then a chain from each candidate, until a pass changes
+  // nothing; adds to `stats`.
+  absl::Status RunChains(const ChainOptions& chain, GenerationStats& stats);
+
+  VoxelGrid& grid_;
+  const ShrinkOptions& options_;
+  const CancelToken& cancel_;
+  const GuardSizes strict_;       // the handle retry's sizes
+  const std::vector<int> sizes_;  // plate size of each generation
+  const std::vector<int> labels_;  // generation label of each generation
+  // The first generation whose plate is below the strict tunnel size: from there on the
+  // strict sizes differ from the default ones, and the handle retry runs again. sizes_.size()
+  // when the retry is off or no plate is that small.
+  const size_t retry_from_;
+  // The counts after the last generation, before the next: one pass over the states per
+  // generation (on a 70 M voxel grid each pass costs as much as a small generation).
+  StateCounts counts_;
+  WorkPlanes planes_;  // allocated at the first snapshot or closed form
+  PlaceFinder finder_;
+  ChainRunner runner_;
+};
 
 }  // namespace membrane
 

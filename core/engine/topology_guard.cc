@@ -48,6 +48,7 @@ bool CutsOffSmallComponent(const VoxelGrid& grid, int64_t index, uint32_t outsid
 
 GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options) {
   constexpr GuardVerdict kRefused = GuardVerdict::kRefused, kAllowed = GuardVerdict::kAllowed;
+  const GuardSizes& sizes = options.sizes;
   const std::array<int64_t, 27>& offsets = grid.block_offsets();
   const VoxelState* s = grid.states().data() + index;
   uint32_t outside = 0, hard = 0;
@@ -64,7 +65,7 @@ GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOp
     // Simple, or a local split (mitosis). A split that cuts off a few voxels is not mitosis
     // but a stray hard voxel of a sparse region left as a shell of its own.
     return CountT26(~outside & kAll27 & ~kCentreBit) == 1 ||
-                   !CutsOffSmallComponent(grid, index, outside, options.min_shell_voxels)
+                   !CutsOffSmallComponent(grid, index, outside, sizes.min_shell_voxels)
                ? kAllowed
                : kRefused;
   }
@@ -74,33 +75,33 @@ GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOp
   // same generation (plates cutting one sheet from both sides; a plate that got through a gap
   // joins a fresh dig to an older outside). Two spheres 2.5-5 voxels apart split this way.
   if (hard != 0) {
-    return options.wall_notch_min_plate > 0 && options.plate_size >= options.wall_notch_min_plate &&
+    return sizes.wall_notch_min_plate > 0 && options.plate_size >= sizes.wall_notch_min_plate &&
                    InOneFaceLayer(hard) && SameGenerationAcrossTunnel(grid, index, outside) &&
-                   TunnelClosesShortLoop(grid, index, outside, options.short_loop_steps)
+                   TunnelClosesShortLoop(grid, index, outside, sizes.short_loop_steps)
                ? kAllowed
                : kRefused;
   }
   const int n = options.plate_size;
   // The short-loop test walks the outside: run at most once, and only where it decides.
   auto short_loop = [&, known = false, value = false]() mutable {
-    if (!known) value = TunnelClosesShortLoop(grid, index, outside, options.short_loop_steps);
+    if (!known) value = TunnelClosesShortLoop(grid, index, outside, sizes.short_loop_steps);
     known = true;
     return value;
   };
   auto strict_allows = [&] {
-    return n >= options.strict_tunnel_min_plate ||
-           (options.strict_short_loop_min_plate > 0 && n >= options.strict_short_loop_min_plate &&
+    return n >= options.strict.tunnel_min_plate ||
+           (options.strict.short_loop_min_plate > 0 && n >= options.strict.short_loop_min_plate &&
             short_loop());
   };
   // Away from the data, a big plate may open any tunnel...
-  if (n >= options.tunnel_min_plate) {
+  if (n >= sizes.tunnel_min_plate) {
     return !options.classify_strict || strict_allows() ? kAllowed : GuardVerdict::kAllowedLoosely;
   }
   // ...or where the loop it closes through the outside is short: it then notches a soft bridge
   // about one voxel thick, the first cut of the split of a sheet between two shells (two
   // spheres 5-10 voxels apart), which a plate too small for the guard's tunnels must make.
   // A hole through a wall closes a long loop, around the wall. Measured in engine-decisions.md.
-  if (options.short_loop_min_plate <= 0 || n < options.short_loop_min_plate || !short_loop())
+  if (sizes.short_loop_min_plate <= 0 || n < sizes.short_loop_min_plate || !short_loop())
     return kRefused;
   return !options.classify_strict || strict_allows() ? kAllowed : GuardVerdict::kAllowedLoosely;
 }

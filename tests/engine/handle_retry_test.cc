@@ -22,16 +22,16 @@ constexpr int64_t kRetryPoints = 60000;
 // and its result is kept whatever it hangs on.
 ShrinkOptions NoTunnelRetry() {
   ShrinkOptions o;
-  o.retry_tunnel_min_plate = 100000;
-  o.retry_short_loop_min_plate = 100000;
-  o.retry_max_hard_rim = 2.0;
+  o.retry.tunnel_min_plate = 100000;
+  o.retry.short_loop_min_plate = 100000;
+  o.retry.max_hard_rim = 2.0;
   return o;
 }
 
 TEST(HandleRetryTest, KeepsTheResultWithFewerHandles) {
   const PointCloud torus = SynthCloud("torus", kRetryPoints);
   ShrinkOptions off = NoTunnelRetry();
-  off.retry_handles = false;
+  off.retry.enabled = false;
   auto first = ShrinkCloud(torus, 1.0, off);
   ASSERT_TRUE(first.ok()) << first.status();
   ASSERT_EQ(first->topology.genus, std::vector<int>{1}) << first->Describe();
@@ -118,7 +118,7 @@ TEST(HandleRetryTest, KeepsAScannedHoleOpen) {
   EXPECT_TRUE(r.ran);
   EXPECT_FALSE(r.kept);
   EXPECT_GT(r.web_voxels, 0);
-  EXPECT_GE(r.web_hard_rim, ShrinkOptions{}.retry_max_hard_rim);
+  EXPECT_GE(r.web_hard_rim, ShrinkOptions{}.retry.max_hard_rim);
   EXPECT_EQ(run->topology.genus, std::vector<int>{1}) << run->Describe();
   EXPECT_TRUE(run->invariants.ok()) << run->Describe();
 }
@@ -145,7 +145,7 @@ TEST(HandleRetryTest, NeverTradesAShellForAHandle) {
     both.points.push_back(p);
   }
   ShrinkOptions off = NoTunnelRetry();
-  off.retry_handles = false;
+  off.retry.enabled = false;
   auto first = ShrinkCloud(both, 1.0, off, voxel);
   ASSERT_TRUE(first.ok()) << first.status();
   ASSERT_EQ(first->topology.shells, 3) << first->Describe();
@@ -162,8 +162,8 @@ TEST(HandleRetryTest, NeverTradesAShellForAHandle) {
 TEST(HandleRetryTest, SameSizesMeanNoRetry) {
   // With the strict sizes equal to the default ones no removal differs: the run would repeat.
   ShrinkOptions o;
-  o.retry_tunnel_min_plate = o.guard_tunnel_min_plate;
-  o.retry_short_loop_min_plate = o.guard_short_loop_min_plate;
+  o.retry.tunnel_min_plate = o.guard.tunnel_min_plate;
+  o.retry.short_loop_min_plate = o.guard.short_loop_min_plate;
   auto run = ShrinkCloud(SynthCloud("torus", kRetryPoints), 1.0, o);
   ASSERT_TRUE(run.ok()) << run.status();
   EXPECT_EQ(run->topology.genus, std::vector<int>{1}) << run->Describe();
@@ -174,17 +174,17 @@ TEST(HandleRetryTest, SameSizesMeanNoRetry) {
 
 TEST(HandleRetryTest, RejectsOutOfRangeSizes) {
   ShrinkOptions o;
-  o.retry_tunnel_min_plate = 0;
+  o.retry.tunnel_min_plate = 0;
   absl::Status s = ValidateShrinkOptions(o);
   EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(s.message().find("retry_tunnel_min_plate"), std::string::npos) << s;
   o = ShrinkOptions{};
-  o.retry_short_loop_min_plate = -1;
+  o.retry.short_loop_min_plate = -1;
   s = ValidateShrinkOptions(o);
   EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(s.message().find("retry_short_loop_min_plate"), std::string::npos) << s;
   o = ShrinkOptions{};
-  o.retry_max_hard_rim = -0.5;
+  o.retry.max_hard_rim = -0.5;
   s = ValidateShrinkOptions(o);
   EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(s.message().find("retry_max_hard_rim"), std::string::npos) << s;

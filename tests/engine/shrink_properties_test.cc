@@ -174,7 +174,7 @@ TEST(ShrinkOptionsValidation, OutOfRangeOptionsNameTheField) {
   o.initial_plate = -3;
   EXPECT_THAT(ValidateShrinkOptions(o).message(), HasSubstr("initial_plate -3"));
   o = {};
-  o.thick_wall_run = 9;
+  o.chain.thick_wall_run = 9;
   EXPECT_THAT(ValidateShrinkOptions(o).message(), HasSubstr("thick_wall_run 9 is out of range [1, 5]"));
 }
 

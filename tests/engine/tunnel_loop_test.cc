@@ -60,9 +60,9 @@ TEST(TunnelLoop, GuardAllowsTheNotchFromItsPlateSizeAwayFromHardVoxels) {
   o.plate_size = 2;
   EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
   o.plate_size = 3;
-  o.short_loop_min_plate = 0;
+  o.sizes.short_loop_min_plate = 0;
   EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
-  o.short_loop_min_plate = 3;
+  o.sizes.short_loop_min_plate = 3;
   g.set(Coord{6, kMid, kMid}, kBoundaryHard);  // hard neighbours in two face layers
   g.set(Coord{5, kMid + 1, kMid}, kBoundaryHard);
   EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
@@ -94,11 +94,11 @@ TEST(TunnelLoop, GuardAllowsANotchAlongAWallWhenOneGenerationIsOnBothSides) {
   o.plate_size = 2;
   EXPECT_TRUE(SameGenerationAcrossTunnel(g, v, OutsideMask(g, v)));
   EXPECT_TRUE(GuardAllowsRemoval(g, v, o));
-  o.wall_notch_min_plate = 3;
+  o.sizes.wall_notch_min_plate = 3;
   EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
-  o.wall_notch_min_plate = 0;
+  o.sizes.wall_notch_min_plate = 0;
   EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
-  o.wall_notch_min_plate = 2;
+  o.sizes.wall_notch_min_plate = 2;
   g.set(Coord{5, kMid, kMid - 1}, OutsideState(2));
   EXPECT_FALSE(SameGenerationAcrossTunnel(g, v, OutsideMask(g, v)));
   EXPECT_FALSE(GuardAllowsRemoval(g, v, o));

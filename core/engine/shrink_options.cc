@@ -1,0 +1,67 @@
+#include "core/engine/shrink_options.h"
+
+#include <algorithm>
+
+#include "absl/strings/str_format.h"
+
+namespace membrane {
+
+absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
+  if (o.initial_plate < 0 || o.initial_plate > 100000) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "initial_plate %d is out of range [0, 100000] (0 = from the grid)", o.initial_plate));
+  }
+  if (o.chain.depth_bound < 0 || o.chain.depth_bound > 1000000) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "depth_bound %d is out of range [0, 1000000] (0 = unbounded)", o.chain.depth_bound));
+  }
+  if (o.closed_form_min_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "closed_form_min_plate %d must be >= 0 (0 = never)", o.closed_form_min_plate));
+  }
+  if (o.guard.tunnel_min_plate < 1) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "guard_tunnel_min_plate %d must be >= 1", o.guard.tunnel_min_plate));
+  }
+  if (o.guard.short_loop_min_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "guard_short_loop_min_plate %d must be >= 0 (0 = off)", o.guard.short_loop_min_plate));
+  }
+  if (o.guard.wall_notch_min_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "guard_wall_notch_min_plate %d must be >= 0 (0 = off)", o.guard.wall_notch_min_plate));
+  }
+  if (o.guard.short_loop_steps < 1 || o.guard.short_loop_steps > 64) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "guard_short_loop_steps %d is out of range [1, 64]", o.guard.short_loop_steps));
+  }
+  if (o.retry.tunnel_min_plate < 1) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "retry_tunnel_min_plate %d must be >= 1", o.retry.tunnel_min_plate));
+  }
+  if (o.retry.short_loop_min_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "retry_short_loop_min_plate %d must be >= 0", o.retry.short_loop_min_plate));
+  }
+  if (!(o.retry.max_hard_rim >= 0)) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "retry_max_hard_rim %g must be >= 0", o.retry.max_hard_rim));
+  }
+  if (o.chain.thick_wall_run < 1 || o.chain.thick_wall_run > 5) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("thick_wall_run %d is out of range [1, 5]", o.chain.thick_wall_run));
+  }
+  return absl::OkStatus();
+}
+
+GuardSizes StrictGuardSizes(const ShrinkOptions& o) {
+  GuardSizes strict = o.guard;
+  strict.tunnel_min_plate = std::max(o.guard.tunnel_min_plate, o.retry.tunnel_min_plate);
+  if (o.guard.short_loop_min_plate > 0) {
+    strict.short_loop_min_plate =
+        std::max(o.guard.short_loop_min_plate, o.retry.short_loop_min_plate);
+  }
+  return strict;
+}
+
+}  // namespace membrane

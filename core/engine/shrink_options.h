@@ -1,0 +1,48 @@
+// The options of the discrete membrane shrinking (membrane_shrinker.h). The chain rules and the
+// guard sizes are the structs the chains and the guard take themselves (contraction.h,
+// topology_guard.h): a generation passes them on whole.
+#ifndef MEMBRANE_CORE_ENGINE_SHRINK_OPTIONS_H_
+#define MEMBRANE_CORE_ENGINE_SHRINK_OPTIONS_H_
+
+#include "absl/status/status.h"
+#include "core/engine/contraction.h"
+#include "core/engine/plate_schedule.h"
+#include "core/engine/topology_guard.h"
+
+namespace membrane {
+
+// The handle retry (docs/engine-decisions.md, handle_retry.h): when the shrink ends with
+// handles, the generations from the first plate below tunnel_min_plate run again with tunnels
+// away from the data only from that plate size and short-loop tunnels only from
+// short_loop_min_plate; the result with fewer handles and no fewer shells is kept, unless what
+// it closed is a membrane across a scanned hole: at least max_hard_rim of the voxels
+// bordering it are hard (> 1: never refused on that ground).
+struct HandleRetryOptions {
+  bool enabled = true;
+  int tunnel_min_plate = 7;
+  int short_loop_min_plate = 4;
+  double max_hard_rim = 0.75;
+};
+
+struct ShrinkOptions {
+  PlateSchedule schedule = PlateSchedule::kHalving;
+  int initial_plate = 0;            // 0: from the grid (Algorithm 1)
+  ChainRules chain;                 // depth bound, thick-wall run, guard on or off
+  GuardSizes guard;                 // algorithm-notes 12
+  int closed_form_min_plate = 8;    // generations with n >= this try the closed form; 0 = never
+  bool silhouette_preshrink = false;  // algorithm-notes 3 (Fig. 21b); off by default
+  bool connect_inside_hard = true;  // section 7 post-process
+  HandleRetryOptions retry;
+};
+
+// Validates options: InvalidArgument naming the field and its allowed range.
+absl::Status ValidateShrinkOptions(const ShrinkOptions& options);
+
+// The guard sizes of the handle retry: tunnels away from the data only from the larger of the
+// two tunnel sizes, short-loop tunnels only from the larger of the two sizes (still off when
+// off); the rest as options.guard.
+GuardSizes StrictGuardSizes(const ShrinkOptions& options);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_SHRINK_OPTIONS_H_

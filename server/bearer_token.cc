@@ -18,24 +18,29 @@ bool ConstantTimeEqual(absl::string_view a, absl::string_view b) {
 
 }  // namespace
 
-grpc::Status CheckBearerToken(const grpc::ServerContext& context, absl::string_view expected) {
-  if (expected.empty()) return grpc::Status::OK;
+absl::StatusOr<const ClientToken*> CheckBearerToken(const grpc::ServerContext& context,
+                                                    const std::vector<ClientToken>& clients) {
+  if (clients.empty()) return nullptr;
   const auto& metadata = context.client_metadata();
   const auto found = metadata.find("authorization");
   if (found == metadata.end()) {
-    return grpc::Status(grpc::StatusCode::UNAUTHENTICATED,
-                        "this server needs a bearer token (\"authorization: Bearer <token>\"; "
-                        "membrane --token-file FILE)");
+    return absl::UnauthenticatedError(
+        "this server needs a bearer token (\"authorization: Bearer <token>\"; "
+        "membrane --token-file FILE)");
   }
   absl::string_view given(found->second.data(), found->second.size());
   // RFC 7235 auth schemes are case-insensitive: "bearer", "BEARER" and "Bearer" are one scheme.
   constexpr absl::string_view kScheme = "bearer ";
   const bool bearer = absl::StartsWithIgnoreCase(given, kScheme);
   if (bearer) given.remove_prefix(kScheme.size());
-  if (!bearer || !ConstantTimeEqual(given, expected)) {
-    return grpc::Status(grpc::StatusCode::UNAUTHENTICATED, "the bearer token is not this server's");
+  const ClientToken* match = nullptr;
+  for (const ClientToken& client : clients) {
+    if (ConstantTimeEqual(given, client.token)) match = &client;
   }
-  return grpc::Status::OK;
+  if (!bearer || match == nullptr) {
+    return absl::UnauthenticatedError("the bearer token is not this server's");
+  }
+  return match;
 }
 
 }  // namespace membrane::server

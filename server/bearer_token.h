@@ -1,21 +1,26 @@
-// The optional shared-secret check of membraned --token-file: every membrane.v1 call must
-// carry "authorization: Bearer <token>". Health and reflection stay open, so that container
-// probes and grpcurl's listing need no secret.
+// The bearer-token check of membraned --token-file: every membrane.v1 call must carry
+// "authorization: Bearer <token>" of one of the server's clients. Health and reflection stay
+// open, so that container probes and grpcurl's listing need no secret.
 #ifndef MEMBRANE_SERVER_BEARER_TOKEN_H_
 #define MEMBRANE_SERVER_BEARER_TOKEN_H_
 
-#include "absl/strings/string_view.h"
+#include <vector>
 
 #include <grpcpp/server_context.h>
 #include <grpcpp/support/status.h>
 
+#include "absl/status/statusor.h"
+#include "server/client_tokens.h"
+
 namespace membrane::server {
 
-// OK when `expected` is empty (no token configured) or the call's "authorization" metadata is
-// exactly "Bearer <expected>"; UNAUTHENTICATED saying what is missing or wrong otherwise. The
-// comparison takes the same time wherever the first difference is, so that timing does not
-// reveal a prefix of the token.
-grpc::Status CheckBearerToken(const grpc::ServerContext& context, absl::string_view expected);
+// The client whose token the call's "authorization" metadata carries ("Bearer <token>", the
+// scheme in any case, RFC 7235); null when `clients` is empty (no tokens configured: every
+// call is let in). UNAUTHENTICATED saying what is missing or wrong otherwise. Every token is
+// compared, each in the same time wherever the first difference is, so that timing reveals
+// neither a prefix of a token nor which client it nearly matched.
+absl::StatusOr<const ClientToken*> CheckBearerToken(const grpc::ServerContext& context,
+                                                    const std::vector<ClientToken>& clients);
 
 }  // namespace membrane::server
 

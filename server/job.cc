@@ -28,6 +28,7 @@ std::shared_ptr<Job> Job::Restore(const v1::Job& snapshot, std::vector<v1::JobEv
   const auto at = [](double unix_seconds) {
     return absl::UnixEpoch() + absl::Seconds(unix_seconds);
   };
+  job->client_ = snapshot.client();
   job->created_at_ = at(snapshot.created_unix_seconds());
   job->upload_bytes_ = snapshot.upload_bytes();
   absl::MutexLock lock(&job->mutex_);
@@ -46,6 +47,7 @@ std::shared_ptr<Job> Job::Resume(const v1::Job& snapshot, std::string upload,
                                  FinishHook on_finish) {
   auto job = std::make_shared<Job>(snapshot.id(), snapshot.peer(), snapshot.parameters(),
                                    std::move(upload), UploadMemory::Hold{}, std::move(on_finish));
+  job->client_ = snapshot.client();
   job->created_at_ = absl::UnixEpoch() + absl::Seconds(snapshot.created_unix_seconds());
   return job;
 }
@@ -79,6 +81,7 @@ v1::Job Job::Snapshot() const {
   job.set_stage(stage_);
   if (!status_.ok()) *job.mutable_error() = ToRpcStatus(status_);
   job.set_peer(peer_);
+  job.set_client(client_);
   job.set_upload_bytes(upload_bytes_);
   job.set_mesh_bytes(mesh_->size());
   job.set_created_unix_seconds(absl::ToDoubleSeconds(created_at_ - absl::UnixEpoch()));

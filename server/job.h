@@ -54,6 +54,10 @@ class Job {
 
   const std::string& id() const { return id_; }
   const std::string& peer() const { return peer_; }
+  // The name of the client (--token-file) that submitted the job; empty without tokens.
+  const std::string& client() const { return client_; }
+  // Sets client(); once, before the job is shared.
+  void set_client(std::string client) { client_ = std::move(client); }
   const v1::Parameters& parameters() const { return parameters_; }
   CancelToken& cancel_token() { return cancel_; }
 
@@ -151,6 +155,7 @@ class Job {
 
   const std::string id_;
   const std::string peer_;
+  std::string client_;  // set once, before the job is shared
   const v1::Parameters parameters_;
   uint64_t upload_bytes_;  // set once, before the job is shared
   absl::Time created_at_;  // set once, before the job is shared

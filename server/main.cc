@@ -20,11 +20,11 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_replace.h"
 #include "core/io/file_bytes.h"
-#include "core/io/token_file.h"
 #include "core/pipeline/machine_memory.h"
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/pipeline/thread_limits.h"
 #include "proto/job_routing.h"
+#include "server/client_tokens.h"
 #include "server/membrane_server.h"
 #include "server/memory_release.h"
 #include "server/memory_budget.h"
@@ -74,7 +74,10 @@ ABSL_FLAG(int64_t, decoder_memory_bytes, 4LL << 30, "address-space limit of the 
 ABSL_FLAG(std::string, decoder_path, "", "the membrane-decode binary; empty = beside membraned");
 ABSL_FLAG(double, retry_delay_seconds, 2, "retry delay sent with a full queue");
 ABSL_FLAG(std::string, token_file, "",
-          "file holding a bearer token every membrane.v1 call must carry; empty = none");
+          "the clients' bearer tokens, one of which every membrane.v1 call must carry: a file "
+          "of lines 'NAME TOKEN' or 'NAME TOKEN operator' (an operator sees every client's "
+          "jobs; the others their own), a file holding one bare token, or a directory of such "
+          "files; empty = none");
 ABSL_FLAG(std::string, tls_cert, "", "PEM certificate chain: serve TLS (with --tls-key)");
 ABSL_FLAG(std::string, tls_key, "", "PEM private key of --tls-cert");
 
@@ -94,13 +97,13 @@ std::string ExecutableDirectory() {
 // when one cannot be read or only one of the TLS pair is given.
 bool ReadSecrets(ServerOptions& o) {
   if (const std::string path = absl::GetFlag(FLAGS_token_file); !path.empty()) {
-    absl::StatusOr<std::string> token = ReadTokenFile(path);
-    if (!token.ok()) {
+    absl::StatusOr<std::vector<ClientToken>> clients = ReadClientTokens(path);
+    if (!clients.ok()) {
       std::fprintf(stderr, "membraned: --token-file: %s\n",
-                   std::string(token.status().message()).c_str());
+                   std::string(clients.status().message()).c_str());
       return false;
     }
-    o.bearer_token = *std::move(token);
+    o.clients = *std::move(clients);
   }
   const std::string cert = absl::GetFlag(FLAGS_tls_cert), key = absl::GetFlag(FLAGS_tls_key);
   if (cert.empty() != key.empty()) {

@@ -162,7 +162,9 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
                               {"upload_memory_bytes", absl::StrCat(options_.upload_memory_bytes)},
                               {"store_dir", options_.store_dir.empty() ? "-" : options_.store_dir},
                               {"tls", options_.tls_cert_pem.empty() ? "off" : "on"},
-                              {"token", options_.bearer_token.empty() ? "off" : "on"}});
+                              {"token", options_.clients.empty()
+                                            ? std::string("off")
+                                            : absl::StrCat(options_.clients.size(), " clients")}});
   return port;
 }
 

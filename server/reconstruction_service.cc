@@ -64,17 +64,30 @@ void ReconstructionService::ExpireResults() {
   }
 }
 
-std::shared_ptr<Job> ReconstructionService::FindJob(const std::string& id) {
+std::shared_ptr<Job> ReconstructionService::FindJob(const std::string& id,
+                                                    const Caller& caller) {
   ExpireResults();
-  return store_.Find(id);
+  std::shared_ptr<Job> job = store_.Find(id);
+  // Another client's job is answered as an unknown one: its existence is not theirs to learn.
+  if (job != nullptr && !caller.Sees(*job)) return nullptr;
+  return job;
 }
 
-grpc::Status ReconstructionService::Authenticate(const grpc::ServerContext& context) {
-  grpc::Status s = CheckBearerToken(context, options_.bearer_token);
-  if (!s.ok()) {
-    LogEvent("call_unauthenticated", {{"peer", context.peer()}, {"message", s.error_message()}});
+grpc::Status ReconstructionService::Authenticate(const grpc::ServerContext& context,
+                                                 Caller& caller) {
+  absl::StatusOr<const ClientToken*> client = CheckBearerToken(context, options_.clients);
+  if (!client.ok()) {
+    LogEvent("call_unauthenticated",
+             {{"peer", context.peer()}, {"message", std::string(client.status().message())}});
+    return ToGrpcStatus(client.status());
   }
-  return s;
+  // Without tokens every caller is one anonymous client, who sees every job.
+  if (*client == nullptr) {
+    caller = Caller{"", true};
+  } else {
+    caller = Caller{(*client)->name, (*client)->is_operator};
+  }
+  return grpc::Status::OK;
 }
 
 grpc::Status ReconstructionService::ReadUpload(
@@ -177,7 +190,8 @@ grpc::Status ReconstructionService::Reconstruct(
   };
   // Taken now: once the call is cancelled (a stall, a drop) its context no longer knows it.
   const std::string peer = context->peer();
-  if (grpc::Status s = Authenticate(*context); !s.ok()) return refused(s);
+  Caller caller;
+  if (grpc::Status s = Authenticate(*context, caller); !s.ok()) return refused(s);
   if (!accepting_) {
     return refused(ToGrpcStatusWithRetry(
         absl::UnavailableError("the server is shutting down; try again or another replica"),
@@ -187,7 +201,8 @@ grpc::Status ReconstructionService::Reconstruct(
   // the client sends its upload.
   const auto store_refused = [&](const absl::Status& s) {
     metrics_.StoreRefused();
-    LogEvent("job_refused", {{"peer", peer}, {"message", std::string(s.message())}});
+    LogEvent("job_refused",
+             {{"peer", peer}, {"client", caller.LogName()}, {"message", std::string(s.message())}});
     return refused(ToGrpcStatusWithRetry(s, absl::Seconds(options_.retry_delay_seconds)));
   };
   if (!store_.writable()) {
@@ -200,6 +215,7 @@ grpc::Status ReconstructionService::Reconstruct(
   UploadMemory::Hold hold;
   if (grpc::Status s = ReadUpload(context, stream, parameters, upload, hold); !s.ok()) {
     LogEvent("upload_rejected", {{"peer", peer},
+                                 {"client", caller.LogName()},
                                  {"code", absl::StrCat(s.error_code())},
                                  {"message", s.error_message()}});
     return refused(s);
@@ -208,8 +224,11 @@ grpc::Status ReconstructionService::Reconstruct(
   const std::string id = NewJobId();
   auto job = std::make_shared<Job>(id, peer, parameters, std::move(upload),
                                    std::move(hold), JobEndHook(metrics_, store_, id));
+  job->set_client(caller.name);
   const auto queue_refused = [&](const absl::Status& s) {
-    LogEvent("job_refused", {{"peer", peer}, {"message", std::string(s.message())}});
+    LogEvent("job_refused", {{"peer", peer},
+                             {"client", caller.LogName()},
+                             {"message", std::string(s.message())}});
     return refused(ToGrpcStatusWithRetry(s, absl::Seconds(options_.retry_delay_seconds)));
   };
   // The queue's answer before the store's write, so that a busy server writes nothing; the
@@ -224,6 +243,7 @@ grpc::Status ReconstructionService::Reconstruct(
   const v1::Job snapshot = job->Snapshot();
   LogEvent("job_accepted", {{"job", job->id()},
                             {"peer", peer},
+                            {"client", caller.LogName()},
                             {"upload_bytes", absl::StrCat(upload_bytes)},
                             {"queue_position", absl::StrCat(snapshot.queue_position())}});
   v1::JobEvent accepted;
@@ -241,8 +261,9 @@ grpc::Status ReconstructionService::Reconstruct(
 
 grpc::Status ReconstructionService::GetJob(grpc::ServerContext* context,
                                            const v1::GetJobRequest* request, v1::Job* response) {
-  if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
-  std::shared_ptr<Job> job = FindJob(request->job_id());
+  Caller caller;
+  if (grpc::Status s = Authenticate(*context, caller); !s.ok()) return s;
+  std::shared_ptr<Job> job = FindJob(request->job_id(), caller);
   if (job == nullptr) return JobNotFound(request->job_id(), options_.replica);
   *response = job->Snapshot();
   return grpc::Status::OK;
@@ -251,11 +272,12 @@ grpc::Status ReconstructionService::GetJob(grpc::ServerContext* context,
 grpc::Status ReconstructionService::WatchJob(grpc::ServerContext* context,
                                              const v1::WatchJobRequest* request,
                                              grpc::ServerWriter<v1::JobEvent>* writer) {
-  if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
-  std::shared_ptr<Job> job = FindJob(request->job_id());
+  Caller caller;
+  if (grpc::Status s = Authenticate(*context, caller); !s.ok()) return s;
+  std::shared_ptr<Job> job = FindJob(request->job_id(), caller);
   if (job == nullptr) return JobNotFound(request->job_id(), options_.replica);
   const std::string peer = context->peer();
-  LogEvent("job_watched", {{"job", job->id()}, {"peer", peer}});
+  LogEvent("job_watched", {{"job", job->id()}, {"peer", peer}, {"client", caller.LogName()}});
   v1::JobEvent snapshot;
   *snapshot.mutable_snapshot() = job->Snapshot();
   if (!WriteUnlessStalled(context, [&] { return writer->Write(snapshot); })) {
@@ -271,11 +293,16 @@ grpc::Status ReconstructionService::WatchJob(grpc::ServerContext* context,
 grpc::Status ReconstructionService::CancelJob(grpc::ServerContext* context,
                                               const v1::CancelJobRequest* request,
                                               v1::Job* response) {
-  if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
-  std::shared_ptr<Job> job = FindJob(request->job_id());
+  Caller caller;
+  if (grpc::Status s = Authenticate(*context, caller); !s.ok()) return s;
+  std::shared_ptr<Job> job = FindJob(request->job_id(), caller);
   if (job == nullptr) return JobNotFound(request->job_id(), options_.replica);
-  job->RequestCancel("cancelled by the client");
-  LogEvent("job_cancel_requested", {{"job", job->id()}, {"peer", context->peer()}});
+  // The job's own client is "the client"; an operator says who stopped it.
+  job->RequestCancel(caller.name == job->client()
+                         ? std::string("cancelled by the client")
+                         : absl::StrCat("cancelled by operator '", caller.name, "'"));
+  LogEvent("job_cancel_requested",
+           {{"job", job->id()}, {"peer", context->peer()}, {"client", caller.LogName()}});
   *response = job->Snapshot();
   return grpc::Status::OK;
 }
@@ -283,7 +310,8 @@ grpc::Status ReconstructionService::CancelJob(grpc::ServerContext* context,
 grpc::Status ReconstructionService::ListJobs(grpc::ServerContext* context,
                                              const v1::ListJobsRequest*,
                                              v1::ListJobsResponse* response) {
-  if (grpc::Status s = Authenticate(*context); !s.ok()) return s;
+  Caller caller;
+  if (grpc::Status s = Authenticate(*context, caller); !s.ok()) return s;
   // A list asked of one replica (membrane jobs list --replica) must not silently be another's.
   const auto asked = context->client_metadata().find(kReplicaHeader);
   if (asked != context->client_metadata().end()) {
@@ -295,7 +323,9 @@ grpc::Status ReconstructionService::ListJobs(grpc::ServerContext* context,
     }
   }
   ExpireResults();
-  for (const std::shared_ptr<Job>& job : store_.List()) *response->add_jobs() = job->Snapshot();
+  for (const std::shared_ptr<Job>& job : store_.List()) {
+    if (caller.Sees(*job)) *response->add_jobs() = job->Snapshot();
+  }
   return grpc::Status::OK;
 }
 

@@ -68,13 +68,23 @@ class ReconstructionService final : public v1::Reconstruction::Service {
                           grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
                           v1::Parameters& parameters, std::string& upload,
                           UploadMemory::Hold& hold);
-  // OK for a call with the configured bearer token (or when none is); UNAUTHENTICATED, logged
-  // with the peer, otherwise.
-  grpc::Status Authenticate(const grpc::ServerContext& context);
+  // Who made a call, as --token-file names it.
+  struct Caller {
+    std::string name;        // the token's client; empty on a server without tokens
+    bool sees_all = false;   // an operator, or a server without tokens
+    // Whether `job` is this caller's to see, watch, fetch and cancel.
+    bool Sees(const Job& job) const { return sees_all || job.client() == name; }
+    // For the log: the name, never the token; "-" without tokens.
+    std::string LogName() const { return name.empty() ? "-" : name; }
+  };
+  // OK, with the caller, for a call carrying the token of one of options_.clients (or any call
+  // when there are none); UNAUTHENTICATED, logged with the peer, otherwise.
+  grpc::Status Authenticate(const grpc::ServerContext& context, Caller& caller);
   // Drops the jobs finished more than options_.result_ttl_seconds ago.
   void ExpireResults();
-  // The job with `id` after dropping expired ones, or null.
-  std::shared_ptr<Job> FindJob(const std::string& id);
+  // The job with `id` after dropping expired ones, or null, also when it is another client's
+  // and `caller` is no operator.
+  std::shared_ptr<Job> FindJob(const std::string& id, const Caller& caller);
   std::string NewJobId() ABSL_LOCKS_EXCLUDED(id_mutex_);
   // Runs `write` (one write to the call of `context`, true when it went out), cancelling the
   // call when the write is held longer than options_.stall_seconds (it then returns false, as

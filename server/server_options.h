@@ -4,6 +4,9 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
+
+#include "server/client_tokens.h"
 
 namespace membrane::server {
 
@@ -45,7 +48,8 @@ struct ServerOptions {
   int64_t decoder_memory_bytes = 4LL << 30; // RLIMIT_AS of the decode subprocess
   std::string decoder_path;                 // the membrane-decode binary
   double retry_delay_seconds = 2;           // RetryInfo sent with a full queue
-  std::string bearer_token;                 // membrane.v1 calls must carry it; empty = open
+  // The clients whose bearer tokens membrane.v1 calls must carry (--token-file); empty = open.
+  std::vector<ClientToken> clients;
   std::string tls_cert_pem;                 // the server's certificate chain; empty = plaintext
   std::string tls_key_pem;                  // its private key (set with tls_cert_pem)
 };

@@ -5,8 +5,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <memory>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -78,6 +80,12 @@ class BalancerTest : public ::testing::Test {
 
   CliResult Run(const std::vector<std::string>& args) { return RunMembrane(args, dir_.path()); }
 
+  // nginx with the shipped configuration (LoopbackConfig) in front of `r0` and `r1` as
+  // membraned-0 and membraned-1, once it passes health checks through; its address in
+  // `address`. Null, the test failed, when it does not start.
+  std::unique_ptr<Subprocess> StartBalancer(const MembranedProcess& r0,
+                                            const MembranedProcess& r1, std::string& address);
+
   ScratchDir dir_;
 };
 
@@ -103,6 +111,38 @@ std::string LoopbackConfig(const ScratchDir& dir, const std::string& upstreams,
   return config;
 }
 
+std::unique_ptr<Subprocess> BalancerTest::StartBalancer(const MembranedProcess& r0,
+                                                        const MembranedProcess& r1,
+                                                        std::string& address) {
+  const int port = FreePort();
+  EXPECT_GT(port, 0);
+  address = absl::StrCat("127.0.0.1:", port);
+  const std::string upstreams = absl::StrCat(
+      "  upstream membraned-0 { server ", r0.address, "; }\n",
+      "  upstream membraned-1 { server ", r1.address, "; }\n",
+      "  upstream membraned-any { server ", r0.address, "; server ", r1.address, "; }\n");
+  std::string output;
+  if (TestConfig(LoopbackConfig(dir_, upstreams, address), output) != 0) {
+    ADD_FAILURE() << output;
+    return nullptr;
+  }
+  auto nginx = std::make_unique<Subprocess>(
+      std::vector<std::string>{kNginx, "-p", dir_.path(), "-c", dir_.File("test.conf"), "-g",
+                               "daemon off;"},
+      dir_.File("nginx.out"), dir_.File("nginx.err"));
+  // Health through the balancer once nginx listens.
+  int health = -1;
+  for (int attempt = 0; attempt < 50 && health != 0; ++attempt) {
+    health = Run({"health", "--server", address, "--timeout", "1"}).exit_code;
+    if (health != 0) absl::SleepFor(absl::Milliseconds(100));
+  }
+  if (health != 0) {
+    ADD_FAILURE() << ReadText(dir_.File("nginx.err"));
+    return nullptr;
+  }
+  return nginx;
+}
+
 TEST_F(BalancerTest, ShippedConfigurationIsValid) {
   std::string output;
   EXPECT_EQ(TestConfig(LoopbackConfig(dir_, "", "127.0.0.1:1"), output), 0) << output;
@@ -116,24 +156,9 @@ TEST_F(BalancerTest, CallsAboutAJobReachTheReplicaHoldingIt) {
   MembranedProcess r1 = StartMembraned(dir_, "r1", {"--replica=membraned-1"});
   ASSERT_FALSE(r0.address.empty());
   ASSERT_FALSE(r1.address.empty());
-  const int port = FreePort();
-  ASSERT_GT(port, 0);
-  const std::string balancer = absl::StrCat("127.0.0.1:", port);
-  const std::string upstreams = absl::StrCat(
-      "  upstream membraned-0 { server ", r0.address, "; }\n",
-      "  upstream membraned-1 { server ", r1.address, "; }\n",
-      "  upstream membraned-any { server ", r0.address, "; server ", r1.address, "; }\n");
-  std::string output;
-  ASSERT_EQ(TestConfig(LoopbackConfig(dir_, upstreams, balancer), output), 0) << output;
-  Subprocess nginx({kNginx, "-p", dir_.path(), "-c", dir_.File("test.conf"), "-g", "daemon off;"},
-                   dir_.File("nginx.out"), dir_.File("nginx.err"));
-  // Health through the balancer once nginx listens.
-  int health = -1;
-  for (int attempt = 0; attempt < 50 && health != 0; ++attempt) {
-    health = Run({"health", "--server", balancer, "--timeout", "1"}).exit_code;
-    if (health != 0) absl::SleepFor(absl::Milliseconds(100));
-  }
-  ASSERT_EQ(health, 0) << ReadText(dir_.File("nginx.err"));
+  std::string balancer;
+  std::unique_ptr<Subprocess> nginx = StartBalancer(r0, r1, balancer);
+  ASSERT_NE(nginx, nullptr);
 
   const std::string cloud = dir_.File("sphere.ply");
   ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "20000"}).exit_code, 0);
@@ -187,8 +212,59 @@ TEST_F(BalancerTest, CallsAboutAJobReachTheReplicaHoldingIt) {
             std::vector<std::string>{"membrane: server: replica membraned-7 is not reachable: it "
                                      "ended, and its jobs with it"})
       << gone.err;
-  nginx.Signal(SIGTERM);
-  nginx.Wait(10);
+  nginx->Signal(SIGTERM);
+  nginx->Wait(10);
+}
+
+// Behind the balancer as on one server, a client sees its own jobs only, on whichever
+// replica they are: another client's job is NOT_FOUND (exit 3) to get, watch and cancel; an
+// operator's token sees it.
+TEST_F(BalancerTest, EachClientSeesOnlyItsJobsThroughTheBalancer) {
+  ASSERT_TRUE(WriteFileBytes(dir_.File("clients"), "alice tok-alice\nbob tok-bob\n"
+                                                   "ops tok-ops operator\n")
+                  .ok());
+  for (const auto& [name, token] : {std::pair{"alice", "tok-alice"}, std::pair{"bob", "tok-bob"},
+                                    std::pair{"ops", "tok-ops"}}) {
+    ASSERT_TRUE(WriteFileBytes(dir_.File(name), std::string(token) + "\n").ok());
+  }
+  const std::string tokens = "--token-file=" + dir_.File("clients");
+  MembranedProcess r0 = StartMembraned(dir_, "r0", {"--replica=membraned-0", tokens});
+  MembranedProcess r1 = StartMembraned(dir_, "r1", {"--replica=membraned-1", tokens});
+  ASSERT_FALSE(r0.address.empty());
+  ASSERT_FALSE(r1.address.empty());
+  std::string balancer;
+  std::unique_ptr<Subprocess> nginx = StartBalancer(r0, r1, balancer);
+  ASSERT_NE(nginx, nullptr);
+  const auto as = [&](const std::string& client, std::vector<std::string> args) {
+    args.insert(args.end(), {"--server", balancer, "--token-file", dir_.File(client)});
+    return Run(args);
+  };
+  const std::string cloud = dir_.File("sphere.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "5000"}).exit_code, 0);
+  std::vector<std::string> ids;
+  for (int i = 0; i < 2; ++i) {  // one job on each replica
+    const CliResult r = as("alice", {"reconstruct", cloud, "-o", dir_.File("a.ply"), "-q"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const size_t at = r.out.find("job ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    ids.push_back(r.out.substr(at + 4, r.out.find(':', at) - at - 4));
+  }
+  for (const std::string& id : ids) {
+    EXPECT_EQ(as("alice", {"jobs", "get", id}).exit_code, 0) << id;
+    const CliResult get = as("bob", {"jobs", "get", id});
+    EXPECT_EQ(get.exit_code, 3) << get.err;
+    EXPECT_NE(get.err.find("no job '" + id + "' (unknown"), std::string::npos) << get.err;
+    EXPECT_EQ(as("bob", {"jobs", "watch", id, "-o", dir_.File("b.ply")}).exit_code, 3);
+    EXPECT_EQ(as("bob", {"jobs", "cancel", id}).exit_code, 3);
+    const std::string replica(ReplicaOfJobId(id));
+    EXPECT_EQ(as("bob", {"jobs", "list", "--replica", replica}).out, "");
+    EXPECT_EQ(as("ops", {"jobs", "list", "--replica", replica}).out.rfind(id, 0), 0u);
+    EXPECT_EQ(as("ops", {"jobs", "get", id}).exit_code, 0);
+  }
+  EXPECT_NE(ReadText(r0.log).find("client=alice"), std::string::npos);
+  EXPECT_EQ(ReadText(r0.log).find("tok-"), std::string::npos);
+  nginx->Signal(SIGTERM);
+  nginx->Wait(10);
 }
 
 }  // namespace

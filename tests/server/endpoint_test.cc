@@ -15,6 +15,7 @@ namespace membrane::testing {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 TEST(EndpointAddressTest, HostAndPortInRangeAreAccepted) {
   for (const char* address : {"127.0.0.1:50051", "localhost:1", "[::1]:65535",
@@ -63,8 +64,73 @@ TEST_F(ServiceTest, HealthAnswersForTheServiceByName) {
   EXPECT_THAT(Health("no.such.Service"), HasSubstr("ERROR"));
 }
 
+// Each client sees its own jobs only: another's job is NOT_FOUND for GetJob, WatchJob and
+// CancelJob, as an unknown one, and missing from ListJobs; an operator sees and cancels every
+// job, and the job's client learns who cancelled it. The log names clients, never tokens.
+TEST_F(ServiceTest, JobsAreSeenOnlyByTheirClientAndOperators) {
+  options_.clients = {{"alice", "tok-alice"}, {"bob", "tok-bob"}, {"ops", "tok-ops", true}};
+  ::testing::internal::CaptureStderr();
+  StartServer();
+  const auto context_of = [](const std::string& token) {
+    auto context = std::make_unique<grpc::ClientContext>();
+    context->AddMetadata("authorization", "Bearer " + token);
+    return context;
+  };
+  const auto get = [&](const std::string& token, const std::string& id) {
+    v1::GetJobRequest request;
+    request.set_job_id(id);
+    v1::Job job;
+    return stub_->GetJob(context_of(token).get(), request, &job);
+  };
+  const auto cancel = [&](const std::string& token, const std::string& id) {
+    v1::CancelJobRequest request;
+    request.set_job_id(id);
+    v1::Job job;
+    return stub_->CancelJob(context_of(token).get(), request, &job);
+  };
+  const auto listed = [&](const std::string& token) {
+    v1::ListJobsResponse list;
+    EXPECT_TRUE(stub_->ListJobs(context_of(token).get(), {}, &list).ok());
+    std::vector<std::string> ids;
+    for (const v1::Job& job : list.jobs()) ids.push_back(job.id() + ":" + job.client());
+    return ids;
+  };
+  token_ = "tok-alice";
+  const CallResult done = Reconstruct(DracoCloud("sphere", 2000), {});
+  ASSERT_TRUE(done.status.ok()) << done.status.error_message();
+  const std::string id = done.JobId();
+  const std::string running = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  ASSERT_FALSE(running.empty());
+
+  EXPECT_TRUE(get("tok-alice", id).ok());
+  const grpc::Status other = get("tok-bob", id);
+  EXPECT_EQ(other.error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_EQ(other.error_message(), "no job '" + id + "' (unknown, or its result expired)");
+  EXPECT_EQ(cancel("tok-bob", running).error_code(), grpc::StatusCode::NOT_FOUND);
+  token_ = "tok-bob";
+  EXPECT_EQ(Watch(id).status.error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_THAT(listed("tok-bob"), ::testing::IsEmpty());
+  EXPECT_THAT(listed("tok-alice"),
+              ::testing::UnorderedElementsAre(id + ":alice", running + ":alice"));
+  EXPECT_EQ(listed("tok-ops").size(), 2u);
+
+  ASSERT_TRUE(cancel("tok-ops", running).ok());
+  token_ = "tok-alice";
+  const CallResult cancelled = Watch(running);
+  EXPECT_EQ(cancelled.status.error_code(), grpc::StatusCode::CANCELLED);
+  EXPECT_THAT(cancelled.status.error_message(), HasSubstr("cancelled by operator 'ops'"));
+  server_->Shutdown(absl::ZeroDuration());
+  const std::string log = ::testing::internal::GetCapturedStderr();
+  EXPECT_THAT(log, HasSubstr("event=job_accepted job=" + id + " peer="));
+  EXPECT_THAT(log, HasSubstr("client=alice"));
+  EXPECT_THAT(log, HasSubstr("event=job_cancel_requested job=" + running));
+  EXPECT_THAT(log, HasSubstr("client=ops"));
+  EXPECT_THAT(log, Not(HasSubstr("tok-")));
+  EXPECT_THAT(log, HasSubstr("token=\"3 clients\""));
+}
+
 TEST_F(ServiceTest, BearerSchemeIsCaseInsensitiveAndTheTokenIsNot) {
-  options_.bearer_token = "s3cret";
+  options_.clients = {{"station-1", "s3cret"}};
   StartServer();
   auto list_with = [&](const std::string& authorization) {
     grpc::ClientContext context;

@@ -124,10 +124,15 @@ void SetDeadline(grpc::ClientContext& context, double seconds) {
 
 }  // namespace
 
+void ServiceTest::Authorize(grpc::ClientContext& context) const {
+  if (!token_.empty()) context.AddMetadata("authorization", "Bearer " + token_);
+}
+
 CallResult ServiceTest::Reconstruct(const std::string& upload, const v1::Parameters& parameters,
                                     UploadTweaks tweaks, double deadline_seconds) {
   grpc::ClientContext context;
   SetDeadline(context, deadline_seconds);
+  Authorize(context);
   auto stream = stub_->Reconstruct(&context);
   SendUpload(*stream, upload, parameters, tweaks);
   CallResult result;
@@ -172,6 +177,7 @@ std::string ServiceTest::StartJobInBackground(const std::string& upload,
                                               const v1::Parameters& parameters) {
   auto context = std::make_unique<grpc::ClientContext>();
   SetDeadline(*context, 120);
+  Authorize(*context);
   grpc::ClientContext* raw = context.get();
   background_contexts_.push_back(std::move(context));
   auto id = std::make_shared<std::string>();
@@ -196,6 +202,7 @@ std::string ServiceTest::StartJobInBackground(const std::string& upload,
 CallResult ServiceTest::Watch(const std::string& job_id, double deadline_seconds) {
   grpc::ClientContext context;
   SetDeadline(context, deadline_seconds);
+  Authorize(context);
   v1::WatchJobRequest request;
   request.set_job_id(job_id);
   auto reader = stub_->WatchJob(&context, request);

@@ -107,7 +107,13 @@ class ServiceTest : public ::testing::Test {
   // Parameters of a job that runs for many seconds (a fine grid), for cancel and queue tests.
   static v1::Parameters SlowParameters();
 
+  // Adds token_, when set, to a call's metadata as its bearer token.
+  void Authorize(grpc::ClientContext& context) const;
+
   server::ServerOptions options_;
+  // The bearer token Reconstruct, StartJobInBackground and Watch send (one of
+  // options_.clients); empty: none.
+  std::string token_;
   TestClock clock_;
   // The disk store's file operations for StartServer (a test's that fail); null: the real ones.
   std::unique_ptr<server::StoreFiles> store_files_;

@@ -686,6 +686,7 @@ TEST_F(ServiceTest, StalledUploadIsCancelledAndItsMemoryGivenBack) {
   const std::string cloud = DracoCloud("sphere", 20000);
   options_.stall_seconds = 60;
   options_.upload_memory_bytes = static_cast<int64_t>(cloud.size());
+  options_.metrics_listen = "127.0.0.1:0";
   StartServer();
   UploadTweaks stall;
   stall.send_bytes = cloud.size() / 2;
@@ -696,6 +697,13 @@ TEST_F(ServiceTest, StalledUploadIsCancelledAndItsMemoryGivenBack) {
   EXPECT_EQ(stalled.status.error_code(), grpc::StatusCode::CANCELLED)
       << stalled.status.error_message();
   EXPECT_TRUE(stalled.JobId().empty());
+  // The client hears of the cancel before the handler has returned the buffer's memory.
+  EXPECT_TRUE(WaitFor(
+      [&] {
+        return MetricValue(HttpGet(server_->metrics_port(), "/metrics"),
+                           "membrane_upload_held_bytes") == 0;
+      },
+      30));
   const CallResult next = Reconstruct(cloud, {}, {}, 30);
   EXPECT_TRUE(next.status.ok()) << next.status.error_message();
   // Logged (before the memory the next upload needed came back) with the caller's address,

@@ -10,6 +10,7 @@
 #include "proto/endpoint_address.h"
 #include "server/membrane_server.h"
 #include "tests/server/service_fixture.h"
+#include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
 namespace {
@@ -127,6 +128,24 @@ TEST_F(ServiceTest, JobsAreSeenOnlyByTheirClientAndOperators) {
   EXPECT_THAT(log, HasSubstr("client=ops"));
   EXPECT_THAT(log, Not(HasSubstr("tok-")));
   EXPECT_THAT(log, HasSubstr("token=\"3 clients\""));
+}
+
+// The store keeps whose a job is: after a restart on the same directory it is still its
+// client's alone.
+TEST_F(ServiceTest, StoredJobsStayTheirClients) {
+  ScratchDir dir;
+  options_.store_dir = dir.File("jobs");
+  options_.clients = {{"alice", "tok-alice"}, {"bob", "tok-bob"}};
+  StartServer();
+  token_ = "tok-alice";
+  const CallResult r = Reconstruct(DracoCloud("sphere", 2000), {});
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  server_->Shutdown(absl::ZeroDuration());
+  server_.reset();
+  StartServer();
+  EXPECT_EQ(Watch(r.JobId()).FinalState(), v1::SUCCEEDED);
+  token_ = "tok-bob";
+  EXPECT_EQ(Watch(r.JobId()).status.error_code(), grpc::StatusCode::NOT_FOUND);
 }
 
 TEST_F(ServiceTest, BearerSchemeIsCaseInsensitiveAndTheTokenIsNot) {

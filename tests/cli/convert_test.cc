@@ -8,8 +8,8 @@
 #include "core/io/point_cloud_io.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "tests/cli/cli_runner.h"
-#include "tests/io/io_test_util.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/io_test_util.h"
 #include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {

@@ -8,8 +8,8 @@
 #include "gmock/gmock.h"
 #include "core/io/point_cloud_io.h"
 #include "gtest/gtest.h"
-#include "tests/cli/cli_runner.h"
-#include "tests/cli/survey_cloud.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/uniform_noise.h"
 

@@ -7,10 +7,10 @@
 
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "tests/cli/cli_runner.h"
+#include "tests/support/cli_runner.h"
 #include "core/io/mesh_io.h"
 #include "tests/cli/json_value.h"
-#include "tests/cli/survey_cloud.h"
+#include "tests/support/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {

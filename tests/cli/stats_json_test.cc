@@ -9,7 +9,7 @@
 #include "core/engine/voxel_grid.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "tests/cli/cli_runner.h"
+#include "tests/support/cli_runner.h"
 #include "tests/cli/json_value.h"
 #include "tests/support/scratch_dir.h"
 

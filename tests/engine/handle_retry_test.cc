@@ -8,7 +8,7 @@
 #include "core/engine/plate_schedule.h"
 #include "core/engine/voxelization.h"
 #include "gtest/gtest.h"
-#include "tests/engine/shrink_fixture.h"
+#include "tests/support/shrink_fixture.h"
 
 namespace membrane {
 namespace {

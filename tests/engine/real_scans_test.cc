@@ -8,7 +8,7 @@
 #include "absl/strings/str_replace.h"
 #include "core/io/point_cloud_io.h"
 #include "gtest/gtest.h"
-#include "tests/engine/shrink_fixture.h"
+#include "tests/support/shrink_fixture.h"
 #include "tests/support/shared_data.h"
 
 namespace membrane {

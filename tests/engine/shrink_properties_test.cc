@@ -14,7 +14,7 @@
 #include "core/synth/cube_pinholes.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "tests/engine/shrink_fixture.h"
+#include "tests/support/shrink_fixture.h"
 
 namespace membrane {
 namespace {

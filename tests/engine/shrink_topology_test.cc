@@ -8,7 +8,7 @@
 #include "core/synth/cube_pinholes.h"
 #include "core/synth/shape_catalog.h"
 #include "gtest/gtest.h"
-#include "tests/engine/shrink_fixture.h"
+#include "tests/support/shrink_fixture.h"
 
 namespace membrane {
 namespace {

@@ -12,7 +12,7 @@
 #include "core/io/point_cloud_io.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "tests/io/io_test_util.h"
+#include "tests/support/io_test_util.h"
 #include "tests/support/scratch_dir.h"
 
 namespace membrane {

@@ -8,7 +8,7 @@
 
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "tests/io/io_test_util.h"
+#include "tests/support/io_test_util.h"
 
 namespace membrane {
 namespace {

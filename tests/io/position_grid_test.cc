@@ -10,7 +10,7 @@
 #include "core/io/draco_codec.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "tests/io/io_test_util.h"
+#include "tests/support/io_test_util.h"
 
 namespace membrane {
 namespace {

@@ -4,7 +4,7 @@
 #include "core/io/mesh_io.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "tests/io/io_test_util.h"
+#include "tests/support/io_test_util.h"
 
 namespace membrane {
 namespace {

@@ -4,7 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "tests/io/io_test_util.h"
+#include "tests/support/io_test_util.h"
 #include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {

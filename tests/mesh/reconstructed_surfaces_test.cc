@@ -20,7 +20,7 @@
 #include "core/mesh/output_grid.h"
 #include "core/pipeline/surface_builder.h"
 #include "gtest/gtest.h"
-#include "tests/engine/shrink_fixture.h"
+#include "tests/support/shrink_fixture.h"
 #include "tests/support/shared_data.h"
 
 namespace membrane {

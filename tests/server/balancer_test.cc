@@ -18,7 +18,7 @@
 #include "absl/time/clock.h"
 #include "core/io/file_bytes.h"
 #include "proto/job_routing.h"
-#include "tests/cli/cli_runner.h"
+#include "tests/support/cli_runner.h"
 #include "tests/server/membraned_process.h"
 #include "tests/server/subprocess.h"
 #include "tests/support/scratch_dir.h"

@@ -24,7 +24,7 @@
 #include "absl/time/time.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
 #include "proto/crc32c.h"
-#include "tests/cli/cli_runner.h"
+#include "tests/support/cli_runner.h"
 #include "tests/server/http_get.h"
 #include "tests/server/membraned_process.h"
 #include "tests/server/subprocess.h"

@@ -8,6 +8,10 @@
 
 #include "core/io/file_format.h"
 
+// The entry point each fuzz target defines (fuzz_<format>.cc), called with every input by
+// libFuzzer, or by replay_main.cc in a build without clang.
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
+
 namespace membrane::fuzzing {
 
 // Feeds `data` to ReadPointCloudFromBuffer as `format` (and, for formats that hold meshes,

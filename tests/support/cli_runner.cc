@@ -1,4 +1,4 @@
-#include "tests/cli/cli_runner.h"
+#include "tests/support/cli_runner.h"
 
 #include <fcntl.h>
 #include <sys/wait.h>

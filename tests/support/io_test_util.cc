@@ -1,4 +1,4 @@
-#include "tests/io/io_test_util.h"
+#include "tests/support/io_test_util.h"
 
 #include <algorithm>
 #include <bit>

@@ -1,4 +1,4 @@
-#include "tests/cli/survey_cloud.h"
+#include "tests/support/survey_cloud.h"
 
 #include "core/engine/voxelization.h"
 #include "core/io/point_cloud_io.h"

@@ -1,7 +1,7 @@
 // Helpers shared by the engine's tests: voxelize a cloud at a multiple of the formula-(1)
 // voxel size, shrink it, and report what the tests assert on.
-#ifndef MEMBRANE_TESTS_ENGINE_SHRINK_FIXTURE_H_
-#define MEMBRANE_TESTS_ENGINE_SHRINK_FIXTURE_H_
+#ifndef MEMBRANE_TESTS_SUPPORT_SHRINK_FIXTURE_H_
+#define MEMBRANE_TESTS_SUPPORT_SHRINK_FIXTURE_H_
 
 #include <string>
 #include <vector>
@@ -33,4 +33,4 @@ PointCloud SynthCloud(const std::string& shape, int64_t points, double density_r
 
 }  // namespace membrane::testing
 
-#endif  // MEMBRANE_TESTS_ENGINE_SHRINK_FIXTURE_H_
+#endif  // MEMBRANE_TESTS_SUPPORT_SHRINK_FIXTURE_H_

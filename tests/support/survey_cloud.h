@@ -1,7 +1,7 @@
 // Georeferenced copies of the synthetic clouds: the tests of coordinates that the readers move
 // near 0 (core/io/coordinate_shift.h), for the client and the service alike.
-#ifndef MEMBRANE_TESTS_CLI_SURVEY_CLOUD_H_
-#define MEMBRANE_TESTS_CLI_SURVEY_CLOUD_H_
+#ifndef MEMBRANE_TESTS_SUPPORT_SURVEY_CLOUD_H_
+#define MEMBRANE_TESTS_SUPPORT_SURVEY_CLOUD_H_
 
 #include <array>
 #include <string>
@@ -25,4 +25,4 @@ std::array<double, 3> FileBoxCentre(const TriangleMesh& mesh);
 
 }  // namespace membrane::testing
 
-#endif  // MEMBRANE_TESTS_CLI_SURVEY_CLOUD_H_
+#endif  // MEMBRANE_TESTS_SUPPORT_SURVEY_CLOUD_H_

@@ -1,6 +1,6 @@
 // Helpers shared by the io tests: scratch files, sample geometry, geometric comparisons.
-#ifndef MEMBRANE_TESTS_IO_IO_TEST_UTIL_H_
-#define MEMBRANE_TESTS_IO_IO_TEST_UTIL_H_
+#ifndef MEMBRANE_TESTS_SUPPORT_IO_TEST_UTIL_H_
+#define MEMBRANE_TESTS_SUPPORT_IO_TEST_UTIL_H_
 
 #include <array>
 #include <string>
@@ -41,4 +41,4 @@ std::string LittleEndianDouble(double value);
 
 }  // namespace membrane::testing
 
-#endif  // MEMBRANE_TESTS_IO_IO_TEST_UTIL_H_
+#endif  // MEMBRANE_TESTS_SUPPORT_IO_TEST_UTIL_H_

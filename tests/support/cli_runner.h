@@ -1,6 +1,6 @@
 // Runs the built `membrane` binary as a subprocess, the way scripts on scanning stations do.
-#ifndef MEMBRANE_TESTS_CLI_CLI_RUNNER_H_
-#define MEMBRANE_TESTS_CLI_CLI_RUNNER_H_
+#ifndef MEMBRANE_TESTS_SUPPORT_CLI_RUNNER_H_
+#define MEMBRANE_TESTS_SUPPORT_CLI_RUNNER_H_
 
 #include <string>
 #include <vector>
@@ -25,4 +25,4 @@ std::vector<std::string> ErrorLines(const std::string& text);
 
 }  // namespace membrane::testing
 
-#endif  // MEMBRANE_TESTS_CLI_CLI_RUNNER_H_
+#endif  // MEMBRANE_TESTS_SUPPORT_CLI_RUNNER_H_

@@ -1,4 +1,4 @@
-#include "tests/engine/shrink_fixture.h"
+#include "tests/support/shrink_fixture.h"
 
 #include <cstdlib>
 #include <iostream>

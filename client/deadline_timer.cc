@@ -4,9 +4,16 @@
 
 namespace membrane::client {
 
-DeadlineTimer::DeadlineTimer(double seconds, CancelToken* token) {
-  if (seconds > 0)
-    thread_ = std::thread([this, seconds, token] { WaitThenCancel(seconds, token); });
+DeadlineTimer::DeadlineTimer(double seconds, CancelToken* token)
+    : DeadlineTimer(seconds, token, nullptr) {}
+
+DeadlineTimer::DeadlineTimer(double seconds, CancelToken* token, TimerClock* clock)
+    : clock_(clock != nullptr ? clock : &steady_clock_) {
+  if (seconds <= 0) return;
+  const TimerClock::TimePoint deadline =
+      clock_->Now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                          std::chrono::duration<double>(seconds));
+  thread_ = std::thread([this, deadline, token] { WaitThenCancel(deadline, token); });
 }
 
 DeadlineTimer::~DeadlineTimer() {
@@ -18,15 +25,18 @@ DeadlineTimer::~DeadlineTimer() {
   if (thread_.joinable()) thread_.join();
 }
 
-void DeadlineTimer::WaitThenCancel(double seconds, CancelToken* token) {
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(seconds));
+void DeadlineTimer::WaitThenCancel(TimerClock::TimePoint deadline, CancelToken* token) {
   std::unique_lock<std::mutex> lock(mutex_);
-  // wait_until returns true when stopping_ became true before the deadline.
-  if (stop_requested_.wait_until(lock, deadline, [this] { return stopping_; })) return;
-  expired_.store(true);
-  token->Cancel();
+  // A stop that comes before the deadline wins, and one that comes with it too: the work
+  // finished in time.
+  while (!stopping_) {
+    if (clock_->Now() >= deadline) {
+      expired_.store(true);
+      token->Cancel();
+      return;
+    }
+    clock_->WaitUntil(stop_requested_, lock, deadline);
+  }
 }
 
 }  // namespace membrane::client

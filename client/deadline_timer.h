@@ -7,15 +7,20 @@
 #include <mutex>
 #include <thread>
 
+#include "client/timer_clock.h"
 #include "core/base/cancel_token.h"
 
 namespace membrane::client {
 
 class DeadlineTimer {
  public:
-  // Cancels `token` (not owned; must outlive the timer) `seconds` from now, unless the timer
-  // is destroyed first. `seconds` <= 0 means no deadline: no thread is started.
+  // Cancels `token` (not owned; must outlive the timer) `seconds` from now on the steady clock,
+  // unless the timer is destroyed first. `seconds` <= 0 means no deadline: no thread is
+  // started.
   DeadlineTimer(double seconds, CancelToken* token);
+  // The same, `seconds` from now on `clock` (not owned; must outlive the timer; null: the
+  // steady clock).
+  DeadlineTimer(double seconds, CancelToken* token, TimerClock* clock);
   // Stops the thread without cancelling (the work finished in time) and joins it.
   ~DeadlineTimer();
 
@@ -27,8 +32,10 @@ class DeadlineTimer {
   bool expired() const { return expired_.load(); }
 
  private:
-  void WaitThenCancel(double seconds, CancelToken* token);
+  void WaitThenCancel(TimerClock::TimePoint deadline, CancelToken* token);
 
+  SteadyTimerClock steady_clock_;  // the clock when none is given
+  TimerClock* const clock_;
   std::mutex mutex_;
   std::condition_variable stop_requested_;
   bool stopping_ = false;  // guarded by mutex_

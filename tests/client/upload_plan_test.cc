@@ -1,0 +1,93 @@
+// PlanUpload: the voxel size the server is to use, and the fewest position bits whose Draco
+// step is at most 1/kStepsPerVoxel of that voxel.
+#include "client/upload_plan.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/engine/voxelization.h"
+#include "core/geometry/point_cloud.h"
+#include "gtest/gtest.h"
+
+namespace membrane::client {
+namespace {
+
+// A lattice of n^3 distinct points spaced `spacing` apart from the origin.
+PointCloud Lattice(int n, float spacing) {
+  PointCloud cloud;
+  for (int x = 0; x < n; ++x)
+    for (int y = 0; y < n; ++y)
+      for (int z = 0; z < n; ++z)
+        cloud.points.push_back({x * spacing, y * spacing, z * spacing});
+  return cloud;
+}
+
+// Draco's quantization step for `bits` over `range`.
+double Step(double range, int bits) { return range / (std::ldexp(1.0, bits) - 1); }
+
+TEST(UploadPlan, DefaultVoxelIsFormulaOneOfTheCloud) {
+  const PointCloud cloud = Lattice(20, 1.0f);  // side 19, 8000 points
+  const UploadPlan plan = PlanUpload(cloud, 0);
+  Box3d bounds;
+  bounds.max = {19, 19, 19};
+  EXPECT_NEAR(plan.voxel_size, EstimateVoxelSize(bounds, 8000), 1e-9);
+  // 19 / 0.52 * 8 = 292 steps: the default 11 bits (2047 steps) are fine enough.
+  EXPECT_EQ(plan.bits, kDefaultUploadBits);
+}
+
+TEST(UploadPlan, KeepsTheRequestedVoxel) {
+  EXPECT_DOUBLE_EQ(PlanUpload(Lattice(10, 1.0f), 0.25).voxel_size, 0.25);
+}
+
+TEST(UploadPlan, StepIsAtMostAnEighthOfTheVoxelWithTheFewestBits) {
+  const PointCloud cloud = Lattice(10, 1.0f);  // side 9
+  const double range = 9;
+  int previous_bits = 0;
+  // Ever finer voxels, from 3 model units down to 3e-6.
+  for (double voxel = 3; voxel > 3e-6; voxel /= 3) {
+    const UploadPlan plan = PlanUpload(cloud, voxel);
+    ASSERT_DOUBLE_EQ(plan.voxel_size, voxel);
+    EXPECT_GE(plan.bits, kDefaultUploadBits) << voxel;
+    EXPECT_LE(Step(range, plan.bits), voxel / kStepsPerVoxel) << voxel;
+    if (plan.bits > kDefaultUploadBits) {
+      // One bit fewer would be too coarse.
+      EXPECT_GT(Step(range, plan.bits - 1), voxel / kStepsPerVoxel) << voxel;
+    }
+    EXPECT_GE(plan.bits, previous_bits) << voxel;  // finer voxels never take fewer bits
+    previous_bits = plan.bits;
+  }
+  EXPECT_GT(previous_bits, kDefaultUploadBits);
+}
+
+TEST(UploadPlan, TheLargestSideSetsTheBits) {
+  // A slab 1000 x 10 x 10 with a voxel of 0.05: 1000 / 0.05 * 8 = 160000 steps, 18 bits
+  // (2^17 - 1 = 131071 is too few); the short sides alone would need 11.
+  PointCloud cloud;
+  for (int i = 0; i <= 100; ++i) {
+    cloud.points.push_back({i * 10.0f, 0, 0});
+    cloud.points.push_back({i * 10.0f, 10, 10});
+    cloud.points.push_back({i * 10.0f, 0, 10});
+  }
+  EXPECT_EQ(PlanUpload(cloud, 0.05).bits, 18);
+}
+
+TEST(UploadPlan, BitsStopAtThirty) {
+  const UploadPlan plan = PlanUpload(Lattice(10, 1.0f), 1e-9);
+  EXPECT_EQ(plan.bits, 30);
+}
+
+TEST(UploadPlan, ADegenerateCloudLeavesTheVoxelToTheServer) {
+  const UploadPlan empty = PlanUpload(PointCloud{}, 0);
+  EXPECT_EQ(empty.voxel_size, 0);
+  EXPECT_EQ(empty.bits, kDefaultUploadBits);
+
+  PointCloud flat;  // every point in the plane z = 0
+  for (int x = 0; x < 10; ++x)
+    for (int y = 0; y < 10; ++y) flat.points.push_back({float(x), float(y), 0});
+  const UploadPlan coplanar = PlanUpload(flat, 0);
+  EXPECT_EQ(coplanar.voxel_size, 0);
+  EXPECT_EQ(coplanar.bits, kDefaultUploadBits);
+}
+
+}  // namespace
+}  // namespace membrane::client

@@ -227,8 +227,11 @@ TEST_F(EndToEndTest, DroppedClientReattachesAndGetsItsMesh) {
 TEST_F(EndToEndTest, BusyServerIsRetriedWithBackoffThenExitFour) {
   StartServer({"--queue=0", "--retry_delay_seconds=0.3"});
   const std::string big = Synth("sphere", 30000);
+  // The slow job must hold the one worker past the busy client's 9 s on an idle machine too:
+  // at voxel 0.008 it ends in about 6 s on 2 cores; 0.0065 takes over a minute (it is
+  // cancelled below).
   auto slow = RunInBackground({"reconstruct", big, "-o", dir_.File("slow.ply"), "--server",
-                               address_, "--voxel-size", "0.008", "-q"},
+                               address_, "--voxel-size", "0.0065", "-q"},
                               "slow");
   ASSERT_NE(WaitForText(log_, "event=job_started", 20).find("job_started"), std::string::npos);
   // Asked again until the timeout, however many attempts that takes: 0.3 s (the server's

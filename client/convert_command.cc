@@ -39,8 +39,8 @@ absl::StatusOr<FileFormat> AnyFormat(const std::string& path, FileUse cloud_use,
   return format.status();
 }
 
-// True when a file of `format` holding `bytes` is to be read as a mesh. PLY, OBJ, STL and
-// Draco can hold meshes; a Draco file says in its header which it holds.
+// True when a file of `format` holding `bytes` is to be read as a mesh. PLY, OBJ, STL, OFF
+// and Draco can hold meshes; a Draco file says in its header which it holds.
 absl::StatusOr<bool> HoldsMesh(FileFormat format, const std::string& bytes,
                                const std::string& path) {
   switch (format) {
@@ -166,7 +166,7 @@ Command AddConvertCommand(CLI::App& parent) {
       "convert", "convert a point cloud or a mesh between formats (chosen by extension)");
   auto flags = std::make_shared<ConvertFlags>();
   app->add_option("INPUT", flags->input,
-                  "point cloud or mesh: .ply .obj .xyz .txt .pts .pcd .stl .drc")
+                  "point cloud or mesh: .ply .obj .off .xyz .txt .pts .pcd .stl .drc")
       ->required();
   app->add_option("OUTPUT", flags->output, "point cloud or mesh: .ply .obj .xyz .stl .drc")
       ->required();

@@ -64,7 +64,7 @@ struct ReconstructFlags {
 };
 
 void DefineFlags(CLI::App& app, ReconstructFlags& f) {
-  app.add_option("INPUT", f.input, "point cloud: .ply .obj .xyz .txt .pts .pcd .drc")->required();
+  app.add_option("INPUT", f.input, "point cloud: .ply .obj .off .xyz .txt .pts .pcd .drc")->required();
   app.add_option("-o,--output", f.output, "mesh to write: .ply .obj .stl .drc")->required();
   CLI::Option* local = app.add_flag("--local", f.local, "run the reconstruction in this process");
   // --server is the default unless --local.

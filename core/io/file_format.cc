@@ -16,7 +16,7 @@ struct ExtensionEntry {
   FileFormat format;
 };
 
-constexpr std::array<ExtensionEntry, 8> kExtensions = {{
+constexpr std::array<ExtensionEntry, 9> kExtensions = {{
     {".ply", FileFormat::kPly},
     {".obj", FileFormat::kObj},
     {".xyz", FileFormat::kXyz},
@@ -25,14 +25,17 @@ constexpr std::array<ExtensionEntry, 8> kExtensions = {{
     {".pcd", FileFormat::kPcd},
     {".stl", FileFormat::kStl},
     {".drc", FileFormat::kDrc},
+    {".off", FileFormat::kOff},
 }};
 
 constexpr FileFormat kReadPointCloud[] = {FileFormat::kPly, FileFormat::kObj, FileFormat::kXyz,
-                                          FileFormat::kPcd, FileFormat::kDrc};
+                                          FileFormat::kPcd, FileFormat::kDrc, FileFormat::kOff};
 constexpr FileFormat kWritePointCloud[] = {FileFormat::kPly, FileFormat::kXyz, FileFormat::kObj,
                                            FileFormat::kDrc};
-constexpr FileFormat kMesh[] = {FileFormat::kPly, FileFormat::kObj, FileFormat::kStl,
-                                FileFormat::kDrc};
+constexpr FileFormat kReadMesh[] = {FileFormat::kPly, FileFormat::kObj, FileFormat::kStl,
+                                    FileFormat::kDrc, FileFormat::kOff};
+constexpr FileFormat kWriteMesh[] = {FileFormat::kPly, FileFormat::kObj, FileFormat::kStl,
+                                     FileFormat::kDrc};
 
 absl::string_view UseDescription(FileUse use) {
   switch (use) {
@@ -50,8 +53,8 @@ absl::Span<const FileFormat> SupportedFormats(FileUse use) {
   switch (use) {
     case FileUse::kReadPointCloud: return kReadPointCloud;
     case FileUse::kWritePointCloud: return kWritePointCloud;
-    case FileUse::kReadMesh:
-    case FileUse::kWriteMesh: return kMesh;
+    case FileUse::kReadMesh: return kReadMesh;
+    case FileUse::kWriteMesh: return kWriteMesh;
   }
   return {};
 }
@@ -72,6 +75,7 @@ absl::string_view FormatName(FileFormat format) {
     case FileFormat::kPcd: return "PCD";
     case FileFormat::kStl: return "STL";
     case FileFormat::kDrc: return "Draco";
+    case FileFormat::kOff: return "OFF";
   }
   return "unknown";
 }

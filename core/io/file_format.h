@@ -17,6 +17,7 @@ enum class FileFormat {
   kPcd,  // .pcd: Point Cloud Library, ascii or binary DATA
   kStl,  // .stl: binary (ascii is read too)
   kDrc,  // .drc: Draco-compressed point cloud or mesh
+  kOff,  // .off: Object File Format (read only), "OFF" header, vertex and face lines
 };
 
 // What a caller wants to do with a file; each use supports its own set of formats.

@@ -6,6 +6,7 @@
 #include "core/io/geometry_checks.h"
 #include "core/io/obj_reader.h"
 #include "core/io/obj_writer.h"
+#include "core/io/off_reader.h"
 #include "core/io/parse_error.h"
 #include "core/io/ply_reader.h"
 #include "core/io/ply_writer.h"
@@ -21,6 +22,7 @@ absl::StatusOr<TriangleMesh> Parse(absl::string_view data, FileFormat format,
     case FileFormat::kPly: return ReadPlyMesh(data, source);
     case FileFormat::kObj: return ReadObjMesh(data, source);
     case FileFormat::kStl: return ReadStlMesh(data, source);
+    case FileFormat::kOff: return ReadOffMesh(data, source);
     case FileFormat::kDrc: {
       absl::StatusOr<TriangleMesh> mesh = DecodeDracoMesh(data);
       if (!mesh.ok()) return PrefixStatus(source, mesh.status());
@@ -71,7 +73,8 @@ absl::StatusOr<std::string> WriteMeshToBuffer(const TriangleMesh& mesh, FileForm
       return std::move(encoded->bytes);
     }
     case FileFormat::kXyz:
-    case FileFormat::kPcd: break;
+    case FileFormat::kPcd:
+    case FileFormat::kOff: break;
   }
   return absl::InvalidArgumentError(
       absl::StrCat("meshes cannot be written as ", FormatName(format)));

@@ -8,6 +8,7 @@
 #include "core/io/geometry_checks.h"
 #include "core/io/obj_reader.h"
 #include "core/io/obj_writer.h"
+#include "core/io/off_reader.h"
 #include "core/io/parse_error.h"
 #include "core/io/pcd_reader.h"
 #include "core/io/ply_reader.h"
@@ -30,6 +31,7 @@ absl::StatusOr<PointCloud> Parse(absl::string_view data, FileFormat format,
       if (!decoded.ok()) return PrefixStatus(source, decoded.status());
       return std::move(decoded->cloud);
     }
+    case FileFormat::kOff: return ReadOffPointCloud(data, source);
     case FileFormat::kStl: break;
   }
   return absl::InvalidArgumentError(
@@ -71,7 +73,8 @@ absl::StatusOr<std::string> WritePointCloudToBuffer(const PointCloud& cloud, Fil
       return std::move(encoded->bytes);
     }
     case FileFormat::kPcd:
-    case FileFormat::kStl: break;
+    case FileFormat::kStl:
+    case FileFormat::kOff: break;
   }
   return absl::InvalidArgumentError(
       absl::StrCat("point clouds cannot be written as ", FormatName(format)));

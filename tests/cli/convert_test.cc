@@ -142,6 +142,36 @@ TEST_F(ConvertTest, OutputThatIsADirectoryFailsBeforeReading) {
   EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("it is a directory")));
 }
 
+TEST_F(ConvertTest, OffCubeOfQuadsBecomesAClosedTriangleMesh) {
+  const std::string off = dir_.File("cube.off");
+  std::ofstream(off) << "OFF\n8 6 12\n"
+                        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                        "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
+  const CliResult r = Run({"convert", off, dir_.File("cube.ply")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("8 vertices and 12 faces"));
+  const CliResult check = Run({"check", dir_.File("cube.ply")});
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+}
+
+TEST_F(ConvertTest, OffCloudIsReconstructed) {
+  const std::string xyz = dir_.File("sphere.xyz");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", xyz, "--points", "4000"}).exit_code, 0);
+  std::ifstream in(xyz);
+  std::string body, line;
+  int points = 0;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    body += line + "\n";
+    ++points;
+  }
+  const std::string off = dir_.File("sphere.off");
+  std::ofstream(off) << "OFF\n" << points << " 0 0\n" << body;
+  const CliResult r = Run({"reconstruct", off, "-o", dir_.File("sphere.ply"), "--local", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("4000 points"));
+}
+
 TEST_F(ConvertTest, UnknownOutputExtensionFailsBeforeReading) {
   const CliResult r = Run({"convert", dir_.File("absent.ply"), dir_.File("out.vtk")});
   EXPECT_EQ(r.exit_code, 3);

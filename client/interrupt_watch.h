@@ -1,6 +1,6 @@
 // What Ctrl-C does to `membrane reconstruct --server`: the job lives on the server, so
-// stopping the client must say what becomes of it. Without this the process died silently and
-// the user could not tell whether the job ran on, nor how to get its mesh.
+// stopping the client must say what becomes of it: a silent exit leaves the user unable to tell
+// whether the job runs on, or how to get its mesh.
 #ifndef MEMBRANE_CLIENT_INTERRUPT_WATCH_H_
 #define MEMBRANE_CLIENT_INTERRUPT_WATCH_H_
 

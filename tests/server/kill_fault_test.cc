@@ -22,10 +22,9 @@
 
 #include "absl/synchronization/mutex.h"
 #include "absl/time/clock.h"
-#include "core/io/draco_codec.h"
-#include "core/synth/synthesize.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
 #include "proto/crc32c.h"
+#include "tests/server/draco_upload.h"
 #include "tests/server/membraned_process.h"
 #include "tests/server/subprocess.h"
 #include "tests/support/scratch_dir.h"
@@ -124,19 +123,6 @@ Outcome Follow(v1::Reconstruction::Stub& stub, const std::string& id, absl::Dura
   return outcome;
 }
 
-std::string DracoCloud(const std::string& shape, int points) {
-  SynthOptions synth;
-  synth.shape = shape;
-  synth.points = points;
-  absl::StatusOr<PointCloud> cloud = SynthesizeShape(synth);
-  EXPECT_TRUE(cloud.ok()) << cloud.status();
-  DracoOptions lossless;
-  lossless.position_quantization_bits = 0;
-  absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, lossless);
-  EXPECT_TRUE(encoded.ok()) << encoded.status();
-  return encoded->bytes;
-}
-
 // One job a client submitted and follows.
 struct Followed {
   std::string id;
@@ -156,8 +142,9 @@ TEST(KillFaultTest, EveryAcceptedJobSucceedsThroughSigkills) {
   ASSERT_FALSE(server.address.empty());
   const std::string address = server.address;
   std::vector<std::string> logs = {server.log};
-  const std::vector<std::string> clouds = {DracoCloud("sphere", 4000), DracoCloud("torus", 4000),
-                                           DracoCloud("two-spheres", 3000)};
+  const std::vector<std::string> clouds = {LosslessDracoCloud("sphere", 4000),
+                                           LosslessDracoCloud("torus", 4000),
+                                           LosslessDracoCloud("two-spheres", 3000)};
   // The meshes of an undisturbed run.
   std::vector<std::string> expected;
   {

@@ -5,8 +5,7 @@
 
 #include "absl/synchronization/notification.h"
 #include "absl/time/clock.h"
-#include "core/io/draco_codec.h"
-#include "core/synth/synthesize.h"
+#include "tests/server/draco_upload.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "proto/crc32c.h"
 
@@ -77,16 +76,7 @@ void ServiceTest::StartServer() {
 }
 
 std::string ServiceTest::DracoCloud(const std::string& shape, int points) {
-  SynthOptions synth;
-  synth.shape = shape;
-  synth.points = points;
-  absl::StatusOr<PointCloud> cloud = SynthesizeShape(synth);
-  EXPECT_TRUE(cloud.ok()) << cloud.status();
-  DracoOptions lossless;
-  lossless.position_quantization_bits = 0;
-  absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, lossless);
-  EXPECT_TRUE(encoded.ok()) << encoded.status();
-  return encoded->bytes;
+  return LosslessDracoCloud(shape, points);
 }
 
 v1::Parameters ServiceTest::SlowParameters() {

@@ -110,6 +110,7 @@ class Decimator {
   double Place(int32_t u, int32_t w, Vec3d& point) const;
   void Push(int32_t u, int32_t w);
   bool TryCollapse(int32_t a, int32_t b);
+  // True when a moved face (the scratch below) would meet another face or a fellow.
   bool MovedFacesCross(int32_t a, int32_t b, const Vec3d& point);
   void Compact();
 
@@ -276,7 +277,6 @@ void Decimator::FillQueue() {
 }
 
 bool Decimator::MovedFacesCross(int32_t a, int32_t b, const Vec3d& point) {
-  (void)point;
   const size_t n = moved_.size();
   // Among themselves: all share the new vertex; a fan proven embedded needs no pair tests.
   ring_.clear();
@@ -331,7 +331,6 @@ bool Decimator::MovedFacesCross(int32_t a, int32_t b, const Vec3d& point) {
       crossing = MeshTrianglesIntersect(moved_corners_[i], moved_triangles_[i], c, t);
     }
   });
-  (void)b;
   return crossing;
 }
 

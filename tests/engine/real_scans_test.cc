@@ -1,56 +1,120 @@
-// The real models of ../shared/data: the expected shells and genus listed in its README, at
-// the formula-(1) voxel size. Skips when ../shared/data is absent.
+// The models of ../shared/data: the expected shells and genus listed in its README (the second
+// batch's cloud JSONs hold the same), at 1x, 1.25x, 1.5x and 2x the formula-(1) voxel size.
+// Skips when ../shared/data is absent. A run that misses prints where its handles and merges
+// are (voxel coordinates of the loops and contacts).
+#include <algorithm>
 #include <iostream>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
 #include "absl/strings/str_replace.h"
 #include "core/io/point_cloud_io.h"
 #include "gtest/gtest.h"
-#include "tests/support/shrink_fixture.h"
 #include "tests/support/shared_data.h"
+#include "tests/support/shared_models.h"
+#include "tests/support/shrink_fixture.h"
+#include "tests/support/topology_locator.h"
 
 namespace membrane {
 namespace {
 
-struct Expected {
-  const char* model;
-  int shells;
-  int genus;  // -1: reported, not asserted (the teapot's openings make it ambiguous)
+using testing::SharedModel;
+
+struct ScanRun {
+  const SharedModel* model;
+  std::string kind;
+  double factor;
+  std::string Cloud() const { return absl::StrCat(model->model, "-", kind); }
 };
 
-constexpr Expected kModels[] = {
-    {"stanford-bunny", 1, 0}, {"rocker-arm", 1, 1}, {"fandisk", 1, 0},
-    {"spot", 1, 0},           {"teapot", 1, -1},
+void PrintTo(const ScanRun& r, std::ostream* os) { *os << r.Cloud() << " at " << r.factor << "x"; }
+
+// The runs the shrink gets wrong today (issue 18): each still runs and prints what it gives and
+// where the handles and merges are, and is reported as skipped. A run in this list that comes
+// out right fails, so that the list is kept to what is still wrong.
+struct KnownMiss {
+  const char* cloud;
+  double factor;
+};
+constexpr KnownMiss kKnownMisses[] = {
+    {"stanford-bunny-scan", 1.25},   {"stanford-bunny-variable", 2.0},
+    {"spot-scan", 1.25},             {"horse-scan", 1.0},
+    {"horse-scan", 1.25},            {"horse-scan", 1.5},
+    {"horse-scan", 2.0},             {"horse-variable", 1.0},
+    {"horse-variable", 2.0},         {"cow-scan", 1.5},
+    {"cow-variable", 1.5},           {"beast-scan", 1.0},
+    {"beast-scan", 1.25},            {"beast-scan", 1.5},
+    {"beast-scan", 2.0},             {"beast-variable", 1.0},
+    {"beast-variable", 1.25},        {"beast-variable", 1.5},
+    {"beast-variable", 2.0},         {"ogre-belt-scan", 1.0},
+    {"ogre-belt-scan", 1.5},         {"cow-spot-belt-scan", 1.0},
+    {"cow-spot-belt-scan", 1.25},    {"cow-spot-belt-scan", 1.5},
+    {"cow-spot-belt-scan", 2.0},     {"pierced-disk-scan", 1.0},
+    {"pierced-disk-scan", 1.25},     {"pierced-disk-scan", 1.5},
+    {"pierced-disk-scan", 2.0},
 };
 
-class RealScanTest : public ::testing::TestWithParam<std::tuple<Expected, std::string>> {};
+bool IsKnownMiss(const ScanRun& run) {
+  return std::any_of(std::begin(kKnownMisses), std::end(kKnownMisses), [&](const KnownMiss& k) {
+    return run.Cloud() == k.cloud && run.factor == k.factor;
+  });
+}
+
+std::vector<ScanRun> AllRuns() {
+  std::vector<ScanRun> runs;
+  for (const SharedModel& m : testing::SharedModels()) {
+    for (const std::string& kind : m.kinds) {
+      for (double factor : {1.0, 1.25, 1.5, 2.0}) runs.push_back({&m, kind, factor});
+    }
+  }
+  return runs;
+}
+
+std::string Expected(const SharedModel& m) {
+  return absl::StrCat("shells=", m.expected.shells, " genus=[",
+                      m.genus_asserted ? absl::StrJoin(m.expected.genus, ",") : "any", "]");
+}
+
+class RealScanTest : public ::testing::TestWithParam<ScanRun> {};
 
 TEST_P(RealScanTest, HasTheExpectedShellsAndGenus) {
   MEMBRANE_REQUIRE_SHARED_DATA(data_dir);
-  const auto& [expected, kind] = GetParam();
-  const std::string path = absl::StrCat(data_dir, "/clouds/", expected.model, "-", kind, ".ply");
+  const ScanRun& r = GetParam();
+  const std::string path = absl::StrCat(data_dir, "/clouds/", r.Cloud(), ".ply");
   absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
   ASSERT_TRUE(cloud.ok()) << cloud.status();
-  auto run = testing::ShrinkCloud(*cloud, 1.0);
+  auto run = testing::ShrinkCloud(*cloud, r.factor);
   ASSERT_TRUE(run.ok()) << run.status();
   RecordProperty("topology", run->Describe());
-  std::cout << expected.model << "-" << kind << ": " << run->Describe() << "\n";
-  EXPECT_TRUE(run->invariants.ok()) << run->Describe();
-  EXPECT_EQ(run->topology.shells, expected.shells) << run->Describe();
-  if (expected.genus >= 0 && run->topology.shells == 1) {
-    EXPECT_EQ(run->topology.genus[0], expected.genus) << run->Describe();
+  const std::string what = absl::StrFormat("%s at %gx: %s", r.Cloud(), r.factor, run->Describe());
+  std::cout << what << "\n";
+  ASSERT_TRUE(run->invariants.ok()) << what;
+  EXPECT_EQ(run->topology.cavities, 0) << what;
+  const bool right =
+      testing::HasExpectedTopology(*r.model, run->topology.shells, run->topology.genus);
+  const std::string where =
+      right ? "" : testing::LocateHandlesAndContacts(run->voxels.grid);
+  if (IsKnownMiss(r)) {
+    EXPECT_FALSE(right) << what << ": a known miss came out right; remove it from kKnownMisses";
+    if (!right) {
+      GTEST_SKIP() << "known miss (issue 18): " << what << ", expected " << Expected(*r.model)
+                   << "\n" << where;
+    }
+    return;
   }
+  EXPECT_TRUE(right) << what << ", expected " << Expected(*r.model) << "\n" << where;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    SharedData, RealScanTest,
-    ::testing::Combine(::testing::ValuesIn(kModels), ::testing::Values("scan", "variable")),
-    [](const auto& info) {
-      return absl::StrReplaceAll(
-          absl::StrCat(std::get<0>(info.param).model, "_", std::get<1>(info.param)), {{"-", "_"}});
-    });
+INSTANTIATE_TEST_SUITE_P(SharedData, RealScanTest, ::testing::ValuesIn(AllRuns()),
+                         [](const auto& info) {
+                           const ScanRun& r = info.param;
+                           return absl::StrReplaceAll(absl::StrCat(r.Cloud(), "_x", r.factor),
+                                                      {{"-", "_"}, {".", "p"}});
+                         });
 
 }  // namespace
 }  // namespace membrane

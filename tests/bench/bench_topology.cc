@@ -1,0 +1,222 @@
+// bench_topology: the topology table of the shrink. Every cloud of ../shared/data/clouds at
+// 1x, 1.25x, 1.5x and 2x its formula-(1) voxel size, and the synthetic shapes of
+// tests/engine/shrink_topology_test.cc, each shrunk once (ShrinkMembrane, default options): the
+// shells and genus against the expected ones, the shrink's wall seconds, and for every miss
+// where its handles and merges are. See README.md.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
+#include "absl/strings/str_split.h"
+#include "core/engine/membrane_invariants.h"
+#include "core/engine/membrane_shrinker.h"
+#include "core/engine/voxel_topology.h"
+#include "core/engine/voxelization.h"
+#include "core/io/point_cloud_io.h"
+#include "core/synth/cube_pinholes.h"
+#include "core/synth/shape_catalog.h"
+#include "core/synth/synthesize.h"
+#include "tests/bench/bench_util.h"
+#include "tests/support/shared_models.h"
+#include "tests/support/topology_locator.h"
+
+namespace membrane::bench {
+namespace {
+
+constexpr char kUsage[] =
+    "usage: bench_topology [--factors 1,1.25,1.5,2] [--models NAME,...] [--no-synthetic]\n"
+    "                      [--no-real] [--locate] [--shared DIR]\n"
+    "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
+    "  --models LIST    only clouds and shapes whose name contains one of these\n"
+    "  --locate         print where the handles and merges of every miss are\n"
+    "  --shared DIR     the shared folder holding data/clouds (default: $MEMBRANE_SHARED_DIR,\n"
+    "                   else <repo>/../shared)\n";
+
+struct Options {
+  std::vector<double> factors = {1.0, 1.25, 1.5, 2.0};
+  std::vector<std::string> models;
+  bool synthetic = true;
+  bool real = true;
+  bool locate = false;
+  std::string shared_dir;
+};
+
+bool ParseArgs(int argc, char** argv, Options& o) {
+  const char* env = std::getenv("MEMBRANE_SHARED_DIR");
+  o.shared_dir = env != nullptr && *env != '\0' ? env : MEMBRANE_SOURCE_DIR "/../shared";
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--factors" && has_value) {
+      o.factors.clear();
+      for (absl::string_view f : absl::StrSplit(argv[++i], ',', absl::SkipEmpty())) {
+        double v = 0;
+        if (!absl::SimpleAtod(f, &v) || v <= 0) return false;
+        o.factors.push_back(v);
+      }
+    } else if (arg == "--models" && has_value) {
+      o.models = absl::StrSplit(argv[++i], ',', absl::SkipEmpty());
+    } else if (arg == "--shared" && has_value) {
+      o.shared_dir = argv[++i];
+    } else if (arg == "--no-synthetic") {
+      o.synthetic = false;
+    } else if (arg == "--no-real") {
+      o.real = false;
+    } else if (arg == "--locate") {
+      o.locate = true;
+    } else {
+      return false;
+    }
+  }
+  return !o.factors.empty();
+}
+
+bool Selected(const Options& o, const std::string& name) {
+  if (o.models.empty()) return true;
+  for (const std::string& m : o.models)
+    if (name.find(m) != std::string::npos) return true;
+  return false;
+}
+
+struct Tally {
+  int right = 0, runs = 0;
+  double seconds = 0;
+};
+
+// Shrinks `cloud` at `voxel_size` and prints one row; true when the topology is `expected`.
+bool RunOne(const Options& o, const std::string& name, double factor, const PointCloud& cloud,
+            double voxel_size, const ShapeTopology& expected, bool genus_asserted, Tally& tally) {
+  VoxelizeOptions vo;
+  vo.voxel_size = voxel_size;
+  absl::StatusOr<Voxelization> vox = Voxelize(cloud.points, vo);
+  std::string row = absl::StrFormat("%-26s %5.2fx ", name, factor);
+  if (!vox.ok()) {
+    std::printf("%sERROR voxelize: %s\n", row.c_str(), vox.status().ToString().c_str());
+    ++tally.runs;
+    return false;
+  }
+  const double t0 = Now();
+  absl::StatusOr<ShrinkResult> result =
+      ShrinkMembrane(vox->grid, ShrinkOptions{}, {}, CancelToken::Never());
+  const double seconds = Now() - t0;
+  ++tally.runs;
+  if (!result.ok()) {
+    std::printf("%sERROR shrink: %s\n", row.c_str(), result.status().ToString().c_str());
+    return false;
+  }
+  tally.seconds += seconds;
+  const VoxelTopology topo = ComputeVoxelTopology(vox->grid);
+  InvariantOptions io;
+  io.expected_hard_voxels = vox->hard_voxels;
+  const absl::Status inv = CheckMembraneInvariants(vox->grid, io);
+  std::vector<int> genus = topo.genus;
+  std::sort(genus.begin(), genus.end());
+  const bool right = inv.ok() && topo.shells == expected.shells && topo.cavities == 0 &&
+                     (!genus_asserted || genus == expected.genus);
+  tally.right += right;
+  const auto& d = vox->grid.dims();
+  std::printf("%s%12s %7.3f  %-16s %-16s %s%s\n", row.c_str(),
+              absl::StrCat(d[0], "x", d[1], "x", d[2]).c_str(), seconds,
+              absl::StrCat(topo.shells, " / [", absl::StrJoin(genus, ","), "]").c_str(),
+              genus_asserted ? absl::StrCat(expected.shells, " / [",
+                                            absl::StrJoin(expected.genus, ","), "]")
+                                   .c_str()
+                             : absl::StrCat(expected.shells, " / -").c_str(),
+              right ? "ok" : "MISS", inv.ok() ? "" : absl::StrCat(" ", inv.ToString()).c_str());
+  if (!right && o.locate) {
+    std::printf("%s", testing::LocateHandlesAndContacts(vox->grid).c_str());
+  }
+  std::fflush(stdout);
+  return right;
+}
+
+void PrintHeader() {
+  std::printf("%-26s %6s %12s %7s  %-16s %-16s %s\n", "cloud", "voxel", "grid", "shrink",
+              "shells / genus", "expected", "");
+}
+
+void RunReal(const Options& o, Tally& tally) {
+  for (const testing::SharedModel& m : testing::SharedModels()) {
+    for (const std::string& kind : m.kinds) {
+      const std::string name = absl::StrCat(m.model, "-", kind);
+      if (!Selected(o, name)) continue;
+      const std::string path = absl::StrCat(o.shared_dir, "/data/clouds/", name, ".ply");
+      absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
+      if (!cloud.ok()) {
+        std::printf("%-26s SKIPPED: %s\n", name.c_str(), cloud.status().ToString().c_str());
+        continue;
+      }
+      absl::StatusOr<Box3d> box = CheckedBounds(cloud->points);
+      if (!box.ok()) continue;
+      const double l = EstimateVoxelSize(*box, static_cast<int64_t>(cloud->points.size()));
+      for (double f : o.factors) {
+        RunOne(o, name, f, *cloud, f * l, m.expected, m.genus_asserted, tally);
+      }
+    }
+  }
+}
+
+// The runs of tests/engine/shrink_topology_test.cc.
+void RunSynthetic(const Options& o, Tally& tally) {
+  for (const char* shape : {"sphere", "two-spheres", "torus", "capped-sphere"}) {
+    for (double density : {1.0, 30.0}) {
+      const std::string name = absl::StrCat(shape, density > 1 ? "-density30" : "");
+      if (!Selected(o, name)) continue;
+      SynthOptions s;
+      s.shape = shape;
+      s.points = 60000;
+      s.density_ratio = density;
+      s.seed = 7;
+      absl::StatusOr<PointCloud> cloud = SynthesizeShape(s);
+      if (!cloud.ok()) continue;
+      absl::StatusOr<Box3d> box = CheckedBounds(cloud->points);
+      if (!box.ok()) continue;
+      const double l = EstimateVoxelSize(*box, static_cast<int64_t>(cloud->points.size()));
+      for (double f : o.factors) {
+        RunOne(o, name, f, *cloud, f * l, ExpectedTopology(shape), true, tally);
+      }
+    }
+  }
+  if (!Selected(o, "cube-pinholes")) return;
+  SynthOptions s;
+  s.shape = "cube-pinholes";
+  s.points = 60000;
+  absl::StatusOr<CubePinholesGrid> grid = CubePinholesGridFor(s);
+  absl::StatusOr<PointCloud> cloud = SynthesizeCubePinholes(s);
+  if (!grid.ok() || !cloud.ok()) return;
+  for (double f : o.factors) {
+    RunOne(o, "cube-pinholes", f, *cloud, f * grid->voxel_size, ExpectedTopology("cube-pinholes"),
+           true, tally);
+  }
+}
+
+int Main(int argc, char** argv) {
+  Options o;
+  if (!ParseArgs(argc, argv, o)) {
+    std::fputs(kUsage, stderr);
+    return 2;
+  }
+  std::printf("bench_topology: load average %s; shrink wall seconds, one run each\n",
+              LoadAverage().c_str());
+  PrintHeader();
+  Tally real, synthetic;
+  if (o.real) RunReal(o, real);
+  if (o.synthetic) RunSynthetic(o, synthetic);
+  std::printf("right: real %d of %d (shrink %.2f s), synthetic %d of %d (shrink %.2f s); load "
+              "average %s\n",
+              real.right, real.runs, real.seconds, synthetic.right, synthetic.runs,
+              synthetic.seconds, LoadAverage().c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace membrane::bench
+
+int main(int argc, char** argv) { return membrane::bench::Main(argc, argv); }

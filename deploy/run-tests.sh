@@ -53,6 +53,6 @@ phase_done "ThreadSanitizer build and thread tests"
 echo "== libFuzzer smoke of the readers (clang, ASan/UBSan)"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DMEMBRANE_FUZZ=ON -DMEMBRANE_BENCH=OFF -DMEMBRANE_TEST_DIRS="io"
-cmake --build build-fuzz -j "$JOBS" --target fuzz_io_ply fuzz_io_obj fuzz_io_xyz fuzz_io_pcd fuzz_io_drc fuzz_io_stl
+cmake --build build-fuzz -j "$JOBS" --target fuzz_io_ply fuzz_io_obj fuzz_io_xyz fuzz_io_pcd fuzz_io_drc fuzz_io_stl fuzz_io_off
 ctest --test-dir build-fuzz -R '^fuzz_io_' --output-on-failure -j "$JOBS"
 phase_done "libFuzzer build and smoke"

@@ -44,7 +44,7 @@ void CheckReaders(const uint8_t* data, size_t size, FileFormat format) {
     Require(ValidOrigin(cloud->origin), "a point cloud with an invalid origin");
   }
   if (format != FileFormat::kPly && format != FileFormat::kObj && format != FileFormat::kDrc &&
-      format != FileFormat::kStl) {
+      format != FileFormat::kStl && format != FileFormat::kOff) {
     return;
   }
   absl::StatusOr<TriangleMesh> mesh = ReadMeshFromBuffer(bytes, format, "fuzz");

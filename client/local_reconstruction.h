@@ -29,7 +29,7 @@ struct ReconstructionParams {
 // params.output, reporting each stage (and each plate generation) to `progress`. Returns the
 // measurements; the output file is written even when the mesh check finds the surface not
 // closed or not manifold (the caller decides what that means).
-// Errors: the reader's status (InvalidArgument / NotFound / Unimplemented, message naming the
+// Errors: the reader's status (InvalidArgument / NotFound, message naming the
 // file) for unreadable input; InvalidArgument naming the file for a degenerate cloud (no
 // points, all equal, coplanar); ResourceExhausted for a grid over the voxel budget, naming
 // --voxel-size and --voxel-budget, and for a grid or a surface over params.memory_limit_bytes

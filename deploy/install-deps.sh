@@ -14,6 +14,7 @@ BUILD=(
   libabsl-dev
   libgrpc++-dev libgrpc-dev protobuf-compiler protobuf-compiler-grpc libprotobuf-dev
   libdraco-dev
+  liblzf-dev                 # PCD DATA binary_compressed
   libcli11-dev
   prometheus-cpp-dev         # membraned --metrics-listen
 )

@@ -11,22 +11,26 @@
 #include "core/io/binary_scalar.h"
 #include "core/io/coordinate_shift.h"
 #include "core/io/parse_error.h"
+#include "core/io/pcd_compressed.h"
 #include "core/io/pcd_header.h"
 
 namespace membrane {
 namespace {
 
 // Where one of x, y, z sits in a point: its byte offset in a binary row, its value index in
-// an ascii line, and its type.
+// an ascii line, the bytes of the fields before it in a binary_compressed row (which leaves
+// out the padding fields "_"), and its type.
 struct AxisSlot {
   size_t byte_offset = 0;
   uint64_t value_index = 0;
+  size_t packed_offset = 0;
   ScalarType type = ScalarType::kFloat32;
 };
 
 struct PointLayout {
   std::array<AxisSlot, 3> axes;
   size_t row_bytes = 0;         // bytes per point in binary
+  size_t packed_row_bytes = 0;  // bytes per point in binary_compressed
   uint64_t values_per_row = 0;  // values per point in ascii
 };
 
@@ -42,11 +46,13 @@ absl::StatusOr<PointLayout> LayoutOf(const PcdHeader& header, absl::string_view 
             source, ": PCD field '", field.name, "' must be TYPE F with SIZE 4 or 8 and COUNT 1"));
       }
       found[axis] = true;
-      layout.axes[axis] = {layout.row_bytes, layout.values_per_row,
+      layout.axes[axis] = {layout.row_bytes, layout.values_per_row, layout.packed_row_bytes,
                            field.size == 8 ? ScalarType::kFloat64 : ScalarType::kFloat32};
     }
     // Cannot overflow: ParsePcdHeader bounds each count by the file size.
     layout.row_bytes += field.size * field.count;
+    // PCL leaves the padding fields out when it compresses.
+    if (field.name != "_") layout.packed_row_bytes += field.size * field.count;
     layout.values_per_row += field.count;
   }
   for (int axis = 0; axis < 3; ++axis) {
@@ -56,6 +62,29 @@ absl::StatusOr<PointLayout> LayoutOf(const PcdHeader& header, absl::string_view 
     }
   }
   return layout;
+}
+
+// The cloud of `points` points whose axis `axis` (0-2) of point i is stored at
+// value_at(i, axis), little endian, of the layout's type.
+template <typename ValueAt>
+PointCloud DecodePoints(uint64_t points, const PointLayout& layout, const ValueAt& value_at) {
+  PointCloud cloud;
+  CoordinateShift shift;
+  bool float32_positions = true;  // CoordinateShift::NarrowStored
+  for (const AxisSlot& slot : layout.axes) float32_positions &= slot.type == ScalarType::kFloat32;
+  cloud.points.resize(points);
+  for (uint64_t i = 0; i < points; ++i) {
+    double point[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      // PCL writes binary data in host order, which is little endian on every platform PCL
+      // is used on.
+      point[axis] = DecodeScalar(value_at(i, axis), layout.axes[axis].type,
+                                 ByteOrder::kLittleEndian);
+    }
+    cloud.points[i] = shift.NarrowStored(point[0], point[1], point[2], float32_positions);
+  }
+  cloud.origin = shift.origin();
+  return cloud;
 }
 
 absl::StatusOr<PointCloud> ReadBinary(absl::string_view data, const PcdHeader& header,
@@ -69,25 +98,24 @@ absl::StatusOr<PointCloud> ReadBinary(absl::string_view data, const PcdHeader& h
                                    " (", layout.row_bytes, " bytes each from byte ", start,
                                    "; only ", remaining, " bytes remain)"));
   }
-  PointCloud cloud;
-  CoordinateShift shift;
-  bool float32_positions = true;  // CoordinateShift::NarrowStored
-  for (const AxisSlot& slot : layout.axes) float32_positions &= slot.type == ScalarType::kFloat32;
-  cloud.points.resize(header.points);
   const char* rows = data.data() + start;
-  for (uint64_t i = 0; i < header.points; ++i) {
-    const char* row = rows + i * layout.row_bytes;
-    double point[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      const AxisSlot& slot = layout.axes[axis];
-      // PCL writes binary data in host order, which is little endian on every platform PCL
-      // is used on.
-      point[axis] = DecodeScalar(row + slot.byte_offset, slot.type, ByteOrder::kLittleEndian);
-    }
-    cloud.points[i] = shift.NarrowStored(point[0], point[1], point[2], float32_positions);
-  }
-  cloud.origin = shift.origin();
-  return cloud;
+  return DecodePoints(header.points, layout, [&](uint64_t i, int axis) {
+    return rows + i * layout.row_bytes + layout.axes[axis].byte_offset;
+  });
+}
+
+// binary_compressed: the same values, each field's column for all points after the last.
+absl::StatusOr<PointCloud> ReadBinaryCompressed(absl::string_view data, const PcdHeader& header,
+                                                const PointLayout& layout,
+                                                absl::string_view source) {
+  absl::StatusOr<std::string> body = DecompressPcdBody(data, header.body_offset, header.points,
+                                                       layout.packed_row_bytes, source);
+  if (!body.ok()) return body.status();
+  // DecompressPcdBody checked points x packed_row_bytes against the 32-bit size.
+  return DecodePoints(header.points, layout, [&](uint64_t i, int axis) {
+    const AxisSlot& slot = layout.axes[axis];
+    return body->data() + slot.packed_offset * header.points + i * ScalarSize(slot.type);
+  });
 }
 
 absl::StatusOr<PointCloud> ReadAscii(absl::string_view data, const PcdHeader& header,
@@ -153,15 +181,14 @@ absl::StatusOr<PointCloud> ReadAscii(absl::string_view data, const PcdHeader& he
 absl::StatusOr<PointCloud> ReadPcdPointCloud(absl::string_view data, absl::string_view source) {
   absl::StatusOr<PcdHeader> header = ParsePcdHeader(data, source);
   if (!header.ok()) return header.status();
-  if (header->encoding == PcdEncoding::kBinaryCompressed) {
-    return absl::UnimplementedError(
-        absl::StrCat(source,
-                     ": PCD DATA binary_compressed is not supported; save it as binary or ascii "
-                     "(e.g. with pcl_convert_pcd_ascii_binary)"));
-  }
   absl::StatusOr<PointLayout> layout = LayoutOf(*header, source);
   if (!layout.ok()) return layout.status();
-  if (header->encoding == PcdEncoding::kBinary) return ReadBinary(data, *header, *layout, source);
+  switch (header->encoding) {
+    case PcdEncoding::kBinary: return ReadBinary(data, *header, *layout, source);
+    case PcdEncoding::kBinaryCompressed:
+      return ReadBinaryCompressed(data, *header, *layout, source);
+    case PcdEncoding::kAscii: break;
+  }
   return ReadAscii(data, *header, *layout, source);
 }
 

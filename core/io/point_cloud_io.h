@@ -24,10 +24,10 @@ absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path);
 // of zero points is OK when the file is well formed. Errors:
 //   InvalidArgument "<source>: ..." for empty input, a format that cannot hold point clouds
 //     (kStl), malformed, truncated or lying input (with the byte offset where it went wrong),
-//     and "<source>: 12 points have NaN or infinite coordinates";
-//   Unimplemented for PCD binary_compressed.
-// Never allocates more than a small multiple of data.size(). Draco input is decoded in-process
-// (see draco_codec.h about crafted input). Coordinates from 10^4 on in text or binary doubles
+//     and "<source>: 12 points have NaN or infinite coordinates".
+// Never allocates more than a small multiple of data.size() (PCD binary_compressed: its
+// uncompressed size, at most kLzfMaxExpansion times its compressed bytes). Draco input is
+// decoded in-process (see draco_codec.h about crafted input). Coordinates from 10^4 on in text or binary doubles
 // are moved near 0 (CoordinateShift), and the cloud's origin says by how much; binary float32
 // positions (PLY, PCD, Draco) are taken as they are.
 absl::StatusOr<PointCloud> ReadPointCloudFromBuffer(absl::string_view data, FileFormat format,

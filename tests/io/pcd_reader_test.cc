@@ -1,4 +1,5 @@
-// PCD reading: ascii and binary DATA, fields skipped by SIZE and COUNT, unsupported compression.
+// PCD reading: ascii and binary DATA, fields skipped by SIZE and COUNT (binary_compressed:
+// pcd_compressed_test.cc).
 #include <cstdint>
 #include <string>
 
@@ -61,15 +62,6 @@ TEST(PcdReader, BinaryFloatWithoutCountLineDefaultsToOne) {
   absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(pcd, FileFormat::kPcd);
   ASSERT_TRUE(cloud.ok()) << cloud.status();
   EXPECT_THAT(cloud->points, ElementsAre(Point3f{1, 2, 3}));
-}
-
-TEST(PcdReader, BinaryCompressedIsUnimplemented) {
-  const std::string pcd =
-      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\n"
-      "DATA binary_compressed\n\x08\0\0\0\x0c\0\0\0";
-  absl::StatusOr<PointCloud> cloud = ReadPointCloudFromBuffer(pcd, FileFormat::kPcd, "c.pcd");
-  EXPECT_EQ(cloud.status().code(), absl::StatusCode::kUnimplemented);
-  EXPECT_THAT(cloud.status().ToString(), HasSubstr("binary_compressed"));
 }
 
 TEST(PcdReader, IntegerCoordinatesAreRejected) {

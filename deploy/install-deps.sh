@@ -17,6 +17,7 @@ BUILD=(
   liblzf-dev                 # PCD DATA binary_compressed
   libcli11-dev
   prometheus-cpp-dev         # membraned --metrics-listen
+  libcivetweb-dev            # membraned --http-listen (prometheus-cpp's HTTP server too)
 )
 TEST=(
   libgtest-dev libgmock-dev
@@ -26,6 +27,8 @@ TEST=(
   python3-yaml python3-kubernetes  # the manifest test (tests/deploy): YAML, the API schema
   python3-jsonschema         # the statistics JSON against proto/membrane/v1/statistics.schema.json
   python3-grpcio python3-protobuf  # client/python, tested against a live membraned
+  libjs-three                # the web console's 3D view (membraned serves its files)
+  chromium chromium-driver   # the web console's test in a headless browser
 )
 BENCH=(
   libbenchmark-dev

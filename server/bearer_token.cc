@@ -20,15 +20,22 @@ bool ConstantTimeEqual(absl::string_view a, absl::string_view b) {
 
 absl::StatusOr<const ClientToken*> CheckBearerToken(const grpc::ServerContext& context,
                                                     const std::vector<ClientToken>& clients) {
-  if (clients.empty()) return nullptr;
   const auto& metadata = context.client_metadata();
   const auto found = metadata.find("authorization");
-  if (found == metadata.end()) {
+  if (found == metadata.end()) return CheckAuthorization(std::nullopt, clients);
+  return CheckAuthorization(absl::string_view(found->second.data(), found->second.size()),
+                            clients);
+}
+
+absl::StatusOr<const ClientToken*> CheckAuthorization(
+    std::optional<absl::string_view> authorization, const std::vector<ClientToken>& clients) {
+  if (clients.empty()) return nullptr;
+  if (!authorization.has_value()) {
     return absl::UnauthenticatedError(
         "this server needs a bearer token (\"authorization: Bearer <token>\"; "
         "membrane --token-file FILE)");
   }
-  absl::string_view given(found->second.data(), found->second.size());
+  absl::string_view given = *authorization;
   // RFC 7235 auth schemes are case-insensitive: "bearer", "BEARER" and "Bearer" are one scheme.
   constexpr absl::string_view kScheme = "bearer ";
   const bool bearer = absl::StartsWithIgnoreCase(given, kScheme);

@@ -4,12 +4,14 @@
 #ifndef MEMBRANE_SERVER_BEARER_TOKEN_H_
 #define MEMBRANE_SERVER_BEARER_TOKEN_H_
 
+#include <optional>
 #include <vector>
 
 #include <grpcpp/server_context.h>
 #include <grpcpp/support/status.h>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "server/client_tokens.h"
 
 namespace membrane::server {
@@ -21,6 +23,11 @@ namespace membrane::server {
 // neither a prefix of a token nor which client it nearly matched.
 absl::StatusOr<const ClientToken*> CheckBearerToken(const grpc::ServerContext& context,
                                                     const std::vector<ClientToken>& clients);
+
+// The same check of an "Authorization" header's value (nullopt: the header is absent), for
+// the HTTP API (membraned --http-listen).
+absl::StatusOr<const ClientToken*> CheckAuthorization(
+    std::optional<absl::string_view> authorization, const std::vector<ClientToken>& clients);
 
 }  // namespace membrane::server
 

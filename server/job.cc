@@ -18,7 +18,9 @@ Job::Job(std::string id, std::string peer, v1::Parameters parameters, std::strin
       on_finish_(std::move(on_finish)),
       upload_(std::move(upload)),
       upload_hold_(std::move(upload_hold)),
-      mesh_(std::make_shared<const std::string>()) {}
+      mesh_(std::make_shared<const std::string>()),
+      preview_png_(std::make_shared<const std::string>()),
+      point_sample_(std::make_shared<const std::string>()) {}
 
 std::shared_ptr<Job> Job::Restore(const v1::Job& snapshot, std::vector<v1::JobEvent> events,
                                   std::string statistics_json, v1::MeshSummary summary,
@@ -257,6 +259,28 @@ v1::JobEvent MeshChunkEvent(const std::string& mesh, size_t at, size_t chunk_byt
 absl::Time Job::finished_at() const {
   absl::MutexLock lock(&mutex_);
   return finished_at_;
+}
+
+void Job::SetPreview(std::string png) {
+  auto shared = std::make_shared<const std::string>(std::move(png));
+  absl::MutexLock lock(&mutex_);
+  preview_png_ = std::move(shared);
+}
+
+void Job::SetPointSample(std::string xyz) {
+  auto shared = std::make_shared<const std::string>(std::move(xyz));
+  absl::MutexLock lock(&mutex_);
+  point_sample_ = std::move(shared);
+}
+
+std::shared_ptr<const std::string> Job::preview_png() const {
+  absl::MutexLock lock(&mutex_);
+  return preview_png_;
+}
+
+std::shared_ptr<const std::string> Job::point_sample() const {
+  absl::MutexLock lock(&mutex_);
+  return point_sample_;
 }
 
 }  // namespace membrane::server

@@ -147,6 +147,15 @@ class Job {
   // When the job finished; InfinitePast while it runs.
   absl::Time finished_at() const ABSL_LOCKS_EXCLUDED(mutex_);
 
+  // What the web console shows beside a SUCCEEDED job's mesh: a PNG preview of the mesh
+  // (core/render) and a sample of the input points (float32 x y z, little-endian, in the
+  // mesh's coordinates). The worker sets them before the job ends; a store may set the preview
+  // of a restored job. Never null: empty when none was set.
+  void SetPreview(std::string png) ABSL_LOCKS_EXCLUDED(mutex_);
+  void SetPointSample(std::string xyz) ABSL_LOCKS_EXCLUDED(mutex_);
+  std::shared_ptr<const std::string> preview_png() const ABSL_LOCKS_EXCLUDED(mutex_);
+  std::shared_ptr<const std::string> point_sample() const ABSL_LOCKS_EXCLUDED(mutex_);
+
  private:
   bool DoneLocked() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   bool ClosedLocked() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
@@ -176,6 +185,9 @@ class Job {
   std::shared_ptr<const std::string> mesh_ ABSL_GUARDED_BY(mutex_);
   uint32_t mesh_crc32c_ ABSL_GUARDED_BY(mutex_) = 0;  // of *mesh_, once, not per follower
   absl::Time finished_at_ ABSL_GUARDED_BY(mutex_) = absl::InfinitePast();
+  // Never null, never changed in place: handed to HTTP handlers without a copy.
+  std::shared_ptr<const std::string> preview_png_ ABSL_GUARDED_BY(mutex_);
+  std::shared_ptr<const std::string> point_sample_ ABSL_GUARDED_BY(mutex_);
   absl::Status cancel_status_ ABSL_GUARDED_BY(mutex_);
   bool end_record_required_ ABSL_GUARDED_BY(mutex_) = false;
   bool end_recorded_ ABSL_GUARDED_BY(mutex_) = false;

@@ -18,6 +18,7 @@
 #include "server/job_event_observer.h"
 #include "server/memory_budget_gate.h"
 #include "server/parameter_checks.h"
+#include "server/point_sample.h"
 #include "server/server_log.h"
 #include "server/time_limit_gate.h"
 #include "server/upload_source.h"
@@ -85,7 +86,9 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   limits.memory_bytes = options_.decoder_memory_bytes;
   limits.max_points = options_.max_points;
   limits.subject = "the upload";
-  UploadSource source(*job, std::move(limits), settings->origin);
+  UploadSource upload(*job, std::move(limits), settings->origin);
+  // The web console draws a sample of the points over the mesh.
+  SamplingSource source(upload, *job);
   // Held until the job ends.
   MemoryBudgetGate memory_gate(memory_);
   TimeLimitGate gate(memory_gate, options_.max_job_seconds,

@@ -1,6 +1,7 @@
 // membraned: the membrane reconstruction server (proto/membrane/v1/reconstruction.proto).
 // Runs until SIGTERM or SIGINT, then shuts down gracefully (see MembraneServer::Shutdown).
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -46,6 +47,14 @@ ABSL_FLAG(std::string, store_dir, "",
 ABSL_FLAG(std::string, metrics_listen, "",
           "HOST:PORT serving Prometheus metrics over HTTP at /metrics (jobs, stages, queue, "
           "memory); empty = none");
+ABSL_FLAG(std::string, http_listen, "",
+          "HOST:PORT serving the web console (jobs, live progress, the mesh in 3D) and its JSON "
+          "API over HTTP, with --token-file's tokens; empty = none");
+ABSL_FLAG(std::string, web_dir, "",
+          "the web console's files; empty = 'web' beside membraned, else "
+          "../share/membrane/web from it");
+ABSL_FLAG(std::string, three_js_dir, "/usr/share/javascript/three",
+          "three.js for the web console (Debian's libjs-three)");
 ABSL_FLAG(std::string, replica, "",
           "this replica's name (lower-case letters, digits, '-'; e.g. the pod's), put in front "
           "of its job ids so that a balancer routes calls about a job here; empty = none");
@@ -91,6 +100,15 @@ std::string ExecutableDirectory() {
   if (n <= 0) return ".";
   std::string dir(path, static_cast<size_t>(n));
   return dir.substr(0, dir.rfind('/'));
+}
+
+// The default --web-dir: "web" beside this executable (the build tree), or else
+// ../share/membrane/web from it (an installation: /usr/local/bin and /usr/local/share).
+std::string DefaultWebDirectory() {
+  const std::string beside = ExecutableDirectory() + "/web";
+  struct stat s;
+  if (stat(beside.c_str(), &s) == 0 && S_ISDIR(s.st_mode)) return beside;
+  return ExecutableDirectory() + "/../share/membrane/web";
 }
 
 // Reads the files of --token-file, --tls-cert and --tls-key into `o`; an error line and false
@@ -140,6 +158,10 @@ bool OptionsFromFlags(ServerOptions& o) {
   o.max_calls = absl::GetFlag(FLAGS_max_calls);
   o.metrics_listen = absl::GetFlag(FLAGS_metrics_listen);
   o.store_dir = absl::GetFlag(FLAGS_store_dir);
+  o.http_listen = absl::GetFlag(FLAGS_http_listen);
+  o.web_dir = absl::GetFlag(FLAGS_web_dir);
+  if (o.web_dir.empty()) o.web_dir = DefaultWebDirectory();
+  o.three_js_dir = absl::GetFlag(FLAGS_three_js_dir);
   o.replica = absl::GetFlag(FLAGS_replica);
   if (!o.replica.empty() && !IsReplicaName(o.replica)) {
     std::fprintf(stderr,

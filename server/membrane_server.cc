@@ -16,11 +16,13 @@
 #include <grpcpp/server_builder.h>
 
 #include "absl/status/status.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "proto/endpoint_address.h"
 #include "server/job_end_hook.h"
 #include "server/memory_release.h"
 #include "server/server_log.h"
+#include "server/web_assets.h"
 
 namespace membrane::server {
 namespace {
@@ -34,6 +36,10 @@ constexpr int kPollerThreads = 2;
 // wait for a request to arrive whole. A scrape's request is one packet on a LAN.
 constexpr int kMetricsThreads = 4;
 constexpr int kMetricsRequestTimeoutMs = 2000;
+// The web console's threads: each browser tab holds one in a waiting events request and takes
+// another now and then for the job list. A response (a mesh) must be taken within the timeout.
+constexpr int kHttpThreads = 16;
+constexpr int kHttpRequestTimeoutMs = 10000;
 
 // The store of options.store_dir: in memory only when it is empty.
 std::unique_ptr<JobStore> MakeStore(const ServerOptions& options,
@@ -64,7 +70,8 @@ MembraneServer::MembraneServer(ServerOptions options, const Clock* clock,
                    // The job's grid, membrane and surface are freed: give their pages back.
                    ReleaseFreedMemory();
                  }),
-      service_(options_, *store_, scheduler_, upload_memory_, metrics_, clock_) {
+      service_(options_, *store_, scheduler_, upload_memory_, metrics_, clock_),
+      http_api_(options_, *store_, clock_) {
   disk_store_ = dynamic_cast<DiskJobStore*>(store_.get());
 }
 
@@ -77,10 +84,10 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   if (absl::Status s = CheckEndpointAddress("--listen", address, PortZero::kAllowed); !s.ok()) {
     return s;
   }
-  if (!options_.metrics_listen.empty()) {
-    if (absl::Status s = CheckEndpointAddress("--metrics-listen", options_.metrics_listen,
-                                              PortZero::kAllowed);
-        !s.ok()) {
+  for (auto [flag, listen] : {std::pair{"--metrics-listen", &options_.metrics_listen},
+                               std::pair{"--http-listen", &options_.http_listen}}) {
+    if (listen->empty()) continue;
+    if (absl::Status s = CheckEndpointAddress(flag, *listen, PortZero::kAllowed); !s.ok()) {
       return s;
     }
   }
@@ -125,8 +132,11 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
     return absl::UnavailableError(
         absl::StrCat("cannot listen on ", address, " (in use by another process?)"));
   }
-  if (!options_.metrics_listen.empty()) {
-    if (absl::Status s = StartMetrics(); !s.ok()) {
+  for (auto [listen, start] : {std::pair{&options_.metrics_listen, &MembraneServer::StartMetrics},
+                                std::pair{&options_.http_listen, &MembraneServer::StartHttp}}) {
+    if (listen->empty()) continue;
+    if (absl::Status s = (this->*start)(); !s.ok()) {
+      exposer_.reset();
       server_->Shutdown();
       server_.reset();
       return s;
@@ -146,6 +156,7 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
   LogEvent("server_started", {{"address", address},
                               {"port", absl::StrCat(port)},
                               {"metrics_port", absl::StrCat(metrics_port_)},
+                              {"http_port", absl::StrCat(http_port())},
                               {"replica", options_.replica.empty() ? "-" : options_.replica},
                               {"workers", absl::StrCat(options_.workers)},
                               {"job_threads", options_.job_threads > 0
@@ -197,7 +208,24 @@ void MembraneServer::Shutdown(absl::Duration grace) {
     // The open calls see their jobs ended and write the outcome; a second is plenty.
     server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(1));
   }
+  // Waiting events requests answer within 250 ms; the listener stops once they have.
+  http_api_.Stop();
+  http_server_.reset();
   if (started) LogEvent("server_stopped", {});
+}
+
+absl::Status MembraneServer::StartHttp() {
+  absl::StatusOr<WebAssets> assets = WebAssets::Load(options_.web_dir, options_.three_js_dir);
+  if (!assets.ok()) return assets.status();
+  absl::StatusOr<std::unique_ptr<HttpServer>> http = HttpServer::Start(
+      options_.http_listen, kHttpThreads, kHttpRequestTimeoutMs,
+      [this, assets = *std::move(assets)](const HttpRequest& request) {
+        if (absl::StartsWith(request.path, "/api/")) return http_api_.Handle(request);
+        return assets.Serve(request);
+      });
+  if (!http.ok()) return http.status();
+  http_server_ = *std::move(http);
+  return absl::OkStatus();
 }
 
 absl::Status MembraneServer::StartMetrics() {

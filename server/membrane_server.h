@@ -15,6 +15,8 @@
 #include "absl/synchronization/mutex.h"
 #include "server/clock.h"
 #include "server/disk_job_store.h"
+#include "server/http_api.h"
+#include "server/http_server.h"
 #include "server/in_memory_job_store.h"
 #include "server/job_runner.h"
 #include "server/job_scheduler.h"
@@ -61,10 +63,14 @@ class MembraneServer {
 
   // The bound port of options.metrics_listen once Start succeeded; 0 when there is none.
   int metrics_port() const { return metrics_port_; }
+  // The bound port of options.http_listen once Start succeeded; 0 when there is none.
+  int http_port() const { return http_server_ != nullptr ? http_server_->port() : 0; }
 
  private:
   // Starts exposer_ on options_.metrics_listen.
   absl::Status StartMetrics();
+  // Starts http_server_ on options_.http_listen: the web console's files and http_api_.
+  absl::Status StartHttp();
   // Sets the health service's status: SERVING once started, unless stopping or the store
   // cannot be written.
   void UpdateHealth() ABSL_LOCKS_EXCLUDED(health_mutex_);
@@ -86,7 +92,10 @@ class MembraneServer {
   JobRunner runner_;
   JobScheduler scheduler_;
   ReconstructionService service_;
+  HttpApi http_api_;
   std::unique_ptr<grpc::Server> server_;
+  // Before the store's end: its handlers read the store.
+  std::unique_ptr<HttpServer> http_server_;
   // Last: destroyed first, so that no scrape reads what is gone.
   std::shared_ptr<ServerStateCollector> state_collector_;
   std::unique_ptr<prometheus::Exposer> exposer_;

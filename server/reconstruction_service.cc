@@ -81,12 +81,7 @@ grpc::Status ReconstructionService::Authenticate(const grpc::ServerContext& cont
              {{"peer", context.peer()}, {"message", std::string(client.status().message())}});
     return ToGrpcStatus(client.status());
   }
-  // Without tokens every caller is one anonymous client, who sees every job.
-  if (*client == nullptr) {
-    caller = Caller{"", true};
-  } else {
-    caller = Caller{(*client)->name, (*client)->is_operator};
-  }
+  caller = CallerOf(*client);
   return grpc::Status::OK;
 }
 
@@ -297,10 +292,7 @@ grpc::Status ReconstructionService::CancelJob(grpc::ServerContext* context,
   if (grpc::Status s = Authenticate(*context, caller); !s.ok()) return s;
   std::shared_ptr<Job> job = FindJob(request->job_id(), caller);
   if (job == nullptr) return JobNotFound(request->job_id(), options_.replica);
-  // The job's own client is "the client"; an operator says who stopped it.
-  job->RequestCancel(caller.name == job->client()
-                         ? std::string("cancelled by the client")
-                         : absl::StrCat("cancelled by operator '", caller.name, "'"));
+  job->RequestCancel(caller.CancelReason(*job));
   LogEvent("job_cancel_requested",
            {{"job", job->id()}, {"peer", context->peer()}, {"client", caller.LogName()}});
   *response = job->Snapshot();

@@ -12,6 +12,7 @@
 #include "absl/random/random.h"
 #include "absl/synchronization/mutex.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
+#include "server/caller.h"
 #include "server/job_scheduler.h"
 #include "server/clock.h"
 #include "server/job_store.h"
@@ -68,15 +69,6 @@ class ReconstructionService final : public v1::Reconstruction::Service {
                           grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
                           v1::Parameters& parameters, std::string& upload,
                           UploadMemory::Hold& hold);
-  // Who made a call, as --token-file names it.
-  struct Caller {
-    std::string name;        // the token's client; empty on a server without tokens
-    bool sees_all = false;   // an operator, or a server without tokens
-    // Whether `job` is this caller's to see, watch, fetch and cancel.
-    bool Sees(const Job& job) const { return sees_all || job.client() == name; }
-    // For the log: the name, never the token; "-" without tokens.
-    std::string LogName() const { return name.empty() ? "-" : name; }
-  };
   // OK, with the caller, for a call carrying the token of one of options_.clients (or any call
   // when there are none); UNAUTHENTICATED, logged with the peer, otherwise.
   grpc::Status Authenticate(const grpc::ServerContext& context, Caller& caller);

@@ -27,6 +27,11 @@ struct ServerOptions {
   std::string replica;
   // HOST:PORT serving Prometheus metrics over HTTP (/metrics); empty = none.
   std::string metrics_listen;
+  // HOST:PORT serving the web console and its JSON API over HTTP (server/http_api.h); empty =
+  // none. The page's files come from web_dir, three.js from three_js_dir (Debian's libjs-three).
+  std::string http_listen;
+  std::string web_dir;
+  std::string three_js_dir = "/usr/share/javascript/three";
   // A directory where jobs and results are also written (DiskJobStore), so that they survive
   // a restart; empty = in memory only.
   std::string store_dir;

@@ -74,6 +74,28 @@ std::string HttpGet(int port, const std::string& path) {
   return body == std::string::npos ? "" : response.substr(body + 4);
 }
 
+HttpReply HttpCall(int port, const std::string& method, const std::string& path,
+                   const std::string& authorization, double seconds) {
+  HttpReply reply;
+  const int fd = Connect(port, seconds);
+  if (fd < 0) return reply;
+  std::string response;
+  std::string request = method + " " + path + " HTTP/1.0\r\nHost: 127.0.0.1\r\n";
+  if (!authorization.empty()) request += "Authorization: " + authorization + "\r\n";
+  request += "Content-Length: 0\r\n\r\n";
+  if (write(fd, request.data(), request.size()) == static_cast<ssize_t>(request.size())) {
+    char buffer[65536];
+    for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;) response.append(buffer, n);
+  }
+  close(fd);
+  const size_t body = response.find("\r\n\r\n");
+  if (body == std::string::npos || response.rfind("HTTP/1.", 0) != 0) return reply;
+  reply.status = std::atoi(response.c_str() + response.find(' ') + 1);
+  reply.headers = response.substr(0, body);
+  reply.body = response.substr(body + 4);
+  return reply;
+}
+
 double MetricValue(const std::string& exposition, const std::string& series) {
   std::istringstream lines(exposition);
   for (std::string line; std::getline(lines, line);) {

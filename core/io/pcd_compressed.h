@@ -18,11 +18,12 @@ inline constexpr uint64_t kLzfMaxExpansion = 88;
 
 // The decompressed body of the PCD file in `data` whose DATA line ends at `body_offset`:
 // `points` x `packed_row_bytes` bytes, each field other than the padding "_" stored for all
-// points before the next (structure of arrays); `packed_row_bytes` > 0. Bytes after the compressed block are
-// ignored, as PCL does. InvalidArgument naming `source` and the byte offset when fewer than 8
-// bytes follow DATA, the compressed size exceeds the bytes that follow, the uncompressed size
-// differs from points x packed_row_bytes or exceeds what LZF can expand the compressed bytes
-// to, or the LZF data is corrupt or decompresses to another size. Allocates the uncompressed
+// points before the next (structure of arrays); `packed_row_bytes` > 0. Bytes after the
+// compressed block are ignored, as PCL does. InvalidArgument naming `source` and the byte
+// offset when fewer than 8 bytes follow DATA, the compressed size exceeds the bytes that
+// follow, the uncompressed size differs from points x packed_row_bytes or exceeds what LZF
+// can expand the compressed bytes to, or the LZF data is corrupt or decompresses to another
+// size. Allocates the uncompressed
 // size only after these checks (at most kLzfMaxExpansion x data.size()).
 absl::StatusOr<std::string> DecompressPcdBody(absl::string_view data, size_t body_offset,
                                               uint64_t points, uint64_t packed_row_bytes,

@@ -27,9 +27,9 @@ absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path);
 //     and "<source>: 12 points have NaN or infinite coordinates".
 // Never allocates more than a small multiple of data.size() (PCD binary_compressed: its
 // uncompressed size, at most kLzfMaxExpansion times its compressed bytes). Draco input is
-// decoded in-process (see draco_codec.h about crafted input). Coordinates from 10^4 on in text or binary doubles
-// are moved near 0 (CoordinateShift), and the cloud's origin says by how much; binary float32
-// positions (PLY, PCD, Draco) are taken as they are.
+// decoded in-process (see draco_codec.h about crafted input). Coordinates from 10^4 on in
+// text or binary doubles are moved near 0 (CoordinateShift), and the cloud's origin says by
+// how much; binary float32 positions (PLY, PCD, Draco) are taken as they are.
 absl::StatusOr<PointCloud> ReadPointCloudFromBuffer(absl::string_view data, FileFormat format,
                                                     absl::string_view source = "<buffer>");
 

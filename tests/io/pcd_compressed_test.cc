@@ -93,8 +93,9 @@ TEST(PcdCompressed, ManyPointsRoundTripThroughRealCompression) {
 }
 
 TEST(PcdCompressed, AnEmptyCloudIsRead) {
-  const std::string pcd = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 0\nDATA binary_compressed\n" +
-                          Uint32Le(0) + Uint32Le(0);
+  const std::string pcd =
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 0\nDATA binary_compressed\n" + Uint32Le(0) +
+      Uint32Le(0);
   absl::StatusOr<PointCloud> cloud = Read(pcd);
   ASSERT_TRUE(cloud.ok()) << cloud.status();
   EXPECT_TRUE(cloud->points.empty());

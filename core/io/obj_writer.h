@@ -13,7 +13,8 @@ namespace membrane {
 // exactly. Never fails.
 std::string EncodeObjPointCloud(const PointCloud& cloud);
 
-// OBJ text with "v" lines and one "f a b c" line (1-based) per face. The caller has checked
+// OBJ text with "v" lines, as many "vn" lines (AreaWeightedVertexNormals), and one
+// "f a//a b//b c//c" line (1-based: vertex and its normal) per face. The caller has checked
 // the face indices.
 std::string EncodeObjMesh(const TriangleMesh& mesh);
 

@@ -1,5 +1,5 @@
-// Writing PLY files: binary little endian, float32 x y z (double with an origin), int32
-// triangle lists.
+// Writing PLY files: binary little endian, float32 x y z (double with an origin), float32
+// vertex normals nx ny nz for meshes, int32 triangle lists.
 #ifndef MEMBRANE_CORE_IO_PLY_WRITER_H_
 #define MEMBRANE_CORE_IO_PLY_WRITER_H_
 
@@ -16,9 +16,10 @@ namespace membrane {
 std::string EncodePlyPointCloud(const PointCloud& cloud);
 
 // The bytes of a binary little-endian PLY file holding `mesh`: float x, y, z vertices (double
-// position + origin when mesh.origin is not zero, as for clouds) and a
-// "face" element with "property list uchar int vertex_indices". The caller has checked the
-// face indices (see CheckFaceIndices); they are written as they are.
+// position + origin when mesh.origin is not zero, as for clouds), each with float nx, ny, nz
+// (AreaWeightedVertexNormals), and a "face" element with "property list uchar int
+// vertex_indices". The caller has checked the face indices (see CheckFaceIndices); they are
+// written as they are.
 std::string EncodePlyMesh(const TriangleMesh& mesh);
 
 }  // namespace membrane

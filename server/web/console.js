@@ -335,8 +335,9 @@ function showStatistics(detail) {
 
 // ---- the 3D view ----
 
-// The binary little-endian PLY of /api/jobs/ID/mesh.ply: x y z as float or double, triangles
-// as "list uchar int". Positions are returned in double, for a caller to centre.
+// The binary little-endian PLY of /api/jobs/ID/mesh.ply: x y z as float or double among the
+// vertex's properties (nx ny nz follow them), triangles as "list uchar int". Positions are
+// returned in double, for a caller to centre.
 function parsePly(buffer) {
   const bytesView = new Uint8Array(buffer);
   const marker = 'end_header\n';
@@ -348,20 +349,31 @@ function parsePly(buffer) {
   }
   if (end < 0) throw new Error('not a PLY file');
   const header = new TextDecoder().decode(bytesView.subarray(0, end)).split('\n');
-  let vertices = 0, faces = 0, type = 'float';
+  const sizes = { float: 4, double: 8 };
+  let vertices = 0, faces = 0, element = '', stride = 0;
+  const offset = {}, type = {};
   for (const line of header) {
     const w = line.trim().split(/\s+/);
+    if (w[0] === 'element') element = w[1];
     if (w[0] === 'element' && w[1] === 'vertex') vertices = Number(w[2]);
     if (w[0] === 'element' && w[1] === 'face') faces = Number(w[2]);
-    if (w[0] === 'property' && w[2] === 'x') type = w[1];
+    if (w[0] === 'property' && element === 'vertex') {
+      if (!(w[1] in sizes)) throw new Error('unexpected vertex property type ' + w[1]);
+      offset[w[2]] = stride;
+      type[w[2]] = w[1];
+      stride += sizes[w[1]];
+    }
   }
+  if (!('x' in offset && 'y' in offset && 'z' in offset)) throw new Error('no x y z in the PLY');
   const view = new DataView(buffer, end);
   const positions = new Float64Array(vertices * 3);
-  const size = type === 'double' ? 8 : 4;
-  let at = 0;
-  for (let i = 0; i < vertices * 3; ++i, at += size) {
-    positions[i] = size === 8 ? view.getFloat64(at, true) : view.getFloat32(at, true);
+  for (let i = 0; i < vertices; ++i) {
+    ['x', 'y', 'z'].forEach((axis, a) => {
+      const at = i * stride + offset[axis];
+      positions[i * 3 + a] = type[axis] === 'double' ? view.getFloat64(at, true) : view.getFloat32(at, true);
+    });
   }
+  let at = vertices * stride;
   const index = new Uint32Array(faces * 3);
   for (let f = 0; f < faces; ++f) {
     const n = view.getUint8(at);

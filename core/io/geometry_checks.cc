@@ -21,6 +21,14 @@ absl::Status CheckFinitePoints(absl::Span<const Point3f> points, absl::string_vi
       absl::StrCat(source, ": ", bad, " ", noun, " NaN or infinite coordinates"));
 }
 
+size_t DropNonFinitePoints(std::vector<Point3f>* points) {
+  const size_t before = points->size();
+  std::erase_if(*points, [](const Point3f& p) {
+    return !std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]);
+  });
+  return before - points->size();
+}
+
 absl::Status CheckFaceIndices(const TriangleMesh& mesh, absl::string_view source) {
   const int64_t vertex_count = static_cast<int64_t>(mesh.vertices.size());
   for (size_t f = 0; f < mesh.faces.size(); ++f) {

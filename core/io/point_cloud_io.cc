@@ -40,19 +40,27 @@ absl::StatusOr<PointCloud> Parse(absl::string_view data, FileFormat format,
 
 }  // namespace
 
-absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path) {
+absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path, InvalidPoints invalid,
+                                          size_t* dropped) {
   absl::StatusOr<FileFormat> format = FormatFromPath(path, FileUse::kReadPointCloud);
   if (!format.ok()) return format.status();
   absl::StatusOr<std::string> bytes = ReadFileBytes(path);
   if (!bytes.ok()) return bytes.status();
-  return ReadPointCloudFromBuffer(*bytes, *format, path);
+  return ReadPointCloudFromBuffer(*bytes, *format, path, invalid, dropped);
 }
 
 absl::StatusOr<PointCloud> ReadPointCloudFromBuffer(absl::string_view data, FileFormat format,
-                                                    absl::string_view source) {
+                                                    absl::string_view source,
+                                                    InvalidPoints invalid, size_t* dropped) {
+  if (dropped != nullptr) *dropped = 0;
   if (data.empty()) return absl::InvalidArgumentError(absl::StrCat(source, ": the file is empty"));
   absl::StatusOr<PointCloud> cloud = Parse(data, format, source);
   if (!cloud.ok()) return cloud.status();
+  if (invalid == InvalidPoints::kDrop) {
+    const size_t count = DropNonFinitePoints(&cloud->points);
+    if (dropped != nullptr) *dropped = count;
+    return cloud;
+  }
   absl::Status finite = CheckFinitePoints(cloud->points, source);
   if (!finite.ok()) return finite;
   return cloud;

@@ -3,6 +3,7 @@
 #ifndef MEMBRANE_CORE_IO_POINT_CLOUD_IO_H_
 #define MEMBRANE_CORE_IO_POINT_CLOUD_IO_H_
 
+#include <cstddef>
 #include <string>
 
 #include "absl/status/status.h"
@@ -14,24 +15,38 @@
 
 namespace membrane {
 
+// What a reader does with points that have a NaN or infinite coordinate. Organized scans
+// (PCD, PLY from depth cameras and PCL) keep their rows and columns by marking the pixels
+// without a return so.
+enum class InvalidPoints {
+  kRefuse,  // InvalidArgument "<source>: 12 points have NaN or infinite coordinates"
+  kDrop,    // dropped from the cloud; the others keep their order
+};
+
 // The point cloud in the file at `path`, its format chosen by the extension
 // (case-insensitive): .ply, .obj, .xyz/.txt/.pts, .pcd, .drc (a Draco mesh gives its
 // vertices). NotFound naming the path when it does not exist; otherwise as
 // ReadPointCloudFromBuffer with `path` as the source.
-absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path);
+absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path,
+                                          InvalidPoints invalid = InvalidPoints::kRefuse,
+                                          size_t* dropped = nullptr);
 
 // The point cloud in `data`, read as `format`. `source` names the input in messages. A cloud
 // of zero points is OK when the file is well formed. Errors:
 //   InvalidArgument "<source>: ..." for empty input, a format that cannot hold point clouds
 //     (kStl), malformed, truncated or lying input (with the byte offset where it went wrong),
-//     and "<source>: 12 points have NaN or infinite coordinates".
+//     and, with InvalidPoints::kRefuse, "<source>: 12 points have NaN or infinite
+//     coordinates". With kDrop those points are left out, and `dropped` (when not null) is
+//     set to how many were (Draco excepted: its decoder refuses them either way).
 // Never allocates more than a small multiple of data.size() (PCD binary_compressed: its
 // uncompressed size, at most kLzfMaxExpansion times its compressed bytes). Draco input is
 // decoded in-process (see draco_codec.h about crafted input). Coordinates from 10^4 on in
 // text or binary doubles are moved near 0 (CoordinateShift), and the cloud's origin says by
 // how much; binary float32 positions (PLY, PCD, Draco) are taken as they are.
 absl::StatusOr<PointCloud> ReadPointCloudFromBuffer(absl::string_view data, FileFormat format,
-                                                    absl::string_view source = "<buffer>");
+                                                    absl::string_view source = "<buffer>",
+                                                    InvalidPoints invalid = InvalidPoints::kRefuse,
+                                                    size_t* dropped = nullptr);
 
 // The bytes of `cloud` in `format`: binary little-endian PLY, XYZ text, OBJ "v" lines, or
 // Draco with `draco` options; with an origin, at position + origin in double (PLY, XYZ, OBJ).

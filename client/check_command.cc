@@ -20,6 +20,7 @@ namespace {
 
 struct CheckFlags {
   std::string mesh;
+  std::string input_format;
   bool json = false;
 };
 
@@ -53,17 +54,19 @@ absl::Status Verdict(const std::string& path, const MeshReport& r) {
 }
 
 absl::Status RunCheck(const CheckFlags& flags) {
-  absl::StatusOr<TriangleMesh> mesh = ReadInputMesh(flags.mesh, CancelToken::Never());
+  absl::StatusOr<TriangleMesh> mesh =
+      ReadInputMesh(flags.mesh, flags.input_format, CancelToken::Never());
   if (!mesh.ok()) return FileErrorAsInvalidInput(mesh.status());
   // A face-less file is a point cloud; calling it "closed" (no edge is open) would mislead.
   if (mesh->faces.empty()) {
-    return absl::InvalidArgumentError(absl::StrCat(flags.mesh, ": has no faces (not a mesh)"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(InputName(flags.mesh), ": has no faces (not a mesh)"));
   }
   const MeshReport report = CheckMesh(*mesh);
   const std::string text = flags.json ? MeshReportToJson(report) + "\n" : ReportText(report);
   std::fputs(text.c_str(), stdout);
   std::fflush(stdout);
-  return Verdict(flags.mesh, report);
+  return Verdict(InputName(flags.mesh), report);
 }
 
 }  // namespace
@@ -76,7 +79,11 @@ Command AddCheckCommand(CLI::App& parent) {
       "failed, after the report) when it is not; 3 when the file cannot be read or has no "
       "faces.");
   auto flags = std::make_shared<CheckFlags>();
-  app->add_option("MESH", flags->mesh, "mesh: .ply .obj .stl .drc")->required();
+  app->add_option("MESH", flags->mesh, "mesh: .ply .obj .off .stl .drc, or - for standard input")
+      ->required();
+  app->add_option("--input-format", flags->input_format,
+                  "the mesh's format when its name does not say it: ply obj off stl drc; for - "
+                  "it is otherwise told from the first bytes");
   app->add_flag("--json", flags->json, "print the report as one JSON object");
   return Command{app, [flags] { return RunCheck(*flags); }};
 }

@@ -1,6 +1,5 @@
 #include "client/cloud_origin.h"
 
-#include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/io/coordinate_shift.h"
@@ -8,12 +7,11 @@
 
 namespace membrane::client {
 
-absl::Status CheckOutputKeepsOrigin(const Origin3d& origin, const std::string& output) {
-  absl::StatusOr<FileFormat> format = FormatFromPath(output, FileUse::kWriteMesh);
-  if (!format.ok()) return absl::OkStatus();
-  absl::Status s = CheckOriginFitsFormat(origin, *format, FileUse::kWriteMesh);
+absl::Status CheckOutputKeepsOrigin(const Origin3d& origin, FileFormat format,
+                                    const std::string& output_name) {
+  absl::Status s = CheckOriginFitsFormat(origin, format, FileUse::kWriteMesh);
   if (s.ok()) return s;
-  return absl::InvalidArgumentError(absl::StrCat(output, ": ", s.message()));
+  return absl::InvalidArgumentError(absl::StrCat(output_name, ": ", s.message()));
 }
 
 std::string OriginNote(const Origin3d& origin) {

@@ -8,13 +8,15 @@
 
 #include "absl/status/status.h"
 #include "core/geometry/point_cloud.h"
+#include "core/io/file_format.h"
 
 namespace membrane::client {
 
-// OK unless `origin` is not zero and the mesh file `output` would hold float32 positions only
-// (.stl, .drc): then InvalidArgument "OUTPUT: ..." (CheckOriginFitsFormat), said before any
-// work. OK as well for an output without a mesh extension (FormatFromPath reports that).
-absl::Status CheckOutputKeepsOrigin(const Origin3d& origin, const std::string& output);
+// OK unless `origin` is not zero and a mesh file of `format` would hold float32 positions
+// only (.stl, .drc): then InvalidArgument "OUTPUT_NAME: ..." (CheckOriginFitsFormat), said
+// before any work.
+absl::Status CheckOutputKeepsOrigin(const Origin3d& origin, FileFormat format,
+                                    const std::string& output_name);
 
 // "" for a zero origin; otherwise " (moved by -X, -Y, -Z for float32)", for the decode line.
 std::string OriginNote(const Origin3d& origin);

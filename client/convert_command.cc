@@ -1,42 +1,62 @@
 #include "client/convert_command.h"
 
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "CLI/CLI.hpp"
+#include "absl/algorithm/container.h"
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "client/flag_checks.h"
+#include "client/format_flags.h"
 #include "client/input_files.h"
 #include "client/io_errors.h"
+#include "client/output_files.h"
+#include "client/std_streams.h"
 #include "core/io/draco_codec.h"
-#include "core/io/file_bytes.h"
 #include "core/io/file_format.h"
-#include "core/io/mesh_io.h"
-#include "core/io/point_cloud_io.h"
 #include "core/mesh/mesh_check.h"
 
 namespace membrane::client {
 namespace {
 
 struct ConvertFlags {
-  std::string input;
-  std::string output;
+  std::string input;  // "-": standard input
+  std::string input_format;
+  std::string output;  // "-": standard output
+  std::string output_format;
 };
 
-// The format of `path` for reading (writing) anything: a point cloud or a mesh.
-absl::StatusOr<FileFormat> AnyFormat(const std::string& path, FileUse cloud_use, FileUse mesh_use) {
-  absl::StatusOr<FileFormat> format = FormatFromPath(path, cloud_use);
+// The format of the input `path` (InputFormat; `bytes` as read, for "-") for reading anything:
+// a point cloud or a mesh.
+absl::StatusOr<FileFormat> AnyInputFormat(const ConvertFlags& flags, absl::string_view bytes) {
+  absl::StatusOr<FileFormat> format =
+      InputFormat(flags.input, flags.input_format, FileUse::kReadPointCloud, bytes);
   if (format.ok()) return format;
-  absl::StatusOr<FileFormat> mesh_format = FormatFromPath(path, mesh_use);
+  absl::StatusOr<FileFormat> mesh_format =
+      InputFormat(flags.input, flags.input_format, FileUse::kReadMesh, bytes);
   if (mesh_format.ok()) return mesh_format;
   return format.status();
+}
+
+// The format of the output (OutputFormat) for writing anything: a point cloud or a mesh.
+absl::StatusOr<FileFormat> AnyOutputFormat(const ConvertFlags& flags) {
+  absl::StatusOr<FileFormat> format =
+      OutputFormat(flags.output, flags.output_format, FileUse::kWritePointCloud);
+  if (format.ok()) return format;
+  absl::StatusOr<FileFormat> mesh_format =
+      OutputFormat(flags.output, flags.output_format, FileUse::kWriteMesh);
+  if (mesh_format.ok()) return mesh_format;
+  return format.status();
+}
+
+bool Supports(FileUse use, FileFormat format) {
+  return absl::c_linear_search(SupportedFormats(use), format);
 }
 
 // True when a file of `format` holding `bytes` is to be read as a mesh. PLY, OBJ, STL, OFF
@@ -57,14 +77,14 @@ absl::StatusOr<bool> HoldsMesh(FileFormat format, const std::string& bytes,
   }
 }
 
-// The contents of `path` as a mesh; a file without faces gives a mesh without faces.
-absl::StatusOr<TriangleMesh> ReadGeometry(const std::string& path, FileFormat format) {
-  absl::StatusOr<std::string> bytes = ReadFileBytes(path);
-  if (!bytes.ok()) return FileErrorAsInvalidInput(bytes.status());
-  absl::StatusOr<bool> holds_mesh = HoldsMesh(format, *bytes, path);
+// `bytes`, the contents of `path` in `format`, as a mesh; a file without faces gives a mesh
+// without faces.
+absl::StatusOr<TriangleMesh> ParseGeometry(const std::string& bytes, FileFormat format,
+                                           const std::string& path) {
+  absl::StatusOr<bool> holds_mesh = HoldsMesh(format, bytes, path);
   if (!holds_mesh.ok()) return holds_mesh.status();
-  if (*holds_mesh) return ParseInputMesh(*bytes, format, path, CancelToken::Never());
-  absl::StatusOr<PointCloud> cloud = ParseInputCloud(*bytes, format, path, CancelToken::Never());
+  if (*holds_mesh) return ParseInputMesh(bytes, format, path, CancelToken::Never());
+  absl::StatusOr<PointCloud> cloud = ParseInputCloud(bytes, format, path, CancelToken::Never());
   if (!cloud.ok()) return cloud.status();
   TriangleMesh points_only;
   points_only.vertices = std::move(cloud->points);
@@ -74,8 +94,9 @@ absl::StatusOr<TriangleMesh> ReadGeometry(const std::string& path, FileFormat fo
 
 // The Draco options for writing `mesh`: 11-bit positions, snapped here first (on a grid that
 // stores them exactly), unless that makes more faces cross or flatten than the input has;
-// then float32, with a line saying why. `mesh` keeps its snapped positions when they are kept.
-DracoOptions CheckedDracoOptions(TriangleMesh& mesh) {
+// then float32, with a line on `text` saying why. `mesh` keeps its snapped positions when
+// they are kept.
+DracoOptions CheckedDracoOptions(TriangleMesh& mesh, std::FILE* text) {
   const DracoOptions defaults;
   const PositionGrid grid = BoundingGrid(mesh.vertices, defaults.position_quantization_bits);
   TriangleMesh snapped = mesh;
@@ -83,7 +104,7 @@ DracoOptions CheckedDracoOptions(TriangleMesh& mesh) {
   const MeshReport before = CheckMesh(mesh), after = CheckMesh(snapped);
   if (after.self_intersections > before.self_intersections ||
       after.degenerate_faces > before.degenerate_faces) {
-    std::printf("%d-bit positions would give %lld crossing face pairs and %lld flat faces "
+    std::fprintf(text, "%d-bit positions would give %lld crossing face pairs and %lld flat faces "
                 "(the input has %lld and %lld): writing float32 positions\n",
                 grid.bits, static_cast<long long>(after.self_intersections),
                 static_cast<long long>(after.degenerate_faces),
@@ -109,53 +130,58 @@ std::string DracoErrorNote(FileFormat format, const std::vector<Point3f>& positi
 }
 
 absl::Status RunConvert(const ConvertFlags& flags) {
-  // Both extensions are checked before any reading.
-  absl::StatusOr<FileFormat> in_format =
-      AnyFormat(flags.input, FileUse::kReadPointCloud, FileUse::kReadMesh);
-  if (!in_format.ok()) return in_format.status();
-  absl::StatusOr<FileFormat> out_format =
-      AnyFormat(flags.output, FileUse::kWritePointCloud, FileUse::kWriteMesh);
+  // Both names are checked before any reading (standard input's format may have to wait for
+  // its first bytes).
+  if (!IsStdStream(flags.input) || !flags.input_format.empty()) {
+    if (absl::Status s = AnyInputFormat(flags, "").status(); !s.ok()) return s;
+  }
+  absl::StatusOr<FileFormat> out_format = AnyOutputFormat(flags);
   if (!out_format.ok()) return out_format.status();
   if (absl::Status s = CheckOutputPath("OUTPUT", flags.output); !s.ok()) return s;
 
-  absl::StatusOr<TriangleMesh> geometry = ReadGeometry(flags.input, *in_format);
+  absl::StatusOr<std::string> bytes = ReadInputBytes(flags.input);
+  if (!bytes.ok()) return FileErrorAsInvalidInput(bytes.status());
+  absl::StatusOr<FileFormat> in_format = AnyInputFormat(flags, *bytes);
+  if (!in_format.ok()) return in_format.status();
+  const std::string input = InputName(flags.input), output = OutputName(flags.output);
+  absl::StatusOr<TriangleMesh> geometry = ParseGeometry(*bytes, *in_format, input);
   if (!geometry.ok()) return geometry.status();
   // A text file that is no OBJ (or an empty PLY) parses as no points: an error, not a file of
   // nothing reported as converted.
   if (geometry->vertices.empty()) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("'", flags.input, "' holds no points (is it really a ",
-                     std::filesystem::path(flags.input).extension().string(), " file?)"));
+    return absl::InvalidArgumentError(absl::StrCat(
+        "'", input, "' holds no points (is it really ", FormatName(*in_format), "?)"));
   }
-  const bool keep_faces =
-      !geometry->faces.empty() && FormatFromPath(flags.output, FileUse::kWriteMesh).ok();
+  // Standard output carries the result: the lines about it go to stderr then.
+  std::FILE* text = IsStdStream(flags.output) ? stderr : stdout;
+  const bool keep_faces = !geometry->faces.empty() && Supports(FileUse::kWriteMesh, *out_format);
   if (keep_faces) {
     DracoOptions draco;
     // The bound is taken on the input's positions, before CheckedDracoOptions snaps them.
     const std::vector<Point3f> input_vertices =
         *out_format == FileFormat::kDrc ? geometry->vertices : std::vector<Point3f>{};
-    if (*out_format == FileFormat::kDrc) draco = CheckedDracoOptions(*geometry);
-    if (absl::Status s = WriteMesh(*geometry, flags.output, draco); !s.ok()) {
-      return FileErrorAsInvalidInput(s);
+    if (*out_format == FileFormat::kDrc) draco = CheckedDracoOptions(*geometry, text);
+    if (absl::Status s = WriteOutputMesh(*geometry, flags.output, *out_format, draco); !s.ok()) {
+      return s;
     }
-    std::printf("wrote a mesh of %zu vertices and %zu faces to %s%s\n",
-                geometry->vertices.size(), geometry->faces.size(), flags.output.c_str(),
-                DracoErrorNote(*out_format, input_vertices, draco).c_str());
+    std::fprintf(text, "wrote a mesh of %zu vertices and %zu faces to %s%s\n",
+                 geometry->vertices.size(), geometry->faces.size(), output.c_str(),
+                 DracoErrorNote(*out_format, input_vertices, draco).c_str());
     return absl::OkStatus();
   }
-  if (!FormatFromPath(flags.output, FileUse::kWritePointCloud).ok()) {
-    return absl::InvalidArgumentError(absl::StrCat(flags.input, " has no faces, and ",
+  if (!Supports(FileUse::kWritePointCloud, *out_format)) {
+    return absl::InvalidArgumentError(absl::StrCat(input, " has no faces, and ",
                                                    FormatName(*out_format), " holds only meshes"));
   }
   PointCloud cloud;
   cloud.points = std::move(geometry->vertices);
   cloud.origin = geometry->origin;
   const DracoOptions draco;
-  if (absl::Status s = WritePointCloud(cloud, flags.output, draco); !s.ok()) {
-    return FileErrorAsInvalidInput(s);
+  if (absl::Status s = WriteOutputCloud(cloud, flags.output, *out_format, draco); !s.ok()) {
+    return s;
   }
-  std::printf("wrote %zu points to %s%s\n", cloud.points.size(), flags.output.c_str(),
-              DracoErrorNote(*out_format, cloud.points, draco).c_str());
+  std::fprintf(text, "wrote %zu points to %s%s\n", cloud.points.size(), output.c_str(),
+               DracoErrorNote(*out_format, cloud.points, draco).c_str());
   return absl::OkStatus();
 }
 
@@ -166,10 +192,18 @@ Command AddConvertCommand(CLI::App& parent) {
       "convert", "convert a point cloud or a mesh between formats (chosen by extension)");
   auto flags = std::make_shared<ConvertFlags>();
   app->add_option("INPUT", flags->input,
-                  "point cloud or mesh: .ply .obj .off .xyz .txt .pts .pcd .stl .drc")
+                  "point cloud or mesh: .ply .obj .off .xyz .txt .pts .pcd .stl .drc, or - for "
+                  "standard input")
       ->required();
-  app->add_option("OUTPUT", flags->output, "point cloud or mesh: .ply .obj .xyz .stl .drc")
+  app->add_option("OUTPUT", flags->output,
+                  "point cloud or mesh: .ply .obj .xyz .stl .drc, or - for standard output")
       ->required();
+  app->add_option("--input-format", flags->input_format,
+                  "the input's format when its name does not say it: ply obj off xyz pcd stl "
+                  "drc; for - it is otherwise told from the first bytes");
+  app->add_option("--output-format", flags->output_format,
+                  "the output's format when its name does not say it: ply obj xyz stl drc; for "
+                  "- it is otherwise binary PLY");
   return Command{app, [flags] { return RunConvert(*flags); }};
 }
 

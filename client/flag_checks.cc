@@ -8,6 +8,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "client/std_streams.h"
 
 namespace membrane::client {
 namespace {
@@ -36,6 +37,7 @@ absl::Status CheckRealRange(absl::string_view flag, double value, double lo, dou
 }
 
 absl::Status CheckOutputPath(absl::string_view flag, const std::string& path) {
+  if (IsStdStream(path)) return absl::OkStatus();
   std::error_code error;  // a path we cannot even stat counts as missing
   if (std::filesystem::is_directory(path, error)) {
     return absl::InvalidArgumentError(

@@ -24,7 +24,8 @@ absl::Status CheckRealRange(absl::string_view flag, double value, double lo, dou
 // would hold it (the current one for a bare name) exists and is writable. Otherwise
 // InvalidArgument naming the flag, e.g. "-o: cannot write 'a/b.ply': directory 'a' does not
 // exist" or "--stats-json: cannot write 'out': it is a directory". Creates nothing. Lets a
-// long job fail at once rather than after its work, when the write fails.
+// long job fail at once rather than after its work, when the write fails. "-" (standard
+// output) is always OK.
 absl::Status CheckOutputPath(absl::string_view flag, const std::string& path);
 
 }  // namespace membrane::client

@@ -1,5 +1,5 @@
-// The cloud of `membrane reconstruct --local`: its input file, read as the pipeline's decode
-// stage.
+// The cloud of `membrane reconstruct --local`: its input file or standard input, read as the
+// pipeline's decode stage.
 #ifndef MEMBRANE_CLIENT_INPUT_FILE_SOURCE_H_
 #define MEMBRANE_CLIENT_INPUT_FILE_SOURCE_H_
 
@@ -12,16 +12,19 @@ namespace membrane::client {
 
 class InputFileSource : public CloudSource {
  public:
-  // `path`: a point cloud file, its format by extension.
-  explicit InputFileSource(std::string path) : path_(std::move(path)) {}
+  // `path`: a point cloud file, or "-" for standard input; `format_flag`: --input-format's
+  // value (empty: by the extension, or for "-" by the content).
+  InputFileSource(std::string path, std::string format_flag)
+      : path_(std::move(path)), format_flag_(std::move(format_flag)) {}
 
-  // ReadInputCloud (input_files.h: a .drc file is decoded in a child process), with the io
+  // ReadInputCloud (input_files.h: a Draco cloud is decoded in a child process), with the io
   // library's Internal for a file that cannot be read turned into InvalidArgument
   // (FileErrorAsInvalidInput): the messages name the file.
   absl::StatusOr<PointCloud> Read(const CancelToken& cancel) override;
 
  private:
   std::string path_;
+  std::string format_flag_;
 };
 
 }  // namespace membrane::client

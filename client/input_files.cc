@@ -1,8 +1,9 @@
 #include "client/input_files.h"
 
 #include "absl/strings/str_cat.h"
+#include "client/format_flags.h"
+#include "client/std_streams.h"
 #include "core/io/decode_subprocess.h"
-#include "core/io/file_bytes.h"
 #include "core/io/file_format.h"
 #include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
@@ -31,13 +32,21 @@ DecodeLimits DecoderLimits(const std::string& bytes, const std::string& path) {
 
 }  // namespace
 
-absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, const CancelToken& cancel) {
-  absl::StatusOr<FileFormat> format = FormatFromPath(path, FileUse::kReadPointCloud);
-  if (!format.ok()) return format.status();
-  if (*format != FileFormat::kDrc) return ReadPointCloud(path);
-  absl::StatusOr<std::string> bytes = ReadFileBytes(path);
+absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, absl::string_view format_flag,
+                                          const CancelToken& cancel) {
+  // A file's name is checked before it is read: a wrong extension fails at once.
+  if (!IsStdStream(path)) {
+    if (absl::Status s = InputFormat(path, format_flag, FileUse::kReadPointCloud).status();
+        !s.ok()) {
+      return s;
+    }
+  }
+  absl::StatusOr<std::string> bytes = ReadInputBytes(path);
   if (!bytes.ok()) return bytes.status();
-  return ParseInputCloud(*bytes, *format, path, cancel);
+  absl::StatusOr<FileFormat> format =
+      InputFormat(path, format_flag, FileUse::kReadPointCloud, *bytes);
+  if (!format.ok()) return format.status();
+  return ParseInputCloud(*bytes, *format, InputName(path), cancel);
 }
 
 absl::StatusOr<PointCloud> ParseInputCloud(const std::string& bytes, FileFormat format,
@@ -55,14 +64,21 @@ absl::StatusOr<PointCloud> ParseInputCloud(const std::string& bytes, FileFormat 
   return cloud;
 }
 
-absl::StatusOr<TriangleMesh> ReadInputMesh(const std::string& path, const CancelToken& cancel) {
-  absl::StatusOr<FileFormat> format = FormatFromPath(path, FileUse::kReadMesh);
-  if (!format.ok()) return format.status();
-  if (*format != FileFormat::kDrc) return ReadMesh(path);
-  absl::StatusOr<std::string> bytes = ReadFileBytes(path);
+absl::StatusOr<TriangleMesh> ReadInputMesh(const std::string& path, absl::string_view format_flag,
+                                           const CancelToken& cancel) {
+  if (!IsStdStream(path)) {
+    if (absl::Status s = InputFormat(path, format_flag, FileUse::kReadMesh).status(); !s.ok()) {
+      return s;
+    }
+  }
+  absl::StatusOr<std::string> bytes = ReadInputBytes(path);
   if (!bytes.ok()) return bytes.status();
-  return ParseInputMesh(*bytes, *format, path, cancel);
+  absl::StatusOr<FileFormat> format = InputFormat(path, format_flag, FileUse::kReadMesh, *bytes);
+  if (!format.ok()) return format.status();
+  return ParseInputMesh(*bytes, *format, InputName(path), cancel);
 }
+
+std::string InputName(const std::string& path) { return IsStdStream(path) ? "stdin" : path; }
 
 absl::StatusOr<TriangleMesh> ParseInputMesh(const std::string& bytes, FileFormat format,
                                             const std::string& path, const CancelToken& cancel) {

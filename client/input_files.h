@@ -8,6 +8,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "core/base/cancel_token.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
@@ -19,26 +20,34 @@ namespace membrane::client {
 // another `membrane` process; not a subcommand users see.
 inline constexpr char kDecodeHelperFlag[] = "--decode-helper";
 
-// The points of the cloud file at `path`, as ReadPointCloud reads them, except that a .drc
-// file is decoded by this executable run as its own decode helper, in a child with a 30 s
-// wall and CPU limit and an address-space limit of 1 GiB plus 32 bytes per byte of the file.
-// Where no child can be started (no /proc), the file is decoded in this process. Errors as
-// ReadPointCloud's, and InvalidArgument "PATH could not be decoded: ..." for a child that
-// fails, crashes or runs out of its limits; Cancelled when `cancel` fires.
-absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, const CancelToken& cancel);
+// The points of the cloud at `path`, a file or "-" for standard input, in the format
+// `format_flag` names (--input-format; empty: the extension's, or for "-" the one its first
+// bytes show, InputFormat), as ReadPointCloudFromBuffer reads them, except that a Draco cloud
+// is decoded by this executable run as its own decode helper, in a child with a 30 s wall and
+// CPU limit and an address-space limit of 1 GiB plus 32 bytes per byte of the file. Where no
+// child can be started (no /proc), it is decoded in this process. Errors as ReadFileBytes',
+// ReadInputBytes', InputFormat's and ReadPointCloudFromBuffer's (messages naming the file, or
+// "stdin"), and InvalidArgument "PATH could not be decoded: ..." for a child that fails,
+// crashes or runs out of its limits; Cancelled when `cancel` fires.
+absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, absl::string_view format_flag,
+                                          const CancelToken& cancel);
 
 // The same for a file already read: `bytes` in `format`, named `path` in messages.
 absl::StatusOr<PointCloud> ParseInputCloud(const std::string& bytes, FileFormat format,
                                            const std::string& path, const CancelToken& cancel);
 
-// The mesh file at `path`, as ReadMesh reads it, except that a .drc file is decoded in a child
-// as above (DecodeDracoMesh there). Errors as ReadMesh's, and InvalidArgument "PATH could not
-// be decoded: ..." for a child that fails, crashes or runs out of its limits.
-absl::StatusOr<TriangleMesh> ReadInputMesh(const std::string& path, const CancelToken& cancel);
+// The mesh at `path` (a file, or "-" for standard input, its format as for ReadInputCloud),
+// as ReadMeshFromBuffer reads it, except that a Draco mesh is decoded in a child as above
+// (DecodeDracoMesh there). Errors as ReadInputCloud's, ReadMeshFromBuffer's for the parse.
+absl::StatusOr<TriangleMesh> ReadInputMesh(const std::string& path, absl::string_view format_flag,
+                                           const CancelToken& cancel);
 
 // The same for a file already read.
 absl::StatusOr<TriangleMesh> ParseInputMesh(const std::string& bytes, FileFormat format,
                                             const std::string& path, const CancelToken& cancel);
+
+// The name of input `path` in messages: "stdin" for "-", else the path.
+std::string InputName(const std::string& path);
 
 }  // namespace membrane::client
 

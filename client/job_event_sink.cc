@@ -22,6 +22,7 @@ void JobEventSink::Consume(const v1::JobEvent& event) {
       if (event.snapshot().parameters().origin_size() == 3) {
         for (int k = 0; k < 3; ++k) origin_[k] = event.snapshot().parameters().origin(k);
       }
+      mesh_format_ = event.snapshot().parameters().mesh_format();
       replay_index_ = 0;
       events_in_call_ = 0;
       break;

@@ -48,6 +48,10 @@ class JobEventSink {
   const std::string& mesh() const { return mesh_; }
   // The job's Parameters.origin, from WatchJob's snapshot (zero before one, or without one).
   const Origin3d& origin() const { return origin_; }
+  // The job's Parameters.mesh_format, from WatchJob's snapshot: the encoding of mesh().
+  // MESH_FORMAT_UNSPECIFIED (Draco) before a snapshot: Reconstruct calls of this client ask
+  // for Draco.
+  v1::MeshFormat mesh_format() const { return mesh_format_; }
 
  private:
   void ConsumeProgress(const v1::JobEvent& event);
@@ -68,6 +72,7 @@ class JobEventSink {
   bool done_ = false;
   v1::JobDone final_;
   Origin3d origin_{0, 0, 0};
+  v1::MeshFormat mesh_format_ = v1::MESH_FORMAT_UNSPECIFIED;
 };
 
 }  // namespace membrane::client

@@ -15,14 +15,14 @@
 #include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
 #include "client/flag_checks.h"
-#include "client/io_errors.h"
+#include "client/format_flags.h"
 #include "client/job_event_sink.h"
 #include "client/progress_printer.h"
 #include "client/remote_reconstruction.h"
 #include "client/report_text.h"
 #include "client/rpc_errors.h"
 #include "client/server_connection.h"
-#include "core/io/file_bytes.h"
+#include "client/std_streams.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
 #include "proto/job_routing.h"
 
@@ -34,7 +34,8 @@ struct JobsFlags {
   ServerConnection server;  // the connection's files read, before the subcommand runs
   std::string job_id;
   std::string replica;      // list: the replica to ask, behind a balancer
-  std::string output;      // watch: where to write the mesh
+  std::string output;      // watch: where to write the mesh ("-": stdout)
+  std::string output_format;  // watch: the mesh's format, when not the extension's
   std::string stats_json;  // watch: where to write the statistics
   double timeout = 30;     // per call; watch: for the whole job (0 = no limit)
   bool quiet = false;
@@ -127,12 +128,25 @@ absl::Status RunWatch(const JobsFlags& flags) {
     if (path->empty()) continue;
     if (absl::Status s = CheckOutputPath(flag, *path); !s.ok()) return s;
   }
+  if (IsStdStream(flags.output) && IsStdStream(flags.stats_json)) {
+    return absl::InvalidArgumentError(
+        "-o - and --stats-json - would both write to standard output; send one of them to a "
+        "file");
+  }
+  FileFormat output_format = FileFormat::kPly;
+  if (!flags.output.empty()) {
+    absl::StatusOr<FileFormat> format =
+        OutputFormat(flags.output, flags.output_format, FileUse::kWriteMesh);
+    if (!format.ok()) return format.status();
+    output_format = *format;
+  }
   const absl::Time deadline =
       flags.timeout > 0 ? absl::Now() + absl::Seconds(flags.timeout) : absl::InfiniteFuture();
   absl::Status outcome;
   std::string mesh, statistics;
   std::vector<std::string> warnings;
   Origin3d origin;
+  v1::MeshFormat format = v1::MESH_FORMAT_UNSPECIFIED;
   {
     ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
     JobEventSink sink(progress);
@@ -141,16 +155,15 @@ absl::Status RunWatch(const JobsFlags& flags) {
     statistics = sink.statistics_json();
     warnings = sink.warnings();
     origin = sink.origin();
+    format = sink.mesh_format();
   }
   if (!outcome.ok()) return outcome;
   std::fputs(WarningLines(warnings).c_str(), stderr);
   if (!flags.stats_json.empty()) {
-    if (absl::Status s = WriteFileBytes(flags.stats_json, statistics); !s.ok()) {
-      return FileErrorAsInvalidInput(s);
-    }
+    if (absl::Status s = WriteOutputBytes(flags.stats_json, statistics); !s.ok()) return s;
   }
   if (flags.output.empty()) return absl::OkStatus();
-  return WriteReceivedMesh(mesh, origin, flags.output);
+  return WriteReceivedMesh(mesh, format, origin, flags.output, output_format);
 }
 
 // Adds `name` with its flags to `jobs`; `run` gets the parsed values.
@@ -175,8 +188,13 @@ Command AddJobsCommand(CLI::App& parent) {
   CLI::App* get = AddJobsSubcommand(*jobs, "get", "one job's state", flags, true);
   CLI::App* watch =
       AddJobsSubcommand(*jobs, "watch", "follow a job to its end (re-attach)", flags, true);
-  watch->add_option("-o,--output", flags->output, "write the job's mesh here");
-  watch->add_option("--stats-json", flags->stats_json, "write the job's statistics here");
+  watch->add_option("-o,--output", flags->output,
+                    "write the job's mesh here (.ply .obj .stl .drc), or - for standard output");
+  watch->add_option("--output-format", flags->output_format,
+                    "the mesh's format when -o's name does not say it: ply obj stl drc; for - it "
+                    "is otherwise binary PLY");
+  watch->add_option("--stats-json", flags->stats_json,
+                    "write the job's statistics here, or - for standard output");
   watch->add_flag("-q,--quiet", flags->quiet, "no progress lines on stderr");
   CLI::App* cancel = AddJobsSubcommand(*jobs, "cancel", "ask a job to stop", flags, true);
   for (CLI::App* app : {list, get, cancel}) {

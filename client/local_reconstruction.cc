@@ -6,6 +6,7 @@
 #include "absl/strings/str_format.h"
 #include "client/cloud_origin.h"
 #include "client/input_file_source.h"
+#include "client/input_files.h"
 #include "client/memory_limit_gate.h"
 #include "client/mesh_file_sink.h"
 #include "core/pipeline/reconstruction_pipeline.h"
@@ -44,15 +45,20 @@ class LocalProgress : public ReconstructionObserver {
 absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const ReconstructionParams& params,
                                                             const CancelToken& cancel,
                                                             ProgressPrinter& progress) {
-  InputFileSource source(params.input);
+  InputFileSource source(params.input, params.input_format);
   MemoryLimitGate gate(params.memory_limit_bytes);
-  MeshFileSink sink(params.output, params.draco.compression_level);
-  LocalProgress observer(progress, params.input);
+  MeshFileSink sink(params.output, params.output_format, params.draco.compression_level);
+  const std::string input_name = InputName(params.input);
+  LocalProgress observer(progress, input_name);
   const ErrorContext errors{
-      .invalid_argument_prefix = absl::StrCat(params.input, ": "),
+      .invalid_argument_prefix = absl::StrCat(input_name, ": "),
       .resource_exhausted_advice = "; use a larger --voxel-size or raise --voxel-budget",
   };
-  return RunReconstruction(params.options, {source, gate, sink, observer}, errors, cancel);
+  absl::StatusOr<ReconstructionReport> report =
+      RunReconstruction(params.options, {source, gate, sink, observer}, errors, cancel);
+  if (!report.ok()) return report;
+  if (absl::Status s = sink.Flush(); !s.ok()) return s;
+  return report;
 }
 
 }  // namespace membrane::client

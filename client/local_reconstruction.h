@@ -10,14 +10,17 @@
 #include "client/progress_printer.h"
 #include "core/base/cancel_token.h"
 #include "core/io/draco_codec.h"
+#include "core/io/file_format.h"
 #include "core/pipeline/reconstruction_options.h"
 #include "core/pipeline/reconstruction_report.h"
 
 namespace membrane::client {
 
 struct ReconstructionParams {
-  std::string input;   // point cloud path; format by extension
-  std::string output;  // mesh path; format by extension (.ply .obj .stl .drc)
+  std::string input;         // point cloud path, or "-" for standard input
+  std::string input_format;  // --input-format; empty: by extension (by content for "-")
+  std::string output;        // mesh path, or "-" for standard output
+  FileFormat output_format = FileFormat::kPly;  // of `output` (OutputFormat): ply obj stl drc
   ReconstructionOptions options;
   DracoOptions draco;  // used for .drc output only
   // The most memory the run may need by the core's estimates (memory_estimate.h), in bytes;
@@ -35,7 +38,8 @@ struct ReconstructionParams {
 // --voxel-size and --voxel-budget, and for a grid or a surface over params.memory_limit_bytes
 // (checked before the grid is allocated and again once the membrane is known, when a noisy
 // cloud's foam of a membrane shows), naming the bytes and --memory-limit; Cancelled when
-// `cancel` fires; InvalidArgument naming the output path when it cannot be written.
+// `cancel` fires; InvalidArgument naming the output path when it cannot be written. Standard
+// output ("-") gets the mesh once the run is over, and nothing before.
 absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const ReconstructionParams& params,
                                                             const CancelToken& cancel,
                                                             ProgressPrinter& progress);

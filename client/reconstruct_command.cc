@@ -5,26 +5,27 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "CLI/CLI.hpp"
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
-#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/time/time.h"
 #include "client/deadline_timer.h"
 #include "client/flag_checks.h"
+#include "client/format_flags.h"
 #include "client/interrupt_watch.h"
-#include "client/io_errors.h"
 #include "client/local_reconstruction.h"
+#include "client/output_files.h"
 #include "client/progress_printer.h"
 #include "client/remote_reconstruction.h"
 #include "client/report_text.h"
 #include "client/server_connection.h"
+#include "client/std_streams.h"
 #include "client/upload_plan.h"
 #include "core/engine/plate_schedule.h"
-#include "core/io/file_bytes.h"
 #include "core/io/file_format.h"
 #include "core/pipeline/machine_memory.h"
 #include "core/pipeline/stats_json.h"
@@ -42,7 +43,9 @@ constexpr double kMaxTimeoutSeconds = 1e6;
 // our range check (and its message) instead of failing conversion.
 struct ReconstructFlags {
   std::string input;
+  std::string input_format;
   std::string output;
+  std::string output_format;
   bool local = false;
   ConnectionFlags connection;
   double voxel_size = 0;
@@ -64,8 +67,19 @@ struct ReconstructFlags {
 };
 
 void DefineFlags(CLI::App& app, ReconstructFlags& f) {
-  app.add_option("INPUT", f.input, "point cloud: .ply .obj .off .xyz .txt .pts .pcd .drc")->required();
-  app.add_option("-o,--output", f.output, "mesh to write: .ply .obj .stl .drc")->required();
+  app.add_option("INPUT", f.input,
+                 "point cloud: .ply .obj .off .xyz .txt .pts .pcd .drc, or - for standard input")
+      ->required();
+  app.add_option("--input-format", f.input_format,
+                 "the input's format when its name does not say it: ply obj off xyz pcd drc; "
+                 "for - (standard input) it is otherwise told from the first bytes");
+  app.add_option("-o,--output", f.output,
+                 "mesh to write: .ply .obj .stl .drc, or - for standard output (then the table "
+                 "and the summary go to stderr)")
+      ->required();
+  app.add_option("--output-format", f.output_format,
+                 "the mesh's format when the name does not say it: ply obj stl drc; for - it is "
+                 "otherwise binary PLY");
   CLI::Option* local = app.add_flag("--local", f.local, "run the reconstruction in this process");
   // --server is the default unless --local.
   local->excludes(AddConnectionFlags(app, f.connection));
@@ -96,7 +110,8 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
                  "the grid and before the surface; -1 (default) = the memory this machine (or "
                  "its container) has available; 0 = no limit")
       ->needs(local);
-  app.add_option("--stats-json", f.stats_json, "write the statistics JSON to this file");
+  app.add_option("--stats-json", f.stats_json,
+                 "write the statistics JSON to this file, or - for standard output");
   app.add_option("--timeout", f.timeout, "give up after this many seconds (exit 4); 0 = never")
       ->capture_default_str();
   app.add_flag("-q,--quiet", f.quiet,
@@ -120,9 +135,17 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
 absl::Status CheckFlagValues(const ReconstructFlags& f) {
   const absl::Status checks[] = {
       // Unknown extensions and missing directories fail here, before minutes of work.
-      FormatFromPath(f.input, FileUse::kReadPointCloud).status(),
-      FormatFromPath(f.output, FileUse::kWriteMesh).status(),
+      // Standard input's format may have to wait for its first bytes.
+      IsStdStream(f.input) && f.input_format.empty()
+          ? absl::OkStatus()
+          : InputFormat(f.input, f.input_format, FileUse::kReadPointCloud).status(),
+      OutputFormat(f.output, f.output_format, FileUse::kWriteMesh).status(),
       CheckOutputPath("-o", f.output),
+      IsStdStream(f.output) && IsStdStream(f.stats_json)
+          ? absl::InvalidArgumentError(
+                "-o - and --stats-json - would both write to standard output; send one of "
+                "them to a file")
+          : absl::OkStatus(),
       std::isfinite(f.voxel_size) && f.voxel_size >= 0
           ? absl::OkStatus()
           : absl::InvalidArgumentError(absl::StrFormat(
@@ -156,7 +179,10 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   if (!surface.ok()) return surface.status();
   ReconstructionParams p;
   p.input = f.input;
+  p.input_format = f.input_format;
   p.output = f.output;
+  // Checked by CheckFlagValues.
+  p.output_format = *OutputFormat(f.output, f.output_format, FileUse::kWriteMesh);
   p.options.voxelize.voxel_size = f.voxel_size;
   p.options.voxelize.voxel_budget = f.voxel_budget;
   p.options.shrink.initial_plate = static_cast<int>(f.initial_plate);
@@ -172,7 +198,7 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   p.draco.position_quantization_bits = static_cast<int>(f.quantization);
   p.draco.compression_level = static_cast<int>(f.compression_level);
   // Only .drc quantizes; the surface is then built and checked on the file's grid.
-  if (absl::EndsWithIgnoreCase(f.output, ".drc")) {
+  if (p.output_format == FileFormat::kDrc) {
     p.options.output_quantization_bits = static_cast<int>(f.quantization);
   }
   return p;
@@ -191,18 +217,21 @@ absl::Status SurfaceCheckStatus(const MeshReport& m, const std::string& output) 
 
 // The job's parameters as the server takes them. The mesh comes back lossless unless the
 // output is .drc, so that a .ply/.obj/.stl holds exactly what the server built.
-RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f, ServerConnection server) {
+RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f, FileFormat output_format,
+                                   ServerConnection server) {
   RemoteParams r;
   r.server = std::move(server);
   r.input = f.input;
+  r.input_format = f.input_format;
   r.output = f.output;
+  r.output_format = output_format;
   v1::Parameters& p = r.parameters;
   p.set_voxel_size(f.voxel_size);
   p.set_initial_plate(static_cast<int32_t>(f.initial_plate));
   p.set_schedule(f.schedule);
   p.set_surface(f.surface);
   p.set_no_relax(f.no_relax);
-  const bool drc_output = absl::EndsWithIgnoreCase(f.output, ".drc");
+  const bool drc_output = output_format == FileFormat::kDrc;
   p.set_quantization(drc_output ? static_cast<int32_t>(f.quantization) : 0);
   p.set_compression_level(static_cast<int32_t>(f.compression_level));
   // The client's default budget is the core's; the server caps it with its own.
@@ -215,34 +244,47 @@ RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f, ServerConnection s
   return r;
 }
 
-absl::Status RunRemote(const ReconstructFlags& flags) {
+// Prints a finished run's generation table (unless --quiet), its summary line and its
+// warnings, and writes its statistics (--stats-json). The table and the summary go to stdout,
+// or to stderr when stdout carries the mesh or the statistics (-o -, --stats-json -).
+absl::Status ReportRun(const ReconstructFlags& flags,
+                       const std::vector<GenerationStats>& generations,
+                       const std::string& summary, const std::vector<std::string>& warnings,
+                       const std::string& statistics_json) {
+  std::FILE* text = IsStdStream(flags.output) || IsStdStream(flags.stats_json) ? stderr : stdout;
+  if (!flags.quiet) std::fputs(GenerationTable(generations).c_str(), text);
+  std::fputs(summary.c_str(), text);
+  std::fflush(text);
+  std::fputs(WarningLines(warnings).c_str(), stderr);
+  if (flags.stats_json.empty()) return absl::OkStatus();
+  return WriteOutputBytes(flags.stats_json, statistics_json);
+}
+
+absl::Status RunRemote(const ReconstructFlags& flags, FileFormat output_format) {
   absl::StatusOr<ServerConnection> server = LoadServerConnection(flags.connection);
   if (!server.ok()) return server.status();
   absl::StatusOr<RemoteOutcome> outcome;
   {
     // Before any thread starts: see InterruptWatch.
     InterruptWatch interrupts(*server, flags.output, flags.on_interrupt == "cancel");
-    RemoteParams params = RemoteParamsFromFlags(flags, *std::move(server));
+    RemoteParams params = RemoteParamsFromFlags(flags, output_format, *std::move(server));
     params.on_accepted = [&interrupts](const std::string& id) { interrupts.JobAccepted(id); };
     ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
     outcome = RunRemoteReconstruction(params, progress);
   }
   if (!outcome.ok()) return outcome.status();
-  if (!flags.quiet) std::fputs(GenerationTable(outcome->generations).c_str(), stdout);
-  std::fputs(RemoteSummaryLine(*outcome).c_str(), stdout);
-  std::fflush(stdout);
-  std::fputs(WarningLines(outcome->warnings).c_str(), stderr);
-  if (!flags.stats_json.empty()) {
-    absl::Status s = WriteFileBytes(flags.stats_json, outcome->statistics_json);
-    if (!s.ok()) return FileErrorAsInvalidInput(s);
+  if (absl::Status s = ReportRun(flags, outcome->generations, RemoteSummaryLine(*outcome),
+                                 outcome->warnings, outcome->statistics_json);
+      !s.ok()) {
+    return s;
   }
-  return SurfaceCheckStatus(outcome->mesh, flags.output);
+  return SurfaceCheckStatus(outcome->mesh, OutputName(flags.output));
 }
 
 absl::Status RunReconstruct(const ReconstructFlags& flags) {
   absl::StatusOr<ReconstructionParams> params = ParamsFromFlags(flags);
   if (!params.ok()) return params.status();
-  if (!flags.local) return RunRemote(flags);
+  if (!flags.local) return RunRemote(flags, params->output_format);
 
   CancelToken cancel;
   absl::StatusOr<ReconstructionReport> report;
@@ -260,15 +302,12 @@ absl::Status RunReconstruct(const ReconstructFlags& flags) {
     }
     return report.status();
   }
-  if (!flags.quiet) std::fputs(GenerationTable(report->generations).c_str(), stdout);
-  std::fputs(SummaryLine(*report).c_str(), stdout);
-  std::fflush(stdout);
-  std::fputs(WarningLines(report->warnings).c_str(), stderr);
-  if (!flags.stats_json.empty()) {
-    absl::Status s = WriteFileBytes(flags.stats_json, StatsJson(*report));
-    if (!s.ok()) return FileErrorAsInvalidInput(s);
+  if (absl::Status s = ReportRun(flags, report->generations, SummaryLine(*report),
+                                 report->warnings, StatsJson(*report));
+      !s.ok()) {
+    return s;
   }
-  return SurfaceCheckStatus(report->mesh, flags.output);
+  return SurfaceCheckStatus(report->mesh, OutputName(flags.output));
 }
 
 }  // namespace

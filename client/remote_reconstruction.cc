@@ -7,7 +7,6 @@
 #include <grpcpp/create_channel.h>
 
 #include "absl/status/status.h"
-#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
@@ -15,9 +14,10 @@
 #include "client/cloud_origin.h"
 #include "client/input_files.h"
 #include "client/io_errors.h"
+#include "client/output_files.h"
 #include "client/rpc_errors.h"
+#include "client/std_streams.h"
 #include "client/upload_plan.h"
-#include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
 #include "core/pipeline/stopwatch.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
@@ -94,11 +94,16 @@ grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams&
 absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& outcome,
                                      ProgressPrinter& progress) {
   const Stopwatch watch;
-  progress.Begin(absl::StrCat("decode: reading ", params.input));
+  progress.Begin(absl::StrCat("decode: reading ", InputName(params.input)));
   // The job does not exist yet: nothing to cancel.
-  absl::StatusOr<PointCloud> cloud = ReadInputCloud(params.input, CancelToken::Never());
+  absl::StatusOr<PointCloud> cloud =
+      ReadInputCloud(params.input, params.input_format, CancelToken::Never());
   if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
-  if (absl::Status s = CheckOutputKeepsOrigin(cloud->origin, params.output); !s.ok()) return s;
+  if (absl::Status s = CheckOutputKeepsOrigin(cloud->origin, params.output_format,
+                                              OutputName(params.output));
+      !s.ok()) {
+    return s;
+  }
   Upload upload;
   upload.origin = cloud->origin;
   upload.parameters = params.parameters;
@@ -114,7 +119,7 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, draco);
   if (!encoded.ok()) {
     return absl::Status(encoded.status().code(),
-                        absl::StrCat(params.input, ": ", encoded.status().message()));
+                        absl::StrCat(InputName(params.input), ": ", encoded.status().message()));
   }
   outcome.raw_bytes = cloud->points.size() * sizeof(Point3f);
   outcome.upload_bytes = encoded->bytes.size();
@@ -173,17 +178,22 @@ absl::Status WatchUntilDone(const ServerConnection& server, const std::string& j
   }
 }
 
-absl::Status WriteReceivedMesh(const std::string& mesh, const Origin3d& origin,
-                               const std::string& output) {
-  if (absl::EndsWithIgnoreCase(output, ".drc") && origin == Origin3d{0, 0, 0}) {
-    return FileErrorAsInvalidInput(WriteFileBytes(output, mesh));
-  }
-  absl::StatusOr<TriangleMesh> decoded = DecodeDracoMesh(mesh);
+absl::Status WriteReceivedMesh(const std::string& mesh, v1::MeshFormat format,
+                               const Origin3d& origin, const std::string& output,
+                               FileFormat output_format) {
+  const bool ply = format == v1::MESH_FORMAT_PLY;
+  const bool as_received = ply ? output_format == FileFormat::kPly
+                               : output_format == FileFormat::kDrc && origin == Origin3d{0, 0, 0};
+  if (as_received) return WriteOutputBytes(output, mesh);
+  absl::StatusOr<TriangleMesh> decoded =
+      ply ? ReadMeshFromBuffer(mesh, FileFormat::kPly, "the server's PLY mesh")
+          : DecodeDracoMesh(mesh);
   if (!decoded.ok()) {
     return absl::DataLossError(absl::StrCat("the server's mesh: ", decoded.status().message()));
   }
-  decoded->origin = origin;
-  return FileErrorAsInvalidInput(WriteMesh(*decoded, output, DracoOptions{}));
+  // A PLY mesh's reader set the origin it moved the positions by, if any.
+  if (!ply) decoded->origin = origin;
+  return WriteOutputMesh(*decoded, output, output_format);
 }
 
 namespace {
@@ -285,11 +295,15 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
     if (!ended.ok()) return ended;
 
     const Stopwatch watch;
-    progress.Begin(absl::StrCat("encode: writing ", params.output));
-    if (absl::Status s = WriteReceivedMesh(sink.mesh(), upload->origin, params.output); !s.ok())
+    progress.Begin(absl::StrCat("encode: writing ", OutputName(params.output)));
+    if (absl::Status s = WriteReceivedMesh(sink.mesh(), v1::MESH_FORMAT_DRACO, upload->origin,
+                                           params.output, params.output_format);
+        !s.ok()) {
       return s;
+    }
     progress.Finish(absl::StrFormat("encode: %s (%d bytes received as Draco) in %.3f s",
-                                    params.output, sink.mesh().size(), watch.Seconds()));
+                                    OutputName(params.output), sink.mesh().size(),
+                                    watch.Seconds()));
     outcome.job_id = sink.job_id();
     outcome.generations = sink.generations();
     outcome.statistics_json = sink.statistics_json();

@@ -17,6 +17,7 @@
 #include "client/server_connection.h"
 #include "core/engine/membrane_shrinker.h"
 #include "core/io/draco_codec.h"
+#include "core/io/file_format.h"
 #include "core/mesh/mesh_check.h"
 #include "membrane/v1/reconstruction.pb.h"
 
@@ -24,8 +25,10 @@ namespace membrane::client {
 
 struct RemoteParams {
   ServerConnection server;     // HOST:PORT, TLS and token
-  std::string input;           // point cloud path; format by extension
-  std::string output;          // mesh path; format by extension
+  std::string input;           // point cloud path, or "-" for standard input
+  std::string input_format;    // --input-format; empty: by extension (by content for "-")
+  std::string output;          // mesh path, or "-" for standard output
+  FileFormat output_format = FileFormat::kPly;  // of `output` (OutputFormat)
   v1::Parameters parameters;   // sent as they are; the server validates them
   DracoOptions upload;         // compression of the cloud sent (--quantization 0: lossless)
   // --quantization not given: more bits than upload's where the cloud's voxel needs them
@@ -83,12 +86,17 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
 absl::Status WatchUntilDone(const ServerConnection& server, const std::string& job_id,
                             absl::Time deadline, JobEventSink& sink);
 
-// Writes the Draco `mesh`, whose positions are relative to `origin` (the job's
-// Parameters.origin), to `output` by its extension: the bytes as they are for .drc without an
-// origin, decoded and written with the origin otherwise (refused for .drc and .stl with one,
-// CheckOriginFitsFormat). DataLoss when the bytes are not a Draco mesh.
-absl::Status WriteReceivedMesh(const std::string& mesh, const Origin3d& origin,
-                               const std::string& output);
+// Writes a job's `mesh`, encoded as `format` (the job's Parameters.mesh_format), to `output`
+// (a file, or "-" for standard output) as `output_format`. A Draco mesh's positions are
+// relative to `origin` (the job's Parameters.origin): its bytes go out as they are for Draco
+// without an origin, else it is decoded and written with the origin. A PLY mesh holds the
+// client's coordinates already: its bytes go out as they are for PLY, else it is read (moved
+// near 0 when far from it, as any PLY file) and written. Refused for Draco and STL when the
+// mesh has an origin (CheckOriginFitsFormat). DataLoss when the bytes are not a mesh of
+// `format`; InvalidArgument naming the output when it cannot be written.
+absl::Status WriteReceivedMesh(const std::string& mesh, v1::MeshFormat format,
+                               const Origin3d& origin, const std::string& output,
+                               FileFormat output_format);
 
 }  // namespace membrane::client
 

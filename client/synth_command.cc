@@ -12,9 +12,10 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "client/flag_checks.h"
-#include "client/io_errors.h"
+#include "client/format_flags.h"
+#include "client/output_files.h"
+#include "client/std_streams.h"
 #include "core/io/file_format.h"
-#include "core/io/point_cloud_io.h"
 #include "core/synth/shape_catalog.h"
 #include "core/synth/synthesize.h"
 
@@ -25,6 +26,7 @@ namespace {
 struct SynthFlags {
   std::string shape;
   std::string output;
+  std::string output_format;
   int64_t points = 100000;
   double density_ratio = 1.0;
   int64_t holes = 0;
@@ -37,8 +39,12 @@ struct SynthFlags {
 void DefineFlags(CLI::App& app, SynthFlags& f) {
   app.add_option("SHAPE", f.shape, absl::StrCat("one of: ", absl::StrJoin(SynthShapeNames(), ", ")))
       ->required();
-  app.add_option("-o,--output", f.output, "point cloud to write: .ply (binary) .xyz .obj .drc")
+  app.add_option("-o,--output", f.output,
+                 "point cloud to write: .ply (binary) .xyz .obj .drc, or - for standard output")
       ->required();
+  app.add_option("--output-format", f.output_format,
+                 "the cloud's format when -o's name does not say it: ply xyz obj drc; for - it "
+                 "is otherwise binary PLY");
   app.add_option("--points", f.points, "number of points, [1, 50000000]")->capture_default_str();
   app.add_option("--density-ratio", f.density_ratio,
                  "densest : sparsest surface density, [1, 1000]")
@@ -90,18 +96,16 @@ absl::Status RunSynth(const SynthFlags& flags) {
   absl::StatusOr<SynthOptions> options = OptionsFromFlags(flags);
   if (!options.ok()) return options.status();
   // An unsupported extension fails before the (possibly long) generation.
-  if (absl::StatusOr<FileFormat> f = FormatFromPath(flags.output, FileUse::kWritePointCloud);
-      !f.ok()) {
-    return f.status();
-  }
+  absl::StatusOr<FileFormat> format =
+      OutputFormat(flags.output, flags.output_format, FileUse::kWritePointCloud);
+  if (!format.ok()) return format.status();
   if (absl::Status s = CheckOutputPath("-o", flags.output); !s.ok()) return s;
   absl::StatusOr<PointCloud> cloud = SynthesizeShape(*options);
   if (!cloud.ok()) return cloud.status();
-  if (absl::Status s = WritePointCloud(*cloud, flags.output); !s.ok()) {
-    return FileErrorAsInvalidInput(s);
-  }
-  std::printf("wrote %zu points of %s to %s\n", cloud->points.size(), flags.shape.c_str(),
-              flags.output.c_str());
+  if (absl::Status s = WriteOutputCloud(*cloud, flags.output, *format); !s.ok()) return s;
+  // Standard output carries the cloud: the line goes to stderr then.
+  std::fprintf(IsStdStream(flags.output) ? stderr : stdout, "wrote %zu points of %s to %s\n",
+               cloud->points.size(), flags.shape.c_str(), OutputName(flags.output).c_str());
   return absl::OkStatus();
 }
 

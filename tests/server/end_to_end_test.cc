@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <grpcpp/client_context.h>
+#include <grpcpp/create_channel.h>
 #include <gtest/gtest.h>
 
 #include "absl/time/clock.h"
@@ -16,9 +18,12 @@
 #include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
 #include "core/pipeline/machine_memory.h"
+#include "membrane/v1/reconstruction.grpc.pb.h"
+#include "proto/crc32c.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/server/draco_upload.h"
 #include "tests/server/http_get.h"
 #include "tests/server/membraned_process.h"
 #include "tests/server/subprocess.h"
@@ -578,6 +583,74 @@ TEST_F(EndToEndTest, JobsGetWatchAndUnknownIds) {
   ASSERT_EQ(get_json.exit_code, 0) << get_json.err;
   EXPECT_NE(get_json.out.find("\"state\":\"SUCCEEDED\""), std::string::npos) << get_json.out;
   EXPECT_EQ(std::count(get_json.out.begin(), get_json.out.end(), '\n'), 1) << get_json.out;
+}
+
+// --server in a pipe: the cloud from stdin, the mesh to stdout (the same bytes as to a file),
+// the table and the summary on stderr.
+TEST_F(EndToEndTest, ReconstructReadsStdinAndWritesStdoutThroughTheServer) {
+  StartServer();
+  const std::string cloud = Synth("sphere", 3000);
+  const CliResult file =
+      RunMembrane({"reconstruct", cloud, "-o", dir_.File("m.ply"), "--server", address_},
+                  dir_.path());
+  ASSERT_EQ(file.exit_code, 0) << file.err;
+  const CliResult piped =
+      RunMembrane({"reconstruct", "-", "-o", "-", "--server", address_}, dir_.path(), cloud);
+  ASSERT_EQ(piped.exit_code, 0) << piped.err;
+  EXPECT_EQ(piped.out, ReadWholeFile(dir_.File("m.ply")));
+  EXPECT_NE(piped.err.find("plate size | soft voxels"), std::string::npos) << piped.err;
+  EXPECT_NE(piped.err.find("encode: stdout"), std::string::npos) << piped.err;
+}
+
+// A job submitted as a client without Draco submits it (client/python): asking for the mesh
+// as binary PLY. Follows the job to its end; returns its id, and the PLY received in `ply`.
+std::string SubmitPlyJob(const std::string& address, const std::string& cloud,
+                         std::string& ply) {
+  auto stub = v1::Reconstruction::NewStub(
+      grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
+  auto stream = stub->Reconstruct(&context);
+  v1::ReconstructRequest header;
+  header.mutable_header()->mutable_parameters()->set_mesh_format(v1::MESH_FORMAT_PLY);
+  header.mutable_header()->set_upload_bytes(cloud.size());
+  header.mutable_header()->set_upload_crc32c(Crc32c(cloud));
+  v1::ReconstructRequest chunk;
+  chunk.set_chunk(cloud);
+  EXPECT_TRUE(stream->Write(header) && stream->Write(chunk));
+  stream->WritesDone();
+  std::string id;
+  v1::JobEvent event;
+  while (stream->Read(&event)) {
+    if (event.has_accepted()) id = event.accepted().job_id();
+    if (event.has_mesh_chunk()) ply += event.mesh_chunk();
+  }
+  const grpc::Status status = stream->Finish();
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return id;
+}
+
+// `jobs watch` of a job that asked for PLY writes the format of -o's extension: the PLY as it
+// came for .ply, the same mesh decoded and written again for the others.
+TEST_F(EndToEndTest, JobsWatchWritesAPlyJobsMeshInTheOutputsFormat) {
+  StartServer();
+  std::string received;
+  const std::string id = SubmitPlyJob(address_, LosslessDracoCloud("torus", 20000), received);
+  ASSERT_FALSE(id.empty());
+  ASSERT_EQ(received.rfind("ply\nformat binary_little_endian", 0), 0u);
+  absl::StatusOr<TriangleMesh> sent = ReadMeshFromBuffer(received, FileFormat::kPly);
+  ASSERT_TRUE(sent.ok()) << sent.status();
+  for (const char* name : {"w.ply", "w.obj", "w.stl", "w.drc"}) {
+    const CliResult watch = Run({"jobs", "watch", id, "--server", address_, "-o", dir_.File(name)});
+    ASSERT_EQ(watch.exit_code, 0) << name << watch.err;
+    absl::StatusOr<TriangleMesh> mesh = ReadMesh(dir_.File(name));
+    ASSERT_TRUE(mesh.ok()) << name << mesh.status();
+    EXPECT_EQ(mesh->faces.size(), sent->faces.size()) << name;
+    const CliResult check = Run({"check", dir_.File(name)});
+    EXPECT_EQ(check.exit_code, 0) << name << check.out << check.err;
+    EXPECT_NE(check.out.find("genus: [1]"), std::string::npos) << name << check.out;
+  }
+  EXPECT_EQ(ReadWholeFile(dir_.File("w.ply")), received);
 }
 
 // A georeferenced scan goes up in its moved float32 positions with its origin beside them, and

@@ -19,7 +19,8 @@ std::string ReadWholeFile(const std::string& path) {
   return buffer.str();
 }
 
-CliResult RunMembrane(const std::vector<std::string>& args, const std::string& scratch_dir) {
+CliResult RunMembrane(const std::vector<std::string>& args, const std::string& scratch_dir,
+                      const std::string& stdin_path) {
   const std::string out_path = scratch_dir + "/stdout.txt";
   const std::string err_path = scratch_dir + "/stderr.txt";
   std::vector<std::string> argv_strings = {MEMBRANE_BINARY};
@@ -32,7 +33,7 @@ CliResult RunMembrane(const std::vector<std::string>& args, const std::string& s
   const pid_t pid = fork();
   if (pid == 0) {
     // Child: only async-signal-safe calls until exec.
-    const int in = open("/dev/null", O_RDONLY);
+    const int in = open(stdin_path.c_str(), O_RDONLY);
     const int out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int err = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (in < 0 || out < 0 || err < 0) _exit(126);

@@ -14,8 +14,10 @@ struct CliResult {
 };
 
 // Runs MEMBRANE_BINARY with `args` (no shell: arguments are passed as they are), stdin from
-// /dev/null, stdout and stderr captured through files in `scratch_dir`. Waits for it to end.
-CliResult RunMembrane(const std::vector<std::string>& args, const std::string& scratch_dir);
+// the file `stdin_path`, stdout and stderr captured through files in `scratch_dir`. Waits for
+// it to end.
+CliResult RunMembrane(const std::vector<std::string>& args, const std::string& scratch_dir,
+                      const std::string& stdin_path = "/dev/null");
 
 // The bytes of the file at `path`; empty when it cannot be read.
 std::string ReadWholeFile(const std::string& path);

@@ -20,6 +20,7 @@
 #include "client/std_streams.h"
 #include "core/io/draco_codec.h"
 #include "core/io/file_format.h"
+#include "core/io/point_cloud_io.h"
 #include "core/mesh/mesh_check.h"
 
 namespace membrane::client {
@@ -30,6 +31,7 @@ struct ConvertFlags {
   std::string input_format;
   std::string output;  // "-": standard output
   std::string output_format;
+  bool drop_invalid = false;
 };
 
 // The format of the input `path` (InputFormat; `bytes` as read, for "-") for reading anything:
@@ -78,13 +80,29 @@ absl::StatusOr<bool> HoldsMesh(FileFormat format, const std::string& bytes,
 }
 
 // `bytes`, the contents of `path` in `format`, as a mesh; a file without faces gives a mesh
-// without faces.
+// without faces. With InvalidPoints::kDrop (--drop-invalid) the file is read as a point
+// cloud, its points with NaN or infinite coordinates left out and counted in `dropped`.
 absl::StatusOr<TriangleMesh> ParseGeometry(const std::string& bytes, FileFormat format,
-                                           const std::string& path) {
+                                           const std::string& path, InvalidPoints invalid,
+                                           size_t* dropped) {
+  *dropped = 0;
   absl::StatusOr<bool> holds_mesh = HoldsMesh(format, bytes, path);
   if (!holds_mesh.ok()) return holds_mesh.status();
-  if (*holds_mesh) return ParseInputMesh(bytes, format, path, CancelToken::Never());
-  absl::StatusOr<PointCloud> cloud = ParseInputCloud(bytes, format, path, CancelToken::Never());
+  const bool cloud_format = Supports(FileUse::kReadPointCloud, format);
+  if (*holds_mesh && !(invalid == InvalidPoints::kDrop && cloud_format)) {
+    absl::StatusOr<TriangleMesh> mesh = ParseInputMesh(bytes, format, path, CancelToken::Never());
+    if (mesh.ok() || !cloud_format) return mesh;
+    // A PLY of an organized scan holds no faces, and NaN where a pixel had no return: say
+    // so, and what drops them, rather than only that the vertices are not finite.
+    size_t count = 0;
+    if (ReadPointCloudFromBuffer(bytes, format, path, InvalidPoints::kDrop, &count).ok() &&
+        count > 0) {
+      return InvalidPointsError(path, count);
+    }
+    return mesh;
+  }
+  absl::StatusOr<PointCloud> cloud =
+      ParseInputCloud(bytes, format, path, CancelToken::Never(), invalid, dropped);
   if (!cloud.ok()) return cloud.status();
   TriangleMesh points_only;
   points_only.vertices = std::move(cloud->points);
@@ -144,7 +162,10 @@ absl::Status RunConvert(const ConvertFlags& flags) {
   absl::StatusOr<FileFormat> in_format = AnyInputFormat(flags, *bytes);
   if (!in_format.ok()) return in_format.status();
   const std::string input = InputName(flags.input), output = OutputName(flags.output);
-  absl::StatusOr<TriangleMesh> geometry = ParseGeometry(*bytes, *in_format, input);
+  size_t dropped = 0;
+  absl::StatusOr<TriangleMesh> geometry = ParseGeometry(
+      *bytes, *in_format, input,
+      flags.drop_invalid ? InvalidPoints::kDrop : InvalidPoints::kRefuse, &dropped);
   if (!geometry.ok()) return geometry.status();
   // A text file that is no OBJ (or an empty PLY) parses as no points: an error, not a file of
   // nothing reported as converted.
@@ -180,8 +201,10 @@ absl::Status RunConvert(const ConvertFlags& flags) {
   if (absl::Status s = WriteOutputCloud(cloud, flags.output, *out_format, draco); !s.ok()) {
     return s;
   }
-  std::fprintf(text, "wrote %zu points to %s%s\n", cloud.points.size(), output.c_str(),
-               DracoErrorNote(*out_format, cloud.points, draco).c_str());
+  const std::string dropped_note =
+      dropped > 0 ? absl::StrCat(" (", DroppedPointsNote(dropped), ")") : std::string();
+  std::fprintf(text, "wrote %zu points to %s%s%s\n", cloud.points.size(), output.c_str(),
+               dropped_note.c_str(), DracoErrorNote(*out_format, cloud.points, draco).c_str());
   return absl::OkStatus();
 }
 
@@ -204,6 +227,10 @@ Command AddConvertCommand(CLI::App& parent) {
   app->add_option("--output-format", flags->output_format,
                   "the output's format when its name does not say it: ply obj xyz stl drc; for "
                   "- it is otherwise binary PLY");
+  app->add_flag("--drop-invalid", flags->drop_invalid,
+                "read INPUT as a point cloud and leave out the points with NaN or infinite "
+                "coordinates (how organized scans mark pixels without a return) instead of "
+                "refusing it; the count is reported");
   return Command{app, [flags] { return RunConvert(*flags); }};
 }
 

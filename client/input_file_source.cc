@@ -6,7 +6,8 @@
 namespace membrane::client {
 
 absl::StatusOr<PointCloud> InputFileSource::Read(const CancelToken& cancel) {
-  absl::StatusOr<PointCloud> cloud = ReadInputCloud(path_, format_flag_, cancel);
+  absl::StatusOr<PointCloud> cloud =
+      ReadInputCloud(path_, format_flag_, cancel, invalid_, &dropped_);
   if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
   return cloud;
 }

@@ -30,10 +30,37 @@ DecodeLimits DecoderLimits(const std::string& bytes, const std::string& path) {
   return limits;
 }
 
+// ReadPointCloudFromBuffer, with the refusal of points that are not finite naming the flag
+// that drops them.
+absl::StatusOr<PointCloud> ReadCloudBuffer(const std::string& bytes, FileFormat format,
+                                           const std::string& path, InvalidPoints invalid,
+                                           size_t* dropped) {
+  size_t count = 0;
+  absl::StatusOr<PointCloud> cloud =
+      ReadPointCloudFromBuffer(bytes, format, path, InvalidPoints::kDrop, &count);
+  if (!cloud.ok()) return cloud;
+  if (count > 0 && invalid == InvalidPoints::kRefuse) return InvalidPointsError(path, count);
+  if (dropped != nullptr) *dropped = count;
+  return cloud;
+}
+
 }  // namespace
 
+absl::Status InvalidPointsError(absl::string_view name, size_t count) {
+  return absl::InvalidArgumentError(
+      absl::StrCat(name, ": ", count, count == 1 ? " point has" : " points have",
+                   " NaN or infinite coordinates (how organized scans mark pixels without a "
+                   "return); --drop-invalid leaves them out"));
+}
+
+std::string DroppedPointsNote(size_t count) {
+  return absl::StrCat(count, count == 1 ? " point" : " points",
+                      " with NaN or infinite coordinates left out by --drop-invalid");
+}
+
 absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, absl::string_view format_flag,
-                                          const CancelToken& cancel) {
+                                          const CancelToken& cancel, InvalidPoints invalid,
+                                          size_t* dropped) {
   // A file's name is checked before it is read: a wrong extension fails at once.
   if (!IsStdStream(path)) {
     if (absl::Status s = InputFormat(path, format_flag, FileUse::kReadPointCloud).status();
@@ -46,20 +73,22 @@ absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, absl::string_
   absl::StatusOr<FileFormat> format =
       InputFormat(path, format_flag, FileUse::kReadPointCloud, *bytes);
   if (!format.ok()) return format.status();
-  return ParseInputCloud(*bytes, *format, InputName(path), cancel);
+  return ParseInputCloud(*bytes, *format, InputName(path), cancel, invalid, dropped);
 }
 
 absl::StatusOr<PointCloud> ParseInputCloud(const std::string& bytes, FileFormat format,
-                                           const std::string& path, const CancelToken& cancel) {
+                                           const std::string& path, const CancelToken& cancel,
+                                           InvalidPoints invalid, size_t* dropped) {
+  if (dropped != nullptr) *dropped = 0;
   if (format != FileFormat::kDrc || bytes.empty()) {
-    return ReadPointCloudFromBuffer(bytes, format, path);
+    return ReadCloudBuffer(bytes, format, path, invalid, dropped);
   }
   DecodeLimits limits = DecoderLimits(bytes, path);
   limits.accept_mesh = true;  // as ReadPointCloud: a mesh's vertices
   absl::StatusOr<PointCloud> cloud = DecodeInSubprocess(bytes, limits, cancel);
   // No child (no /proc, out of processes): the checks in front of Draco still stand.
   if (cloud.status().code() == absl::StatusCode::kInternal) {
-    return ReadPointCloudFromBuffer(bytes, format, path);
+    return ReadCloudBuffer(bytes, format, path, invalid, dropped);
   }
   return cloud;
 }

@@ -5,6 +5,7 @@
 #ifndef MEMBRANE_CLIENT_INPUT_FILES_H_
 #define MEMBRANE_CLIENT_INPUT_FILES_H_
 
+#include <cstddef>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -13,6 +14,7 @@
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
 #include "core/io/file_format.h"
+#include "core/io/point_cloud_io.h"
 
 namespace membrane::client {
 
@@ -28,13 +30,28 @@ inline constexpr char kDecodeHelperFlag[] = "--decode-helper";
 // child can be started (no /proc), it is decoded in this process. Errors as ReadFileBytes',
 // ReadInputBytes', InputFormat's and ReadPointCloudFromBuffer's (messages naming the file, or
 // "stdin"), and InvalidArgument "PATH could not be decoded: ..." for a child that fails,
-// crashes or runs out of its limits; Cancelled when `cancel` fires.
+// crashes or runs out of its limits; Cancelled when `cancel` fires. Points with a NaN or
+// infinite coordinate are refused with InvalidPointsError, or with InvalidPoints::kDrop
+// (--drop-invalid) left out and counted in `dropped` (when not null); a Draco cloud's are
+// refused either way, by its decoder.
 absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, absl::string_view format_flag,
-                                          const CancelToken& cancel);
+                                          const CancelToken& cancel,
+                                          InvalidPoints invalid = InvalidPoints::kRefuse,
+                                          size_t* dropped = nullptr);
 
 // The same for a file already read: `bytes` in `format`, named `path` in messages.
 absl::StatusOr<PointCloud> ParseInputCloud(const std::string& bytes, FileFormat format,
-                                           const std::string& path, const CancelToken& cancel);
+                                           const std::string& path, const CancelToken& cancel,
+                                           InvalidPoints invalid = InvalidPoints::kRefuse,
+                                           size_t* dropped = nullptr);
+
+// InvalidArgument "<name>: 12 points have NaN or infinite coordinates (...); --drop-invalid
+// leaves them out": the refusal of a cloud whose `count` > 0 points are not finite.
+absl::Status InvalidPointsError(absl::string_view name, size_t count);
+
+// "12 points with NaN or infinite coordinates left out by --drop-invalid": the warning of a run
+// that dropped `count` points.
+std::string DroppedPointsNote(size_t count);
 
 // The mesh at `path` (a file, or "-" for standard input, its format as for ReadInputCloud),
 // as ReadMeshFromBuffer reads it, except that a Draco mesh is decoded in a child as above

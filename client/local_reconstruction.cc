@@ -14,12 +14,12 @@
 namespace membrane::client {
 namespace {
 
-// The printer's lines, but for the decode stage's: a local run names its input file, and
-// the shift its reader gave a georeferenced cloud.
+// The printer's lines, but for the decode stage's: a local run names its input file, the
+// shift its reader gave a georeferenced cloud, and the points --drop-invalid left out.
 class LocalProgress : public ReconstructionObserver {
  public:
-  LocalProgress(ProgressPrinter& printer, const std::string& input)
-      : printer_(printer), input_(input) {}
+  LocalProgress(ProgressPrinter& printer, const std::string& input, const InputFileSource& source)
+      : printer_(printer), input_(input), source_(source) {}
 
   void StageStarted(PipelineStage stage, const ReconstructionReport& report) override {
     if (stage != PipelineStage::kDecode) return printer_.StageStarted(stage, report);
@@ -31,13 +31,17 @@ class LocalProgress : public ReconstructionObserver {
   void StageFinished(PipelineStage stage, double seconds,
                      const ReconstructionReport& report) override {
     if (stage != PipelineStage::kDecode) return printer_.StageFinished(stage, seconds, report);
-    printer_.Finish(absl::StrFormat("decode: %d points%s in %.3f s", report.points,
-                                    OriginNote(report.origin), seconds));
+    const size_t count = source_.dropped();
+    const std::string dropped =
+        count > 0 ? absl::StrCat(" (", DroppedPointsNote(count), ")") : std::string();
+    printer_.Finish(absl::StrFormat("decode: %d points%s%s in %.3f s", report.points,
+                                    OriginNote(report.origin), dropped, seconds));
   }
 
  private:
   ProgressPrinter& printer_;
   const std::string& input_;
+  const InputFileSource& source_;
 };
 
 }  // namespace
@@ -45,11 +49,11 @@ class LocalProgress : public ReconstructionObserver {
 absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const ReconstructionParams& params,
                                                             const CancelToken& cancel,
                                                             ProgressPrinter& progress) {
-  InputFileSource source(params.input, params.input_format);
+  InputFileSource source(params.input, params.input_format, params.invalid_points);
   MemoryLimitGate gate(params.memory_limit_bytes);
   MeshFileSink sink(params.output, params.output_format, params.draco.compression_level);
   const std::string input_name = InputName(params.input);
-  LocalProgress observer(progress, input_name);
+  LocalProgress observer(progress, input_name, source);
   const ErrorContext errors{
       .invalid_argument_prefix = absl::StrCat(input_name, ": "),
       .resource_exhausted_advice = "; use a larger --voxel-size or raise --voxel-budget",
@@ -58,6 +62,7 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
       RunReconstruction(params.options, {source, gate, sink, observer}, errors, cancel);
   if (!report.ok()) return report;
   if (absl::Status s = sink.Flush(); !s.ok()) return s;
+  if (source.dropped() > 0) report->warnings.push_back(DroppedPointsNote(source.dropped()));
   return report;
 }
 

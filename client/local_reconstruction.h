@@ -11,6 +11,7 @@
 #include "core/base/cancel_token.h"
 #include "core/io/draco_codec.h"
 #include "core/io/file_format.h"
+#include "core/io/point_cloud_io.h"
 #include "core/pipeline/reconstruction_options.h"
 #include "core/pipeline/reconstruction_report.h"
 
@@ -19,6 +20,9 @@ namespace membrane::client {
 struct ReconstructionParams {
   std::string input;         // point cloud path, or "-" for standard input
   std::string input_format;  // --input-format; empty: by extension (by content for "-")
+  // --drop-invalid: points with NaN or infinite coordinates left out (and counted in a
+  // warning) instead of refused.
+  InvalidPoints invalid_points = InvalidPoints::kRefuse;
   std::string output;        // mesh path, or "-" for standard output
   FileFormat output_format = FileFormat::kPly;  // of `output` (OutputFormat): ply obj stl drc
   ReconstructionOptions options;

@@ -44,6 +44,7 @@ constexpr double kMaxTimeoutSeconds = 1e6;
 struct ReconstructFlags {
   std::string input;
   std::string input_format;
+  bool drop_invalid = false;
   std::string output;
   std::string output_format;
   bool local = false;
@@ -73,6 +74,9 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   app.add_option("--input-format", f.input_format,
                  "the input's format when its name does not say it: ply obj off xyz pcd drc; "
                  "for - (standard input) it is otherwise told from the first bytes");
+  app.add_flag("--drop-invalid", f.drop_invalid,
+               "leave out the points with NaN or infinite coordinates (how organized scans mark "
+               "pixels without a return) instead of refusing the cloud; the count is reported");
   app.add_option("-o,--output", f.output,
                  "mesh to write: .ply .obj .stl .drc, or - for standard output (then the table "
                  "and the summary go to stderr)")
@@ -180,6 +184,7 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   ReconstructionParams p;
   p.input = f.input;
   p.input_format = f.input_format;
+  p.invalid_points = f.drop_invalid ? InvalidPoints::kDrop : InvalidPoints::kRefuse;
   p.output = f.output;
   // Checked by CheckFlagValues.
   p.output_format = *OutputFormat(f.output, f.output_format, FileUse::kWriteMesh);
@@ -223,6 +228,7 @@ RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f, FileFormat output_
   r.server = std::move(server);
   r.input = f.input;
   r.input_format = f.input_format;
+  r.invalid_points = f.drop_invalid ? InvalidPoints::kDrop : InvalidPoints::kRefuse;
   r.output = f.output;
   r.output_format = output_format;
   v1::Parameters& p = r.parameters;

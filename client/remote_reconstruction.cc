@@ -41,6 +41,7 @@ struct Upload {
   std::string bytes;
   v1::Parameters parameters;
   Origin3d origin{0, 0, 0};  // PointCloud::origin, to write the mesh back with
+  size_t dropped = 0;        // points left out for NaN or infinite coordinates
 };
 
 std::chrono::system_clock::time_point ToChrono(absl::Time t) {
@@ -96,8 +97,10 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   const Stopwatch watch;
   progress.Begin(absl::StrCat("decode: reading ", InputName(params.input)));
   // The job does not exist yet: nothing to cancel.
-  absl::StatusOr<PointCloud> cloud =
-      ReadInputCloud(params.input, params.input_format, CancelToken::Never());
+  size_t dropped = 0;
+  absl::StatusOr<PointCloud> cloud = ReadInputCloud(params.input, params.input_format,
+                                                    CancelToken::Never(), params.invalid_points,
+                                                    &dropped);
   if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
   if (absl::Status s = CheckOutputKeepsOrigin(cloud->origin, params.output_format,
                                               OutputName(params.output));
@@ -106,6 +109,7 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   }
   Upload upload;
   upload.origin = cloud->origin;
+  upload.dropped = dropped;
   upload.parameters = params.parameters;
   if (upload.origin != Origin3d{0, 0, 0}) {
     for (double v : upload.origin) upload.parameters.add_origin(v);
@@ -128,9 +132,11 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
           ? std::string("lossless positions")
           : absl::StrFormat("%d-bit positions, each coordinate within %.3g of the file's",
                             draco.position_quantization_bits, encoded->max_position_error);
+  const std::string dropped_note =
+      dropped > 0 ? absl::StrCat(" (", DroppedPointsNote(dropped), ")") : std::string();
   progress.Finish(absl::StrFormat(
-      "decode: %d points%s, %d bytes as Draco (%.1f%% of %d raw float32 bytes; %s) in %.3f s",
-      cloud->points.size(), OriginNote(cloud->origin), outcome.upload_bytes,
+      "decode: %d points%s%s, %d bytes as Draco (%.1f%% of %d raw float32 bytes; %s) in %.3f s",
+      cloud->points.size(), OriginNote(cloud->origin), dropped_note, outcome.upload_bytes,
       100.0 * outcome.upload_bytes / std::max<uint64_t>(1, outcome.raw_bytes),
       outcome.raw_bytes, positions, watch.Seconds()));
   upload.bytes = std::move(encoded->bytes);
@@ -307,7 +313,9 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
     outcome.job_id = sink.job_id();
     outcome.generations = sink.generations();
     outcome.statistics_json = sink.statistics_json();
-    outcome.warnings = sink.warnings();
+    if (upload->dropped > 0) outcome.warnings.push_back(DroppedPointsNote(upload->dropped));
+    outcome.warnings.insert(outcome.warnings.end(), sink.warnings().begin(),
+                            sink.warnings().end());
     outcome.mesh = MeshReportOf(sink.mesh_summary());
     outcome.mesh_bytes = sink.mesh().size();
     return outcome;

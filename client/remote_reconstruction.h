@@ -18,6 +18,7 @@
 #include "core/engine/membrane_shrinker.h"
 #include "core/io/draco_codec.h"
 #include "core/io/file_format.h"
+#include "core/io/point_cloud_io.h"
 #include "core/mesh/mesh_check.h"
 #include "membrane/v1/reconstruction.pb.h"
 
@@ -27,6 +28,9 @@ struct RemoteParams {
   ServerConnection server;     // HOST:PORT, TLS and token
   std::string input;           // point cloud path, or "-" for standard input
   std::string input_format;    // --input-format; empty: by extension (by content for "-")
+  // --drop-invalid: points with NaN or infinite coordinates left out before the upload (and
+  // counted in a warning) instead of refused.
+  InvalidPoints invalid_points = InvalidPoints::kRefuse;
   std::string output;          // mesh path, or "-" for standard output
   FileFormat output_format = FileFormat::kPly;  // of `output` (OutputFormat)
   v1::Parameters parameters;   // sent as they are; the server validates them
@@ -50,7 +54,8 @@ struct RemoteOutcome {
   uint64_t raw_bytes = 0;       // the cloud as float32 x y z
   uint64_t upload_bytes = 0;    // the Draco cloud sent
   uint64_t mesh_bytes = 0;      // the Draco mesh received
-  std::vector<std::string> warnings;  // the server's (StageEvent.warnings), in order
+  // The points --drop-invalid left out, then the server's (StageEvent.warnings), in order.
+  std::vector<std::string> warnings;
 };
 
 // Runs the reconstruction on params.server and writes params.output. Without a voxel size in

@@ -395,16 +395,35 @@ class Fitter {
   // mesh once the first search covered it all. Without the carried pairs a crossing whose
   // vertices cannot move (the input's, found beside crossings of moves) would drop out of the
   // search unrepaired.
+  //
+  // Once a search covered the whole mesh, `pairs` is every crossing, and a carried pair whose
+  // faces did not change since still crosses: it is kept without being searched again, and the
+  // search covers the faces around changed vertices alone. On a coarse output grid tens of
+  // thousands of crossings can wait for the fallback while a few vertices back off per search;
+  // searching their faces again each time made the searches' cost follow the crossings (about
+  // the whole mesh) instead of the changes.
   void Verify(bool search_all, FitStats& stats) {
     if (moved_.empty() && !search_all) return;
     std::vector<int32_t> changed = moved_;
-    std::vector<std::pair<int32_t, int32_t>> pairs;
+    std::vector<std::pair<int32_t, int32_t>> pairs, kept;
     for (bool first = true;; first = false) {
       std::fill(dirty_.begin(), dirty_.end(), first && search_all ? 1 : 0);
       for (int32_t v : changed)
         for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) dirty_[star_[i]] = 1;
-      for (const auto& [a, b] : pairs) dirty_[a] = dirty_[b] = 1;
+      if (search_all) {
+        kept.clear();
+        for (const auto& p : pairs)
+          if (!dirty_[p.first] && !dirty_[p.second]) kept.push_back(p);
+      } else {
+        for (const auto& [a, b] : pairs) dirty_[a] = dirty_[b] = 1;
+      }
       pairs = FindIntersectingFacesNear(mesh_, dirty_, options_.threads);
+      if (!kept.empty()) {
+        // Disjoint sorted lists: the found pairs have a dirty face, the kept ones none.
+        std::vector<std::pair<int32_t, int32_t>> all(pairs.size() + kept.size());
+        std::merge(pairs.begin(), pairs.end(), kept.begin(), kept.end(), all.begin());
+        pairs = std::move(all);
+      }
       if (pairs.empty()) break;
       changed.clear();
       for (const auto& [a, b] : pairs)

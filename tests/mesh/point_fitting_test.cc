@@ -288,8 +288,10 @@ TEST(PointFitting, RepairsInputCrossingsTowardTheFallback) {
 TEST(PointFitting, ListsTheCrossingsThatAGridTooCoarseLeaves) {
   // On a 4-bit grid (a step of about 1.1 voxels) no repair keeps every face apart: the fit's
   // list of what still crosses is what a mesh check relies on, so it must be exactly what a
-  // search of the whole mesh finds; and with nothing left to repair, an empty list.
-  for (int bits : {4, 16}) {
+  // search of the whole mesh finds (also at 5 and 6 bits, whose repairs carry crossings over
+  // many searches while a few vertices back off); and with nothing left to repair, an empty
+  // list.
+  for (int bits : {4, 5, 6, 16}) {
     UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(BallGrid(16, 5.3));
     FitOptions options;
     options.output_grid = GridOverBox(bits, {0, 0, 0}, {16, 16, 16}, 1e-6);
@@ -298,7 +300,11 @@ TEST(PointFitting, ListsTheCrossingsThatAGridTooCoarseLeaves) {
     ASSERT_TRUE(stats.ok()) << stats.status();
     EXPECT_TRUE(stats->crossings_known);
     EXPECT_EQ(stats->crossings, FindIntersectingFaces(nets.mesh)) << bits << " bits";
-    EXPECT_EQ(stats->crossings.empty(), bits == 16) << bits << " bits";
+    if (bits == 4) {
+      EXPECT_FALSE(stats->crossings.empty());
+    } else if (bits == 16) {
+      EXPECT_TRUE(stats->crossings.empty());
+    }
   }
 }
 

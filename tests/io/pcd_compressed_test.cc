@@ -92,6 +92,18 @@ TEST(PcdCompressed, ManyPointsRoundTripThroughRealCompression) {
   EXPECT_EQ(cloud->points[4321], (Point3f{0, 21, 42}));
 }
 
+// Open3D 0.16's writer, beside PCL's the other common source of binary_compressed files:
+// the same 100 points (with normals and colours) saved compressed and uncompressed.
+TEST(PcdCompressed, ReadsWhatOpen3dWrites) {
+  const std::string dir = MEMBRANE_IO_TEST_DATA;
+  absl::StatusOr<PointCloud> compressed = ReadPointCloud(dir + "/open3d_binary_compressed.pcd");
+  ASSERT_TRUE(compressed.ok()) << compressed.status();
+  absl::StatusOr<PointCloud> plain = ReadPointCloud(dir + "/open3d_binary.pcd");
+  ASSERT_TRUE(plain.ok()) << plain.status();
+  ASSERT_EQ(compressed->points.size(), 100u);
+  EXPECT_EQ(compressed->points, plain->points);
+}
+
 TEST(PcdCompressed, AnEmptyCloudIsRead) {
   const std::string pcd =
       "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 0\nDATA binary_compressed\n" + Uint32Le(0) +

@@ -11,6 +11,7 @@
 #include "absl/strings/string_view.h"
 #include "absl/strings/strip.h"
 #include "client/check_command.h"
+#include "client/render_command.h"
 #include "client/command.h"
 #include "client/convert_command.h"
 #include "client/exit_codes.h"
@@ -77,7 +78,8 @@ int RunCommandLine(int argc, char** argv) {
                                         MEMBRANE_BUILD_TYPE + " build)");
   const std::vector<Command> commands = {AddReconstructCommand(app), AddSynthCommand(app),
                                          AddCheckCommand(app), AddConvertCommand(app),
-                                         AddJobsCommand(app), AddHealthCommand(app)};
+                                         AddJobsCommand(app), AddHealthCommand(app),
+                                         AddRenderCommand(app)};
   // No command at all: the usage, as other command-line tools print it, and a usage error.
   if (argc <= 1) {
     std::fprintf(stderr, "%s", app.help().c_str());

@@ -18,6 +18,7 @@ BUILD=(
   libcli11-dev
   prometheus-cpp-dev         # membraned --metrics-listen
   libcivetweb-dev            # membraned --http-listen (prometheus-cpp's HTTP server too)
+  libpng-dev                 # mesh previews (membrane render, the web console)
 )
 TEST=(
   libgtest-dev libgmock-dev

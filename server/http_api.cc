@@ -15,6 +15,7 @@
 #include "server/client_text.h"
 #include "server/memory_release.h"
 #include "server/mesh_download.h"
+#include "server/preview_sink.h"
 #include "server/server_log.h"
 
 namespace membrane::server {
@@ -87,6 +88,9 @@ std::optional<std::string> QueryValue(const std::string& query, absl::string_vie
   }
   return std::nullopt;
 }
+
+// Whether preview.png answers: every SUCCEEDED job has one, or gets it when first asked.
+bool HasPreview(const Job& job) { return job.state() == v1::SUCCEEDED; }
 
 }  // namespace
 
@@ -184,7 +188,7 @@ HttpResponse HttpApi::ListJobs(const Caller& caller) const {
   for (const std::shared_ptr<Job>& job : store_.List()) {
     if (!caller.Sees(*job)) continue;
     absl::StrAppend(&json, first ? "" : ",", "{\"job\":", ToJson(job->Snapshot()),
-                    ",\"has_preview\":", job->preview_png()->empty() ? "false" : "true", "}");
+                    ",\"has_preview\":", HasPreview(*job) ? "true" : "false", "}");
     first = false;
   }
   json += "]}";
@@ -201,7 +205,7 @@ HttpResponse HttpApi::GetJob(const Job& job) const {
   }
   return JsonResponse(absl::StrCat(
       "{\"job\":", ToJson(snapshot), ",\"statistics\":", statistics, ",\"mesh\":", mesh,
-      ",\"has_preview\":", job.preview_png()->empty() ? "false" : "true",
+      ",\"has_preview\":", HasPreview(job) ? "true" : "false",
       ",\"sample_points\":", job.point_sample()->size() / (3 * sizeof(float)), "}"));
 }
 
@@ -244,7 +248,18 @@ HttpResponse HttpApi::Cancel(Job& job, const Caller& caller, const HttpRequest& 
   return JsonResponse(ToJson(job.Snapshot()));
 }
 
-HttpResponse HttpApi::Download(const Job& job, const std::string& file) const {
+HttpResponse HttpApi::Download(Job& job, const std::string& file) const {
+  if (file == "preview.png" && job.preview_png()->empty()) {
+    // A job restored from the store has its mesh but no preview: drawn once, then kept.
+    if (std::optional<Job::Outcome> outcome = job.Closing();
+        outcome.has_value() && outcome->mesh != nullptr && !outcome->mesh->empty()) {
+      absl::StatusOr<TriangleMesh> mesh = ResultMesh(*outcome->mesh, job.parameters());
+      if (!mesh.ok()) return ErrorResponse(absl::InternalError(mesh.status().message()));
+      absl::StatusOr<std::string> png = PreviewPng(*mesh);
+      if (!png.ok()) return ErrorResponse(png.status());
+      job.SetPreview(*std::move(png));
+    }
+  }
   if (file == "preview.png" || file == "points") {
     std::shared_ptr<const std::string> bytes =
         file == "points" ? job.point_sample() : job.preview_png();

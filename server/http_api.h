@@ -14,7 +14,8 @@
 //   POST /api/jobs/ID/cancel            Job, as CancelJob
 //   GET  /api/jobs/ID/mesh.drc, mesh.ply   the mesh (SUCCEEDED only), converted when the job
 //                                        produced the other format
-//   GET  /api/jobs/ID/preview.png       the PNG preview of the mesh
+//   GET  /api/jobs/ID/preview.png       the PNG preview of the mesh (SUCCEEDED only; drawn
+//                                        now for a job restored from the store without one)
 //   GET  /api/jobs/ID/points            the sample of the input points: float32 x y z,
 //                                        little-endian, in the mesh's positions
 //
@@ -86,7 +87,7 @@ class HttpApi {
   HttpResponse GetJob(const Job& job) const;
   HttpResponse Events(const Job& job, const std::string& query) const;
   HttpResponse Cancel(Job& job, const Caller& caller, const HttpRequest& request) const;
-  HttpResponse Download(const Job& job, const std::string& file) const;
+  HttpResponse Download(Job& job, const std::string& file) const;
 
   const ServerOptions& options_;
   JobStore& store_;

@@ -19,6 +19,7 @@
 #include "server/memory_budget_gate.h"
 #include "server/parameter_checks.h"
 #include "server/point_sample.h"
+#include "server/preview_sink.h"
 #include "server/server_log.h"
 #include "server/time_limit_gate.h"
 #include "server/upload_source.h"
@@ -95,7 +96,8 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
                      settings->reconstruction.output_quantization_bits);
   DracoMeshSink draco_sink(settings->mesh_encoding.compression_level);
   PlyMeshSink ply_sink;
-  MeshSink& sink = settings->ply_mesh ? static_cast<MeshSink&>(ply_sink) : draco_sink;
+  // The web console's job list shows a preview of each mesh.
+  PreviewSink sink(settings->ply_mesh ? static_cast<MeshSink&>(ply_sink) : draco_sink);
   JobEventObserver observer(*job, &metrics_);
   // A grid over the budget: the message says which job fields change it.
   ErrorContext errors;
@@ -107,6 +109,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   if (!report.ok()) return fail(report.status());
   std::string mesh = settings->ply_mesh ? ply_sink.TakeBytes() : draco_sink.TakeBytes();
   const size_t mesh_bytes = mesh.size();
+  job->SetPreview(sink.TakePng());
   job->Succeed(StatsJson(*report), MeshSummaryOf(report->mesh), std::move(mesh));
   LogEvent("job_finished", {{"job", job->id()},
                             {"outcome", "OK"},

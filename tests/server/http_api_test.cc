@@ -8,11 +8,35 @@
 #include "absl/strings/str_cat.h"
 #include "core/io/draco_codec.h"
 #include "core/io/mesh_io.h"
+#include "core/render/mesh_views.h"
+#include "core/render/png_codec.h"
+#include "server/preview_sink.h"
 #include "tests/server/http_get.h"
 #include "tests/server/service_fixture.h"
+#include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
 namespace {
+
+// `png` is a preview of a mesh: 3 views of kPreviewViewPixels, each drawn over a fifth to
+// nine tenths of its pixels (the mesh fills 90% of the largest side), background at the corners.
+void ExpectPreview(const std::string& png) {
+  const absl::StatusOr<RgbImage> image = DecodePng(png);
+  ASSERT_TRUE(image.ok()) << image.status();
+  const int n = server::kPreviewViewPixels;
+  ASSERT_EQ(image->width, 3 * n);
+  ASSERT_EQ(image->height, n);
+  const uint32_t background = MeshViewOptions().background;
+  for (int v = 0; v < 3; ++v) {
+    int drawn = 0;
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) drawn += image->At(v * n + x, y) != background;
+    }
+    EXPECT_GT(drawn, n * n / 5) << "view " << v;
+    EXPECT_LT(drawn, n * n * 9 / 10) << "view " << v;
+    EXPECT_EQ(image->At(v * n, 0), background) << "view " << v;
+  }
+}
 
 class HttpApiTest : public ServiceTest {
  protected:
@@ -146,6 +170,13 @@ TEST_F(HttpApiTest, EventsMeshesAndPreviewOfAFinishedJob) {
   EXPECT_EQ(from_ply->faces.size(), from_drc->faces.size());
   EXPECT_EQ(from_ply->vertices.size(), from_drc->vertices.size());
 
+  // The preview: three views of the torus.
+  const HttpReply preview = Get(job + "/preview.png");
+  ASSERT_EQ(preview.status, 200);
+  EXPECT_TRUE(absl::StrContains(preview.headers, "Content-Type: image/png"));
+  ExpectPreview(preview.body);
+  EXPECT_TRUE(absl::StrContains(Get("/api/jobs").body, "\"has_preview\":true"));
+
   // The sample of the input points: all 20000 of them, float32 x y z, near the torus.
   const HttpReply points = Get(job + "/points");
   ASSERT_EQ(points.status, 200);
@@ -172,11 +203,30 @@ TEST_F(HttpApiTest, APlyJobsMeshDownloadsAsDracoToo) {
   EXPECT_EQ(from_drc->faces.size(), from_ply->faces.size());
 }
 
+TEST_F(HttpApiTest, AJobRestoredFromTheStoreGetsItsPreviewWhenAsked) {
+  ScratchDir dir;
+  options_.store_dir = dir.File("jobs");
+  StartServer();
+  const CallResult done = Reconstruct(DracoCloud("torus", 20000), {});
+  ASSERT_EQ(done.FinalState(), v1::SUCCEEDED) << done.status.error_message();
+  server_->Shutdown(absl::ZeroDuration());
+  server_.reset();
+  StartServer();
+  const std::string job = "/api/jobs/" + done.JobId();
+  EXPECT_TRUE(absl::StrContains(Get(job).body, "\"has_preview\":true")) << Get(job).body;
+  const HttpReply preview = Get(job + "/preview.png");
+  ASSERT_EQ(preview.status, 200) << preview.body;
+  ExpectPreview(preview.body);
+  // The restored job kept no points: the page says so rather than drawing none.
+  EXPECT_EQ(Get(job + "/points").status, 409);
+}
+
 TEST_F(HttpApiTest, CancelStopsARunningJobAndItHasNoMesh) {
   StartServer();
   const std::string id = StartJobInBackground(DracoCloud("sphere", 20000), SlowParameters());
   const std::string job = "/api/jobs/" + id;
   EXPECT_EQ(Get(job + "/mesh.drc").status, 409);
+  EXPECT_EQ(Get(job + "/preview.png").status, 409);
   const HttpReply cancel = Post(job + "/cancel");
   ASSERT_EQ(cancel.status, 200) << cancel.body;
   ASSERT_TRUE(WaitFor([&] { return absl::StrContains(Get(job).body, "\"CANCELLED\""); }, 30));

@@ -29,7 +29,7 @@ absl::Status RunRender(const RenderFlags& flags) {
     return absl::InvalidArgumentError(
         absl::StrCat("-o ", flags.output, ": the picture is written as PNG; name it *.png"));
   }
-  absl::StatusOr<TriangleMesh> mesh = ReadInputMesh(flags.mesh, CancelToken::Never());
+  absl::StatusOr<TriangleMesh> mesh = ReadInputMesh(flags.mesh, /*format_flag=*/"", CancelToken::Never());
   if (!mesh.ok()) return FileErrorAsInvalidInput(mesh.status());
   if (mesh->faces.empty()) {
     return absl::InvalidArgumentError(absl::StrCat(flags.mesh, ": has no faces (not a mesh)"));

@@ -27,6 +27,7 @@
 #include "client/upload_plan.h"
 #include "core/engine/plate_schedule.h"
 #include "core/io/file_format.h"
+#include "core/mesh/mesh_decimation.h"
 #include "core/pipeline/machine_memory.h"
 #include "core/pipeline/stats_json.h"
 #include "core/pipeline/thread_limits.h"
@@ -38,6 +39,7 @@ constexpr int64_t kMaxInitialPlate = 100000;  // ValidateShrinkOptions' bound
 constexpr int64_t kMaxVoxelBudget = 1'000'000'000'000;
 constexpr int64_t kMaxMemoryLimit = int64_t{1} << 60;
 constexpr double kMaxTimeoutSeconds = 1e6;
+constexpr int64_t kMaxTargetFaces = int64_t{1} << 31;  // faces are indexed by int32
 
 // The values as parsed, before validation: wide types, so that an out-of-range value reaches
 // our range check (and its message) instead of failing conversion.
@@ -63,6 +65,7 @@ struct ReconstructFlags {
   double timeout = 0;
   bool quiet = false;
   int64_t threads = 0;
+  int64_t target_faces = 0;       // 0: not given
   int64_t drop_after_events = 0;  // test hook of --server; see RemoteParams
   std::string on_interrupt = "leave";
 };
@@ -105,6 +108,11 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
       ->each([&f](const std::string&) { f.quantization_given = true; });
   app.add_option("--compression-level", f.compression_level,
                  "Draco compression level of the cloud sent and of .drc output, [0, 10]")
+      ->capture_default_str();
+  app.add_option("--target-faces", f.target_faces,
+                 "decimate the mesh to at most this many faces (>= 4), keeping it closed, "
+                 "manifold, uncrossed and of the same topology; the summary gives the error "
+                 "added; 0 = the surface as built")
       ->capture_default_str();
   app.add_option("--voxel-budget", f.voxel_budget,
                  "largest voxel grid to allocate (padding included), 1 byte per voxel")
@@ -159,6 +167,9 @@ absl::Status CheckFlagValues(const ReconstructFlags& f) {
       CheckIntRange("--initial-plate", f.initial_plate, 0, kMaxInitialPlate),
       CheckIntRange("--quantization", f.quantization, 0, 30, "0 = lossless"),
       CheckIntRange("--compression-level", f.compression_level, 0, 10),
+      f.target_faces == 0 ? absl::OkStatus()
+                          : CheckIntRange("--target-faces", f.target_faces, kMinTargetFaces,
+                                          kMaxTargetFaces, "0 = no decimation"),
       CheckIntRange("--voxel-budget", f.voxel_budget, 1, kMaxVoxelBudget),
       CheckIntRange("--memory-limit", f.memory_limit, -1, kMaxMemoryLimit,
                     "-1 = what is available, 0 = no limit"),
@@ -194,6 +205,7 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   p.options.shrink.schedule = *schedule;
   p.options.relax = !f.no_relax;
   p.options.surface = *surface;
+  p.options.target_faces = f.target_faces;
   p.options.threads = f.threads > 0 ? static_cast<int>(f.threads) : MachineThreads();
   // Read only for --local: the limit does not apply to --server runs.
   if (f.local) {
@@ -237,6 +249,7 @@ RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f, FileFormat output_
   p.set_schedule(f.schedule);
   p.set_surface(f.surface);
   p.set_no_relax(f.no_relax);
+  if (f.target_faces > 0) p.set_target_faces(f.target_faces);
   const bool drc_output = output_format == FileFormat::kDrc;
   p.set_quantization(drc_output ? static_cast<int32_t>(f.quantization) : 0);
   p.set_compression_level(static_cast<int32_t>(f.compression_level));

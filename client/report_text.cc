@@ -24,14 +24,23 @@ std::string GenerationTable(const std::vector<GenerationStats>& generations) {
 std::string SummaryLine(const ReconstructionReport& r) {
   const MeshReport& m = r.mesh;
   const StageSeconds& s = r.seconds;
+  std::string decimated, decimate_seconds;
+  if (r.decimation.ran) {
+    const DecimationStats& d = r.decimation.stats;
+    decimated = absl::StrFormat(
+        "; decimated %d -> %d faces (target %d), moved by at most %.3g (mean %.3g)",
+        d.faces_before, d.faces_after, d.target_faces, r.decimation.error.max,
+        r.decimation.error.mean);
+    decimate_seconds = absl::StrFormat(" decimate %.3f", s.decimate);
+  }
   return absl::StrFormat(
       "grid %s, %d points, %d hard voxels, density ratio %.3g; mesh %d shell%s, genus [%s], "
-      "%s, %s; seconds: decode %.3f voxelize %.3f shrink %.3f relax %.3f surface %.3f "
+      "%s, %s%s; seconds: decode %.3f voxelize %.3f shrink %.3f relax %.3f surface %.3f%s "
       "check %.3f encode %.3f total %.3f\n",
       absl::StrJoin(r.grid, "x"), r.points, r.hard_voxels, r.density_ratio, m.shells,
       m.shells == 1 ? "" : "s", absl::StrJoin(m.genus, ", "), m.closed ? "closed" : "NOT closed",
-      m.manifold ? "manifold" : "NOT manifold", s.decode, s.voxelize, s.shrink, s.relax, s.surface,
-      s.check, s.encode, s.total);
+      m.manifold ? "manifold" : "NOT manifold", decimated, s.decode, s.voxelize, s.shrink,
+      s.relax, s.surface, decimate_seconds, s.check, s.encode, s.total);
 }
 
 std::string RemoteSummaryLine(const RemoteOutcome& o) {

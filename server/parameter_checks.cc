@@ -6,6 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/engine/plate_schedule.h"
+#include "core/mesh/mesh_decimation.h"
 #include "core/io/coordinate_shift.h"
 #include "server/client_text.h"
 
@@ -13,6 +14,7 @@ namespace membrane::server {
 namespace {
 
 constexpr int kMaxInitialPlate = 100000;  // ValidateShrinkOptions' bound
+constexpr int64_t kMaxTargetFaces = int64_t{1} << 31;  // faces are indexed by int32
 
 absl::Status CheckRange(const char* field, int64_t value, int64_t low, int64_t high) {
   if (value >= low && value <= high) return absl::OkStatus();
@@ -43,7 +45,10 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
        {CheckRange("initial_plate", p.initial_plate(), 0, kMaxInitialPlate),
         CheckRange("quantization", p.quantization(), 0, 30),
         CheckRange("compression_level", p.compression_level(), 0, 10),
-        CheckRange("voxel_budget", p.voxel_budget(), 0, server_voxel_budget)}) {
+        CheckRange("voxel_budget", p.voxel_budget(), 0, server_voxel_budget),
+        p.has_target_faces()
+            ? CheckRange("target_faces", p.target_faces(), kMinTargetFaces, kMaxTargetFaces)
+            : absl::OkStatus()}) {
     if (!s.ok()) return s;
   }
   JobSettings settings;
@@ -69,6 +74,7 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
     r.surface = *surface;
   }
   r.relax = !p.no_relax();
+  if (p.has_target_faces()) r.target_faces = p.target_faces();
   // The mesh is built and checked on the grid of the encoding it is returned in.
   // Unset means the default encoding (DracoOptions'), as for `membrane reconstruct`.
   if (p.has_quantization()) settings.mesh_encoding.position_quantization_bits = p.quantization();

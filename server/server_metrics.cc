@@ -21,8 +21,8 @@ prometheus::Histogram::BucketBoundaries StageBuckets() {
 
 constexpr PipelineStage kStages[] = {PipelineStage::kDecode,  PipelineStage::kVoxelize,
                                      PipelineStage::kShrink,  PipelineStage::kRelax,
-                                     PipelineStage::kSurface, PipelineStage::kCheck,
-                                     PipelineStage::kEncode};
+                                     PipelineStage::kSurface, PipelineStage::kDecimate,
+                                     PipelineStage::kCheck,   PipelineStage::kEncode};
 
 prometheus::MetricFamily Gauge(std::string name, std::string help, double value) {
   prometheus::ClientMetric metric;

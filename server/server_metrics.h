@@ -58,7 +58,7 @@ class ServerMetrics {
   prometheus::Family<prometheus::Histogram>& job_seconds_;
   prometheus::Counter& mesh_bytes_;
   prometheus::Counter& stalled_;
-  std::array<prometheus::Histogram*, 7> stage_seconds_{};  // by PipelineStage
+  std::array<prometheus::Histogram*, 8> stage_seconds_{};  // by PipelineStage
 };
 
 // The server's state read at each scrape: gauges of the queue, the workers and the memory

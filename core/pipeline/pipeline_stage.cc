@@ -9,6 +9,7 @@ const char* PipelineStageName(PipelineStage stage) {
     case PipelineStage::kShrink: return "shrink";
     case PipelineStage::kRelax: return "relax";
     case PipelineStage::kSurface: return "surface";
+    case PipelineStage::kDecimate: return "decimate";
     case PipelineStage::kCheck: return "check";
     case PipelineStage::kEncode: return "encode";
   }

@@ -2,6 +2,8 @@
 #ifndef MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_OPTIONS_H_
 #define MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_OPTIONS_H_
 
+#include <cstdint>
+
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/voxelization.h"
 #include "core/pipeline/surface_builder.h"
@@ -22,6 +24,10 @@ struct ReconstructionOptions {
   // Threads of the smooth surface's fit and of the mesh check, 1..kMaxReconstructionThreads;
   // the other stages use the calling thread. The mesh is the same for any value.
   int threads = 1;
+  // At most this many faces in the mesh delivered (>= kMinTargetFaces), or as few as keeping
+  // it closed, manifold, outward, uncrossed and of the same topology allows: the decimate
+  // stage (mesh_decimation.h). 0: the surface as built.
+  int64_t target_faces = 0;
 };
 
 }  // namespace membrane

@@ -6,6 +6,8 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "core/engine/plate_schedule.h"
+#include "core/pipeline/decimation_stage.h"
+#include "core/mesh/mesh_decimation.h"
 #include "core/mesh/output_grid.h"
 #include "core/pipeline/membrane_counts.h"
 #include "core/pipeline/membrane_stages.h"
@@ -34,6 +36,12 @@ absl::Status CheckOptions(const ReconstructionOptions& options) {
     return absl::InvalidArgumentError(absl::StrCat("threads is ", options.threads,
                                                    "; it must be in 1..",
                                                    kMaxReconstructionThreads));
+  }
+  if (options.target_faces != 0 && options.target_faces < kMinTargetFaces) {
+    return absl::InvalidArgumentError(absl::StrCat("target of ", options.target_faces,
+                                                   " faces: it must be at least ",
+                                                   kMinTargetFaces, " (a tetrahedron), or 0 "
+                                                   "for the surface as built"));
   }
   return absl::OkStatus();
 }
@@ -111,6 +119,10 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
     if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
     if (surface->mesh.faces.empty()) return with_context(EmptySurfaceError(report));
     surface->mesh.origin = cloud->origin;  // the mesh is in the cloud's frame
+    if (absl::Status s = DecimateStage(options, cancel, output_grid, *surface, report, observer);
+        !s.ok()) {
+      return s.code() == absl::StatusCode::kCancelled ? s : with_context(s);
+    }
     if (absl::Status s = CheckAndWriteStage(*surface, output_grid, options.threads, cancel,
                                             adapters.sink, report, observer);
         !s.ok()) {

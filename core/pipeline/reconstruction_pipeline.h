@@ -29,20 +29,21 @@ struct PipelineAdapters {
 };
 
 // Reads the cloud from adapters.source, reconstructs its surface with `options` and writes
-// the mesh to adapters.sink. Returns every measurement (report.seconds of all seven stages
+// the mesh to adapters.sink. Returns every measurement (report.seconds of all eight stages
 // and their total, peak_rss_bytes of this process so far). The mesh is written and the
 // report returned even when the check finds the mesh not closed or not manifold: the caller
 // decides what that means (see report.mesh).
 //
 // Order: options checked; decode (the source); the sink's CheckOrigin; the grid planned
 // (PlanGrid) and admitted (the gate); voxelize, shrink, relax; the surface admitted (the
-// gate); surface; check beside encode (the sink). When the check finds crossing or flattened
+// gate); surface; decimate (with options.target_faces); check beside encode (the sink). When the check finds crossing or flattened
 // faces on a quantizing grid, surface, check and encode run again in float32
 // (report.quantization.bits 0).
 //
 // Errors: the adapters' statuses as they are. The pipeline's own, with `errors` added
 // (WithErrorContext): InvalidArgument for options out of range, a degenerate cloud (no
-// points, all equal, coplanar) or a cloud that gives no surface; ResourceExhausted for a grid
+// points, all equal, coplanar), a cloud that gives no surface or a face target below what its
+// surface's topology needs; ResourceExhausted for a grid
 // over options.voxelize.voxel_budget; Cancelled "reconstruction cancelled after STAGE" when
 // `cancel` fires. The token is polled within the source, the gate, the shrink, the
 // relaxation, the smooth surface and the check, and between stages, so a cancel takes effect

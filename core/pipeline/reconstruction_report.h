@@ -11,7 +11,9 @@
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/post_process.h"
 #include "core/mesh/mesh_check.h"
+#include "core/mesh/mesh_decimation.h"
 #include "core/mesh/relaxation.h"
+#include "core/mesh/surface_deviation.h"
 #include "core/pipeline/membrane_counts.h"
 
 namespace membrane {
@@ -23,6 +25,7 @@ struct StageSeconds {
   double shrink = 0;  // all generations and the section 7 post-process
   double relax = 0;   // 0 with --no-relax
   double surface = 0;
+  double decimate = 0;  // 0 without a face budget
   double check = 0;   // CheckMesh of the surface
   double encode = 0;  // encoding and writing the output (the run's MeshSink), beside the check
   double total = 0;
@@ -38,6 +41,14 @@ struct QuantizationReport {
   // How far the grid can move a coordinate from where float32 would put it: half the step (0
   // for float32). The positions delivered are the ones checked, exactly.
   double max_position_error = 0;
+};
+
+// The decimate stage (ReconstructionOptions::target_faces): DecimationStats, and the error it
+// added: the distance from each vertex of the surface as built to the decimated surface.
+struct DecimationReport {
+  bool ran = false;  // a face budget was asked for
+  DecimationStats stats;
+  SurfaceDeviation error;  // model units
 };
 
 struct ReconstructionReport {
@@ -61,6 +72,7 @@ struct ReconstructionReport {
   MembraneCounts membrane;     // the final DMS, before relaxation
   RelaxationStats relaxation;  // all 0 with --no-relax
   MeshReport mesh;             // CheckMesh of the surface (vertices and faces set before it)
+  DecimationReport decimation;
   QuantizationReport quantization;
   StageSeconds seconds;
   int64_t peak_rss_bytes = 0;  // getrusage ru_maxrss, in bytes

@@ -64,6 +64,14 @@ std::string StageFinishedLine(PipelineStage stage, const ReconstructionReport& r
       return absl::StrFormat("surface: %s, %d vertices, %d faces%s in %.3f s", r.surface,
                              r.mesh.vertices, r.mesh.faces, grid, s.surface);
     }
+    case PipelineStage::kDecimate: {
+      const DecimationStats& d = r.decimation.stats;
+      return absl::StrFormat(
+          "decimate: %d -> %d faces (target %d), %d vertices; the surface moved by at most %.3g, "
+          "%.3g on average, in %.3f s",
+          d.faces_before, d.faces_after, d.target_faces, d.vertices_after, r.decimation.error.max,
+          r.decimation.error.mean, s.decimate);
+    }
     case PipelineStage::kCheck: {
       const MeshReport& m = r.mesh;
       return absl::StrFormat(

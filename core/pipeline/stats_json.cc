@@ -83,7 +83,8 @@ std::string SecondsJson(const StageSeconds& s) {
   return absl::StrCat(
       "{\"decode\": ", JsonNumber(s.decode), ", \"voxelize\": ", JsonNumber(s.voxelize),
       ", \"shrink\": ", JsonNumber(s.shrink), ", \"relax\": ", JsonNumber(s.relax),
-      ", \"surface\": ", JsonNumber(s.surface), ", \"encode\": ", JsonNumber(s.encode),
+      ", \"surface\": ", JsonNumber(s.surface), ", \"decimate\": ", JsonNumber(s.decimate),
+      ", \"encode\": ", JsonNumber(s.encode),
       ", \"total\": ", JsonNumber(s.total), ", \"check\": ", JsonNumber(s.check), "}");
 }
 
@@ -97,6 +98,19 @@ std::string QuantizationJson(const QuantizationReport& q) {
   return absl::StrCat("{\"requested_bits\": ", q.requested_bits, ", \"bits\": ", q.bits,
                       ", \"step\": ", JsonNumber(q.step),
                       ", \"max_position_error\": ", JsonNumber(q.max_position_error), "}");
+}
+
+// null without a face budget.
+std::string DecimationJson(const DecimationReport& d) {
+  if (!d.ran) return "null";
+  const DecimationStats& s = d.stats;
+  return absl::StrCat(
+      "{\"target_faces\": ", s.target_faces, ", \"faces_before\": ", s.faces_before,
+      ", \"faces_after\": ", s.faces_after, ", \"vertices_before\": ", s.vertices_before,
+      ", \"vertices_after\": ", s.vertices_after, ", \"collapses\": ", s.collapses,
+      ", \"refused_collapses\": ", s.refused, ", \"passes\": ", s.passes,
+      ", \"max_error\": ", JsonNumber(d.error.max), ", \"mean_error\": ", JsonNumber(d.error.mean),
+      "}");
 }
 
 std::string WarningsJson(const std::vector<std::string>& warnings) {
@@ -123,6 +137,7 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"handle_retry\": ", HandleRetryJson(r.handle_retry),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
       ",\n  \"quantization\": ", QuantizationJson(r.quantization),
+      ",\n  \"decimation\": ", DecimationJson(r.decimation),
       ",\n  \"origin\": ", OriginJson(r.origin),
       ",\n  \"warnings\": ", WarningsJson(r.warnings), "\n}\n");
 }

@@ -270,5 +270,50 @@ TEST_F(ReconstructTest, ThreadsOutOfRangeOrWithoutLocalAreRefused) {
   EXPECT_THAT(remote.err, HasSubstr("--local"));
 }
 
+// --target-faces: a .drc file of at most that many faces that checks closed, manifold and
+// uncrossed with the torus's genus; the summary line and the statistics give the faces before
+// and after and the error added.
+TEST_F(ReconstructTest, TargetFacesGivesADecimatedTorus) {
+  const std::string cloud = dir_.File("torus.ply");
+  ASSERT_EQ(Run({"synth", "torus", "-o", cloud, "--points", "20000"}).exit_code, 0);
+  const std::string mesh = dir_.File("torus.drc"), stats = dir_.File("torus.json");
+  const CliResult r = Run({"reconstruct", cloud, "-o", mesh, "--local", "--target-faces", "2000",
+                           "--stats-json", stats});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("; decimated "));
+  EXPECT_THAT(r.out, HasSubstr(" faces (target 2000), moved by at most "));
+  EXPECT_THAT(r.err, HasSubstr("decimate: "));
+  const CliResult check = Run({"check", mesh, "--json"});
+  ASSERT_EQ(check.exit_code, 0) << check.err;
+  const std::optional<JsonValue> file = ParseJson(check.out);
+  ASSERT_TRUE(file.has_value()) << check.out;
+  EXPECT_TRUE(Flag(*file, "closed"));
+  EXPECT_TRUE(Flag(*file, "manifold"));
+  EXPECT_EQ(file->Find("self_intersections")->number, 0);
+  EXPECT_EQ(file->Find("degenerate_faces")->number, 0);
+  EXPECT_LE(file->Find("faces")->number, 2000);
+  EXPECT_EQ(Genus(*file), std::vector<int>{1});
+  const std::optional<JsonValue> json = ParseJson(ReadWholeFile(stats));
+  ASSERT_TRUE(json.has_value());
+  const JsonValue* d = json->Find("decimation");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->Find("target_faces")->number, 2000);
+  EXPECT_GT(d->Find("faces_before")->number, 10000);
+  EXPECT_EQ(d->Find("faces_after")->number, file->Find("faces")->number);
+  EXPECT_GT(d->Find("max_error")->number, 0);
+  EXPECT_GE(d->Find("max_error")->number, d->Find("mean_error")->number);
+  EXPECT_GT(json->Find("seconds")->Find("decimate")->number, 0);
+}
+
+TEST_F(ReconstructTest, TargetFacesBelowFourIsRefusedBeforeWork) {
+  const std::string cloud = dir_.File("sphere.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "2000"}).exit_code, 0);
+  const CliResult r =
+      Run({"reconstruct", cloud, "-o", dir_.File("m.ply"), "--local", "--target-faces", "3"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(r.err, HasSubstr("--target-faces 3"));
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("voxelize")));
+}
+
 }  // namespace
 }  // namespace membrane::testing

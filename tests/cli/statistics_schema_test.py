@@ -32,7 +32,8 @@ def main():
     validator = jsonschema.Draft202012Validator(schema)
     failures = 0
     with tempfile.TemporaryDirectory() as scratch:
-        for shape, extra in [("torus", []), ("two-spheres", ["--no-relax", "--surface", "cuberille"])]:
+        for shape, extra in [("torus", []), ("two-spheres", ["--no-relax", "--surface", "cuberille"]),
+                             ("sphere", ["--target-faces", "1000"])]:
             stats = stats_of(membrane, scratch, shape, extra)
             for error in validator.iter_errors(stats):
                 failures += 1

@@ -1,4 +1,4 @@
-// The pipeline is the one driver of a reconstruction: it runs and reports all seven stages,
+// The pipeline is the one driver of a reconstruction: it runs and reports all its stages,
 // asks its gate before it allocates, returns its adapters' errors as they are and its own in
 // the caller's words, stops between stages when cancelled, and writes the float32 mesh again
 // when the output grid crosses faces.
@@ -142,6 +142,74 @@ TEST(ReconstructionPipeline, RunsAndReportsEveryStageFromSourceToSink) {
   EXPECT_EQ(gate.asked_grid.voxels, int64_t{r.grid[0]} * r.grid[1] * r.grid[2]);
   EXPECT_EQ(gate.surface_questions, 1);
   EXPECT_EQ(gate.asked_membrane.membrane_voxels(), r.membrane.membrane_voxels());
+}
+
+// With a face budget, the decimate stage runs between the surface and the check, and the
+// check judges (and the sink gets) the decimated mesh, on the output grid.
+TEST(ReconstructionPipeline, ATargetFaceCountDecimatesBeforeTheCheck) {
+  InMemoryCloudSource source(SampledSphere());
+  NoResourceLimit gate;
+  InMemoryMeshSink sink;
+  ReconstructionOptions options;
+  options.target_faces = 500;
+  options.output_quantization_bits = 11;
+  const Outcome run = RunWith(source, gate, sink, options);
+  ASSERT_TRUE(run.report.ok()) << run.report.status();
+  const ReconstructionReport& r = *run.report;
+  const std::vector<std::string> stages = {"decode", "voxelize", "shrink", "relax",  "surface",
+                                           "decimate", "check",  "encode"};
+  std::vector<std::string> expected;
+  for (const std::string& s : stages) {
+    expected.push_back("started " + s);
+    expected.push_back("finished " + s);
+  }
+  EXPECT_THAT(run.log.events, ElementsAreArray(expected));
+  ASSERT_TRUE(r.decimation.ran);
+  EXPECT_GT(r.decimation.stats.faces_before, 10 * 500);
+  EXPECT_LE(r.decimation.stats.faces_after, 500);
+  EXPECT_EQ(r.mesh.faces, r.decimation.stats.faces_after);
+  EXPECT_EQ(static_cast<int64_t>(sink.mesh().faces.size()), r.mesh.faces);
+  EXPECT_TRUE(r.mesh.closed && r.mesh.manifold && r.mesh.oriented && r.mesh.positive_volume);
+  EXPECT_EQ(r.mesh.self_intersections, 0);
+  EXPECT_EQ(r.mesh.genus, std::vector<int>{0});
+  EXPECT_EQ(r.quantization.bits, 11);
+  for (const Point3f& p : sink.mesh().vertices) ASSERT_EQ(sink.grid().Snap(p), p);
+  // The sphere has radius 1: the error is a small part of it, and measured.
+  EXPECT_GT(r.decimation.error.max, 0);
+  EXPECT_LT(r.decimation.error.max, 0.05);
+  EXPECT_LE(r.decimation.error.mean, r.decimation.error.max);
+  EXPECT_GT(r.seconds.decimate, 0);
+  EXPECT_TRUE(r.warnings.empty());
+}
+
+TEST(ReconstructionPipeline, ATargetBelowTheTopologysLeastIsInvalidArgument) {
+  {
+    InMemoryCloudSource source(SampledSphere());
+    NoResourceLimit gate;
+    InMemoryMeshSink sink;
+    ReconstructionOptions options;
+    options.target_faces = 3;
+    const Outcome run = RunWith(source, gate, sink, options);
+    EXPECT_EQ(run.report.status().code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_THAT(std::string(run.report.status().message()),
+                ::testing::StartsWith("cloud.xyz: target of 3 faces: it must be at least 4"));
+    EXPECT_TRUE(run.log.events.empty());  // refused before any work
+  }
+  {
+    absl::StatusOr<PointCloud> spheres =
+        SynthesizeShape(SynthOptions{.shape = "two-spheres", .points = 40000, .seed = 5});
+    ASSERT_TRUE(spheres.ok()) << spheres.status();
+    InMemoryCloudSource source(*spheres);
+    NoResourceLimit gate;
+    InMemoryMeshSink sink;
+    ReconstructionOptions options;
+    options.target_faces = 6;
+    const Outcome run = RunWith(source, gate, sink, options);
+    EXPECT_EQ(run.report.status().code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_THAT(std::string(run.report.status().message()),
+                HasSubstr("below the 8 faces that the surface's 2 shells of genus 0, 0 need"));
+    EXPECT_EQ(sink.writes(), 0);
+  }
 }
 
 TEST(ReconstructionPipeline, AdaptersErrorsAreReturnedAsTheyAre) {

@@ -189,6 +189,29 @@ TEST_F(ServiceTest, OutOfRangeParameterIsInvalidArgumentNamingTheFieldAndRange) 
             grpc::StatusCode::INVALID_ARGUMENT);
 }
 
+// Parameters.target_faces: the job's mesh is decimated, its statistics say how; below 4 the
+// job is refused before it is accepted.
+TEST_F(ServiceTest, TargetFacesDecimatesTheResultAndIsValidated) {
+  StartServer();
+  v1::Parameters p;
+  p.set_target_faces(300);
+  const CallResult r = Reconstruct(DracoCloud("sphere", 5000), p);
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  std::string json;
+  for (const v1::JobEvent& e : r.events) {
+    if (e.has_result()) json = e.result().statistics_json();
+  }
+  EXPECT_NE(json.find("\"decimation\": {\"target_faces\": 300,"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"decimate\": "), std::string::npos) << json;
+  v1::Parameters small;
+  small.set_target_faces(3);
+  const CallResult refused = Reconstruct(DracoCloud("sphere", 1000), small);
+  EXPECT_EQ(refused.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(refused.status.error_message().find("target_faces 3 is out of range [4, "),
+            std::string::npos)
+      << refused.status.error_message();
+}
+
 TEST_F(ServiceTest, OriginOfOtherThanThreeFiniteValuesIsInvalidArgument) {
   StartServer();
   v1::Parameters two;

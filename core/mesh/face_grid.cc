@@ -34,13 +34,13 @@ void FaceGrid::Insert(int32_t face, const FaceBox& box) {
   const int64_t span = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
   ++entries_;
   if (span > 4096) {
-    large_.push_back(face);
+    large_.push_back({box, face});
     return;
   }
   entries_ += span - 1;
   for (int64_t z = lo[2]; z <= hi[2]; ++z)
     for (int64_t y = lo[1]; y <= hi[1]; ++y)
-      for (int64_t x = lo[0]; x <= hi[0]; ++x) cells_[Key(x, y, z)].push_back(face);
+      for (int64_t x = lo[0]; x <= hi[0]; ++x) cells_[Key(x, y, z)].push_back({box, face});
 }
 
 }  // namespace membrane

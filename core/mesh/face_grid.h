@@ -1,7 +1,9 @@
 // A uniform grid of triangle bounding boxes that faces can be added to one by one: the
 // broad phase of the local self-intersection test of each edge collapse (mesh_decimation.h).
 // Entries are never removed: a face that moved is added again where it now lies, and the
-// stale entries it leaves are candidates the caller rejects with its own box test. The
+// stale entries it leaves are candidates the caller rejects by the face's current box. Each
+// entry holds the face's box as inserted, so that a search tests boxes in the order they lie
+// in memory and reads the mesh only for faces whose box overlaps its own. The
 // decimation rebuilds the grid, with larger cells, as its faces grow.
 #ifndef MEMBRANE_CORE_MESH_FACE_GRID_H_
 #define MEMBRANE_CORE_MESH_FACE_GRID_H_
@@ -38,9 +40,10 @@ class FaceGrid {
   // on a list every query returns instead).
   void Insert(int32_t face, const FaceBox& box);
 
-  // Calls visit(face) for every entry of the cells `box` overlaps and of the list of large
-  // faces: a superset of the faces whose current box, as inserted last, overlaps `box`. A face
-  // may come more than once, and faces removed or moved since their insertion come too.
+  // Calls visit(face) for every entry of the cells `box` overlaps, and of the list of large
+  // faces, whose box as inserted overlaps `box`: a superset of the faces whose last inserted
+  // box overlaps it. A face may come more than once, and faces removed or moved since an
+  // insertion come too.
   template <typename Visit>
   void ForEachCandidate(const FaceBox& box, Visit&& visit) const {
     std::array<int64_t, 3> lo, hi;
@@ -50,15 +53,21 @@ class FaceGrid {
         for (int64_t x = lo[0]; x <= hi[0]; ++x) {
           const auto it = cells_.find(Key(x, y, z));
           if (it == cells_.end()) continue;
-          for (int32_t f : it->second) visit(f);
+          for (const Entry& e : it->second)
+            if (BoxesOverlap(e.box, box)) visit(e.face);
         }
-    for (int32_t f : large_) visit(f);
+    for (const Entry& e : large_)
+      if (BoxesOverlap(e.box, box)) visit(e.face);
   }
 
   double cell() const { return cell_; }
   int64_t entries() const { return entries_; }
 
  private:
+  struct Entry {
+    FaceBox box;
+    int32_t face;
+  };
   void CellRange(const FaceBox& box, std::array<int64_t, 3>& lo,
                  std::array<int64_t, 3>& hi) const;
   // 21 bits per axis; cells whose coordinates agree modulo 2^21 share a key, which only adds
@@ -71,8 +80,8 @@ class FaceGrid {
 
   double cell_;
   double inverse_cell_;
-  absl::flat_hash_map<uint64_t, std::vector<int32_t>> cells_;
-  std::vector<int32_t> large_;
+  absl::flat_hash_map<uint64_t, std::vector<Entry>> cells_;
+  std::vector<Entry> large_;
   int64_t entries_ = 0;
 };
 

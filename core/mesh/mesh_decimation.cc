@@ -36,6 +36,7 @@ constexpr double kDegenerateQuality = 1e-6;
 constexpr double kLengthWeight = 1e-4;
 constexpr int kCancelPeriod = 4096;
 constexpr size_t kMaxFan = 64;
+constexpr FaceBox kEmptyBox{{HUGE_VALF, HUGE_VALF, HUGE_VALF}, {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF}};
 
 // 1 for an equilateral triangle, 0 for a degenerate one: 2 sqrt(3) |n| / (sum of squared
 // edges), with n twice the area vector.
@@ -129,6 +130,9 @@ class Decimator {
   uint32_t vertex_mark_id_ = 0;
   std::vector<uint32_t> face_mark_;
   uint32_t face_mark_id_ = 0;
+  // Each face's box, empty (lo > hi) once it is removed: the crossing test's broad phase reads
+  // one record per candidate.
+  std::vector<FaceBox> face_box_;
   std::priority_queue<QueueEntry, std::vector<QueueEntry>, LaterEntry> queue_;
   FaceGrid grid_{1.0};
   int64_t grid_faces_ = 0;  // live faces when the grid was built
@@ -138,6 +142,7 @@ class Decimator {
   std::vector<std::array<int32_t, 3>> moved_corners_;
   std::vector<Triangle3d> moved_triangles_;
   std::vector<FaceBox> moved_boxes_;
+  std::vector<FacePlane> moved_planes_;
   std::vector<Vec3d> ring_;
 };
 
@@ -216,7 +221,7 @@ void Decimator::BuildGrid() {
   const double cell = n > 0 && sum > 0 ? 2 * sum / n : 1.0;
   grid_ = FaceGrid(cell);
   for (int32_t f = 0; f < nf; ++f)
-    if (face_alive_[f]) grid_.Insert(f, BoxOfFace(mesh_, f));
+    if (face_alive_[f]) grid_.Insert(f, face_box_[f]);
   grid_faces_ = alive_faces_;
 }
 
@@ -317,18 +322,29 @@ bool Decimator::MovedFacesCross(int32_t a, int32_t b, const Vec3d& point) {
   const uint32_t id = ++face_mark_id_;
   for (int32_t f : FacesOf(a)) face_mark_[f] = id;
   for (int32_t f : FacesOf(b)) face_mark_[f] = id;
+  moved_planes_.clear();
+  for (const Triangle3d& t : moved_triangles_) moved_planes_.push_back(MakeFacePlane(t));
   bool crossing = false;
   grid_.ForEachCandidate(all, [&](int32_t f) {
-    if (crossing || !face_alive_[f] || face_mark_[f] == id) return;
+    // Removed faces have empty boxes; a face met again, or one the collapse moves, is marked;
+    // a stale entry of a face that moved away fails the test on its current box.
+    const FaceBox& box = face_box_[f];
+    if (crossing || face_mark_[f] == id || !BoxesOverlap(box, all)) return;
     face_mark_[f] = id;
-    const FaceBox box = BoxOfFace(mesh_, f);
-    if (!BoxesOverlap(box, all)) return;
     const auto& c = mesh_.faces[f];
-    const Triangle3d t{ToVec3d(mesh_.vertices[c[0]]), ToVec3d(mesh_.vertices[c[1]]),
-                       ToVec3d(mesh_.vertices[c[2]])};
+    Triangle3d t;
+    bool have_plane = false;
+    FacePlane plane;
     for (size_t i = 0; i < n && !crossing; ++i) {
       if (!BoxesOverlap(box, moved_boxes_[i])) continue;
-      crossing = MeshTrianglesIntersect(moved_corners_[i], moved_triangles_[i], c, t);
+      if (!have_plane) {
+        t = {ToVec3d(mesh_.vertices[c[0]]), ToVec3d(mesh_.vertices[c[1]]),
+             ToVec3d(mesh_.vertices[c[2]])};
+        plane = MakeFacePlane(t);
+        have_plane = true;
+      }
+      crossing = MeshTrianglesIntersect(moved_corners_[i], moved_triangles_[i], moved_planes_[i],
+                                        c, t, plane);
     }
   });
   return crossing;
@@ -402,7 +418,10 @@ bool Decimator::TryCollapse(int32_t a, int32_t b) {
   if (moved_.size() < 3 || MovedFacesCross(a, b, point)) return false;
 
   // Commit: the two faces go, b's faces become a's, a moves to `point`.
-  for (int32_t f : shared) face_alive_[f] = 0;
+  for (int32_t f : shared) {
+    face_alive_[f] = 0;
+    face_box_[f] = kEmptyBox;
+  }
   alive_faces_ -= 2;
   for (int32_t f : faces_b)
     for (int32_t& v : mesh_.faces[f])
@@ -422,7 +441,10 @@ bool Decimator::TryCollapse(int32_t a, int32_t b) {
         std::remove_if(list, list + count_[o], [&](int32_t f) { return !face_alive_[f]; }) -
         list);
   }
-  for (size_t i = 0; i < moved_.size(); ++i) grid_.Insert(moved_[i], moved_boxes_[i]);
+  for (size_t i = 0; i < moved_.size(); ++i) {
+    face_box_[moved_[i]] = moved_boxes_[i];
+    grid_.Insert(moved_[i], moved_boxes_[i]);
+  }
   const uint32_t ring_mark = ++vertex_mark_id_;
   for (const auto& c : moved_corners_)
     for (int32_t v : c)
@@ -470,6 +492,9 @@ absl::Status Decimator::Run(DecimationStats& stats) {
   stamp_.assign(nv, 0);
   vertex_mark_.assign(nv, 0);
   face_mark_.assign(mesh_.faces.size(), 0);
+  face_box_.resize(mesh_.faces.size());
+  for (size_t f = 0; f < mesh_.faces.size(); ++f)
+    face_box_[f] = BoxOfFace(mesh_, static_cast<int32_t>(f));
   BuildGrid();
   FillQueue();
   stats.passes = 1;
@@ -509,6 +534,8 @@ absl::Status Decimator::Run(DecimationStats& stats) {
   }
   queue_ = {};
   grid_ = FaceGrid(1.0);
+  face_box_ = {};
+  face_mark_ = {};
   Compact();
   stats.faces_after = static_cast<int64_t>(mesh_.faces.size());
   stats.vertices_after = static_cast<int64_t>(mesh_.vertices.size());

@@ -79,6 +79,7 @@ class CellFaces {
     }
   }
 
+  double cell() const { return 1 / inverse_cell_; }
   std::array<int64_t, 3> CellOf(const Vec3d& p) const {
     return {static_cast<int64_t>(std::floor(p[0] * inverse_cell_)),
             static_cast<int64_t>(std::floor(p[1] * inverse_cell_)),
@@ -155,7 +156,9 @@ SurfaceDeviation MeasureDeviation(const std::vector<Point3f>& points, const Tria
     edge_sum += Norm(ToVec3d(mesh.vertices[c[1]]) - ToVec3d(mesh.vertices[c[0]]));
   }
   if (faces.empty() || points.empty()) return result;
-  const double cell = edge_sum > 0 ? 2 * edge_sum / faces.size() : 1.0;
+  // Cells about as large as the faces: most points find their nearest face in their own cell
+  // or the ring around it.
+  const double cell = edge_sum > 0 ? edge_sum / faces.size() : 1.0;
   const CellFaces grid(mesh, faces, cell);
 
   const int64_t n = static_cast<int64_t>(points.size());
@@ -163,22 +166,37 @@ SurfaceDeviation MeasureDeviation(const std::vector<Point3f>& points, const Tria
   std::vector<double> task_max(tasks, 0), task_sum(tasks, 0);
   std::vector<int64_t> task_count(tasks, 0);
   TaskCancel stop(cancel, threads, 1);
+  // Per worker, the point each face was last measured for: a face entered in several cells is
+  // measured once per point.
+  const int workers = std::max(threads, 1);
+  std::vector<std::vector<int64_t>> seen(workers);
   RunTasks(threads, tasks, [&](int worker, int64_t t) {
     if (stop.Poll(worker)) return;
+    std::vector<int64_t>& last_point = seen[worker];
+    if (last_point.empty()) last_point.assign(mesh.faces.size(), -1);
     for (int64_t i = t * kPointsPerTask; i < std::min(n, (t + 1) * kPointsPerTask); ++i) {
       const Vec3d p = ToVec3d(points[i]);
       const std::array<int64_t, 3> c = grid.CellOf(p);
+      // How far p is from the walls of its own cell: after ring r, every face not yet seen
+      // lies outside the cube of rings 0..r, at least r cells plus this much away.
+      double wall = grid.cell();
+      for (int k = 0; k < 3; ++k) {
+        const double low = p[k] - static_cast<double>(c[k]) * grid.cell();
+        wall = std::min({wall, low, grid.cell() - low});
+      }
+      wall = std::max(wall, 0.0);
       double best = std::numeric_limits<double>::infinity();
       const int64_t last = grid.LastRing(c);
       for (int64_t r = 0; r <= last; ++r) {
         grid.ForEachInRing(c, r, [&](int32_t f) {
+          if (last_point[f] == i) return;
+          last_point[f] = i;
           const auto& v = mesh.faces[f];
           best = std::min(best, SquaredDistanceToTriangle(p, ToVec3d(mesh.vertices[v[0]]),
                                                           ToVec3d(mesh.vertices[v[1]]),
                                                           ToVec3d(mesh.vertices[v[2]])));
         });
-        // Faces not seen yet lie in cells of ring r + 1 or further: at least r cells away.
-        const double reach = static_cast<double>(r) * cell;
+        const double reach = static_cast<double>(r) * grid.cell() + wall;
         if (best <= reach * reach) break;
       }
       const double d = std::sqrt(best);

@@ -417,7 +417,7 @@ class Fitter {
       } else {
         for (const auto& [a, b] : pairs) dirty_[a] = dirty_[b] = 1;
       }
-      pairs = FindIntersectingFacesNear(mesh_, dirty_, options_.threads);
+      pairs = FindIntersectingFacesNear(mesh_, dirty_, options_.threads, &blocks_);
       if (!kept.empty()) {
         // Disjoint sorted lists: the found pairs have a dirty face, the kept ones none.
         std::vector<std::pair<int32_t, int32_t>> all(pairs.size() + kept.size());
@@ -541,6 +541,9 @@ class Fitter {
   std::vector<Vec3d> target_;  // last applied position
   std::vector<int> level_;
   std::vector<char> dirty_;
+  // Boxes of runs of faces, for the searches around dirty faces: each search marks the faces
+  // around every vertex changed since the last one, as FaceBlockBoxes requires.
+  FaceBlockBoxes blocks_;
   // The slabs' vertices, slab by slab (AssignSlabs).
   std::vector<int32_t> slab_start_, slab_vertices_;
 };

@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "core/engine/huge_page_allocator.h"
@@ -18,9 +19,7 @@ namespace {
 template <typename T>
 using BigVector = std::vector<T, HugePageAllocator<T>>;
 
-struct Box {
-  std::array<float, 3> lo, hi;
-};
+using Box = FaceBlockBoxes::Box;
 
 bool Overlap(const Box& a, const Box& b) {
   for (int k = 0; k < 3; ++k)
@@ -279,11 +278,50 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMes
   return SearchPairs(mesh, p, threads, cancel);
 }
 
-std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const TriangleMesh& mesh,
-                                                                   const std::vector<char>& dirty,
-                                                                   int threads) {
+void FaceBlockBoxes::Update(const TriangleMesh& mesh, const std::vector<char>& dirty) {
+  const int32_t nf = static_cast<int32_t>(mesh.faces.size());
+  const int32_t blocks = (nf + kFaces - 1) / kFaces;
+  if (faces_ != mesh.faces.size() || boxes_.size() != static_cast<size_t>(blocks)) {
+    faces_ = mesh.faces.size();
+    boxes_.resize(blocks);
+    for (int32_t b = 0; b < blocks; ++b) Remake(mesh, b);
+    return;
+  }
+  for (int32_t b = 0; b < blocks; ++b) {
+    const int32_t end = std::min(nf, (b + 1) * kFaces);
+    for (int32_t f = b * kFaces; f < end; ++f)
+      if (dirty[f]) {
+        Remake(mesh, b);
+        break;
+      }
+  }
+}
+
+void FaceBlockBoxes::Remake(const TriangleMesh& mesh, int32_t block) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
+  Box& box = boxes_[block];
+  // Empty until a face is seen: lo above hi on every axis, so it overlaps nothing.
+  box.lo.fill(std::numeric_limits<float>::infinity());
+  box.hi.fill(-std::numeric_limits<float>::infinity());
+  const int32_t end = std::min(nf, (block + 1) * kFaces);
+  for (int32_t f = block * kFaces; f < end; ++f) {
+    if (!ValidFace(mesh.faces[f], nv)) continue;
+    const Box b = FaceBox(mesh, f);
+    for (int k = 0; k < 3; ++k) {
+      box.lo[k] = std::min(box.lo[k], b.lo[k]);
+      box.hi[k] = std::max(box.hi[k], b.hi[k]);
+    }
+  }
+}
+
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const TriangleMesh& mesh,
+                                                                   const std::vector<char>& dirty,
+                                                                   int threads,
+                                                                   FaceBlockBoxes* blocks) {
+  const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
+  const int32_t nf = static_cast<int32_t>(mesh.faces.size());
+  if (blocks != nullptr) blocks->Update(mesh, dirty);
   // Boxes of the dirty faces, and the coarse cells they touch (cells twice the largest dirty
   // extent: a face overlapping a dirty box touches one of that box's cells).
   int64_t n_dirty = 0;
@@ -333,25 +371,38 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
       for (int64_t y = cell(b.lo[1], 1); y <= cell(b.hi[1], 1); ++y)
         for (int64_t x = cell(b.lo[0], 0); x <= cell(b.hi[0], 0); ++x)
           marked[x + dims[0] * (y + dims[1] * z)] = true;
-  // The clean faces whose box touches a marked cell.
-  for (int32_t f = 0; f < nf; ++f) {
-    if (dirty[f] || !ValidFace(mesh.faces[f], nv)) continue;
-    const Box b = FaceBox(mesh, f);
-    if (!Overlap(b, region)) continue;
+  // Whether a box touches a marked cell; `limit` > 0: true without looking once the box spans
+  // more cells than that.
+  auto touches_marked = [&](const Box& b, int64_t limit) {
+    if (!Overlap(b, region)) return false;
     std::array<int64_t, 3> lo, hi;
     for (int k = 0; k < 3; ++k) {
       lo[k] = std::max<int64_t>(cell(b.lo[k], k), 0);
       hi[k] = std::min<int64_t>(cell(b.hi[k], k), dims[k] - 1);
     }
-    bool near = false;
-    for (int64_t z = lo[2]; z <= hi[2] && !near; ++z)
-      for (int64_t y = lo[1]; y <= hi[1] && !near; ++y)
-        for (int64_t x = lo[0]; x <= hi[0] && !near; ++x)
-          near = marked[x + dims[0] * (y + dims[1] * z)];
-    if (!near) continue;
-    p.face.push_back(f);
-    p.box.push_back(b);
-    p.dirty.push_back(0);
+    if (limit > 0 && (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1) > limit)
+      return true;
+    for (int64_t z = lo[2]; z <= hi[2]; ++z)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (int64_t x = lo[0]; x <= hi[0]; ++x)
+          if (marked[x + dims[0] * (y + dims[1] * z)]) return true;
+    return false;
+  };
+  // The clean faces whose box touches a marked cell, in index order; with `blocks`, only those
+  // of runs whose box does (a run spanning many cells is read face by face).
+  constexpr int64_t kBlockCellLimit = 512;
+  const int32_t run = blocks != nullptr ? FaceBlockBoxes::kFaces : nf;
+  for (int32_t begin = 0; begin < nf; begin += run) {
+    if (blocks != nullptr && !touches_marked(blocks->box(begin / run), kBlockCellLimit)) continue;
+    const int32_t end = std::min(nf, begin + run);
+    for (int32_t f = begin; f < end; ++f) {
+      if (dirty[f] || !ValidFace(mesh.faces[f], nv)) continue;
+      const Box b = FaceBox(mesh, f);
+      if (!touches_marked(b, 0)) continue;
+      p.face.push_back(f);
+      p.box.push_back(b);
+      p.dirty.push_back(0);
+    }
   }
   return SearchPairs(mesh, p, threads, CancelToken::Never());
 }

@@ -4,6 +4,7 @@
 #ifndef MEMBRANE_CORE_MESH_SELF_INTERSECTION_H_
 #define MEMBRANE_CORE_MESH_SELF_INTERSECTION_H_
 
+#include <array>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -25,12 +26,40 @@ namespace membrane {
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(
     const TriangleMesh& mesh, const CancelToken& cancel = CancelToken::Never(), int threads = 1);
 
+// Bounding boxes of runs of kFaces consecutive faces, kept by a caller that searches the same
+// mesh again and again while moving a few of its vertices (the fit's last step): the search
+// around a few dirty faces then skips the runs far from all of them without reading their
+// faces. Faces are in spatial order (MortonOrder), so a run is a small patch.
+class FaceBlockBoxes {
+ public:
+  static constexpr int32_t kFaces = 64;
+  struct Box {
+    std::array<float, 3> lo, hi;
+  };
+
+  // Makes every run's box when the mesh's face count differs from the last call's (or on the
+  // first), else remakes the boxes of the runs holding a face marked in `dirty` (one flag per
+  // face). Contract: every face whose vertices moved since the last call is marked. Faces with
+  // an index out of range are left out.
+  void Update(const TriangleMesh& mesh, const std::vector<char>& dirty);
+
+  int32_t size() const { return static_cast<int32_t>(boxes_.size()); }
+  const Box& box(int32_t block) const { return boxes_[block]; }
+
+ private:
+  void Remake(const TriangleMesh& mesh, int32_t block);
+  std::vector<Box> boxes_;
+  size_t faces_ = 0;
+};
+
 // The same, restricted to pairs with at least one face marked in `dirty` (one flag per face):
 // after moving a few vertices, the pairs that may have changed. Costs a linear scan of the
-// faces plus the pair search around the dirty ones.
-std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const TriangleMesh& mesh,
-                                                                   const std::vector<char>& dirty,
-                                                                   int threads = 1);
+// faces plus the pair search around the dirty ones; with `blocks` (updated here, see
+// FaceBlockBoxes::Update for its contract), a scan of the runs' boxes and of the faces of runs
+// near a dirty face instead. The result does not depend on `blocks` or `threads`.
+std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(
+    const TriangleMesh& mesh, const std::vector<char>& dirty, int threads = 1,
+    FaceBlockBoxes* blocks = nullptr);
 
 }  // namespace membrane
 

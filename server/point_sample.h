@@ -11,8 +11,9 @@
 
 namespace membrane::server {
 
-// The most points a sample keeps (1.2 MB).
-inline constexpr size_t kMaxSamplePoints = 100'000;
+// The most points a sample keeps: 240 kB, held with the job until its result expires (about a
+// Draco mesh's size), and enough to show in the browser how the points lie about the surface.
+inline constexpr size_t kMaxSamplePoints = 20'000;
 
 // Up to `max_points` of `cloud`'s points, evenly strided, as float32 x y z little-endian.
 std::string SamplePoints(const PointCloud& cloud, size_t max_points = kMaxSamplePoints);

@@ -91,6 +91,12 @@ HttpResponse WebAssets::Serve(const HttpRequest& request) const {
   response.shared_body = found->second.bytes;
   // The page and three.js change only with membraned: a reload checks, a tab keeps its copy.
   response.headers.push_back({"Cache-Control", "no-cache"});
+  // Every script, style and request is membraned's own; previews are blob URLs. A page that
+  // somehow got markup injected could run nothing and send nothing elsewhere.
+  response.headers.push_back(
+      {"Content-Security-Policy",
+       "default-src 'self'; img-src 'self' blob:; object-src 'none'; base-uri 'none'; "
+       "frame-ancestors 'none'"});
   return response;
 }
 

@@ -66,9 +66,13 @@ function bytes(n) {
   return (u === 0 ? n : n.toFixed(1)) + ' ' + units[u];
 }
 
+// One formatter for every row: Date.toLocaleString builds a new one per call, for each of the
+// list's rows every second.
+const DATE_FORMAT = new Intl.DateTimeFormat(undefined, { dateStyle: 'short', timeStyle: 'medium' });
+
 function time(unixSeconds) {
   if (!unixSeconds) return '';
-  return new Date(unixSeconds * 1000).toLocaleString();
+  return DATE_FORMAT.format(new Date(unixSeconds * 1000));
 }
 
 function seconds(s) {

@@ -70,6 +70,8 @@ TEST_F(HttpApiTest, ServesThePageAndThreeJsFromInstalledFiles) {
   EXPECT_TRUE(absl::StrContains(page.headers, "Content-Type: text/html")) << page.headers;
   EXPECT_TRUE(absl::StrContains(page.body, "/three/three.min.js"));
   EXPECT_TRUE(absl::StrContains(page.body, "/console.js"));
+  EXPECT_TRUE(absl::StrContains(page.headers, "Content-Security-Policy: default-src 'self';"))
+      << page.headers;
   const HttpReply three = Get("/three/three.min.js");
   EXPECT_EQ(three.status, 200);
   EXPECT_GT(three.body.size(), 100000u);

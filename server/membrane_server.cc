@@ -208,9 +208,9 @@ void MembraneServer::Shutdown(absl::Duration grace) {
     // The open calls see their jobs ended and write the outcome; a second is plenty.
     server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(1));
   }
-  // Waiting events requests answer within 250 ms; the listener stops once they have.
+  // Waiting events requests answer within 250 ms. The listener stays until the server is
+  // destroyed (civetweb's stop takes up to 2 s, which a process about to exit need not wait).
   http_api_.Stop();
-  http_server_.reset();
   if (started) LogEvent("server_stopped", {});
 }
 

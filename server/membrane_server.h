@@ -55,7 +55,9 @@ class MembraneServer {
   // given `grace` to finish, their ends written to the store's directory. The others: with a
   // store directory, queued jobs and those still running after `grace` (interrupted) stay
   // unfinished in it, for the next start to run; in memory only, they end CANCELLED. Then the
-  // calls still open get a second to deliver what they can and the server stops.
+  // calls still open get a second to deliver what they can and the server stops. The web
+  // console's waiting events requests are answered within 250 ms; its listener serves until
+  // the server is destroyed.
   void Shutdown(absl::Duration grace);
 
   // Blocks until Shutdown has stopped the gRPC server.

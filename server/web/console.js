@@ -276,6 +276,9 @@ async function select(id) {
     next = answer.next;
     $('detail-state').textContent = answer.state;
     if (answer.done) break;
+    // Nothing new: the wait ran out, or a stopping server answered at once. Not asked again
+    // at once, so that a stopping server is not flooded.
+    if (answer.events.length === 0) await new Promise((r) => setTimeout(r, 1000));
   }
   if (follow !== state.follow) return;
   const detail = await (await api('/api/jobs/' + id)).json();

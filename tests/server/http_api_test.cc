@@ -1,6 +1,7 @@
 // membraned --http-listen: the web console's JSON API and files, in process, over real HTTP
 // requests: the same jobs, tokens and visibility as the gRPC calls.
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -221,6 +222,30 @@ TEST_F(HttpApiTest, AJobRestoredFromTheStoreGetsItsPreviewWhenAsked) {
   ExpectPreview(preview.body);
   // The restored job kept no points: the page says so rather than drawing none.
   EXPECT_EQ(Get(job + "/points").status, 409);
+}
+
+TEST_F(HttpApiTest, AStoppingServerAnswersWaitingEventsRequestsAtOnce) {
+  // With a store, a job still running at the stop is kept unfinished: it never ends here, so
+  // only the stop can end a request waiting for its events.
+  ScratchDir dir;
+  options_.store_dir = dir.File("jobs");
+  StartServer();
+  const std::string id = StartJobInBackground(DracoCloud("sphere", 20000), SlowParameters());
+  const std::string events = "/api/jobs/" + id + "/events?after=1000000&wait=20";
+  HttpReply waited;
+  absl::Duration took;
+  std::thread request([&] {
+    const absl::Time start = absl::Now();
+    waited = Get(events);
+    took = absl::Now() - start;
+  });
+  // Whether the request is waiting when the stop comes or arrives after it, it is answered at
+  // once (Shutdown's contract covers both): no order needs waiting for.
+  server_->Shutdown(absl::ZeroDuration());
+  request.join();
+  EXPECT_EQ(waited.status, 200) << waited.body;
+  EXPECT_TRUE(absl::StrContains(waited.body, "\"done\":false")) << waited.body;
+  EXPECT_LT(took, absl::Seconds(10)) << "the stop did not end the wait";
 }
 
 TEST_F(HttpApiTest, CancelStopsARunningJobAndItHasNoMesh) {

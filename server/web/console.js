@@ -560,9 +560,12 @@ $('show-points').addEventListener('change', (e) => showPoints(e.target.checked))
 
 // ---- start ----
 
+// The list is refreshed while the tab is seen: a hidden tab costs the server nothing, and is
+// brought up to date as soon as it is shown again.
 async function poll() {
-  await refreshList();
+  if (!document.hidden) await refreshList();
   setTimeout(poll, LIST_INTERVAL_MS);
 }
+document.addEventListener('visibilitychange', () => { if (!document.hidden) refreshList(); });
 const fromHash = decodeURIComponent(location.hash.slice(1));
 poll().then(() => { if (fromHash) select(fromHash); });

@@ -52,6 +52,15 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
   s.surface_nets_seconds = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
+  // Before the fit: the fit then pulls the caps' rims onto the data and smooths the caps; its
+  // final search covers the caps too.
+  if (absl::Status capped = CapHoles(nets.mesh, membrane.voxel_size(), points, options.hole_caps,
+                                     &s.caps, cancel);
+      !capped.ok())
+    return capped;
+  s.cap_seconds = SecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
   absl::StatusOr<FitStats> fit = FitToPoints(nets.mesh, membrane.voxel_size(), points,
                                              options.fit_options, cancel, &nets.fallback);
   if (!fit.ok()) return fit.status();

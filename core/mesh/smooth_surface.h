@@ -12,6 +12,7 @@
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/mesh/hole_caps.h"
 #include "core/mesh/point_fitting.h"
 
 namespace membrane {
@@ -21,6 +22,7 @@ struct SmoothSurfaceOptions {
   bool fill_caves = true;           // recipe 2
   int bridging_scans = 3;           // recipe 3 step 2 (0 = off)
   bool fit = true;                  // recipe 3 steps 5-6
+  HoleCapOptions hole_caps;         // with the fit only: before it
   FitOptions fit_options;
 };
 
@@ -29,14 +31,16 @@ struct SmoothSurfaceStats {
   int64_t cave_voxels = 0;           // voxels filled in caves
   int64_t bridges = 0;               // voxels added at corner-only contacts
   int64_t corner_contacts_left = 0;  // contacts no simple voxel could bridge
+  HoleCapStats caps;
   FitStats fit;
-  double prepare_seconds = 0, surface_nets_seconds = 0, fit_seconds = 0;
+  double prepare_seconds = 0, surface_nets_seconds = 0, cap_seconds = 0, fit_seconds = 0;
 };
 
 // Input: the final (optionally relaxed) membrane, read only; `points` the input cloud in model
 // units. The steps, in order, on a copy of the grid: loose-sheet removal (loose_sheets.h; first,
 // so that cave filling cannot thicken a sheet into something kept), homotopic cave filling
-// (cave_filling.h), diagonal-contact bridging (diagonal_bridging.h); then the surface nets and
+// (cave_filling.h), diagonal-contact bridging (diagonal_bridging.h); then the surface nets,
+// with the fit CapHoles() (hole_caps.h: smooth caps over the gaps in the data) and
 // FitToPoints(). With the fit, the nets' crossing repair is left to the fit's final check
 // (SurfaceNetsBeforeRepair), so the whole mesh is searched once.
 // Cost, measured on a 200^3 ball with 150k points (324k faces) on the shared 2-core machine:

@@ -10,6 +10,7 @@
 
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/post_process.h"
+#include "core/mesh/hole_caps.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_decimation.h"
 #include "core/mesh/relaxation.h"
@@ -71,6 +72,7 @@ struct ReconstructionReport {
   HandleRetry handle_retry;    // ShrinkResult::handle_retry
   MembraneCounts membrane;     // the final DMS, before relaxation
   RelaxationStats relaxation;  // all 0 with --no-relax
+  HoleCapStats hole_caps;      // the smooth surface's caps over data holes
   MeshReport mesh;             // CheckMesh of the surface (vertices and faces set before it)
   DecimationReport decimation;
   QuantizationReport quantization;

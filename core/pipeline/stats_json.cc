@@ -79,6 +79,14 @@ std::string MeshJson(const MeshReport& m) {
       ", \"degenerate_faces\": ", m.degenerate_faces, "}");
 }
 
+std::string HoleCapsJson(const HoleCapStats& h) {
+  return absl::StrCat("{\"regions\": ", h.regions, ", \"vertices\": ", h.vertices,
+                      ", \"harmonic_starts\": ", h.harmonic_starts,
+                      ", \"uncapped_regions\": ", h.uncapped_regions,
+                      ", \"backed_off_vertices\": ", h.backed_off,
+                      ", \"max_lift_voxels\": ", JsonNumber(h.max_lift), "}");
+}
+
 std::string SecondsJson(const StageSeconds& s) {
   return absl::StrCat(
       "{\"decode\": ", JsonNumber(s.decode), ", \"voxelize\": ", JsonNumber(s.voxelize),
@@ -136,6 +144,7 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"post_process\": ", PostProcessJson(r.post_process),
       ",\n  \"handle_retry\": ", HandleRetryJson(r.handle_retry),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
+      ",\n  \"hole_caps\": ", HoleCapsJson(r.hole_caps),
       ",\n  \"quantization\": ", QuantizationJson(r.quantization),
       ",\n  \"decimation\": ", DecimationJson(r.decimation),
       ",\n  \"origin\": ", OriginJson(r.origin),

@@ -38,6 +38,7 @@ absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const Point
       SmoothSurface(membrane, cloud.points, options, &stats, cancel);
   if (!mesh.ok()) return mesh.status();
   built.mesh = *std::move(mesh);
+  built.hole_caps = stats.caps;
   if (stats.fit.crossings_known) built.crossings = std::move(stats.fit.crossings);
   return built;
 }

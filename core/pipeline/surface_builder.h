@@ -15,6 +15,7 @@
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/position_grid.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/mesh/hole_caps.h"
 #include "core/mesh/output_grid.h"
 
 namespace membrane {
@@ -37,6 +38,7 @@ struct BuiltSurface {
   // the build searched all of the mesh on exactly these positions: the smooth surface's fit
   // does. nullopt otherwise (cuberille): a mesh check must search.
   std::optional<std::vector<std::pair<int32_t, int32_t>>> crossings;
+  HoleCapStats hole_caps;  // the smooth surface's caps over data holes (zero for cuberille)
 };
 
 // The closed, manifold, outward surface of `membrane` (a final DMS, its outer layer outside),

@@ -21,6 +21,7 @@ absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
   absl::StatusOr<BuiltSurface> built =
       BuildSurface(grid, cloud, options.surface, output_grid, cancel, options.threads);
   if (!built.ok()) return built.status();
+  report.hole_caps = built->hole_caps;
   report.quantization.bits = output_grid.bits;
   report.quantization.step = output_grid.step();
   report.quantization.max_position_error = output_grid.step() / 2;

@@ -1,0 +1,359 @@
+#include "core/mesh/hole_caps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "absl/container/flat_hash_set.h"
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "core/geometry/vec3.h"
+#include "core/mesh/plane_fit.h"
+#include "core/mesh/point_row_grid.h"
+#include "core/mesh/self_intersection.h"
+#include "core/mesh/thin_plate_spline.h"
+
+namespace membrane {
+namespace {
+
+// Compressed rows: row v's entries are items[start[v] .. start[v + 1]).
+struct Rows {
+  std::vector<int32_t> start, items;
+  int32_t size(int32_t v) const { return start[v + 1] - start[v]; }
+  const int32_t* begin(int32_t v) const { return items.data() + start[v]; }
+  const int32_t* end(int32_t v) const { return items.data() + start[v + 1]; }
+};
+
+// Each vertex's neighbours: in a closed oriented manifold every edge appears once in each
+// direction, so the successors of v in its faces are its neighbours, each once. Also each
+// vertex's faces.
+void BuildRows(const TriangleMesh& mesh, Rows& neighbours, Rows& faces) {
+  const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
+  neighbours.start.assign(nv + 1, 0);
+  for (const auto& f : mesh.faces)
+    for (int32_t v : f) ++neighbours.start[v + 1];
+  for (int32_t v = 0; v < nv; ++v) neighbours.start[v + 1] += neighbours.start[v];
+  faces.start = neighbours.start;
+  neighbours.items.resize(neighbours.start[nv]);
+  faces.items.resize(faces.start[nv]);
+  std::vector<int32_t> fill(neighbours.start.begin(), neighbours.start.end() - 1);
+  for (int32_t fi = 0; fi < static_cast<int32_t>(mesh.faces.size()); ++fi) {
+    const auto& f = mesh.faces[fi];
+    for (int k = 0; k < 3; ++k) {
+      const int32_t slot = fill[f[k]]++;
+      neighbours.items[slot] = f[(k + 1) % 3];
+      faces.items[slot] = fi;
+    }
+  }
+}
+
+// Conjugate gradients over the free vertices, every other vertex fixed, for the graph
+// Laplacian (L x)_v = deg_v x_v - sum of the neighbours' x: the harmonic map L_ff x_f =
+// -L_fc x_c, or the thin plate K_ff x_f = -K_fc x_c with K = L D^-1 L (the minimum of the sum
+// of |L x_v|^2 / deg_v; both symmetric positive definite on regions with a fixed neighbour).
+// Jacobi-preconditioned, each coordinate on its own, from the positions in `x` (every vertex;
+// the free ones are updated). Stops after `max_iterations` or once no step moves a vertex by
+// more than `tolerance`. Returns the iterations run, or -1 when `cancel` fired.
+int Solve(bool thin_plate, const Rows& nb, const std::vector<int32_t>& free,
+          std::vector<Vec3d>& x, int max_iterations, double tolerance,
+          const CancelToken& cancel) {
+  const size_t n = free.size();
+  auto laplacian = [&](int32_t v, const std::vector<Vec3d>& y) {
+    Vec3d sum = static_cast<double>(nb.size(v)) * y[v];
+    for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) sum = sum - y[*u];
+    return sum;
+  };
+  // The free vertices and their neighbours: where D^-1 L y is needed for K y.
+  std::vector<int32_t> ring;
+  std::vector<Vec3d> scaled;
+  if (thin_plate) {
+    std::vector<char> in(x.size(), 0);
+    auto add = [&](int32_t w) {
+      if (!in[w]) ring.push_back(w);
+      in[w] = 1;
+    };
+    for (int32_t v : free) {
+      add(v);
+      for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) add(*u);
+    }
+    scaled.assign(x.size(), Vec3d{0, 0, 0});
+  }
+  auto apply = [&](const std::vector<Vec3d>& y, std::vector<Vec3d>& out) {
+    if (!thin_plate) {
+      for (size_t i = 0; i < n; ++i) out[i] = laplacian(free[i], y);
+      return;
+    }
+    for (int32_t v : ring) scaled[v] = (1.0 / nb.size(v)) * laplacian(v, y);
+    for (size_t i = 0; i < n; ++i) out[i] = laplacian(free[i], scaled);
+  };
+  std::vector<double> inv_diag(n);
+  for (size_t i = 0; i < n; ++i) {
+    double d = nb.size(free[i]);
+    if (thin_plate)
+      for (const int32_t* u = nb.begin(free[i]); u != nb.end(free[i]); ++u) d += 1.0 / nb.size(*u);
+    inv_diag[i] = 1.0 / d;
+  }
+  // The search direction per vertex, zero off the free vertices.
+  std::vector<Vec3d> search(x.size(), Vec3d{0, 0, 0});
+  std::vector<Vec3d> r(n), z(n), p(n), q(n);
+  apply(x, r);
+  Vec3d rz{0, 0, 0};
+  for (size_t i = 0; i < n; ++i) {
+    r[i] = -1.0 * r[i];
+    z[i] = inv_diag[i] * r[i];
+    p[i] = z[i];
+    for (int k = 0; k < 3; ++k) rz[k] += r[i][k] * z[i][k];
+  }
+  int it = 0;
+  while (it < max_iterations) {
+    if (cancel.cancelled()) return -1;
+    ++it;
+    for (size_t i = 0; i < n; ++i) search[free[i]] = p[i];
+    apply(search, q);
+    Vec3d pq{0, 0, 0};
+    for (size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) pq[k] += p[i][k] * q[i][k];
+    Vec3d alpha{0, 0, 0};
+    for (int k = 0; k < 3; ++k) alpha[k] = pq[k] > 0 ? rz[k] / pq[k] : 0.0;
+    double largest_step = 0;
+    Vec3d rz_next{0, 0, 0};
+    for (size_t i = 0; i < n; ++i) {
+      Vec3d& xi = x[free[i]];
+      for (int k = 0; k < 3; ++k) {
+        const double step = alpha[k] * p[i][k];
+        xi[k] += step;
+        largest_step = std::max(largest_step, std::abs(step));
+        r[i][k] -= alpha[k] * q[i][k];
+        z[i][k] = r[i][k] * inv_diag[i];
+        rz_next[k] += r[i][k] * z[i][k];
+      }
+    }
+    if (largest_step <= tolerance) break;
+    for (int k = 0; k < 3; ++k) {
+      const double beta = rz[k] > 0 ? rz_next[k] / rz[k] : 0.0;
+      for (size_t i = 0; i < n; ++i) p[i][k] = z[i][k] + beta * p[i][k];
+    }
+    rz = rz_next;
+  }
+  return it;
+}
+
+// Sum of the face normals (twice the areas) around v: its outward direction.
+Vec3d VertexNormal(const TriangleMesh& mesh, const Rows& star, int32_t v) {
+  Vec3d n{0, 0, 0};
+  for (const int32_t* f = star.begin(v); f != star.end(v); ++f) {
+    const auto& t = mesh.faces[*f];
+    n = n + TriangleNormal(ToVec3d(mesh.vertices[t[0]]), ToVec3d(mesh.vertices[t[1]]),
+                           ToVec3d(mesh.vertices[t[2]]));
+  }
+  return n;
+}
+
+// The cap of one region: the thin-plate spline over the rim's plane through the samples, at
+// the harmonic positions `x` of its vertices (in voxels); written into `x`. False when the
+// region is to be left (see CapHoles).
+bool ShapeCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
+              const std::vector<int32_t>& region, const std::vector<char>& free, double l,
+              const HoleCapOptions& options, std::vector<Vec3d>& x) {
+  // Samples: the fixed vertices within sample_rings rings of the region, breadth first.
+  std::vector<int32_t> samples;
+  {
+    absl::flat_hash_set<int32_t> visited;
+    std::vector<int32_t> frontier = region;
+    for (int32_t v : region) visited.insert(v);
+    for (int ring = 0; ring < options.sample_rings; ++ring) {
+      std::vector<int32_t> next;
+      for (int32_t v : frontier)
+        for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u)
+          if (!free[*u] && visited.insert(*u).second) next.push_back(*u);
+      samples.insert(samples.end(), next.begin(), next.end());
+      frontier = std::move(next);
+    }
+    std::sort(samples.begin(), samples.end());
+  }
+  if (samples.size() < 3) return false;
+  const size_t stride = (samples.size() + options.max_samples - 1) / options.max_samples;
+  // In voxels, relative to the first sample: small, well-conditioned numbers.
+  const Vec3d origin = ToVec3d(mesh.vertices[samples[0]]);
+  auto local = [&](const Vec3d& p) { return (1.0 / l) * (p - origin); };
+  PlaneFitAccumulator acc;
+  Vec3d outward{0, 0, 0};
+  for (size_t i = 0; i < samples.size(); i += stride) {
+    acc.Add(local(ToVec3d(mesh.vertices[samples[i]])), 1.0);
+    outward = outward + Normalized(VertexNormal(mesh, star, samples[i]));
+  }
+  const auto plane = acc.Fit();
+  if (!plane) return false;
+  const Vec3d n = Dot(plane->normal, outward) < 0 ? -1.0 * plane->normal : plane->normal;
+  const Vec3d t1 = Normalized(std::abs(n[0]) < 0.9 ? Cross(n, Vec3d{1, 0, 0})
+                                                   : Cross(n, Vec3d{0, 1, 0}));
+  const Vec3d t2 = Cross(n, t1);
+  std::vector<Vec3d> heights;
+  for (size_t i = 0; i < samples.size(); i += stride) {
+    const Vec3d normal = Normalized(VertexNormal(mesh, star, samples[i]));
+    if (!(Dot(normal, n) > options.min_rim_cosine)) return false;
+    const Vec3d p = local(ToVec3d(mesh.vertices[samples[i]])) - plane->centroid;
+    heights.push_back({Dot(p, t1), Dot(p, t2), Dot(p, n)});
+  }
+  const auto spline = ThinPlateSpline::Fit(heights, options.smoothing);
+  if (!spline) return false;
+  for (int32_t v : region) {
+    const Vec3d p = local(x[v]) - plane->centroid;
+    const double u = Dot(p, t1), w = Dot(p, t2);
+    x[v] = origin + l * (plane->centroid + u * t1 + w * t2 + (*spline)(u, w) * n);
+  }
+  return true;
+}
+
+absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
+  if (!(voxel_size > 0) || !std::isfinite(voxel_size))
+    return absl::InvalidArgumentError(absl::StrCat("voxel size ", voxel_size, " is not positive"));
+  if (!(o.gap_radius > 0) || o.min_gap_vertices < 1 || o.rim_rings < 0 ||
+      o.harmonic_iterations < 0 || !(o.tolerance > 0) || o.sample_rings < 1 ||
+      o.max_samples < 3 || !(o.smoothing >= 0) || !(o.min_rim_cosine >= -1) ||
+      o.back_off_halvings < 0)
+    return absl::InvalidArgumentError(absl::StrCat(
+        "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
+        o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",
+        o.harmonic_iterations, ", tolerance ", o.tolerance, ", sample_rings ", o.sample_rings,
+        ", max_samples ", o.max_samples, ", smoothing ", o.smoothing, ", min_rim_cosine ",
+        o.min_rim_cosine, ", back_off_halvings ", o.back_off_halvings));
+  return absl::OkStatus();
+}
+
+// The connected components of the marked vertices, in order of their lowest vertex.
+std::vector<std::vector<int32_t>> Components(const Rows& nb, const std::vector<char>& marked) {
+  const int32_t nv = static_cast<int32_t>(marked.size());
+  std::vector<char> seen(nv, 0);
+  std::vector<std::vector<int32_t>> components;
+  for (int32_t s = 0; s < nv; ++s) {
+    if (!marked[s] || seen[s]) continue;
+    std::vector<int32_t> c{s};
+    seen[s] = 1;
+    for (size_t i = 0; i < c.size(); ++i)
+      for (const int32_t* u = nb.begin(c[i]); u != nb.end(c[i]); ++u)
+        if (marked[*u] && !seen[*u]) {
+          seen[*u] = 1;
+          c.push_back(*u);
+        }
+    components.push_back(std::move(c));
+  }
+  return components;
+}
+
+}  // namespace
+
+absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,
+                      const HoleCapOptions& options, HoleCapStats* stats,
+                      const CancelToken& cancel) {
+  if (absl::Status s = Validate(voxel_size, options); !s.ok()) return s;
+  HoleCapStats local;
+  HoleCapStats& st = stats ? *stats : local;
+  st = HoleCapStats{};
+  const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
+  if (!options.enabled || nv == 0 || points.empty()) return absl::OkStatus();
+  const double l = voxel_size;
+
+  // Gap vertices: no input point within gap_radius.
+  std::vector<char> gap(nv, 0);
+  {
+    const double radius = options.gap_radius * l;
+    const PointRowGrid grid(points, radius);
+    int64_t count = 0;
+    for (int32_t v = 0; v < nv; ++v) {
+      bool near = false;
+      grid.ForEachWithin(ToVec3d(mesh.vertices[v]), radius,
+                         [&](const Point3f&, double) { near = true; });
+      gap[v] = !near;
+      count += gap[v];
+    }
+    if (count < options.min_gap_vertices) return absl::OkStatus();
+  }
+  if (cancel.cancelled()) return absl::CancelledError("hole caps cancelled");
+  Rows nb, star;
+  BuildRows(mesh, nb, star);
+
+  // Regions: gaps large enough, grown by rim_rings rings; each needs a fixed neighbour.
+  std::vector<char> free(nv, 0);
+  for (const auto& c : Components(nb, gap))
+    if (static_cast<int64_t>(c.size()) >= options.min_gap_vertices)
+      for (int32_t v : c) free[v] = 1;
+  for (int ring = 0; ring < options.rim_rings; ++ring) {
+    std::vector<char> grown = free;
+    for (int32_t v = 0; v < nv; ++v)
+      if (free[v])
+        for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) grown[*u] = 1;
+    free.swap(grown);
+  }
+  std::vector<std::vector<int32_t>> regions;
+  for (auto& c : Components(nb, free)) {
+    bool held = false;
+    for (int32_t v : c)
+      for (const int32_t* u = nb.begin(v); u != nb.end(v) && !held; ++u) held = !free[*u];
+    if (held) {
+      regions.push_back(std::move(c));
+    } else {
+      ++st.uncapped_regions;
+      for (int32_t v : c) free[v] = 0;
+    }
+  }
+  if (regions.empty()) return absl::OkStatus();
+  std::vector<int32_t> free_list;
+  for (const auto& c : regions) free_list.insert(free_list.end(), c.begin(), c.end());
+  std::sort(free_list.begin(), free_list.end());
+
+  std::vector<Vec3d> x(nv);
+  for (int32_t v = 0; v < nv; ++v) x[v] = ToVec3d(mesh.vertices[v]);
+  const int it = Solve(false, nb, free_list, x, options.harmonic_iterations,
+                       options.tolerance * l, cancel);
+  if (it < 0) return absl::CancelledError("hole caps cancelled");
+  st.iterations = it;
+  for (const auto& region : regions) {
+    // Where the spline cannot shape it, the thin plate starts from the harmonic map.
+    if (!ShapeCap(mesh, nb, star, region, free, l, options, x)) ++st.harmonic_starts;
+    ++st.regions;
+  }
+  st.vertices = static_cast<int64_t>(free_list.size());
+  if (options.thin_plate_iterations > 0 && !free_list.empty()) {
+    const int bi = Solve(true, nb, free_list, x, options.thin_plate_iterations,
+                         options.tolerance * l, cancel);
+    if (bi < 0) return absl::CancelledError("hole caps cancelled");
+    st.iterations += bi;
+  }
+
+  // Write the caps, then take back the parts that cross the mesh.
+  const std::vector<Point3f> before = mesh.vertices;
+  std::vector<char> dirty(mesh.faces.size(), 0);
+  for (int32_t v : free_list) {
+    mesh.vertices[v] = ToPoint3f(x[v]);
+    st.max_lift = std::max(st.max_lift, Norm(x[v] - ToVec3d(before[v])) / l);
+    for (const int32_t* f = star.begin(v); f != star.end(v); ++f) dirty[*f] = 1;
+  }
+  std::vector<int> level(nv, 0);
+  std::vector<char> backed(nv, 0);
+  for (;;) {
+    const std::vector<std::pair<int32_t, int32_t>> pairs = FindIntersectingFacesNear(mesh, dirty);
+    std::vector<int32_t> moved;
+    for (const auto& [a, b] : pairs)
+      for (int32_t f : {a, b})
+        for (int32_t v : mesh.faces[f])
+          if (mesh.vertices[v] != before[v]) moved.push_back(v);
+    if (moved.empty()) break;  // none, or only crossings of the input
+    std::sort(moved.begin(), moved.end());
+    moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+    std::fill(dirty.begin(), dirty.end(), 0);
+    for (int32_t v : moved) {
+      const Vec3d home = ToVec3d(before[v]);
+      mesh.vertices[v] = ++level[v] > options.back_off_halvings
+                             ? before[v]
+                             : ToPoint3f(home + 0.5 * (ToVec3d(mesh.vertices[v]) - home));
+      if (!backed[v]) ++st.backed_off;
+      backed[v] = 1;
+      for (const int32_t* f = star.begin(v); f != star.end(v); ++f) dirty[*f] = 1;
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace membrane

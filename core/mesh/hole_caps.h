@@ -1,0 +1,89 @@
+// Caps over data holes: where the scanner saw nothing, the membrane sinks into the hole (or cuts
+// a protrusion flat) and the surface nets follow it. A smooth cap spans each such gap region of
+// the surface from its rim instead, as the smoothness term of a Poisson reconstruction does
+// (docs/surface-decisions.md, "Caps over data holes").
+#ifndef MEMBRANE_CORE_MESH_HOLE_CAPS_H_
+#define MEMBRANE_CORE_MESH_HOLE_CAPS_H_
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "absl/types/span.h"
+#include "core/base/cancel_token.h"
+#include "core/geometry/point_cloud.h"
+#include "core/geometry/triangle_mesh.h"
+
+namespace membrane {
+
+// Lengths in voxels (multiples of the membrane's voxel size).
+struct HoleCapOptions {
+  bool enabled = true;
+  // A vertex with no input point within gap_radius lies in a gap (the fit's search radius:
+  // sparse data is not a gap).
+  double gap_radius = 2.0;
+  // Gaps with fewer vertices are left to the fit: a crease of the surface nets, not a hole.
+  int min_gap_vertices = 8;
+  // Each gap region grows by this many rings of faces before it is capped: the vertices beside
+  // a gap lie on the membrane's wall down into the hole, not on the data, and a cap held by
+  // them would keep the wall's slope.
+  int rim_rings = 3;
+  // The cap's vertices are spread by the harmonic (minimal membrane) map of the region with
+  // every other vertex fixed, by conjugate gradients: at most this many iterations, stopping
+  // once no step moves a vertex by more than `tolerance`.
+  int harmonic_iterations = 100;
+  double tolerance = 0.01;
+  // The cap's shape: the thin-plate spline height field, over the plane of the rim, through
+  // the fixed vertices within sample_rings rings of the region (at most max_samples of them,
+  // evenly picked), with this smoothing (voxels squared).
+  int sample_rings = 3;
+  int max_samples = 128;
+  double smoothing = 1.0;
+  // A rim that turns away from its plane (a sample's normal at or below this cosine with the
+  // plane's normal) is no height field over it: there the thin plate starts from the
+  // harmonic map instead.
+  double min_rim_cosine = -0.25;
+  // Then conjugate-gradient iterations toward the discrete thin plate over the region (the
+  // graph bi-Laplacian zero at each cap vertex): they mend what the height field cannot
+  // follow (a rim not in one plane, a saddle) and join the cap to the rim smoothly.
+  int thin_plate_iterations = 60;
+  // A cap vertex of a face that crosses another goes back toward its place before the cap:
+  // halfway this many times, then all the way.
+  int back_off_halvings = 4;
+};
+
+struct HoleCapStats {
+  int64_t regions = 0;          // gap regions capped
+  int64_t vertices = 0;         // vertices of the caps (rims' rings included)
+  int64_t uncapped_regions = 0;  // gap regions left: no vertex on the data to hold a cap
+  int64_t harmonic_starts = 0;   // caps with no height field: the thin plate from the harmonic map
+  int64_t iterations = 0;       // conjugate-gradient iterations, both solves
+  int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
+  double max_lift = 0;          // largest move of a vertex by its cap, in voxels
+};
+
+// Input: `mesh` closed, manifold, outward and free of self-intersections (SurfaceNets'), in
+// model units; `voxel_size` > 0; `points` the input cloud.
+// Effect: finds the gap regions (connected sets of vertices with no point within gap_radius,
+// each of at least min_gap_vertices, grown by rim_rings rings) and spans each with a cap: its
+// vertices are spread by the harmonic map of the region (every other vertex fixed), projected
+// on the least-squares plane of the rim samples (the fixed vertices within sample_rings rings)
+// and lifted to the thin-plate spline through the samples' heights over that plane (where
+// there are too few samples, the rim is no height field (min_rim_cosine) or the spline is
+// singular, the harmonic map stays); then thin_plate_iterations conjugate-gradient iterations
+// toward the discrete thin plate of the region (the minimum of the sum over vertices of
+// |umbrella Laplacian|^2 / degree). Regions with no fixed neighbour are left. Then it searches the faces around moved vertices for crossings
+// and sends the moved vertices of each crossing pair back toward where they were (halfway
+// back_off_halvings times, then all the way) until no crossing involves a moved vertex: where
+// a cap would cross the mesh, that part of it is not built.
+// Faces are unchanged, so the mesh stays closed, manifold and oriented with its shells and
+// genus; crossings are those of the input or none.
+// The result depends only on the input (one thread). `stats` may be null.
+// Errors: InvalidArgument for a bad voxel size or options out of range; Cancelled when
+// `cancel` fired (the mesh is then as it came in).
+absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,
+                      const HoleCapOptions& options = {}, HoleCapStats* stats = nullptr,
+                      const CancelToken& cancel = CancelToken::Never());
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_MESH_HOLE_CAPS_H_

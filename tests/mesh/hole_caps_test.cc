@@ -1,0 +1,125 @@
+// The caps over data holes (core/mesh/hole_caps.h): a sphere scanned all over but for a hole
+// gets its missing patch back, close to the true sphere, and the mesh keeps every promise.
+#include "core/mesh/hole_caps.h"
+
+#include <cmath>
+#include <random>
+
+#include "core/mesh/mesh_check.h"
+#include "core/mesh/relaxation.h"
+#include "core/mesh/smooth_surface.h"
+#include "core/mesh/thin_plate_spline.h"
+#include "gtest/gtest.h"
+#include "tests/support/shrink_fixture.h"
+
+namespace membrane {
+namespace {
+
+// `n` points uniformly on the unit sphere, but none within `hole` of the pole (0, 0, 1).
+PointCloud SphereWithHole(int n, double hole) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> gauss;
+  PointCloud cloud;
+  while (static_cast<int>(cloud.points.size()) < n) {
+    Vec3d p{gauss(rng), gauss(rng), gauss(rng)};
+    p = Normalized(p);
+    if (SquaredNorm(p - Vec3d{0, 0, 1}) < hole * hole) continue;
+    cloud.points.push_back(ToPoint3f(p));
+  }
+  return cloud;
+}
+
+struct HoleResult {
+  double max_error_in_hole = 0;  // voxels: largest | |v| - 1 | over vertices seen in the hole
+  MeshReport check;
+  HoleCapStats caps;
+};
+
+HoleResult ReconstructSphereWithHole(bool caps) {
+  const PointCloud cloud = SphereWithHole(60000, 0.5);
+  auto run = testing::ShrinkCloud(cloud, 1.0);
+  EXPECT_TRUE(run.ok()) << run.status();
+  VoxelGrid& grid = run->voxels.grid;
+  EXPECT_TRUE(Relax(grid, CancelToken::Never()).ok());
+  SmoothSurfaceOptions options;
+  options.hole_caps.enabled = caps;
+  SmoothSurfaceStats stats;
+  absl::StatusOr<TriangleMesh> mesh = SmoothSurface(grid, cloud.points, options, &stats);
+  EXPECT_TRUE(mesh.ok()) << mesh.status();
+  HoleResult result;
+  const double l = grid.voxel_size();
+  // Seen from the centre, the hole's rim is 0.5 from the pole: the vertices seen within 0.4
+  // of it are all cap (or crater).
+  for (const Point3f& v : mesh->vertices)
+    if (SquaredNorm(Normalized(ToVec3d(v)) - Vec3d{0, 0, 1}) < 0.4 * 0.4)
+      result.max_error_in_hole =
+          std::max(result.max_error_in_hole, std::abs(Norm(ToVec3d(v)) - 1.0) / l);
+  result.check = CheckMesh(*mesh);
+  result.caps = stats.caps;
+  return result;
+}
+
+TEST(HoleCaps, SphereHoleIsSpannedCloseToTheSphere) {
+  const HoleResult without = ReconstructSphereWithHole(false);
+  const HoleResult with = ReconstructSphereWithHole(true);
+  // Without a cap the membrane sinks into the hole: the test's premise.
+  EXPECT_GT(without.max_error_in_hole, 4.0);
+  EXPECT_EQ(without.caps.regions, 0);
+  // The cap follows the sphere over the hole (the hole is about 20 voxels across).
+  EXPECT_GE(with.caps.regions, 1);
+  // Measured: 6.2 voxels without, 0.56 with.
+  EXPECT_LT(with.max_error_in_hole, 1.0) << "without caps " << without.max_error_in_hole;
+  EXPECT_EQ(with.caps.backed_off, 0);
+  for (const MeshReport* r : {&without.check, &with.check}) {
+    EXPECT_TRUE(r->closed);
+    EXPECT_TRUE(r->manifold);
+    EXPECT_TRUE(r->oriented);
+    EXPECT_TRUE(r->positive_volume);
+    EXPECT_EQ(r->self_intersections, 0);
+    EXPECT_EQ(r->degenerate_faces, 0);
+    EXPECT_EQ(r->shells, 1);
+    EXPECT_EQ(r->genus, std::vector<int>{0});
+  }
+}
+
+TEST(HoleCaps, CloudWithoutGapsIsLeftAsItIs) {
+  const PointCloud cloud = SphereWithHole(60000, 0.0);
+  auto run = testing::ShrinkCloud(cloud, 1.0);
+  ASSERT_TRUE(run.ok()) << run.status();
+  SmoothSurfaceOptions options;
+  options.fit = true;
+  SmoothSurfaceStats with_stats;
+  absl::StatusOr<TriangleMesh> with =
+      SmoothSurface(run->voxels.grid, cloud.points, options, &with_stats);
+  options.hole_caps.enabled = false;
+  absl::StatusOr<TriangleMesh> without = SmoothSurface(run->voxels.grid, cloud.points, options);
+  ASSERT_TRUE(with.ok() && without.ok());
+  EXPECT_EQ(with_stats.caps.regions, 0);
+  EXPECT_EQ(with->vertices, without->vertices);
+}
+
+TEST(HoleCaps, RefusesOptionsOutOfRange) {
+  TriangleMesh mesh;
+  HoleCapOptions options;
+  options.gap_radius = 0;
+  EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(CapHoles(mesh, -1.0, {}, HoleCapOptions{}).code(),
+            absl::StatusCode::kInvalidArgument);
+}
+
+TEST(ThinPlateSpline, ReproducesAPlaneAndInterpolatesItsSamples) {
+  std::vector<Vec3d> samples;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j) samples.push_back({1.0 * i, 1.0 * j, 0.5 * i - 0.25 * j + 2});
+  const auto plane = ThinPlateSpline::Fit(samples, 0.0);
+  ASSERT_TRUE(plane.has_value());
+  EXPECT_NEAR((*plane)(7.5, -3.0), 0.5 * 7.5 + 0.75 + 2, 1e-9);
+  samples[12][2] += 1.0;  // a bump in the middle
+  const auto bump = ThinPlateSpline::Fit(samples, 0.0);
+  ASSERT_TRUE(bump.has_value());
+  for (const Vec3d& s : samples) EXPECT_NEAR((*bump)(s[0], s[1]), s[2], 1e-9);
+  EXPECT_FALSE(ThinPlateSpline::Fit({{0, 0, 1}, {1, 1, 2}, {2, 2, 3}}, 0.0).has_value());
+}
+
+}  // namespace
+}  // namespace membrane

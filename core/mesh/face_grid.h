@@ -8,11 +8,13 @@
 #ifndef MEMBRANE_CORE_MESH_FACE_GRID_H_
 #define MEMBRANE_CORE_MESH_FACE_GRID_H_
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
+#include "absl/types/span.h"
 #include "core/geometry/triangle_mesh.h"
 
 namespace membrane {
@@ -58,6 +60,32 @@ class FaceGrid {
         }
     for (const Entry& e : large_)
       if (BoxesOverlap(e.box, box)) visit(e.face);
+  }
+
+  // The same for a set of boxes: every entry, of the cells one of `boxes` overlaps, whose box
+  // overlaps `bound` (a box holding all of them); each cell once. Reads fewer cells than a
+  // search of `bound` when the boxes are a fan around a point. `cells` is scratch.
+  template <typename Visit>
+  void ForEachCandidateOf(absl::Span<const FaceBox> boxes, const FaceBox& bound,
+                          std::vector<uint64_t>& cells, Visit&& visit) const {
+    cells.clear();
+    for (const FaceBox& box : boxes) {
+      std::array<int64_t, 3> lo, hi;
+      CellRange(box, lo, hi);
+      for (int64_t z = lo[2]; z <= hi[2]; ++z)
+        for (int64_t y = lo[1]; y <= hi[1]; ++y)
+          for (int64_t x = lo[0]; x <= hi[0]; ++x) cells.push_back(Key(x, y, z));
+    }
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    for (uint64_t key : cells) {
+      const auto it = cells_.find(key);
+      if (it == cells_.end()) continue;
+      for (const Entry& e : it->second)
+        if (BoxesOverlap(e.box, bound)) visit(e.face);
+    }
+    for (const Entry& e : large_)
+      if (BoxesOverlap(e.box, bound)) visit(e.face);
   }
 
   double cell() const { return cell_; }

@@ -132,6 +132,7 @@ class Decimator {
   std::vector<FaceBox> moved_boxes_;
   std::vector<FacePlane> moved_planes_;
   std::vector<Vec3d> ring_;
+  std::vector<uint64_t> cells_;
 };
 
 void Decimator::BuildFaceLists() {
@@ -196,7 +197,8 @@ absl::Status Decimator::Prepare() {
 }
 
 void Decimator::BuildGrid() {
-  // Cells of twice the mean edge: a face is entered in one to eight of them.
+  // Cells of three times the mean edge (twice, four times and once cost 1.1x, 1.0x and 1.7x
+  // the CPU time on a 150k-face torus): a face is entered in one to eight of them.
   double sum = 0;
   int64_t n = 0;
   const int32_t nf = static_cast<int32_t>(mesh_.faces.size());
@@ -206,7 +208,7 @@ void Decimator::BuildGrid() {
     sum += Norm(ToVec3d(mesh_.vertices[c[1]]) - ToVec3d(mesh_.vertices[c[0]]));
     ++n;
   }
-  const double cell = n > 0 && sum > 0 ? 2 * sum / n : 1.0;
+  const double cell = n > 0 && sum > 0 ? 3 * sum / n : 1.0;
   grid_ = FaceGrid(cell);
   for (int32_t f = 0; f < nf; ++f)
     if (face_alive_[f]) grid_.Insert(f, face_box_[f]);
@@ -309,7 +311,7 @@ bool Decimator::MovedFacesCross(int32_t a, int32_t b, const Vec3d& point) {
   moved_planes_.clear();
   for (const Triangle3d& t : moved_triangles_) moved_planes_.push_back(MakeFacePlane(t));
   bool crossing = false;
-  grid_.ForEachCandidate(all, [&](int32_t f) {
+  grid_.ForEachCandidateOf(moved_boxes_, all, cells_, [&](int32_t f) {
     // Removed faces have empty boxes; a face met again, or one the collapse moves, is marked;
     // a stale entry of a face that moved away fails the test on its current box.
     const FaceBox& box = face_box_[f];

@@ -20,7 +20,7 @@ struct SurfaceDeviation {
 
 // The exact distance from each of `points` to the nearest face of `mesh` (faces with valid
 // indices; degenerate ones count as their segments or points), summarised. Faces are entered
-// in a uniform grid of cells of about twice the mean edge, searched ring by ring around each
+// in a uniform grid of cells of about the mean edge, searched ring by ring around each
 // point until no unseen face can be nearer. `threads` (<= 1: the calling thread) share the
 // points; the result does not depend on it. All zero for no points or a mesh without faces.
 // `cancel` is polled every few thousand points; once it fires the result covers only the

@@ -17,6 +17,8 @@
 namespace membrane {
 namespace {
 
+constexpr int32_t kCancelPollVertices = 4096;
+
 // Compressed rows: row v's entries are items[start[v] .. start[v + 1]).
 struct Rows {
   std::vector<int32_t> start, items;
@@ -262,6 +264,8 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     const PointRowGrid grid(points, radius);
     int64_t count = 0;
     for (int32_t v = 0; v < nv; ++v) {
+      if (v % kCancelPollVertices == 0 && cancel.cancelled())
+        return absl::CancelledError("hole caps cancelled");
       bool near = false;
       grid.ForEachWithin(ToVec3d(mesh.vertices[v]), radius,
                          [&](const Point3f&, double) { near = true; });
@@ -332,6 +336,7 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   }
   std::vector<int> level(nv, 0);
   std::vector<char> backed(nv, 0);
+  // Not cancelled: the caps are written, and only this loop makes them an embedded mesh.
   for (;;) {
     const std::vector<std::pair<int32_t, int32_t>> pairs = FindIntersectingFacesNear(mesh, dirty);
     std::vector<int32_t> moved;

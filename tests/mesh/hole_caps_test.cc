@@ -98,6 +98,23 @@ TEST(HoleCaps, CloudWithoutGapsIsLeftAsItIs) {
   EXPECT_EQ(with->vertices, without->vertices);
 }
 
+TEST(HoleCaps, CancelledLeavesTheMeshAsItCame) {
+  const PointCloud cloud = SphereWithHole(20000, 0.5);
+  auto run = testing::ShrinkCloud(cloud, 1.0);
+  ASSERT_TRUE(run.ok()) << run.status();
+  SmoothSurfaceOptions options;
+  options.fit = false;
+  absl::StatusOr<TriangleMesh> mesh = SmoothSurface(run->voxels.grid, cloud.points, options);
+  ASSERT_TRUE(mesh.ok());
+  const TriangleMesh before = *mesh;
+  CancelToken cancel;
+  cancel.Cancel();
+  EXPECT_EQ(CapHoles(*mesh, run->voxels.grid.voxel_size(), cloud.points, {}, nullptr, cancel)
+                .code(),
+            absl::StatusCode::kCancelled);
+  EXPECT_EQ(mesh->vertices, before.vertices);
+}
+
 TEST(HoleCaps, RefusesOptionsOutOfRange) {
   TriangleMesh mesh;
   HoleCapOptions options;

@@ -4,11 +4,12 @@
 //
 // Below the guard's tunnel size the chains may open tunnels away from the data that mitosis
 // needs (two spheres split this way); most close again before the end, but on a torus-like
-// scan some survive as handles across missing data. The retry runs the generations from the
-// first plate below the strict tunnel size again, from the grid as it was before them, with
-// tunnels away from the data allowed only from the strict sizes, and keeps whichever result
-// has fewer handles without fewer shells. Only handles that survive are weighed: the tunnels
-// mitosis needs close again (two spheres: genus 0 either way).
+// scan some survive as handles across missing data; the wall notches of the n = 2 plates do
+// the same to webs between thin parts that come close. The retry runs the
+// generations again from the first one that made a removal the strict sizes refuse, from the
+// grid as it was before it, with those tunnels allowed only from the strict sizes, and keeps
+// whichever result has fewer handles without fewer shells. Only handles that survive are
+// weighed: the tunnels mitosis needs close again (two spheres: genus 0 either way).
 #ifndef MEMBRANE_CORE_ENGINE_HANDLE_RETRY_H_
 #define MEMBRANE_CORE_ENGINE_HANDLE_RETRY_H_
 
@@ -20,7 +21,9 @@
 namespace membrane {
 
 // Runs after every generation of `shrinker` has run once; `start` is the checkpoint saved
-// before generation `from`, the first whose plate is below the strict tunnel size.
+// before generation `from`: the first generation, among those whose plate is below the
+// strict tunnel size, that allowed a removal the strict sizes refuse (the generations before
+// it made the same removals under either rules), or the last one when none did.
 // Does nothing more than count when generations [from, end) allowed no removal the strict
 // sizes refuse (loose_tunnels: the retry would repeat the same run) or the grid has no
 // handle. Otherwise runs them again from `start` with TunnelRules::kStrict and keeps the new

@@ -76,16 +76,25 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
   ShrinkResult result;
   if (options_.silhouette_preshrink) result.preshrink_outside_voxels = SilhouettePreshrink(grid_);
   counts_ = CountStates(grid_.states());
-  ShrinkCheckpoint retry_start;  // the grid before generation retry_from_
+  // The strict rules decide as the default ones do until the first removal they would refuse
+  // (a loose tunnel): the handle retry starts at the generation that made it, from the grid
+  // as it was before that generation.
+  ShrinkCheckpoint retry_start;  // the grid before generation retry_at
+  size_t retry_at = retry_from_;
+  bool loose = false;
   for (size_t g = 0; g < sizes_.size(); ++g) {
-    if (g == retry_from_ && !Save(retry_start)) return HandleRetryCancelled();
+    if (g >= retry_from_ && !loose) {
+      if (!Save(retry_start)) return HandleRetryCancelled();
+      retry_at = g;
+    }
     if (absl::Status s = RunGeneration(g, TunnelRules::kDefault, result.generations); !s.ok()) {
       return s;
     }
+    loose = loose || (g >= retry_from_ && result.generations.back().loose_tunnels > 0);
     if (on_generation) on_generation(result.generations.back());
   }
   if (retry_from_ < sizes_.size()) {
-    if (absl::Status s = RetryHandles(*this, retry_start, retry_from_, on_generation, result);
+    if (absl::Status s = RetryHandles(*this, retry_start, retry_at, on_generation, result);
         !s.ok()) {
       return s;
     }

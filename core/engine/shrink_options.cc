@@ -41,7 +41,11 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
   }
   if (o.retry.short_loop_min_plate < 0) {
     return absl::InvalidArgumentError(absl::StrFormat(
-        "retry_short_loop_min_plate %d must be >= 0", o.retry.short_loop_min_plate));
+        "retry_short_loop_min_plate %d must be >= 0 (0 = off)", o.retry.short_loop_min_plate));
+  }
+  if (o.retry.wall_notch_min_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "retry_wall_notch_min_plate %d must be >= 0 (0 = off)", o.retry.wall_notch_min_plate));
   }
   if (!(o.retry.max_hard_rim >= 0)) {
     return absl::InvalidArgumentError(absl::StrFormat(
@@ -57,10 +61,14 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
 GuardSizes StrictGuardSizes(const ShrinkOptions& o) {
   GuardSizes strict = o.guard;
   strict.tunnel_min_plate = std::max(o.guard.tunnel_min_plate, o.retry.tunnel_min_plate);
-  if (o.guard.short_loop_min_plate > 0) {
-    strict.short_loop_min_plate =
-        std::max(o.guard.short_loop_min_plate, o.retry.short_loop_min_plate);
-  }
+  // 0 turns a kind of tunnel off, in the guard or in the retry.
+  auto stricter = [](int guard, int retry) {
+    return guard > 0 && retry > 0 ? std::max(guard, retry) : 0;
+  };
+  strict.short_loop_min_plate =
+      stricter(o.guard.short_loop_min_plate, o.retry.short_loop_min_plate);
+  strict.wall_notch_min_plate =
+      stricter(o.guard.wall_notch_min_plate, o.retry.wall_notch_min_plate);
   return strict;
 }
 

@@ -12,15 +12,17 @@
 namespace membrane {
 
 // The handle retry (docs/engine-decisions.md, handle_retry.h): when the shrink ends with
-// handles, the generations from the first plate below tunnel_min_plate run again with tunnels
-// away from the data only from that plate size and short-loop tunnels only from
-// short_loop_min_plate; the result with fewer handles and no fewer shells is kept, unless what
-// it closed is a membrane across a scanned hole: at least max_hard_rim of the voxels
-// bordering it are hard (> 1: never refused on that ground).
+// handles, the generations from the first one that made a removal the strict rules refuse run
+// again under those rules: tunnels away from the data only from tunnel_min_plate, short-loop
+// tunnels only from short_loop_min_plate and wall notches only from wall_notch_min_plate (0:
+// none; never below the guard's own sizes). The result with fewer handles and no fewer shells
+// is kept, unless what it closed is a membrane across a scanned hole: at least max_hard_rim of
+// the voxels bordering it are hard (> 1: never refused on that ground).
 struct HandleRetryOptions {
   bool enabled = true;
   int tunnel_min_plate = 7;
   int short_loop_min_plate = 4;
+  int wall_notch_min_plate = 3;
   double max_hard_rim = 0.75;
 };
 
@@ -39,8 +41,8 @@ struct ShrinkOptions {
 absl::Status ValidateShrinkOptions(const ShrinkOptions& options);
 
 // The guard sizes of the handle retry: tunnels away from the data only from the larger of the
-// two tunnel sizes, short-loop tunnels only from the larger of the two sizes (still off when
-// off); the rest as options.guard.
+// two tunnel sizes, short-loop tunnels and wall notches each only from the larger of the two
+// sizes (off when either is 0); the rest as options.guard.
 GuardSizes StrictGuardSizes(const ShrinkOptions& options);
 
 }  // namespace membrane

@@ -75,11 +75,14 @@ GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOp
   // same generation (plates cutting one sheet from both sides; a plate that got through a gap
   // joins a fresh dig to an older outside). Two spheres 2.5-5 voxels apart split this way.
   if (hard != 0) {
-    return sizes.wall_notch_min_plate > 0 && options.plate_size >= sizes.wall_notch_min_plate &&
-                   InOneFaceLayer(hard) && SameGenerationAcrossTunnel(grid, index, outside) &&
-                   TunnelClosesShortLoop(grid, index, outside, sizes.short_loop_steps)
-               ? kAllowed
-               : kRefused;
+    if (sizes.wall_notch_min_plate <= 0 || options.plate_size < sizes.wall_notch_min_plate ||
+        !InOneFaceLayer(hard) || !SameGenerationAcrossTunnel(grid, index, outside) ||
+        !TunnelClosesShortLoop(grid, index, outside, sizes.short_loop_steps)) {
+      return kRefused;
+    }
+    const bool strict_notch = options.strict.wall_notch_min_plate > 0 &&
+                              options.plate_size >= options.strict.wall_notch_min_plate;
+    return !options.classify_strict || strict_notch ? kAllowed : GuardVerdict::kAllowedLoosely;
   }
   const int n = options.plate_size;
   // The short-loop test walks the outside: run at most once, and only where it decides.

@@ -23,17 +23,17 @@ struct GuardOptions {
   int plate_size = 1;  // n of the current generation
   GuardSizes sizes;
   // The handle retry's stricter sizes (StrictGuardSizes): with `classify_strict`,
-  // ClassifyRemoval tells apart the removals that their tunnel_min_plate and
-  // short_loop_min_plate (0 = short-loop tunnels off) would refuse. They never change the
-  // answer.
+  // ClassifyRemoval tells apart the removals that their tunnel_min_plate,
+  // short_loop_min_plate and wall_notch_min_plate (0 = off) would refuse. They never change
+  // the answer.
   bool classify_strict = false;
-  GuardSizes strict{.tunnel_min_plate = 7, .short_loop_min_plate = 4};
+  GuardSizes strict{.tunnel_min_plate = 7, .short_loop_min_plate = 4, .wall_notch_min_plate = 3};
 };
 
 enum class GuardVerdict : uint8_t {
   kRefused,
   kAllowed,
-  kAllowedLoosely,  // allowed, but the strict sizes would refuse it (a tunnel away from hard)
+  kAllowedLoosely,  // allowed, but the strict sizes would refuse it (a tunnel or a wall notch)
 };
 
 // Classifies the non-outside voxel at `index` in its 3x3x3 neighbourhood as if it were removed
@@ -50,7 +50,8 @@ enum class GuardVerdict : uint8_t {
 // array border. ClassifyRemoval tells the same, and with options.classify_strict also whether
 // the strict sizes would have refused (kAllowedLoosely): a tunnel away from hard voxels
 // allowed below strict.tunnel_min_plate that is no short-loop tunnel at or above
-// strict.short_loop_min_plate.
+// strict.short_loop_min_plate, or a wall notch below strict.wall_notch_min_plate (or with
+// wall notches off there).
 GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options);
 inline bool GuardAllowsRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options) {
   return ClassifyRemoval(grid, index, options) != GuardVerdict::kRefused;

@@ -55,12 +55,13 @@ struct BenchOptions {
   std::string shared_dir;
   bool open3d = true;
   Open3dPeer peer;
+  ShrinkOptions shrink;  // default, or the handle retry's sizes of --retry
 };
 
 constexpr char kUsage[] =
     "usage: bench_shrink [--quick] [--models a,b,c,d|NAME,...] [--repeat R] [--shared DIR]\n"
     "                    [--python PATH] [--open3d-threads N] [--open3d-timeout S]\n"
-    "                    [--no-open3d]\n"
+    "                    [--no-open3d] [--retry T,S,W]\n"
     "  --quick           small sizes only, R=1, no open3d (the ctest smoke)\n"
     "  --models LIST     a|real, b|scaling, c|million, d|tall, e|small, or any part of a\n"
     "                    model name\n"
@@ -70,7 +71,9 @@ constexpr char kUsage[] =
     "  --python PATH     interpreter with open3d (default /usr/bin/python3)\n"
     "  --open3d-threads  threads for Open3D (default 1, like the one-core shrink)\n"
     "  --open3d-timeout  stop Open3D after S seconds per cloud (default 0: never)\n"
-    "  --no-open3d       skip the Open3D Poisson peer\n";
+    "  --no-open3d       skip the Open3D Poisson peer\n"
+    "  --retry T,S,W     the handle retry's tunnel, short-loop and wall-notch plate sizes\n"
+    "                    (ShrinkOptions::retry; 0 = none of that kind)\n";
 
 std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
   BenchOptions o;
@@ -95,6 +98,15 @@ std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
       auto v = value();
       if (!v || !absl::SimpleAtoi(*v, &o.repeat) || o.repeat < 1) return std::nullopt;
       o.repeat_given = true;
+    } else if (arg == "--retry") {
+      auto v = value();
+      std::vector<std::string> f;
+      if (v) f = absl::StrSplit(*v, ',');
+      if (f.size() != 3 || !absl::SimpleAtoi(f[0], &o.shrink.retry.tunnel_min_plate) ||
+          !absl::SimpleAtoi(f[1], &o.shrink.retry.short_loop_min_plate) ||
+          !absl::SimpleAtoi(f[2], &o.shrink.retry.wall_notch_min_plate)) {
+        return std::nullopt;
+      }
     } else if (arg == "--shared") {
       auto v = value();
       if (!v) return std::nullopt;
@@ -384,7 +396,7 @@ Summary RunModel(const BenchOptions& o, const Model& m, bool open3d_available,
     const double w0 = Now();
     const double c0 = ProcessCpu();
     absl::StatusOr<ShrinkResult> result =
-        ShrinkMembrane(vox->grid, ShrinkOptions{}, {}, CancelToken::Never());
+        ShrinkMembrane(vox->grid, o.shrink, {}, CancelToken::Never());
     const double c1 = ProcessCpu();
     const double w1 = Now();
     if (!result.ok()) return fail(result.status(), "shrink");

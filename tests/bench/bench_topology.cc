@@ -2,7 +2,7 @@
 // 1x, 1.25x, 1.5x and 2x its formula-(1) voxel size, and the synthetic shapes of
 // tests/engine/shrink_topology_test.cc, each shrunk once (ShrinkMembrane, default options): the
 // shells and genus against the expected ones, the shrink's wall seconds, and for every miss
-// where its handles and merges are. See README.md.
+// where its handles and merges are, and what the handle retry did. See README.md.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -32,10 +32,12 @@ namespace {
 
 constexpr char kUsage[] =
     "usage: bench_topology [--factors 1,1.25,1.5,2] [--models NAME,...] [--no-synthetic]\n"
-    "                      [--no-real] [--locate] [--shared DIR]\n"
+    "                      [--no-real] [--locate] [--retry T,S,W] [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
     "  --locate         print where the handles and merges of every miss are\n"
+    "  --retry T,S,W    the handle retry's tunnel, short-loop and wall-notch plate sizes\n"
+    "                   (ShrinkOptions::retry; 0 = none of that kind)\n"
     "  --shared DIR     the shared folder holding data/clouds (default: $MEMBRANE_SHARED_DIR,\n"
     "                   else <repo>/../shared)\n";
 
@@ -46,6 +48,7 @@ struct Options {
   bool real = true;
   bool locate = false;
   std::string shared_dir;
+  ShrinkOptions shrink;
 };
 
 bool ParseArgs(int argc, char** argv, Options& o) {
@@ -65,6 +68,13 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       o.models = absl::StrSplit(argv[++i], ',', absl::SkipEmpty());
     } else if (arg == "--shared" && has_value) {
       o.shared_dir = argv[++i];
+    } else if (arg == "--retry" && has_value) {
+      std::vector<std::string> f = absl::StrSplit(argv[++i], ',');
+      if (f.size() != 3 || !absl::SimpleAtoi(f[0], &o.shrink.retry.tunnel_min_plate) ||
+          !absl::SimpleAtoi(f[1], &o.shrink.retry.short_loop_min_plate) ||
+          !absl::SimpleAtoi(f[2], &o.shrink.retry.wall_notch_min_plate)) {
+        return false;
+      }
     } else if (arg == "--no-synthetic") {
       o.synthetic = false;
     } else if (arg == "--no-real") {
@@ -90,6 +100,17 @@ struct Tally {
   double seconds = 0;
 };
 
+// What the handle retry did, when it ran.
+std::string RetryNote(const HandleRetry& r) {
+  if (!r.ran) return "";
+  return absl::StrFormat("  retry: genus %d, %s%s", r.genus_before,
+                         r.kept ? absl::StrCat("kept, genus ", r.genus_after) : "not kept",
+                         r.web_voxels > 0
+                             ? absl::StrFormat(" (web %d voxels, rim %.0f%% hard)", r.web_voxels,
+                                               100 * r.web_hard_rim)
+                             : "");
+}
+
 // Shrinks `cloud` at `voxel_size` and prints one row; true when the topology is `expected`.
 bool RunOne(const Options& o, const std::string& name, double factor, const PointCloud& cloud,
             double voxel_size, const ShapeTopology& expected, bool genus_asserted, Tally& tally) {
@@ -104,7 +125,7 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
   }
   const double t0 = Now();
   absl::StatusOr<ShrinkResult> result =
-      ShrinkMembrane(vox->grid, ShrinkOptions{}, {}, CancelToken::Never());
+      ShrinkMembrane(vox->grid, o.shrink, {}, CancelToken::Never());
   const double seconds = Now() - t0;
   ++tally.runs;
   if (!result.ok()) {
@@ -122,14 +143,15 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
                      (!genus_asserted || genus == expected.genus);
   tally.right += right;
   const auto& d = vox->grid.dims();
-  std::printf("%s%12s %7.3f  %-16s %-16s %s%s\n", row.c_str(),
+  std::printf("%s%12s %7.3f  %-16s %-16s %s%s%s\n", row.c_str(),
               absl::StrCat(d[0], "x", d[1], "x", d[2]).c_str(), seconds,
               absl::StrCat(topo.shells, " / [", absl::StrJoin(genus, ","), "]").c_str(),
               genus_asserted ? absl::StrCat(expected.shells, " / [",
                                             absl::StrJoin(expected.genus, ","), "]")
                                    .c_str()
                              : absl::StrCat(expected.shells, " / -").c_str(),
-              right ? "ok" : "MISS", inv.ok() ? "" : absl::StrCat(" ", inv.ToString()).c_str());
+              right ? "ok" : "MISS", inv.ok() ? "" : absl::StrCat(" ", inv.ToString()).c_str(),
+              RetryNote(result->handle_retry).c_str());
   if (!right && o.locate) {
     std::printf("%s", testing::LocateHandlesAndContacts(vox->grid).c_str());
   }

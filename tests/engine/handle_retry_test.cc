@@ -86,6 +86,24 @@ TEST(HandleRetryTest, ReportsTheKeptRowsAfterTheFirstRunsRows) {
   for (int g = 0; g < from - 1; ++g) EXPECT_FALSE(result->generations[g].handle_retry);
 }
 
+TEST(HandleRetryTest, StartsAtTheFirstGenerationThatMadeALooseTunnel) {
+  // The generations before it made the same removals under either rules: running them again
+  // would only repeat them.
+  absl::StatusOr<Voxelization> vox = Voxelize(SynthCloud("torus", kRetryPoints).points, {});
+  ASSERT_TRUE(vox.ok()) << vox.status();
+  std::vector<GenerationStats> seen;
+  absl::StatusOr<ShrinkResult> result =
+      ShrinkMembrane(vox->grid, NoTunnelRetry(),
+                     [&seen](const GenerationStats& g) { seen.push_back(g); }, CancelToken::Never());
+  ASSERT_TRUE(result.ok()) << result.status();
+  ASSERT_TRUE(result->handle_retry.ran);
+  const int from = result->handle_retry.from_generation;
+  ASSERT_GE(from, 1);
+  ASSERT_LE(from, static_cast<int>(seen.size()));
+  EXPECT_GT(seen[from - 1].loose_tunnels, 0);
+  for (int g = 0; g < from - 1; ++g) EXPECT_EQ(seen[g].loose_tunnels, 0) << "generation " << g + 1;
+}
+
 TEST(HandleRetryTest, ACancelBeforeTheRetryStopsIt) {
   // Cancelled as the first run's last generation is reported: the retry's topology count and
   // copies poll the token, so the shrink ends Cancelled before running anything again.
@@ -164,6 +182,7 @@ TEST(HandleRetryTest, SameSizesMeanNoRetry) {
   ShrinkOptions o;
   o.retry.tunnel_min_plate = o.guard.tunnel_min_plate;
   o.retry.short_loop_min_plate = o.guard.short_loop_min_plate;
+  o.retry.wall_notch_min_plate = o.guard.wall_notch_min_plate;
   auto run = ShrinkCloud(SynthCloud("torus", kRetryPoints), 1.0, o);
   ASSERT_TRUE(run.ok()) << run.status();
   EXPECT_EQ(run->topology.genus, std::vector<int>{1}) << run->Describe();

@@ -1,5 +1,6 @@
 #include "client/local_reconstruction.h"
 
+#include <optional>
 #include <string>
 
 #include "absl/strings/str_cat.h"
@@ -27,6 +28,13 @@ class LocalProgress : public ReconstructionObserver {
   }
   void GenerationFinished(const GenerationStats& generation, int planned_generations) override {
     printer_.GenerationFinished(generation, planned_generations);
+  }
+  std::optional<ProgressSchedule> progress_schedule() const override {
+    return printer_.progress_schedule();
+  }
+  void StageProgress(PipelineStage stage, std::optional<double> fraction,
+                     double seconds) override {
+    printer_.StageProgress(stage, fraction, seconds);
   }
   void StageFinished(PipelineStage stage, double seconds,
                      const ReconstructionReport& report) override {

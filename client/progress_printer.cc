@@ -3,6 +3,7 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
+#include "absl/strings/str_cat.h"
 #include "core/pipeline/stage_lines.h"
 
 namespace membrane::client {
@@ -27,15 +28,44 @@ ProgressPrinter::Mode ProgressPrinter::StderrMode(bool quiet) {
 }
 
 void ProgressPrinter::Begin(absl::string_view text) {
-  if (mode_ == Mode::kLive) Update(text);
+  status_ = std::string(text);
+  if (mode_ == Mode::kLive) Print(text, /*fit_width=*/true);
 }
 
-void ProgressPrinter::Update(absl::string_view text) { Print(text, /*fit_width=*/true); }
+void ProgressPrinter::Update(absl::string_view text) {
+  status_ = std::string(text);
+  Print(text, /*fit_width=*/true);
+}
 
 void ProgressPrinter::Finish(absl::string_view text) {
+  status_.clear();
   // In full: the line stays on screen, so wrapping does no harm.
   Print(text, /*fit_width=*/false);
   EndLiveLine();
+}
+
+void ProgressPrinter::Progress(absl::string_view stage, std::optional<double> fraction,
+                               double seconds) {
+  const std::string note = ProgressNote(fraction, seconds);
+  if (mode_ == Mode::kLive && !status_.empty()) {
+    Print(absl::StrCat(status_, " (", note, ")"), /*fit_width=*/true);
+  } else {
+    Print(absl::StrCat(stage, ": ", note), /*fit_width=*/true);
+  }
+}
+
+std::optional<ProgressSchedule> ProgressPrinter::progress_schedule() const {
+  switch (mode_) {
+    case Mode::kQuiet: return std::nullopt;
+    case Mode::kLines: return ProgressSchedule{progress_after_, 2.0};
+    case Mode::kLive: return ProgressSchedule{progress_after_, 0.25};
+  }
+  return std::nullopt;
+}
+
+void ProgressPrinter::StageProgress(PipelineStage stage, std::optional<double> fraction,
+                                    double seconds) {
+  Progress(PipelineStageName(stage), fraction, seconds);
 }
 
 void ProgressPrinter::StageStarted(PipelineStage stage, const ReconstructionReport& report) {

@@ -6,6 +6,8 @@
 #define MEMBRANE_CLIENT_PROGRESS_PRINTER_H_
 
 #include <cstdio>
+#include <optional>
+#include <string>
 
 #include "absl/strings/string_view.h"
 #include "core/pipeline/reconstruction_observer.h"
@@ -40,6 +42,13 @@ class ProgressPrinter : public ReconstructionObserver {
   void Update(absl::string_view text);
   // Shows `text` as the outcome of a finished stage and moves to a new line.
   void Finish(absl::string_view text);
+  // Shows how the running `stage` is doing (ProgressNote): live, after the current line, as
+  // "surface: smooth ... (42% in 1.3 s)"; as lines, its own line "surface: 42% in 1.3 s".
+  void Progress(absl::string_view stage, std::optional<double> fraction, double seconds);
+
+  // Stages report progress once they have run this long (default 1 s; 0: from their start, as
+  // the tests want it).
+  void set_progress_after(double seconds) { progress_after_ = seconds; }
 
   // ReconstructionObserver: the lines of core/pipeline/stage_lines.h through Begin, Update
   // and Finish.
@@ -47,6 +56,10 @@ class ProgressPrinter : public ReconstructionObserver {
   void GenerationFinished(const GenerationStats& generation, int planned_generations) override;
   void StageFinished(PipelineStage stage, double seconds,
                      const ReconstructionReport& report) override;
+  // None when quiet; live, every 0.25 s; as lines, every 2 s (a log needs no more).
+  std::optional<ProgressSchedule> progress_schedule() const override;
+  void StageProgress(PipelineStage stage, std::optional<double> fraction,
+                     double seconds) override;
 
  private:
   // Writes `text` as the mode wants it; `fit_width` cuts a live line to the terminal width.
@@ -57,6 +70,8 @@ class ProgressPrinter : public ReconstructionObserver {
   Mode mode_;
   int columns_ = 0;  // terminal width in kLive mode when known, else 0 (no limit)
   bool live_line_open_ = false;
+  std::string status_;  // the last Begin or Update text, until Finish
+  double progress_after_ = 1;
 };
 
 }  // namespace membrane::client

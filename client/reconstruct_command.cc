@@ -67,6 +67,7 @@ struct ReconstructFlags {
   int64_t threads = 0;
   int64_t target_faces = 0;       // 0: not given
   int64_t drop_after_events = 0;  // test hook of --server; see RemoteParams
+  double progress_after = 1;      // test hook: ProgressPrinter::set_progress_after
   std::string on_interrupt = "leave";
 };
 
@@ -141,6 +142,8 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
       ->capture_default_str();
   // Hidden (empty group): lets the tests drop a --server call midway to exercise re-attaching.
   app.add_option("--drop-after-events", f.drop_after_events)->group("");
+  // Hidden: lets the tests see every stage's progress, however short the stage.
+  app.add_option("--progress-after", f.progress_after)->group("");
 }
 
 // The values whose check needs no parsing, in the order of --help; the first failure wins.
@@ -289,6 +292,7 @@ absl::Status RunRemote(const ReconstructFlags& flags, FileFormat output_format) 
     RemoteParams params = RemoteParamsFromFlags(flags, output_format, *std::move(server));
     params.on_accepted = [&interrupts](const std::string& id) { interrupts.JobAccepted(id); };
     ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
+    progress.set_progress_after(flags.progress_after);
     outcome = RunRemoteReconstruction(params, progress);
   }
   if (!outcome.ok()) return outcome.status();
@@ -311,6 +315,7 @@ absl::Status RunReconstruct(const ReconstructFlags& flags) {
   {
     // The printer ends its live line before any error line is printed by main.
     ProgressPrinter progress(stderr, ProgressPrinter::StderrMode(flags.quiet));
+    progress.set_progress_after(flags.progress_after);
     DeadlineTimer timer(flags.timeout, &cancel);
     report = RunLocalReconstruction(*params, cancel, progress);
     timed_out = timer.expired();

@@ -14,6 +14,9 @@
 namespace membrane {
 namespace {
 
+// The share of a searching check's progress that its passes over faces and vertices take.
+constexpr double kTopologyShare = 0.3;
+
 class UnionFind {
  public:
   explicit UnionFind(int64_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
@@ -99,12 +102,18 @@ bool SingleFan(const std::vector<std::pair<int32_t, int32_t>>& link, std::vector
 }  // namespace
 
 MeshReport CheckMesh(const TriangleMesh& mesh, const CancelToken& cancel, int threads,
-                     const std::vector<std::pair<int32_t, int32_t>>* known_crossings) {
+                     const std::vector<std::pair<int32_t, int32_t>>* known_crossings,
+                     ProgressRange progress) {
   MeshReport r;
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int64_t nf = static_cast<int64_t>(mesh.faces.size());
   r.vertices = nv;
   r.faces = nf;
+  // Progress: the face pass and the two vertex passes, then the crossing search when there is
+  // one.
+  const double topology_share = known_crossings != nullptr ? 1.0 : kTopologyShare;
+  const ProgressRange topology = progress.Part(0, topology_share);
+  topology.Begin(nf + 2 * nv);
 
   std::vector<char> valid(nf, 0);
   for (int64_t f = 0; f < nf; ++f) {
@@ -118,6 +127,7 @@ MeshReport CheckMesh(const TriangleMesh& mesh, const CancelToken& cancel, int th
     valid[f] = 1;
     if (IsDegenerate(mesh, t)) ++r.degenerate_faces;
   }
+  topology.Add(nf);
 
   // Half-edges grouped by their lower endpoint: item = 2 * (3 * face + corner) + direction.
   const Rows edges_by_low = BuildRows(nv, [&](auto push) {
@@ -162,6 +172,7 @@ MeshReport CheckMesh(const TriangleMesh& mesh, const CancelToken& cancel, int th
       i = j;
     }
   }
+  topology.Add(nv);
 
   // Faces around each vertex, for the fan test and per-shell vertex counts.
   const Rows faces_by_vertex = BuildRows(nv, [&](auto push) {
@@ -224,6 +235,7 @@ MeshReport CheckMesh(const TriangleMesh& mesh, const CancelToken& cancel, int th
       for (int64_t s : vertex_shells) shell_good[s] = 0;
     }
   }
+  topology.Add(nv);
 
   r.closed = r.boundary_edges == 0 && r.nonmanifold_edges == 0;
   r.edge_manifold = r.nonmanifold_edges == 0;
@@ -239,7 +251,9 @@ MeshReport CheckMesh(const TriangleMesh& mesh, const CancelToken& cancel, int th
   r.self_intersections =
       static_cast<int64_t>(known_crossings != nullptr
                                ? known_crossings->size()
-                               : FindIntersectingFaces(mesh, cancel, threads).size());
+                               : FindIntersectingFaces(mesh, cancel, threads,
+                                                       progress.Part(topology_share, 1))
+                                     .size());
   return r;
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/geometry/triangle_mesh.h"
 
 namespace membrane {
@@ -54,9 +55,12 @@ struct MeshReport {
 // alone) share that search; the report does not depend on it. `known_crossings`, if not null,
 // must be FindIntersectingFaces(mesh) as found by whoever searched this very mesh last (the
 // smooth surface's fit: FitStats::crossings): the check counts it instead of searching again.
+// `progress` counts the passes over faces and vertices, then the search's cells, and reaches
+// its end with the check.
 MeshReport CheckMesh(const TriangleMesh& mesh, const CancelToken& cancel = CancelToken::Never(),
                      int threads = 1,
-                     const std::vector<std::pair<int32_t, int32_t>>* known_crossings = nullptr);
+                     const std::vector<std::pair<int32_t, int32_t>>* known_crossings = nullptr,
+                     ProgressRange progress = ProgressRange());
 
 // The report as one JSON object with snake_case keys ("closed", "manifold", "oriented",
 // "shells", "genus": [...], ...), for `membrane check --json` and the statistics JSON.

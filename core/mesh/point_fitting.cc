@@ -25,6 +25,8 @@ constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
 constexpr int kFullyBackedOff = 3;
 constexpr int kRepairHalvings = 6;
 constexpr int kCancelPollVertices = 4096;
+// The share of the fit's progress that its rounds count; the final search is the rest.
+constexpr double kRoundsShare = 0.85;
 // Slab thickness in voxels. A face's vertices lie in neighbouring surface-nets cells, so their
 // input positions are less than 2 voxels apart along any axis: with slabs of 4, a vertex's ring
 // lies in its own slab or the next ones (checked, not assumed).
@@ -76,10 +78,14 @@ class Fitter {
     AssignSlabs();
   }
 
-  absl::Status Run(const CancelToken& cancel, FitStats& stats) {
+  // `progress`: the rounds count the vertices of the slabs as they are fitted (rounds times
+  // every vertex) up to 85% of it, the final search the rest.
+  absl::Status Run(const CancelToken& cancel, ProgressRange progress, FitStats& stats) {
+    const ProgressRange rounds = progress.Part(0, kRoundsShare);
+    rounds.Begin(static_cast<int64_t>(options_.rounds) * static_cast<int64_t>(rest_.size()));
     for (int round = 0; round < options_.rounds; ++round)
       for (int parity = 0; parity < 2; ++parity)
-        if (!RunPhase(round, parity, cancel, stats)) {
+        if (!RunPhase(round, parity, cancel, rounds, stats)) {
           // Leave a valid mesh: nothing is verified before the end, so undo every move.
           for (int32_t u : moved_) Set(u, start_[u], clock_);
           return absl::CancelledError("fitting cancelled");
@@ -87,6 +93,7 @@ class Fitter {
     // With a fallback or after snapping the input is not known to be clean: the first search
     // covers it all.
     Verify(/*search_all=*/fallback_ != nullptr || !grid_.lossless(), stats);
+    progress.Part(kRoundsShare, 1).Done();
     return absl::OkStatus();
   }
 
@@ -157,7 +164,8 @@ class Fitter {
   // Fits the slabs of one parity in one round, side by side on options_.threads. Returns false
   // when `cancel` fired (polled on the calling thread only); the phase's moves are then in
   // moved_ like the others.
-  bool RunPhase(int round, int parity, const CancelToken& cancel, FitStats& stats) {
+  bool RunPhase(int round, int parity, const CancelToken& cancel, ProgressRange progress,
+                FitStats& stats) {
     const int32_t slabs = static_cast<int32_t>(slab_start_.size()) - 1;
     const int32_t count = (slabs - parity + 1) / 2;
     if (cancel.cancelled()) return false;
@@ -177,6 +185,7 @@ class Fitter {
         if (round >= 2 && Settled(v)) continue;
         FitVertex(v, round, w);
       }
+      progress.Add(slab_start_[s + 1] - slab_start_[s]);
     });
     for (SlabWork& w : work) {
       clock_ = std::max(clock_, w.clock);
@@ -578,15 +587,19 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
 absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
                                      absl::Span<const Point3f> points, const FitOptions& options,
                                      const CancelToken& cancel,
-                                     const std::vector<Point3f>* fallback) {
+                                     const std::vector<Point3f>* fallback,
+                                     ProgressRange progress) {
   if (absl::Status s = ValidateOptions(voxel_size, options); !s.ok()) return s;
   FitStats stats;
-  if (mesh.faces.empty()) return stats;
+  if (mesh.faces.empty()) {
+    progress.Done();
+    return stats;
+  }
   if (fallback != nullptr && fallback->size() != mesh.vertices.size())
     return absl::InvalidArgumentError(absl::StrCat(
         "fallback has ", fallback->size(), " positions for ", mesh.vertices.size(), " vertices"));
   Fitter fitter(mesh, voxel_size, points, options, fallback);
-  if (absl::Status s = fitter.Run(cancel, stats); !s.ok()) return s;
+  if (absl::Status s = fitter.Run(cancel, progress, stats); !s.ok()) return s;
   return stats;
 }
 

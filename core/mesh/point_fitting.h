@@ -12,6 +12,7 @@
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/position_grid.h"
 #include "core/geometry/triangle_mesh.h"
@@ -98,6 +99,8 @@ struct FitStats {
 // self-intersections if the input had none (lossless grid) or `fallback` was given, unless the
 // grid is too coarse for any repair (the caller's mesh check tells); every vertex within
 // max_offset * voxel_size of its input position, plus half a grid step per axis.
+// `progress` counts the vertices the rounds fit, then the final search, and reaches its end
+// when the fit does.
 // Errors: InvalidArgument for a non-positive voxel size, options out of range or a fallback of
 // the wrong size; Cancelled when `cancel` fired (the mesh then holds the last verified state:
 // every move is undone).
@@ -105,7 +108,8 @@ absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
                                      absl::Span<const Point3f> points,
                                      const FitOptions& options = {},
                                      const CancelToken& cancel = CancelToken::Never(),
-                                     const std::vector<Point3f>* fallback = nullptr);
+                                     const std::vector<Point3f>* fallback = nullptr,
+                                     ProgressRange progress = ProgressRange());
 
 }  // namespace membrane
 

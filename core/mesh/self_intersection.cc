@@ -165,9 +165,13 @@ class SortedFaceCells {
 
 std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
                                                      const Participants& p, int threads,
-                                                     const CancelToken& cancel) {
+                                                     const CancelToken& cancel,
+                                                     ProgressRange progress) {
   std::vector<std::pair<int32_t, int32_t>> pairs;
-  if (p.face.empty()) return pairs;
+  if (p.face.empty()) {
+    progress.Done();
+    return pairs;
+  }
   const SortedFaceCells cells(p.box);
   const size_t n = p.face.size();
   // Lowest cell of each box: the lowest cell of two boxes' overlap is the per-axis maximum of
@@ -220,13 +224,20 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
   std::vector<std::vector<Member>> scratch(workers);
   constexpr int kCellsPerPoll = 4096;
   TaskCancel stop(cancel, workers, kCellsPerPoll);
+  progress.Begin(static_cast<int64_t>(cells.size()));
   RunTasks(workers, runs, [&](int worker, int64_t run) {
     std::vector<Member>& members = scratch[worker];
     std::vector<std::pair<int32_t, int32_t>>& out = found[run];
+    int64_t uncounted = 0;  // cell entries walked, not yet added to `progress`
     for (size_t begin = run_start[run]; begin < run_start[run + 1];) {
       if (stop.Poll(worker)) break;
       size_t end = begin + 1;
       while (end < cells.size() && cells.key(end) == cells.key(begin)) ++end;
+      uncounted += static_cast<int64_t>(end - begin);
+      if (uncounted >= kCellsPerPoll) {
+        progress.Add(uncounted);
+        uncounted = 0;
+      }
       const CellCoord c = cells.Decode(cells.key(begin));
       members.clear();
       for (size_t e = begin; e < end; ++e) {
@@ -254,6 +265,7 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
       }
       begin = end;
     }
+    progress.Add(uncounted);
   });
   for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
   std::sort(pairs.begin(), pairs.end());
@@ -264,7 +276,8 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
 
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMesh& mesh,
                                                                const CancelToken& cancel,
-                                                               int threads) {
+                                                               int threads,
+                                                               ProgressRange progress) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
   Participants p;
@@ -275,7 +288,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMes
     p.face.push_back(f);
     p.box.push_back(FaceBox(mesh, f));
   }
-  return SearchPairs(mesh, p, threads, cancel);
+  return SearchPairs(mesh, p, threads, cancel, progress);
 }
 
 void FaceBlockBoxes::Update(const TriangleMesh& mesh, const std::vector<char>& dirty) {
@@ -404,7 +417,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
       p.dirty.push_back(0);
     }
   }
-  return SearchPairs(mesh, p, threads, CancelToken::Never());
+  return SearchPairs(mesh, p, threads, CancelToken::Never(), ProgressRange());
 }
 
 }  // namespace membrane

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/geometry/triangle_mesh.h"
 
 namespace membrane {
@@ -22,9 +23,11 @@ namespace membrane {
 // bounded by a few times F, so huge faces cost more entries, never quadratic memory.
 // `cancel` is polled every few thousand cells, on the calling thread only; once it fires the
 // pairs found so far are returned. `threads` (<= 1: the calling thread alone) share the cells;
-// the result does not depend on it.
+// the result does not depend on it. `progress` counts the cells' entries as they are walked
+// and reaches its end with the search.
 std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(
-    const TriangleMesh& mesh, const CancelToken& cancel = CancelToken::Never(), int threads = 1);
+    const TriangleMesh& mesh, const CancelToken& cancel = CancelToken::Never(), int threads = 1,
+    ProgressRange progress = ProgressRange());
 
 // Bounding boxes of runs of kFaces consecutive faces, kept by a caller that searches the same
 // mesh again and again while moving a few of its vertices (the fit's last step): the search

@@ -11,6 +11,10 @@
 namespace membrane {
 namespace {
 
+// Shares of the surface's progress (about a tenth each on a 200^3 ball; the fit is the rest).
+constexpr double kPrepareShare = 0.1;
+constexpr double kNetsEnd = 0.2;
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -20,23 +24,30 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
                                            absl::Span<const Point3f> points,
                                            const SmoothSurfaceOptions& options,
-                                           SmoothSurfaceStats* stats, const CancelToken& cancel) {
+                                           SmoothSurfaceStats* stats, const CancelToken& cancel,
+                                           ProgressRange progress) {
   SmoothSurfaceStats local;
   SmoothSurfaceStats& s = stats ? *stats : local;
   s = SmoothSurfaceStats{};
   auto start = std::chrono::steady_clock::now();
   // The membrane and its reported topology stay as they are: the clean-up is for the surface.
   VoxelGrid grid = membrane;
+  // Progress: the clean-up's three steps, the nets, then the fit (most of the time).
+  const ProgressRange prepare = progress.Part(0, kPrepareShare);
+  prepare.Begin(3);
   // Loose sheets go first so that cave filling cannot thicken a sheet into something kept.
   if (options.remove_loose_sheets) s.loose_sheet_voxels = RemoveLooseSheets(grid);
+  prepare.Add(1);
   if (cancel.cancelled()) return absl::CancelledError("surface cancelled");
   if (options.fill_caves) s.cave_voxels = FillCaves(grid);
+  prepare.Add(1);
   if (cancel.cancelled()) return absl::CancelledError("surface cancelled");
   if (options.bridging_scans > 0) {
     const BridgingResult bridging = BridgeDiagonalContacts(grid, options.bridging_scans);
     s.bridges = bridging.added;
     s.corner_contacts_left = bridging.remaining;
   }
+  prepare.Add(1);
   s.prepare_seconds = SecondsSince(start);
   if (cancel.cancelled()) return absl::CancelledError("surface cancelled");
 
@@ -44,12 +55,14 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
   if (!options.fit) {
     TriangleMesh mesh = SurfaceNets(grid);
     s.surface_nets_seconds = SecondsSince(start);
+    progress.Part(kPrepareShare, 1).Done();
     return mesh;
   }
   // The fit's first pass searches the whole mesh for crossings anyway: it also does the
   // surface nets' repair (toward the same fallback).
   UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(grid);
   s.surface_nets_seconds = SecondsSince(start);
+  progress.Part(kPrepareShare, kNetsEnd).Done();
 
   start = std::chrono::steady_clock::now();
   // Before the fit: the fit then pulls the caps' rims onto the data and smooths the caps; its
@@ -62,7 +75,8 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
 
   start = std::chrono::steady_clock::now();
   absl::StatusOr<FitStats> fit = FitToPoints(nets.mesh, membrane.voxel_size(), points,
-                                             options.fit_options, cancel, &nets.fallback);
+                                             options.fit_options, cancel, &nets.fallback,
+                                             progress.Part(kNetsEnd, 1));
   if (!fit.ok()) return fit.status();
   s.fit = *fit;
   s.fit_seconds = SecondsSince(start);

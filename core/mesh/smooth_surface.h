@@ -9,6 +9,7 @@
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
@@ -48,13 +49,15 @@ struct SmoothSurfaceStats {
 // Output: a closed, manifold, outward-oriented mesh without self-intersections, in model
 // units, whose shells and genus are those of the membrane's solid minus any removed loose
 // sheets (caves and bridges are filled homotopically), unless `corner_contacts_left` > 0.
-// `stats` may be null. Errors: InvalidArgument for bad fit options; Cancelled when `cancel`
-// fired.
+// `stats` may be null. `progress` counts the steps and the fit's work, and reaches its end
+// when the surface is done. Errors: InvalidArgument for bad fit options; Cancelled when
+// `cancel` fired.
 absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
                                            absl::Span<const Point3f> points,
                                            const SmoothSurfaceOptions& options = {},
                                            SmoothSurfaceStats* stats = nullptr,
-                                           const CancelToken& cancel = CancelToken::Never());
+                                           const CancelToken& cancel = CancelToken::Never(),
+                                           ProgressRange progress = ProgressRange());
 
 }  // namespace membrane
 

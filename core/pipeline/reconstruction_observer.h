@@ -3,17 +3,38 @@
 #ifndef MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_OBSERVER_H_
 #define MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_OBSERVER_H_
 
+#include <optional>
+
 #include "core/engine/membrane_shrinker.h"
 #include "core/pipeline/pipeline_stage.h"
 #include "core/pipeline/reconstruction_report.h"
 
 namespace membrane {
 
-// Called on the reconstructing thread, in order; an implementation must return quickly (the
-// shrink waits for it) and must not throw.
+// How often an observer wants to hear how a running stage is doing (StageProgress).
+struct ProgressSchedule {
+  double first_after_seconds = 1;  // a shorter stage reports nothing; 0: from its start
+  double every_seconds = 0.5;      // then this often (> 0)
+};
+
+// Called in order, never two calls at once: on the reconstructing thread, except
+// StageProgress. An implementation must return quickly (the shrink waits for it) and must not
+// throw.
 class ReconstructionObserver {
  public:
   virtual ~ReconstructionObserver() = default;
+
+  // How often to call StageProgress; nullopt (the default): never, and the run starts no
+  // thread for it. Read once, when the run starts.
+  virtual std::optional<ProgressSchedule> progress_schedule() const { return std::nullopt; }
+  // `stage` has run for `seconds` and done `fraction` of its work, in [0, 1] and never less
+  // than the fraction told before within the stage; nullopt for a stage that does not count
+  // its work (decode, shrink, whose generations tell, relax, encode). Called per
+  // progress_schedule() from a thread of the run's own while the stage runs, and for a stage
+  // it was called for, once more as it ends, just before StageFinished (surface and check are
+  // then at 1).
+  virtual void StageProgress(PipelineStage /*stage*/, std::optional<double> /*fraction*/,
+                             double /*seconds*/) {}
 
   // `stage` begins; `report` holds what the stages before it measured (for kShrink,
   // planned_generations is set).

@@ -13,6 +13,7 @@
 #include "core/pipeline/membrane_stages.h"
 #include "core/pipeline/memory_estimate.h"
 #include "core/pipeline/peak_memory.h"
+#include "core/pipeline/progress_ticker.h"
 #include "core/pipeline/stopwatch.h"
 #include "core/pipeline/surface_stages.h"
 #include "core/pipeline/thread_limits.h"
@@ -71,7 +72,9 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   // The pipeline's own failures get the caller's words; the adapters' have theirs already.
   const auto with_context = [&errors](const absl::Status& s) { return WithErrorContext(s, errors); };
   if (absl::Status s = CheckOptions(options); !s.ok()) return with_context(s);
-  ReconstructionObserver& observer = adapters.observer;
+  // Every call to the caller's observer goes through the ticker, which adds StageProgress.
+  ProgressTicker ticker(adapters.observer);
+  ReconstructionObserver& observer = ticker;
   ReconstructionReport report;
   report.schedule = PlateScheduleName(options.shrink.schedule);
   report.surface = SurfaceKindName(options.surface);
@@ -114,7 +117,8 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   PositionGrid output_grid = OutputGrid(grid, options.output_quantization_bits);
   for (;;) {
     absl::StatusOr<BuiltSurface> surface =
-        SurfaceStage(options, cancel, grid, *cloud, output_grid, report, observer);
+        SurfaceStage(options, cancel, grid, *cloud, output_grid, report, observer,
+                     ticker.progress());
     if (!surface.ok()) return with_context(surface.status());
     if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
     if (surface->mesh.faces.empty()) return with_context(EmptySurfaceError(report));
@@ -124,7 +128,7 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
       return s.code() == absl::StatusCode::kCancelled ? s : with_context(s);
     }
     if (absl::Status s = CheckAndWriteStage(*surface, output_grid, options.threads, cancel,
-                                            adapters.sink, report, observer);
+                                            adapters.sink, report, observer, ticker.progress());
         !s.ok()) {
       return s;
     }

@@ -1,5 +1,7 @@
 #include "core/pipeline/stage_lines.h"
 
+#include <algorithm>
+
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
@@ -86,6 +88,12 @@ std::string StageFinishedLine(PipelineStage stage, const ReconstructionReport& r
     case PipelineStage::kEncode: return absl::StrFormat("encode: done in %.3f s", s.encode);
   }
   return "";
+}
+
+std::string ProgressNote(std::optional<double> fraction, double seconds) {
+  if (!fraction.has_value()) return absl::StrFormat("%.1f s", seconds);
+  const int percent = static_cast<int>(std::clamp(*fraction, 0.0, 1.0) * 100);
+  return absl::StrFormat("%d%% in %.1f s", percent, seconds);
 }
 
 }  // namespace membrane

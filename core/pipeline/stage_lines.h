@@ -3,6 +3,7 @@
 #ifndef MEMBRANE_CORE_PIPELINE_STAGE_LINES_H_
 #define MEMBRANE_CORE_PIPELINE_STAGE_LINES_H_
 
+#include <optional>
 #include <string>
 
 #include "core/engine/membrane_shrinker.h"
@@ -21,6 +22,10 @@ std::string GenerationLine(const GenerationStats& generation, int planned_genera
 // The outcome of a finished `stage` from the measurements in `report`, e.g.
 // "voxelize: grid 164x104x82 (voxel size 0.0123), 19144 hard voxels, ... in 0.020 s".
 std::string StageFinishedLine(PipelineStage stage, const ReconstructionReport& report);
+
+// How a running stage is doing: "42% in 1.3 s", or "1.3 s" for a stage that does not count its
+// work (`fraction` nullopt). The percentage is rounded down: 100% only once the work is done.
+std::string ProgressNote(std::optional<double> fraction, double seconds);
 
 }  // namespace membrane
 

@@ -22,11 +22,13 @@ const char* SurfaceKindName(SurfaceKind kind) {
 
 absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
-                                          const CancelToken& cancel, int threads) {
+                                          const CancelToken& cancel, int threads,
+                                          ProgressRange progress) {
   BuiltSurface built;
   if (kind == SurfaceKind::kCuberille) {
     built.mesh = Cuberille(membrane);
     for (Point3f& p : built.mesh.vertices) p = grid.Snap(p);
+    progress.Done();
     return built;
   }
   // The fit writes every position on the grid itself.
@@ -35,7 +37,7 @@ absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const Point
   options.fit_options.threads = threads;
   SmoothSurfaceStats stats;
   absl::StatusOr<TriangleMesh> mesh =
-      SmoothSurface(membrane, cloud.points, options, &stats, cancel);
+      SmoothSurface(membrane, cloud.points, options, &stats, cancel, progress);
   if (!mesh.ok()) return mesh.status();
   built.mesh = *std::move(mesh);
   built.hole_caps = stats.caps;

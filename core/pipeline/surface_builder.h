@@ -11,6 +11,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/position_grid.h"
@@ -47,10 +48,12 @@ struct BuiltSurface {
 // `grid`; Cuberille ignores it and is snapped to `grid`). A coarse grid can flatten or cross
 // faces: the caller's mesh check tells. Cancelled when `cancel` fires during the
 // smooth surface. `threads` (<= 1: the calling thread) share the smooth surface's fit; the
-// mesh does not depend on it.
+// mesh does not depend on it. `progress` counts the smooth surface's work (SmoothSurface) and
+// reaches its end with the surface.
 absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
-                                          const CancelToken& cancel, int threads = 1);
+                                          const CancelToken& cancel, int threads = 1,
+                                          ProgressRange progress = ProgressRange());
 
 }  // namespace membrane
 

@@ -15,11 +15,12 @@ absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
                                           const PointCloud& cloud,
                                           const PositionGrid& output_grid,
                                           ReconstructionReport& report,
-                                          ReconstructionObserver& observer) {
+                                          ReconstructionObserver& observer,
+                                          ProgressRange progress) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kSurface, report);
-  absl::StatusOr<BuiltSurface> built =
-      BuildSurface(grid, cloud, options.surface, output_grid, cancel, options.threads);
+  absl::StatusOr<BuiltSurface> built = BuildSurface(grid, cloud, options.surface, output_grid,
+                                                    cancel, options.threads, progress);
   if (!built.ok()) return built.status();
   report.hole_caps = built->hole_caps;
   report.quantization.bits = output_grid.bits;
@@ -56,14 +57,15 @@ absl::Status EmptySurfaceError(const ReconstructionReport& report) {
 // own would leave that core idle once the encode is done.
 absl::Status CheckAndWriteStage(const BuiltSurface& surface, const PositionGrid& grid,
                                 int threads, const CancelToken& cancel, MeshSink& sink,
-                                ReconstructionReport& report, ReconstructionObserver& observer) {
+                                ReconstructionReport& report, ReconstructionObserver& observer,
+                                ProgressRange progress) {
   observer.StageStarted(PipelineStage::kCheck, report);
   MeshReport checked;
   double check_seconds = 0;
   auto check = [&] {
     const Stopwatch watch;
     checked = CheckMesh(surface.mesh, cancel, threads,
-                        surface.crossings ? &*surface.crossings : nullptr);
+                        surface.crossings ? &*surface.crossings : nullptr, progress);
     check_seconds = watch.Seconds();
   };
   // Out of threads, the check runs after the write instead of beside it.

@@ -8,6 +8,7 @@
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/position_grid.h"
@@ -22,13 +23,15 @@ namespace membrane {
 // The surface of the final membrane `grid` (BuildSurface of options.surface, fitted to
 // `cloud`), its positions on `output_grid`; the grid and the mesh's size in `report`. A second
 // call (the float32 fallback) adds its seconds to the first's. Cancelled within milliseconds
-// of `cancel` firing during the smooth surface.
+// of `cancel` firing during the smooth surface. `progress` counts the surface's work
+// (BuildSurface) once StageStarted has been told.
 absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
                                           const CancelToken& cancel, const VoxelGrid& grid,
                                           const PointCloud& cloud,
                                           const PositionGrid& output_grid,
                                           ReconstructionReport& report,
-                                          ReconstructionObserver& observer);
+                                          ReconstructionObserver& observer,
+                                          ProgressRange progress = ProgressRange());
 
 // InvalidArgument "no surface: ..." for a membrane that gave an empty mesh: at its voxel size
 // (in `report`) the cloud's points are too few or too far apart to hold one.
@@ -37,10 +40,12 @@ absl::Status EmptySurfaceError(const ReconstructionReport& report);
 // The check stage and the encode stage at once: checks `surface` into report.mesh on a thread
 // of its own (with `threads`) while `sink` writes it, on `grid`, on this thread; then reports
 // the check and the encode, each with its own wall seconds (which overlap). The sink's status
-// as it is. A second call (the float32 fallback) adds its seconds to the first's.
+// as it is. A second call (the float32 fallback) adds its seconds to the first's. `progress`
+// counts the check's work (CheckMesh); the encode's is not counted (Draco cannot tell).
 absl::Status CheckAndWriteStage(const BuiltSurface& surface, const PositionGrid& grid,
                                 int threads, const CancelToken& cancel, MeshSink& sink,
-                                ReconstructionReport& report, ReconstructionObserver& observer);
+                                ReconstructionReport& report, ReconstructionObserver& observer,
+                                ProgressRange progress = ProgressRange());
 
 }  // namespace membrane
 

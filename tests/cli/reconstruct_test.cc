@@ -71,6 +71,26 @@ TEST_F(ReconstructTest, SphereGivesOneClosedGenusZeroShell) {
   EXPECT_EQ(Genus(report), std::vector<int>{0});
 }
 
+// Long stages show how far they are and for how long they have run (here from their start,
+// whatever their length: the hidden --progress-after 0). Not a terminal: plain lines.
+TEST_F(ReconstructTest, StageLinesShowAFractionAndTheElapsedTime) {
+  const std::string cloud = dir_.File("torus.ply");
+  ASSERT_EQ(Run({"synth", "torus", "-o", cloud, "--points", "20000"}).exit_code, 0);
+  const CliResult r =
+      Run({"reconstruct", cloud, "-o", dir_.File("m.ply"), "--local", "--progress-after", "0"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, ::testing::ContainsRegex("\nsurface: [0-9]+% in [0-9.]+ s\n"));
+  EXPECT_THAT(r.err, HasSubstr("\nsurface: 100% in "));
+  EXPECT_THAT(r.err, HasSubstr("\ncheck: 100% in "));
+  // A stage that does not count its work shows its time alone.
+  EXPECT_THAT(r.err, ::testing::ContainsRegex("\nencode: [0-9.]+ s\n"));
+  // -q shows none of it.
+  const CliResult quiet = Run({"reconstruct", cloud, "-o", dir_.File("m.ply"), "--local",
+                               "--progress-after", "0", "-q"});
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("% in "), std::string::npos) << quiet.err;
+}
+
 TEST_F(ReconstructTest, QuietLeavesOnlyTheSummaryLineOnStdout) {
   const std::string cloud = dir_.File("sphere.ply");
   ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "5000"}).exit_code, 0);

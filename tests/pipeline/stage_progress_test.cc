@@ -1,0 +1,127 @@
+// The progress of long stages: the fraction a stage tells never goes back, and the stages
+// that count their work (surface, check) end at 1, for both surfaces; progress is told
+// between a stage's start and its end, never at the same time as another call; and counting
+// changes nothing in the mesh.
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/pipeline/in_memory_ends.h"
+#include "core/pipeline/reconstruction_pipeline.h"
+#include "core/synth/synthesize.h"
+
+namespace membrane::testing {
+namespace {
+
+PointCloud SampledTorus() {
+  absl::StatusOr<PointCloud> cloud =
+      SynthesizeShape(SynthOptions{.shape = "torus", .points = 20000, .seed = 3});
+  EXPECT_TRUE(cloud.ok()) << cloud.status();
+  return cloud.value_or(PointCloud{});
+}
+
+// Progress from every stage's start (first_after 0), every millisecond, as fractions per stage.
+class ProgressLog : public ReconstructionObserver {
+ public:
+  std::optional<ProgressSchedule> progress_schedule() const override {
+    return ProgressSchedule{.first_after_seconds = 0, .every_seconds = 0.001};
+  }
+  void StageStarted(PipelineStage stage, const ReconstructionReport&) override {
+    Enter();
+    EXPECT_FALSE(running_.has_value());
+    running_ = stage;
+    Leave();
+  }
+  void GenerationFinished(const GenerationStats&, int) override {}
+  void StageProgress(PipelineStage stage, std::optional<double> fraction,
+                     double seconds) override {
+    Enter();
+    EXPECT_EQ(running_, stage) << PipelineStageName(stage);
+    EXPECT_GE(seconds, 0);
+    calls[PipelineStageName(stage)].push_back(fraction);
+    Leave();
+  }
+  void StageFinished(PipelineStage stage, double, const ReconstructionReport&) override {
+    Enter();
+    EXPECT_EQ(running_, stage);
+    running_.reset();
+    Leave();
+  }
+
+  std::map<std::string, std::vector<std::optional<double>>> calls;
+
+ private:
+  // The pipeline promises one call at a time: a second thread inside would see `inside_` set.
+  void Enter() { EXPECT_FALSE(inside_.exchange(true)); }
+  void Leave() { inside_.store(false); }
+
+  std::atomic<bool> inside_{false};
+  std::optional<PipelineStage> running_;
+};
+
+TEST(StageProgress, FractionsNeverGoBackAndLongStagesEndAtOne) {
+  const PointCloud cloud = SampledTorus();
+  for (SurfaceKind surface : {SurfaceKind::kSmooth, SurfaceKind::kCuberille}) {
+    SCOPED_TRACE(SurfaceKindName(surface));
+    InMemoryCloudSource source(cloud);
+    NoResourceLimit gate;
+    InMemoryMeshSink sink;
+    ProgressLog log;
+    ReconstructionOptions options;
+    options.surface = surface;
+    options.threads = 2;
+    const absl::StatusOr<ReconstructionReport> report =
+        RunReconstruction(options, {source, gate, sink, log}, ErrorContext{}, CancelToken::Never());
+    ASSERT_TRUE(report.ok()) << report.status();
+    // Every stage is told from its start (first_after 0), and so once more at its end.
+    for (const char* stage : {"decode", "voxelize", "shrink", "relax", "surface", "check",
+                              "encode"}) {
+      EXPECT_GE(log.calls[stage].size(), 2u) << stage;
+    }
+    for (const auto& [stage, fractions] : log.calls) {
+      double last = 0;
+      for (const std::optional<double>& f : fractions) {
+        if (!f.has_value()) continue;
+        EXPECT_GE(*f, last) << stage;
+        EXPECT_LE(*f, 1.0) << stage;
+        last = *f;
+      }
+    }
+    for (const char* stage : {"surface", "check"}) {
+      ASSERT_FALSE(log.calls[stage].empty());
+      EXPECT_EQ(log.calls[stage].back(), std::optional<double>(1.0)) << stage;
+    }
+    // The stages that do not count their work say so.
+    EXPECT_EQ(log.calls["encode"].back(), std::nullopt);
+  }
+}
+
+TEST(StageProgress, CountingLeavesTheMeshAsItIs) {
+  const PointCloud cloud = SampledTorus();
+  std::vector<TriangleMesh> meshes;
+  for (bool watched : {false, true}) {
+    InMemoryCloudSource source(cloud);
+    NoResourceLimit gate;
+    InMemoryMeshSink sink;
+    ProgressLog log;
+    NullReconstructionObserver none;
+    ReconstructionObserver& observer = watched ? static_cast<ReconstructionObserver&>(log) : none;
+    ReconstructionOptions options;
+    options.threads = 2;
+    ASSERT_TRUE(
+        RunReconstruction(options, {source, gate, sink, observer}, ErrorContext{},
+                          CancelToken::Never())
+            .ok());
+    meshes.push_back(sink.mesh());
+  }
+  EXPECT_EQ(meshes[0].vertices, meshes[1].vertices);
+  EXPECT_EQ(meshes[0].faces, meshes[1].faces);
+}
+
+}  // namespace
+}  // namespace membrane::testing

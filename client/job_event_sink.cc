@@ -27,7 +27,8 @@ void JobEventSink::Consume(const v1::JobEvent& event) {
       events_in_call_ = 0;
       break;
     case v1::JobEvent::kStage:
-    case v1::JobEvent::kGeneration: ConsumeProgress(event); break;
+    case v1::JobEvent::kGeneration:
+    case v1::JobEvent::kProgress: ConsumeProgress(event); break;
     case v1::JobEvent::kResult:
       statistics_json_ = event.result().statistics_json();
       mesh_summary_ = event.result().mesh();
@@ -65,6 +66,13 @@ void JobEventSink::ConsumeProgress(const v1::JobEvent& event) {
     }
     generations_.push_back(g);
     progress_.GenerationFinished(g, e.planned_generations());
+    return;
+  }
+  if (event.has_progress()) {
+    const v1::StageProgress& p = event.progress();
+    progress_.Progress(p.stage(), p.has_fraction() ? std::optional<double>(p.fraction())
+                                                    : std::nullopt,
+                       p.seconds());
     return;
   }
   const v1::StageEvent& s = event.stage();

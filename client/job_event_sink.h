@@ -59,8 +59,8 @@ class JobEventSink {
   ProgressPrinter& progress_;
   std::function<void(const std::string&)> on_accepted_;
   std::string job_id_;
-  int progress_seen_ = 0;   // stage and generation events handled, over all calls
-  int replay_index_ = 0;    // stage and generation events of the current call
+  int progress_seen_ = 0;   // stage, progress and generation events handled, over all calls
+  int replay_index_ = 0;    // stage, progress and generation events of the current call
   int events_in_call_ = 0;
   std::vector<GenerationStats> generations_;
   std::string statistics_json_;

@@ -56,7 +56,8 @@ absl::StatusOr<Record> ParseRecord(const std::string& bytes) {
     if (record.ended) return absl::DataLossError("events after JobDone");
     switch (event.event_case()) {
       case v1::JobEvent::kStage:
-      case v1::JobEvent::kGeneration: record.events.push_back(std::move(event)); break;
+      case v1::JobEvent::kGeneration:
+      case v1::JobEvent::kProgress: record.events.push_back(std::move(event)); break;
       case v1::JobEvent::kResult:
         header = event.result();
         result = &header;

@@ -37,7 +37,7 @@ class Job {
       UploadMemory::Hold upload_hold = {}, FinishHook on_finish = nullptr);
 
   // A finished job as a durable store wrote it down (JobStore): `snapshot` (id, peer,
-  // parameters, times, state and error), its stage and generation `events`, and for a
+  // parameters, times, state and error), its stage, progress and generation `events`, and for a
   // SUCCEEDED job its statistics, mesh check and mesh. It is done at once; no hook runs.
   static std::shared_ptr<Job> Restore(const v1::Job& snapshot, std::vector<v1::JobEvent> events,
                                       std::string statistics_json, v1::MeshSummary summary,
@@ -92,8 +92,8 @@ class Job {
   void SetQueuePosition(int position) ABSL_LOCKS_EXCLUDED(mutex_);
   // QUEUED -> RUNNING. False when the job is already done (cancelled while queued).
   bool Start() ABSL_LOCKS_EXCLUDED(mutex_);
-  // Appends a stage or generation event for every watcher; a StageEvent STARTED also sets
-  // the job's current stage.
+  // Appends a stage, progress or generation event for every watcher; a StageEvent STARTED also
+  // sets the job's current stage.
   void AddEvent(v1::JobEvent event) ABSL_LOCKS_EXCLUDED(mutex_);
   // Ends the job: SUCCEEDED with `statistics_json`, the mesh check and the Draco `mesh`, or
   // FAILED/CANCELLED
@@ -141,7 +141,7 @@ class Job {
   // one writer at a time (the store), not for every follower (Closing, MeshChunkEvent).
   std::vector<v1::JobEvent> ClosingEvents(size_t chunk_bytes) const ABSL_LOCKS_EXCLUDED(mutex_);
 
-  // The stage and generation events so far.
+  // The stage, progress and generation events so far.
   std::vector<v1::JobEvent> Events() const ABSL_LOCKS_EXCLUDED(mutex_);
 
   // When the job finished; InfinitePast while it runs.

@@ -1,5 +1,6 @@
 #include "server/job_event_observer.h"
 
+#include "absl/strings/str_cat.h"
 #include "core/pipeline/stage_lines.h"
 
 namespace membrane::server {
@@ -44,6 +45,22 @@ void JobEventObserver::StageFinished(PipelineStage stage, double seconds,
     event.mutable_stage()->add_warnings(report.warnings[warnings_sent_]);
   job_.AddEvent(std::move(event));
   if (metrics_ != nullptr) metrics_->StageFinished(stage, seconds);
+}
+
+std::optional<ProgressSchedule> JobEventObserver::progress_schedule() const {
+  // Once a second: enough for a progress bar, little for the job's kept events.
+  return ProgressSchedule{.first_after_seconds = progress_after_seconds_, .every_seconds = 1};
+}
+
+void JobEventObserver::StageProgress(PipelineStage stage, std::optional<double> fraction,
+                                     double seconds) {
+  v1::JobEvent event;
+  v1::StageProgress* p = event.mutable_progress();
+  p->set_stage(PipelineStageName(stage));
+  if (fraction.has_value()) p->set_fraction(*fraction);
+  p->set_seconds(seconds);
+  p->set_line(absl::StrCat(PipelineStageName(stage), ": ", ProgressNote(fraction, seconds)));
+  job_.AddEvent(std::move(event));
 }
 
 }  // namespace membrane::server

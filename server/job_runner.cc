@@ -98,7 +98,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   PlyMeshSink ply_sink;
   // The web console's job list shows a preview of each mesh.
   PreviewSink sink(settings->ply_mesh ? static_cast<MeshSink&>(ply_sink) : draco_sink);
-  JobEventObserver observer(*job, &metrics_);
+  JobEventObserver observer(*job, &metrics_, options_.progress_after_seconds);
   // A grid over the budget: the message says which job fields change it.
   ErrorContext errors;
   errors.resource_exhausted_advice =

@@ -71,6 +71,9 @@ ABSL_FLAG(int64_t, upload_memory_bytes, -1,
 ABSL_FLAG(double, stall_seconds, 300,
           "a call that makes no progress for this long is cancelled: its upload receives "
           "under 16 KiB, or its client reads none of the events written to it; 0 = never");
+ABSL_FLAG(double, progress_after_seconds, 1,
+          "a stage running longer than this sends its progress (fraction done, seconds so "
+          "far) every second; 0 = every stage, from its start");
 ABSL_FLAG(double, max_job_seconds, 1800,
           "a job running this long ends FAILED DEADLINE_EXCEEDED, and one whose estimated "
           "floor of seconds is over it is refused before it runs; 0 = no limit");
@@ -192,6 +195,7 @@ bool OptionsFromFlags(ServerOptions& o) {
   if (o.upload_memory_bytes == -1) o.upload_memory_bytes = DefaultUploadMemory(machine.total_bytes);
   o.result_ttl_seconds = absl::GetFlag(FLAGS_result_ttl_seconds);
   o.stall_seconds = absl::GetFlag(FLAGS_stall_seconds);
+  o.progress_after_seconds = absl::GetFlag(FLAGS_progress_after_seconds);
   o.max_job_seconds = absl::GetFlag(FLAGS_max_job_seconds);
   o.grace_seconds = absl::GetFlag(FLAGS_grace_seconds);
   o.decoder_timeout_seconds = absl::GetFlag(FLAGS_decoder_timeout_seconds);
@@ -212,10 +216,12 @@ bool OptionsFromFlags(ServerOptions& o) {
   if (!ReadSecrets(o)) return false;
   if (o.queue < 0 || o.max_calls < 0 || o.max_upload_bytes <= 0 || o.max_points <= 0 ||
       o.voxel_budget <= 0 || o.result_ttl_seconds < 0 || o.grace_seconds < 0 ||
-      o.decoder_timeout_seconds <= 0 || !(o.stall_seconds >= 0) || !(o.max_job_seconds >= 0)) {
+      o.decoder_timeout_seconds <= 0 || !(o.stall_seconds >= 0) || !(o.max_job_seconds >= 0) ||
+      !(o.progress_after_seconds >= 0)) {
     std::fprintf(stderr,
                  "membraned: --queue, --max-calls, --grace-seconds, --result-ttl-seconds, "
-                 "--stall-seconds and --max-job-seconds must be >= 0; the other limits > 0\n");
+                 "--stall-seconds, --progress-after-seconds and --max-job-seconds must be >= 0; "
+                 "the other limits > 0\n");
     return false;
   }
   return true;

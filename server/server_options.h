@@ -43,6 +43,8 @@ struct ServerOptions {
   std::string memory_budget_source;         // for the log: the flag, or what the default took
   int64_t upload_memory_bytes = 0;          // uploads held at once (UploadMemory); 0 = no limit
   double stall_seconds = 300;               // a call stalled this long is cancelled; 0 = never
+  // A stage running longer than this sends StageProgress every second; 0 = every stage.
+  double progress_after_seconds = 1;
   // A job running this long ends FAILED DEADLINE_EXCEEDED, and one whose estimated floor of
   // seconds is over it is refused before it runs (TimeLimitGate); 0 = no limit.
   double max_job_seconds = 1800;

@@ -602,6 +602,24 @@ TEST_F(EndToEndTest, ReconstructReadsStdinAndWritesStdoutThroughTheServer) {
   EXPECT_NE(piped.err.find("encode: stdout"), std::string::npos) << piped.err;
 }
 
+// Over --server, long stages show a fraction and their time as --local does: the server sends
+// StageProgress (here for every stage: --progress-after-seconds=0), the client prints it.
+TEST_F(EndToEndTest, StageProgressArrivesFromTheServer) {
+  StartServer({"--progress-after-seconds=0"});
+  const CliResult r =
+      Run({"reconstruct", Synth("torus", 20000), "-o", dir_.File("m.ply"), "--server", address_});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("\nsurface: 100% in "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\ncheck: 100% in "), std::string::npos) << r.err;
+  // jobs watch replays them with the job's other events.
+  const CliResult list = Run({"jobs", "list", "--server", address_});
+  ASSERT_EQ(list.exit_code, 0);
+  const CliResult watch =
+      Run({"jobs", "watch", list.out.substr(0, list.out.find(' ')), "--server", address_});
+  ASSERT_EQ(watch.exit_code, 0) << watch.err;
+  EXPECT_NE(watch.err.find("\nsurface: 100% in "), std::string::npos) << watch.err;
+}
+
 // A job submitted as a client without Draco submits it (client/python): asking for the mesh
 // as binary PLY. Follows the job to its end; returns its id, and the PLY received in `ply`.
 std::string SubmitPlyJob(const std::string& address, const std::string& cloud,

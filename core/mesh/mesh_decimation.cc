@@ -79,8 +79,9 @@ std::vector<int> ShellGenera(const TriangleMesh& mesh) {
 
 class Decimator {
  public:
-  Decimator(TriangleMesh& mesh, const DecimationOptions& options, const CancelToken& cancel)
-      : mesh_(mesh), options_(options), cancel_(cancel) {}
+  Decimator(TriangleMesh& mesh, const DecimationOptions& options, const CancelToken& cancel,
+            ProgressRange progress)
+      : mesh_(mesh), options_(options), cancel_(cancel), progress_(progress) {}
 
   // Builds the vertex-face lists; FailedPrecondition unless the mesh is closed, oriented and
   // manifold.
@@ -105,6 +106,7 @@ class Decimator {
   TriangleMesh& mesh_;
   const DecimationOptions& options_;
   const CancelToken& cancel_;
+  const ProgressRange progress_;
 
   std::vector<char> face_alive_;
   int64_t alive_faces_ = 0;
@@ -487,9 +489,13 @@ absl::Status Decimator::Run(DecimationStats& stats) {
   int64_t pass_collapses = 0;
   int64_t since_poll = 0;
   absl::Status status;
+  progress_.Begin(alive_faces_ - options_.target_faces);
+  int64_t faces_told = alive_faces_;
   while (alive_faces_ > options_.target_faces) {
     if (++since_poll == kCancelPeriod) {
       since_poll = 0;
+      progress_.Add(faces_told - alive_faces_);
+      faces_told = alive_faces_;
       if (cancel_.cancelled()) {
         status = absl::CancelledError("decimation cancelled");
         break;
@@ -519,6 +525,7 @@ absl::Status Decimator::Run(DecimationStats& stats) {
     // The lists have grown: pack them.
     if (static_cast<int64_t>(refs_.size()) > 6 * alive_faces_ + 4096) BuildFaceLists();
   }
+  progress_.Add(faces_told - alive_faces_);
   queue_.Clear();
   grid_ = FaceGrid(1.0);
   face_box_ = {};
@@ -539,7 +546,7 @@ int64_t MinimumFacesOfGenus(int genus) {
 }
 
 absl::StatusOr<DecimationStats> DecimateMesh(TriangleMesh& mesh, const DecimationOptions& options,
-                                             const CancelToken& cancel) {
+                                             const CancelToken& cancel, ProgressRange progress) {
   DecimationStats stats;
   stats.target_faces = options.target_faces;
   stats.faces_before = stats.faces_after = static_cast<int64_t>(mesh.faces.size());
@@ -549,7 +556,7 @@ absl::StatusOr<DecimationStats> DecimateMesh(TriangleMesh& mesh, const Decimatio
                                                    " faces: it must be at least ",
                                                    kMinTargetFaces, " (a tetrahedron)"));
   }
-  Decimator decimator(mesh, options, cancel);
+  Decimator decimator(mesh, options, cancel, progress);
   if (absl::Status s = decimator.Prepare(); !s.ok()) return s;
   const std::vector<int> genera = ShellGenera(mesh);
   int64_t fewest = 0;

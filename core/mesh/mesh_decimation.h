@@ -9,6 +9,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/geometry/position_grid.h"
 #include "core/geometry/triangle_mesh.h"
 
@@ -61,9 +62,11 @@ int64_t MinimumFacesOfGenus(int genus);
 // kMinTargetFaces or below the fewest faces the mesh's shells can have (the sum of
 // MinimumFacesOfGenus over them), naming both; FailedPrecondition when the mesh is not closed,
 // oriented and manifold (it is left unchanged); Cancelled when `cancel` fires (polled every
-// few thousand collapses; the mesh is then valid but partly decimated).
+// few thousand collapses; the mesh is then valid but partly decimated). `progress` counts the
+// faces removed against the faces above the target, as often as `cancel` is polled.
 absl::StatusOr<DecimationStats> DecimateMesh(TriangleMesh& mesh, const DecimationOptions& options,
-                                             const CancelToken& cancel = CancelToken::Never());
+                                             const CancelToken& cancel = CancelToken::Never(),
+                                             ProgressRange progress = ProgressRange());
 
 }  // namespace membrane
 

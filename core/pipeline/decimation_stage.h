@@ -6,6 +6,7 @@
 
 #include "absl/status/status.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/geometry/position_grid.h"
 #include "core/pipeline/reconstruction_observer.h"
 #include "core/pipeline/reconstruction_options.h"
@@ -24,10 +25,12 @@ namespace membrane {
 // is not closed, oriented and manifold (it is then left as it is).
 // Errors: InvalidArgument "target of N faces is below the M faces that the surface's ...
 // shells ... need" (DecimateMesh's); Cancelled "reconstruction cancelled after surface" when
-// `cancel` fires (polled every few thousand collapses).
+// `cancel` fires (polled every few thousand collapses). `progress` counts the faces removed
+// toward the target, then the error's measure.
 absl::Status DecimateStage(const ReconstructionOptions& options, const CancelToken& cancel,
                            const PositionGrid& output_grid, BuiltSurface& surface,
-                           ReconstructionReport& report, ReconstructionObserver& observer);
+                           ReconstructionReport& report, ReconstructionObserver& observer,
+                           ProgressRange progress = ProgressRange());
 
 }  // namespace membrane
 

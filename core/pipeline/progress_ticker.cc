@@ -36,6 +36,12 @@ void ProgressTicker::StageStarted(PipelineStage stage, const ReconstructionRepor
 void ProgressTicker::GenerationFinished(const GenerationStats& generation,
                                         int planned_generations) {
   std::lock_guard<std::mutex> lock(mutex_);
+  // The shrink counts its work in generations: the share of the planned ones done. A handle
+  // retry runs generations again; the meter holds at 1 past the plan.
+  if (stage_ == PipelineStage::kShrink && planned_generations > 0) {
+    if (!meter_.fraction().has_value()) meter_.BeginStep(0, 1, planned_generations);
+    meter_.Add(1);
+  }
   observer_.GenerationFinished(generation, planned_generations);
 }
 

@@ -123,7 +123,8 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
     if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
     if (surface->mesh.faces.empty()) return with_context(EmptySurfaceError(report));
     surface->mesh.origin = cloud->origin;  // the mesh is in the cloud's frame
-    if (absl::Status s = DecimateStage(options, cancel, output_grid, *surface, report, observer);
+    if (absl::Status s = DecimateStage(options, cancel, output_grid, *surface, report, observer,
+                                       ticker.progress());
         !s.ok()) {
       return s.code() == absl::StatusCode::kCancelled ? s : with_context(s);
     }

@@ -96,9 +96,34 @@ TEST(StageProgress, FractionsNeverGoBackAndLongStagesEndAtOne) {
       ASSERT_FALSE(log.calls[stage].empty());
       EXPECT_EQ(log.calls[stage].back(), std::optional<double>(1.0)) << stage;
     }
+    // The shrink counts its generations against the planned ones.
+    ASSERT_FALSE(log.calls["shrink"].empty());
+    ASSERT_TRUE(log.calls["shrink"].back().has_value());
+    EXPECT_GT(*log.calls["shrink"].back(), 0.5);
     // The stages that do not count their work say so.
     EXPECT_EQ(log.calls["encode"].back(), std::nullopt);
   }
+}
+
+TEST(StageProgress, DecimationCountsItsFacesToTheEnd) {
+  InMemoryCloudSource source(SampledTorus());
+  NoResourceLimit gate;
+  InMemoryMeshSink sink;
+  ProgressLog log;
+  ReconstructionOptions options;
+  options.target_faces = 2000;
+  const absl::StatusOr<ReconstructionReport> report =
+      RunReconstruction(options, {source, gate, sink, log}, ErrorContext{}, CancelToken::Never());
+  ASSERT_TRUE(report.ok()) << report.status();
+  const std::vector<std::optional<double>>& fractions = log.calls["decimate"];
+  ASSERT_GE(fractions.size(), 2u);
+  double last = 0;
+  for (const std::optional<double>& f : fractions) {
+    if (!f.has_value()) continue;
+    EXPECT_GE(*f, last);
+    last = *f;
+  }
+  EXPECT_EQ(fractions.back(), std::optional<double>(1.0));
 }
 
 TEST(StageProgress, CountingLeavesTheMeshAsItIs) {

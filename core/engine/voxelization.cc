@@ -194,7 +194,7 @@ absl::Status CheckGridFitsFloat(const Box3d& bounds, double voxel_size, const do
 }  // namespace
 
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
-                                      const VoxelizeOptions& options) {
+                                      const VoxelizeOptions& options, ProgressRange progress) {
   absl::StatusOr<Box3d> bounds = CheckedBounds(points);
   if (!bounds.ok()) return bounds.status();
   if (options.voxel_budget <= 0) {
@@ -244,7 +244,11 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
   const int p = VoxelGrid::kPadding;
   VoxelState* states = v.grid.mutable_states().data();
   const int64_t row_length = dims[0] - 2 * p;
-  for (int z = p; z < dims[2] - p; ++z)
+  // Half for the rows, half for the points: the rows follow the grid's volume and the sort the
+  // points' count, and either can be the larger.
+  const ProgressRange rows = progress.Part(0, 0.5);
+  rows.Begin(dims[2] - 2 * p);
+  for (int z = p; z < dims[2] - p; ++z) {
     for (int y = p; y < dims[1] - p; ++y) {
       VoxelState* row = states + v.grid.Index(p, y, z);
       const bool outer = y == p || z == p || y == dims[1] - p - 1 || z == dims[2] - p - 1;
@@ -252,10 +256,13 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
       row[0] = kBoundarySoft;
       row[row_length - 1] = kBoundarySoft;
     }
+    rows.Add(1);
+  }
 
   // Voxel of each point, sorted, so that runs give the points per voxel without a per-voxel
   // counter array.
   const std::vector<int64_t> sorted = SortedPointVoxels(points, *bounds, l, v.data_dims);
+  progress.Part(0.5, 0.9).Done();
   const int64_t nx = v.data_dims[0], ny = v.data_dims[1];
   const PointDensity density = ForEachOccupiedVoxel(sorted, [&](int64_t voxel, int64_t) {
     const int64_t index = v.grid.Index(static_cast<int>(voxel % nx) + p,
@@ -267,6 +274,7 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
   v.voxels_with_more_points = density.voxels_with_more_points;
   v.hard_voxels = v.voxels_with_one_point + v.voxels_with_more_points;
   v.density_ratio = density.ratio();
+  progress.Part(0.9, 1).Done();
   return v;
 }
 

@@ -7,6 +7,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
+#include "core/base/progress_meter.h"
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/point_cloud.h"
 
@@ -65,9 +66,11 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points);
 // more than a quarter of a voxel apart (naming both), or so large that the grid around them
 // passes float32's range (naming both ranges); ResourceExhausted, naming the grid and
 // the budget, when the grid would exceed options.voxel_budget. Nothing is allocated before the
-// budget check.
+// budget check. `progress` counts the initial membrane's rows, then the points' voxels sorted
+// and marked (counting never changes the grid).
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
-                                      const VoxelizeOptions& options);
+                                      const VoxelizeOptions& options,
+                                      ProgressRange progress = ProgressRange());
 
 }  // namespace membrane
 

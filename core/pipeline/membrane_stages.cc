@@ -15,10 +15,11 @@ namespace membrane {
 absl::StatusOr<Voxelization> VoxelizeStage(const VoxelizeOptions& voxelize,
                                            const PointCloud& cloud, const CancelToken& cancel,
                                            ReconstructionReport& report,
-                                           ReconstructionObserver& observer) {
+                                           ReconstructionObserver& observer,
+                                           ProgressRange progress) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kVoxelize, report);
-  absl::StatusOr<Voxelization> v = Voxelize(cloud.points, voxelize);
+  absl::StatusOr<Voxelization> v = Voxelize(cloud.points, voxelize, progress.Part(0, 0.9));
   if (!v.ok()) return v.status();
   report.voxel_size = v->grid.voxel_size();
   report.grid = v->grid.dims();
@@ -30,6 +31,7 @@ absl::StatusOr<Voxelization> VoxelizeStage(const VoxelizeOptions& voxelize,
           ScatterWarning(cloud.points, v->bounds, report.voxel_size, density, cancel)) {
     report.warnings.push_back(*std::move(w));
   }
+  progress.Part(0.9, 1).Done();
   report.seconds.voxelize = watch.Seconds();
   observer.StageFinished(PipelineStage::kVoxelize, report.seconds.voxelize, report);
   return v;

@@ -8,6 +8,7 @@
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/engine/voxel_grid.h"
 #include "core/engine/voxelization.h"
 #include "core/geometry/point_cloud.h"
@@ -19,11 +20,13 @@ namespace membrane {
 
 // The voxel grid of `cloud` (Voxelize with `voxelize`), its sizes, density and any scatter
 // warning in `report`. Voxelize's errors: InvalidArgument for a degenerate cloud,
-// ResourceExhausted for a grid over the voxel budget.
+// ResourceExhausted for a grid over the voxel budget. `progress` counts Voxelize's work, then
+// the scatter test.
 absl::StatusOr<Voxelization> VoxelizeStage(const VoxelizeOptions& voxelize,
                                            const PointCloud& cloud, const CancelToken& cancel,
                                            ReconstructionReport& report,
-                                           ReconstructionObserver& observer);
+                                           ReconstructionObserver& observer,
+                                           ProgressRange progress = ProgressRange());
 
 // Shrinks the membrane of `grid` (ShrinkMembrane with options.shrink), each plate generation
 // told to the observer; the generations, post-process and handle retry in `report`.

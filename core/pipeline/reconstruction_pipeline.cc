@@ -95,7 +95,7 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   voxelize.voxel_size = plan->voxel_size;
 
   absl::StatusOr<Voxelization> voxelization =
-      VoxelizeStage(voxelize, *cloud, cancel, report, observer);
+      VoxelizeStage(voxelize, *cloud, cancel, report, observer, ticker.progress());
   if (!voxelization.ok()) return with_context(voxelization.status());
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kVoxelize); !s.ok()) return s;
   VoxelGrid& grid = voxelization->grid;

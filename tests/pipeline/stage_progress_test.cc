@@ -92,7 +92,7 @@ TEST(StageProgress, FractionsNeverGoBackAndLongStagesEndAtOne) {
         last = *f;
       }
     }
-    for (const char* stage : {"surface", "check"}) {
+    for (const char* stage : {"voxelize", "surface", "check"}) {
       ASSERT_FALSE(log.calls[stage].empty());
       EXPECT_EQ(log.calls[stage].back(), std::optional<double>(1.0)) << stage;
     }

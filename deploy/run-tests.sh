@@ -34,7 +34,8 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 # Only what these suites run: the client and the process-level server tests are not built a
 # second time (the in-process suite covers the service, its job runner and the decoder child).
 cmake --build build-asan -j "$JOBS" --target test_engine test_shrink test_real_scans test_synth \
-  test_io test_mesh test_reconstructed_surfaces test_pipeline test_server_service
+  test_io test_mesh test_mesh_decimation test_render test_reconstructed_surfaces test_pipeline \
+  test_server_service
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$JOBS" --timeout 1800
 phase_done "ASan/UBSan build and suites"

@@ -21,29 +21,10 @@ using BigVector = std::vector<T, HugePageAllocator<T>>;
 
 using Box = FaceBlockBoxes::Box;
 
-bool Overlap(const Box& a, const Box& b) {
-  for (int k = 0; k < 3; ++k)
-    if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return false;
-  return true;
-}
-
 bool ValidFace(const std::array<int32_t, 3>& f, int64_t nv) {
   for (int32_t i : f)
     if (i < 0 || i >= nv) return false;
   return true;
-}
-
-Box FaceBox(const TriangleMesh& mesh, int32_t f) {
-  Box b;
-  b.lo = b.hi = mesh.vertices[mesh.faces[f][0]];
-  for (int k = 1; k < 3; ++k) {
-    const Point3f& p = mesh.vertices[mesh.faces[f][k]];
-    for (int a = 0; a < 3; ++a) {
-      b.lo[a] = std::min(b.lo[a], p[a]);
-      b.hi[a] = std::max(b.hi[a], p[a]);
-    }
-  }
-  return b;
 }
 
 // The faces taking part in a search, with everything indexed by position in `face`.
@@ -254,7 +235,7 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
           const Member& mj = members[b];
           if (!mi.dirty && !mj.dirty) continue;
           if ((mi.at_low | mj.at_low) != 7) continue;
-          if (!Overlap(mi.box, mj.box)) continue;
+          if (!BoxesOverlap(mi.box, mj.box)) continue;
           const int32_t j = mj.position;
           const int32_t fi = p.face[i], fj = p.face[j];
           if (!ti) ti = triangle(i);
@@ -286,7 +267,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMes
   for (int32_t f = 0; f < nf; ++f) {
     if (!ValidFace(mesh.faces[f], nv)) continue;
     p.face.push_back(f);
-    p.box.push_back(FaceBox(mesh, f));
+    p.box.push_back(BoxOfFace(mesh, f));
   }
   return SearchPairs(mesh, p, threads, cancel, progress);
 }
@@ -320,7 +301,7 @@ void FaceBlockBoxes::Remake(const TriangleMesh& mesh, int32_t block) {
   const int32_t end = std::min(nf, (block + 1) * kFaces);
   for (int32_t f = block * kFaces; f < end; ++f) {
     if (!ValidFace(mesh.faces[f], nv)) continue;
-    const Box b = FaceBox(mesh, f);
+    const Box b = BoxOfFace(mesh, f);
     for (int k = 0; k < 3; ++k) {
       box.lo[k] = std::min(box.lo[k], b.lo[k]);
       box.hi[k] = std::max(box.hi[k], b.hi[k]);
@@ -353,7 +334,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
   for (int32_t f = 0; f < nf; ++f) {
     if (!dirty[f] || !ValidFace(mesh.faces[f], nv)) continue;
     p.face.push_back(f);
-    p.box.push_back(FaceBox(mesh, f));
+    p.box.push_back(BoxOfFace(mesh, f));
     for (int k = 0; k < 3; ++k)
       extent = std::max(extent, double(p.box.back().hi[k]) - p.box.back().lo[k]);
   }
@@ -387,7 +368,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
   // Whether a box touches a marked cell; `limit` > 0: true without looking once the box spans
   // more cells than that.
   auto touches_marked = [&](const Box& b, int64_t limit) {
-    if (!Overlap(b, region)) return false;
+    if (!BoxesOverlap(b, region)) return false;
     std::array<int64_t, 3> lo, hi;
     for (int k = 0; k < 3; ++k) {
       lo[k] = std::max<int64_t>(cell(b.lo[k], k), 0);
@@ -410,7 +391,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
     const int32_t end = std::min(nf, begin + run);
     for (int32_t f = begin; f < end; ++f) {
       if (dirty[f] || !ValidFace(mesh.faces[f], nv)) continue;
-      const Box b = FaceBox(mesh, f);
+      const Box b = BoxOfFace(mesh, f);
       if (!touches_marked(b, 0)) continue;
       p.face.push_back(f);
       p.box.push_back(b);

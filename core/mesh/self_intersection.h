@@ -12,6 +12,7 @@
 #include "core/base/cancel_token.h"
 #include "core/base/progress_meter.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/mesh/face_grid.h"
 
 namespace membrane {
 
@@ -36,9 +37,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(
 class FaceBlockBoxes {
  public:
   static constexpr int32_t kFaces = 64;
-  struct Box {
-    std::array<float, 3> lo, hi;
-  };
+  using Box = FaceBox;
 
   // Makes every run's box when the mesh's face count differs from the last call's (or on the
   // first), else remakes the boxes of the runs holding a face marked in `dirty` (one flag per

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "core/engine/flat_bitset.h"
 #include "core/engine/voxel_topology.h"
 
 namespace membrane {
@@ -32,22 +33,24 @@ int TotalGenus(const VoxelTopology& t) {
 // scanned object hangs on the hole's scanned edge (a torus 2.25-2.75x the formula-(1) size:
 // 89-94% hard; the spot scan's webs between its legs: 7%).
 void MeasureWeb(const VoxelGrid& grid, const ShrinkCheckpoint& first_run, HandleRetry& r) {
-  const auto& first = first_run.states;
+  // Bit-planes, not byte arrays: on a large grid both would be as large as the grid.
+  FlatBitset first_outside;
+  first_run.states.OutsidePlane(first_outside);
   const VoxelState* now = grid.states().data();
-  std::vector<char> counted;
+  FlatBitset counted;
   int64_t rim = 0, hard = 0;
-  auto is_web = [&](int64_t i) { return IsOutside(first[i]) && !IsOutside(now[i]); };
+  auto is_web = [&](int64_t i) { return first_outside.test(i) && !IsOutside(now[i]); };
   for (int z = 1; z + 1 < grid.dim(2); ++z)
     for (int y = 1; y + 1 < grid.dim(1); ++y)
       for (int x = 1; x + 1 < grid.dim(0); ++x) {
         const int64_t i = grid.Index(x, y, z);
         if (!is_web(i)) continue;
         ++r.web_voxels;
-        if (counted.empty()) counted.assign(first.size(), 0);
+        if (counted.bits() == 0) counted = FlatBitset(grid.size());
         for (int64_t offset : grid.block_offsets()) {
           const int64_t j = i + offset;
-          if (counted[j] || IsOutside(now[j]) || is_web(j)) continue;
-          counted[j] = 1;
+          if (counted.test(j) || IsOutside(now[j]) || is_web(j)) continue;
+          counted.set(j);
           ++rim;
           hard += IsHard(now[j]);
         }

@@ -7,6 +7,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
+#include "absl/types/span.h"
 #include "core/engine/closed_form_generation.h"
 #include "core/engine/handle_retry.h"
 #include "core/engine/plate_schedule.h"
@@ -41,19 +42,6 @@ size_t RetryFrom(const std::vector<int>& sizes, const ShrinkOptions& options,
   for (size_t g = 0; g < sizes.size(); ++g)
     if (sizes[g] < strict.tunnel_min_plate) return g;
   return sizes.size();
-}
-
-// Calls copy(begin, end) for consecutive slices of [0, count), 16 MB each (a few milliseconds),
-// polling `cancel` between them: a 70 M voxel copy takes about 0.1 s, the whole cancellation
-// budget. False when cancelled.
-template <typename CopySlice>
-bool CopyInSlices(size_t count, const CancelToken& cancel, CopySlice copy) {
-  constexpr size_t kSlice = size_t{16} << 20;
-  for (size_t begin = 0; begin < count; begin += kSlice) {
-    if (cancel.cancelled()) return false;
-    copy(begin, std::min(count, begin + kSlice));
-  }
-  return true;
 }
 
 }  // namespace
@@ -187,23 +175,12 @@ absl::Status MembraneShrinker::RunChains(const ChainOptions& chain, GenerationSt
 }
 
 bool MembraneShrinker::Save(ShrinkCheckpoint& to) const {
-  // Appended slice by slice: no zero fill first.
-  const VoxelState* from = grid_.states().data();
-  to.states.clear();
-  to.states.reserve(grid_.states().size());
   to.counts = counts_;
-  return CopyInSlices(grid_.states().size(), cancel_, [&](size_t begin, size_t end) {
-    to.states.insert(to.states.end(), from + begin, from + end);
-  });
+  return to.states.Encode(grid_.states(), cancel_);
 }
 
 bool MembraneShrinker::Restore(const ShrinkCheckpoint& from) {
-  VoxelState* to = grid_.mutable_states().data();
-  if (!CopyInSlices(from.states.size(), cancel_, [&](size_t begin, size_t end) {
-        std::copy(from.states.begin() + begin, from.states.begin() + end, to + begin);
-      })) {
-    return false;
-  }
+  if (!from.states.Decode(absl::MakeSpan(grid_.mutable_states()), cancel_)) return false;
   counts_ = from.counts;
   return true;
 }

@@ -17,8 +17,8 @@
 
 #include "absl/status/statusor.h"
 #include "core/base/cancel_token.h"
+#include "core/engine/compact_states.h"
 #include "core/engine/contraction.h"
-#include "core/engine/huge_page_allocator.h"
 #include "core/engine/place_finder.h"
 #include "core/engine/post_process.h"
 #include "core/engine/shrink_options.h"
@@ -88,10 +88,10 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
                                             const GenerationCallback& on_generation,
                                             const CancelToken& cancel);
 
-// The grid's states and their counts at one point of the shrink. The states are on huge
-// pages: a 70 M voxel copy would otherwise spend longer in 4 KB page faults than in copying.
+// The grid's states and their counts at one point of the shrink, the states as runs
+// (compact_states.h): a plain copy would hold as many bytes as the grid.
 struct ShrinkCheckpoint {
-  std::vector<VoxelState, HugePageAllocator<VoxelState>> states;
+  CompactStates states;
   StateCounts counts;
 };
 
@@ -125,7 +125,7 @@ class MembraneShrinker {
 
   // `to` becomes a copy of the grid's states and their counts; the grid's states and counts
   // become `from`. Both poll the token between slices of the copy: false when it fired (the shrink
-  // is then abandoned, a half-copied grid with it).
+  // is then abandoned, a half-copied grid with it). `from` must be a copy of this grid.
   bool Save(ShrinkCheckpoint& to) const;
   bool Restore(const ShrinkCheckpoint& from);
 

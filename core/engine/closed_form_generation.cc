@@ -66,11 +66,16 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   FlatBitset& back = ws.back;
   FlatBitset& reach = ws.reach;
   FlatBitset& reach_back = ws.fresh;  // free until the apply step
+  // An axis whose last sweep added nothing, with `out` unchanged since, would add nothing
+  // again: it is skipped. `out_version` counts the sweeps that changed `out`; `stable_at[a]`
+  // is the version at which axis a last added nothing (-1: not yet).
+  int64_t out_version = 0;
+  int64_t stable_at[3] = {-1, -1, -1};
   for (bool changed = true; changed && outcome.rounds < 64;) {
     changed = false;
     ++outcome.rounds;
     for (int a = 0; a < 3; ++a) {
-      if (!square_fits[a]) continue;
+      if (!square_fits[a] || stable_at[a] == out_version) continue;
       if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
       const int64_t sa = st[a], su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
       // Plates whose back square (one layer behind, against the front) is all outside. Both
@@ -90,7 +95,12 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
       // Cells covered by the plates reached (dilation distributes over the union).
       reach.DilateRun(n, sv);
       reach.DilateRun(n, su);
-      if (out.OrChanged(reach)) changed = true;
+      if (out.OrChanged(reach)) {
+        changed = true;
+        ++out_version;
+      } else {
+        stable_at[a] = out_version;
+      }
     }
   }
 

@@ -11,6 +11,7 @@
 #include "core/engine/huge_page_allocator.h"
 #include "core/engine/local_topology.h"
 #include "core/engine/voxel_state_words.h"
+#include "core/mesh/parallel_tasks.h"
 
 namespace membrane {
 namespace {
@@ -37,25 +38,36 @@ ByteArray NewByteArray(int64_t n) {
 
 class Relaxer {
  public:
-  Relaxer(VoxelGrid& grid, int threshold, const CancelToken& cancel)
-      : grid_(grid), threshold_(threshold), cancel_(cancel), offsets_(grid.neighbour_offsets()) {}
+  Relaxer(VoxelGrid& grid, int threshold, int threads, const CancelToken& cancel)
+      : grid_(grid),
+        threshold_(threshold),
+        threads_(threads),
+        cancel_(cancel),
+        offsets_(grid.neighbour_offsets()) {}
 
-  // DLC of every voxel not on the array border, by three 1-D box sums of the categories, in
-  // chunks between which `cancel` is polled (a 430^3 grid is 80M voxels per pass). The arrays
-  // are left uninitialised until a pass writes them: zero-filling 3 bytes per voxel up front
-  // took over 100 ms without a poll.
+  // DLC of every voxel not on the array border, by three 1-D box sums of the categories. Each
+  // pass is cut into chunks of kVoxelsPerPoll voxels, shared by the threads (a chunk writes only
+  // its own voxels and reads arrays no pass of the moment writes, so the values do not depend
+  // on the count); `cancel` is polled between chunks (a 430^3 grid is 80M voxels per pass). The
+  // arrays are left uninitialised until a pass writes them: zero-filling 3 bytes per voxel up
+  // front took over 100 ms without a poll, and the first touch by the pass's threads spreads
+  // the kernel's page clearing over them too.
   absl::Status ComputeDlc() {
     const int64_t n = grid_.size(), sy = grid_.dim(0), sz = sy * grid_.dim(1);
     ByteArray cat = NewByteArray(n), sum = NewByteArray(n);
     dlc_ = NewByteArray(n);
     const VoxelState* s = grid_.states().data();
     auto pass = [&](int64_t from, int64_t to, auto fn) -> absl::Status {
-      for (int64_t begin = from; begin < to; begin += kVoxelsPerPoll) {
-        if (cancel_.cancelled()) return Cancel();
-        const int64_t end = std::min(to, begin + kVoxelsPerPoll);
-        for (int64_t i = begin; i < end; ++i) fn(i);
-      }
-      return absl::OkStatus();
+      if (to <= from) return absl::OkStatus();
+      TaskCancel stop(cancel_, threads_, 1);
+      RunTasks(threads_, (to - from + kVoxelsPerPoll - 1) / kVoxelsPerPoll,
+               [&](int worker, int64_t task) {
+                 if (stop.Poll(worker)) return;
+                 const int64_t begin = from + task * kVoxelsPerPoll;
+                 const int64_t end = std::min(to, begin + kVoxelsPerPoll);
+                 for (int64_t i = begin; i < end; ++i) fn(i);
+               });
+      return stop.fired() ? Cancel() : absl::OkStatus();
     };
     // Each pass writes every voxel whose neighbours along its axis exist (across row ends
     // too: the values there are only read for border voxels, which never move), and the
@@ -89,9 +101,16 @@ class Relaxer {
       b.items.clear();
       b.next = 0;
     }
+    // The scan: each z plane of the movable region lists its qualifying voxels in index order,
+    // the planes side by side on the threads; the lists then fill the buckets plane after
+    // plane, so the buckets' order is the index order whatever the count.
     const auto& d = grid_.dims();
-    for (int z = kPadding; z < d[2] - kPadding; ++z) {
-      if (cancel_.cancelled()) return Cancel();
+    const int planes = d[2] - 2 * kPadding;
+    std::vector<std::vector<int64_t>> found(planes);
+    TaskCancel stop(cancel_, threads_, 1);
+    RunTasks(threads_, planes, [&](int worker, int64_t plane) {
+      if (stop.Poll(worker)) return;
+      const int z = kPadding + static_cast<int>(plane);
       for (int y = kPadding; y < d[1] - kPadding; ++y)
         for (int x = kPadding; x < d[0] - kPadding;) {
           const int64_t i = grid_.Index(x, y, z);
@@ -100,10 +119,13 @@ class Relaxer {
             x += 8;
             continue;
           }
-          Offer(i);
+          if (Qualifies(i)) found[plane].push_back(i);
           ++x;
         }
-    }
+    });
+    if (stop.fired()) return Cancel();
+    for (const std::vector<int64_t>& list : found)
+      for (int64_t i : list) buckets_[Key(i)].items.push_back(i);
     int64_t steps = 0;
     for (int key = 26; key >= threshold_;) {
       Bucket& b = buckets_[key];
@@ -146,12 +168,14 @@ class Relaxer {
     return IsBoundary(s) && !IsHard(s) && InMovableRegion(i);
   }
 
-  void Offer(int64_t i) {
+  // A voxel of the movable region that the phase would move now (its key is its bucket).
+  bool Qualifies(int64_t i) const {
     const VoxelState s = grid_.at(i);
-    if (!IsBoundary(s) || IsHard(s)) return;
-    const int key = Key(i);
-    if (key < threshold_ || !InMovableRegion(i)) return;
-    buckets_[key].items.push_back(i);
+    return IsBoundary(s) && !IsHard(s) && Key(i) >= threshold_;
+  }
+
+  void Offer(int64_t i) {
+    if (Qualifies(i) && InMovableRegion(i)) buckets_[Key(i)].items.push_back(i);
   }
 
   // Sets a state and keeps the neighbours' DLC right.
@@ -225,6 +249,7 @@ class Relaxer {
 
   VoxelGrid& grid_;
   const int threshold_;
+  const int threads_;
   const CancelToken& cancel_;
   const std::array<int64_t, 26>& offsets_;
   ByteArray dlc_;
@@ -250,7 +275,7 @@ absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelToken& ca
   RelaxationStats stats;
   for (int a = 0; a < 3; ++a)
     if (membrane.dim(a) < 2 * kPadding + 1) return stats;  // no movable voxel
-  Relaxer relaxer(membrane, options.threshold, cancel);
+  Relaxer relaxer(membrane, options.threshold, options.threads, cancel);
   if (absl::Status s = relaxer.ComputeDlc(); !s.ok()) return s;
   if (absl::Status s = relaxer.Phase(-1, stats); !s.ok()) return s;
   if (absl::Status s = relaxer.Phase(+1, stats); !s.ok()) return s;

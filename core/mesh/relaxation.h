@@ -41,6 +41,10 @@ struct RelaxationOptions {
   // |DLC| at which a voxel moves; the paper found 13 best in 3-D (lower values flatten the
   // membrane into coordinate and 45-degree planes, and let phase 2 undo phase 1).
   int threshold = 13;
+  // Threads (<= 1: the calling thread) of the grid-wide passes: the DLC's box sums and the
+  // scan for the first qualifying voxels. The steps themselves run one after the other in
+  // priority order. The result does not depend on the count.
+  int threads = 1;
 };
 
 struct RelaxationStats {
@@ -56,7 +60,8 @@ struct RelaxationStats {
 int DiscreteLocalCurvature(const VoxelGrid& grid, const Coord& c);
 
 // Input: a membrane grid (the engine's final DMS, invariants above holding), padding included.
-// Effect: phase 1, then phase 2, as above, in place. Deterministic.
+// Effect: phase 1, then phase 2, as above, in place. Deterministic: the same grid for any
+// options.threads.
 // Returns the counts of each phase. Errors: InvalidArgument when threshold is outside [1, 26];
 // Cancelled when `cancel` fired (polled every few thousand steps and between the passes
 // of the initial scan, so within milliseconds); the grid is then a valid membrane, relaxed in

@@ -61,11 +61,13 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
   return absl::OkStatus();
 }
 
-absl::Status RelaxStage(const CancelToken& cancel, VoxelGrid& grid, ReconstructionReport& report,
-                        ReconstructionObserver& observer) {
+absl::Status RelaxStage(const CancelToken& cancel, int threads, VoxelGrid& grid,
+                        ReconstructionReport& report, ReconstructionObserver& observer) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kRelax, report);
-  absl::StatusOr<RelaxationStats> stats = Relax(grid, cancel);
+  RelaxationOptions relax_options;
+  relax_options.threads = threads;
+  absl::StatusOr<RelaxationStats> stats = Relax(grid, cancel, relax_options);
   if (!stats.ok()) return stats.status();
   report.relaxed = true;
   report.relaxation = *stats;

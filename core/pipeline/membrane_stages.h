@@ -35,10 +35,11 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
                          VoxelGrid& grid, ReconstructionReport& report,
                          ReconstructionObserver& observer);
 
-// Relaxes the final membrane of `grid` (paper section 5); its counts in `report`. Cancelled
-// within milliseconds of `cancel` firing.
-absl::Status RelaxStage(const CancelToken& cancel, VoxelGrid& grid, ReconstructionReport& report,
-                        ReconstructionObserver& observer);
+// Relaxes the final membrane of `grid` (paper section 5), its grid-wide passes on `threads`
+// (the same grid for any count); its counts in `report`. Cancelled within milliseconds of
+// `cancel` firing.
+absl::Status RelaxStage(const CancelToken& cancel, int threads, VoxelGrid& grid,
+                        ReconstructionReport& report, ReconstructionObserver& observer);
 
 }  // namespace membrane
 

@@ -106,7 +106,8 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   report.membrane = CountMembrane(grid);
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kShrink); !s.ok()) return s;
   if (options.relax) {
-    if (absl::Status s = RelaxStage(cancel, grid, report, observer); !s.ok()) return with_context(s);
+    if (absl::Status s = RelaxStage(cancel, options.threads, grid, report, observer); !s.ok())
+      return with_context(s);
   }
 
   if (absl::Status s = adapters.gate.AdmitSurface(report.membrane, cancel); !s.ok()) return s;

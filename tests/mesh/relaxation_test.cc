@@ -171,6 +171,70 @@ TEST(Relaxation, NeverTouchesThePaddingLayers) {
       }
 }
 
+// A 96^3 block whose top has a 3x3 pit one voxel deep and a one-voxel bump every 12 voxels:
+// moves in both phases, spread over many chunks and planes of the relaxation's passes.
+VoxelGrid PittedBlockGrid() {
+  VoxelGrid g = OutsideGrid(96);
+  MarkSolid(
+      g,
+      [](int x, int y, int z) {
+        const bool block = x >= 4 && x < 92 && y >= 4 && y < 92 && z >= 4 && z < 60;
+        const bool pit = x % 12 >= 6 && x % 12 < 9 && y % 12 >= 6 && y % 12 < 9 && z >= 58;
+        const bool bump = x % 12 == 2 && y % 12 == 2 && z == 60 && x > 4 && y > 4 && x < 91 &&
+                          y < 91;
+        return (block && !pit) || bump;
+      },
+      kBoundaryFrozen);
+  return g;
+}
+
+// The grid-wide passes run on the threads in chunks of 2^18 voxels and in z planes: grids of
+// several chunks relax to the same bytes and counts on 1, 2 and 3.
+TEST(Relaxation, SameGridForAnyThreadCount) {
+  std::vector<VoxelGrid> shapes;
+  shapes.push_back(PittedBlockGrid());
+  shapes.push_back(SolidTorusGrid(96, 30, 11.5));
+  FreezeWithSomeHard(shapes.back());
+  for (const VoxelGrid& shape : shapes) {
+    ASSERT_GT(shape.size(), 3 * (int64_t{1} << 18));
+    std::vector<VoxelGrid> relaxed;
+    std::vector<RelaxationStats> stats;
+    for (int threads : {1, 2, 3}) {
+      VoxelGrid g = shape;
+      RelaxationOptions options;
+      options.threads = threads;
+      const absl::StatusOr<RelaxationStats> s = Relax(g, CancelToken::Never(), options);
+      ASSERT_TRUE(s.ok()) << s.status();
+      relaxed.push_back(std::move(g));
+      stats.push_back(*s);
+    }
+    EXPECT_GT(stats[0].phase1_moves + stats[0].phase2_moves, 0);
+    for (int k = 1; k < 3; ++k) {
+      EXPECT_TRUE(relaxed[k].states() == relaxed[0].states()) << "threads " << k + 1;
+      EXPECT_EQ(stats[k].phase1_moves, stats[0].phase1_moves);
+      EXPECT_EQ(stats[k].phase1_added, stats[0].phase1_added);
+      EXPECT_EQ(stats[k].phase2_moves, stats[0].phase2_moves);
+      EXPECT_EQ(stats[k].phase2_uncovered, stats[0].phase2_uncovered);
+      EXPECT_EQ(stats[k].not_simple, stats[0].not_simple);
+    }
+  }
+  VoxelGrid block = PittedBlockGrid();
+  const RelaxationStats block_stats = RelaxOk(block);
+  EXPECT_GE(block_stats.phase1_moves, 49);  // a move per pit at least
+  EXPECT_GE(block_stats.phase2_moves, 49);  // and per bump
+}
+
+TEST(Relaxation, StopsWhenCancelledOnSeveralThreads) {
+  VoxelGrid g = SolidTorusGrid(96, 30, 11.5);
+  FreezeWithSomeHard(g);
+  CancelToken cancel;
+  cancel.Cancel();
+  RelaxationOptions options;
+  options.threads = 3;
+  EXPECT_EQ(Relax(g, cancel, options).status().code(), absl::StatusCode::kCancelled);
+  ExpectMembraneInvariants(g);
+}
+
 TEST(Relaxation, RejectsThresholdOutOfRange) {
   VoxelGrid g = BallGrid(12, 3.5);
   RelaxationOptions options;

@@ -7,6 +7,7 @@
 #include "core/engine/huge_page_allocator.h"
 #include "core/engine/local_topology.h"
 #include "core/engine/voxel_state_words.h"
+#include "core/mesh/parallel_tasks.h"
 
 namespace membrane {
 namespace {
@@ -17,42 +18,45 @@ using Mask = std::vector<char, HugePageAllocator<char>>;
 
 // mask := for each voxel, the AND (erode) or OR (dilate) of the mask over its 3x3x3 box, as
 // three 1-D passes; voxels beyond the array read as `beyond`. Inner loops run along x over
-// whole rows with no test inside (the row ends apart), so they vectorize.
-// `tmp` is scratch of the mask's size.
+// whole rows with no test inside (the row ends apart), so they vectorize. Each pass writes one
+// z plane per task from planes of the previous one, so the planes share `threads` and the
+// result does not depend on the count. `tmp` is scratch of the mask's size.
 template <bool kErode>
-void BoxFilter(const VoxelGrid& grid, Mask& mask, Mask& tmp,
-               char beyond) {
+void BoxFilter(const VoxelGrid& grid, Mask& mask, Mask& tmp, char beyond, int threads) {
   const int nx = grid.dim(0), ny = grid.dim(1), nz = grid.dim(2);
   const int64_t sy = nx, sz = int64_t{nx} * ny;
   auto combine = [](char a, char b, char c) -> char { return kErode ? (a & b & c) : (a | b | c); };
   // Along x.
-  for (int64_t row = 0; row < int64_t{ny} * nz; ++row) {
-    const char* m = mask.data() + row * nx;
-    char* t = tmp.data() + row * nx;
-    if (nx == 1) {
-      t[0] = combine(beyond, m[0], beyond);
-      continue;
+  RunTasks(threads, nz, [&](int, int64_t z) {
+    for (int64_t row = z * ny; row < (z + 1) * ny; ++row) {
+      const char* m = mask.data() + row * nx;
+      char* t = tmp.data() + row * nx;
+      if (nx == 1) {
+        t[0] = combine(beyond, m[0], beyond);
+        continue;
+      }
+      t[0] = combine(beyond, m[0], m[1]);
+      for (int x = 1; x + 1 < nx; ++x) t[x] = combine(m[x - 1], m[x], m[x + 1]);
+      t[nx - 1] = combine(m[nx - 2], m[nx - 1], beyond);
     }
-    t[0] = combine(beyond, m[0], m[1]);
-    for (int x = 1; x + 1 < nx; ++x) t[x] = combine(m[x - 1], m[x], m[x + 1]);
-    t[nx - 1] = combine(m[nx - 2], m[nx - 1], beyond);
-  }
+  });
   mask.swap(tmp);
   // Along y, then z: whole rows at a time.
-  std::vector<char> beyond_row(nx, beyond);
+  const std::vector<char> beyond_row(nx, beyond);
   for (int axis = 1; axis < 3; ++axis) {
     const int n = axis == 1 ? ny : nz;
     const int64_t step = axis == 1 ? sy : sz;
-    for (int z = 0; z < nz; ++z)
+    RunTasks(threads, nz, [&](int, int64_t z) {
       for (int y = 0; y < ny; ++y) {
         const int64_t i = y * sy + z * sz;
-        const int c = axis == 1 ? y : z;
+        const int c = axis == 1 ? y : static_cast<int>(z);
         const char* lo = c > 0 ? mask.data() + i - step : beyond_row.data();
         const char* mid = mask.data() + i;
         const char* hi = c + 1 < n ? mask.data() + i + step : beyond_row.data();
         char* t = tmp.data() + i;
         for (int x = 0; x < nx; ++x) t[x] = combine(lo[x], mid[x], hi[x]);
       }
+    });
     mask.swap(tmp);
   }
 }
@@ -151,26 +155,35 @@ bool AnyCave(const VoxelState* states, const char* near) {
 
 }  // namespace
 
-int64_t FillCaves(VoxelGrid& grid) {
+int64_t FillCaves(VoxelGrid& grid, int threads) {
   const int64_t n = grid.size();
   const VoxelState* s = grid.states().data();
+  const auto& d = grid.dims();
+  const int64_t plane = int64_t{d[0]} * d[1];
+  // The grid-wide passes go plane by plane on the threads (the first touch of each mask's
+  // pages too, which the kernel clears on the touching thread).
   Mask deep(n);
-  for (int64_t i = 0; i < n; ++i) deep[i] = IsOutside(s[i]) ? 1 : 0;
+  RunTasks(threads, d[2], [&](int, int64_t z) {
+    for (int64_t i = z * plane; i < (z + 1) * plane; ++i) deep[i] = IsOutside(s[i]) ? 1 : 0;
+  });
   // Two grid-sized masks at a time, not three: the erosion's scratch goes before the flood
   // makes its mask, and `deep`, read by the flood alone, is the dilation's scratch (the filter
   // writes every byte of its scratch before reading it). On a 10M-point cloud's grid of 2e9
   // voxels a mask is 2 GB.
   {
     Mask scratch(n);
-    BoxFilter</*kErode=*/true>(grid, deep, scratch, /*beyond=*/1);
+    BoxFilter</*kErode=*/true>(grid, deep, scratch, /*beyond=*/1, threads);
   }
   Mask near_exterior = FloodFromBorder(grid, deep);
-  BoxFilter</*kErode=*/false>(grid, near_exterior, deep, /*beyond=*/0);
+  BoxFilter</*kErode=*/false>(grid, near_exterior, deep, /*beyond=*/0, threads);
   Mask().swap(deep);
 
-  std::vector<int64_t> caves;
-  const auto& d = grid.dims();
-  for (int z = 1; z < d[2] - 1; ++z)
+  // Each inner plane lists its caves in index order; the lists joined in plane order are the
+  // caves in index order whatever the thread count.
+  std::vector<std::vector<int64_t>> plane_caves(d[2]);
+  RunTasks(threads, d[2] > 2 ? d[2] - 2 : 0, [&](int, int64_t task) {
+    const int z = static_cast<int>(task) + 1;
+    std::vector<int64_t>& found = plane_caves[z];
     for (int y = 1; y < d[1] - 1; ++y) {
       const int64_t row = grid.Index(0, y, z);
       for (int x = 1; x < d[0] - 1;) {
@@ -179,10 +192,14 @@ int64_t FillCaves(VoxelGrid& grid) {
           x += 8;
           continue;
         }
-        if (IsOutside(s[row + x]) && !near_exterior[row + x]) caves.push_back(row + x);
+        if (IsOutside(s[row + x]) && !near_exterior[row + x]) found.push_back(row + x);
         ++x;
       }
     }
+  });
+  std::vector<int64_t> caves;
+  for (std::vector<int64_t>& found : plane_caves) caves.insert(caves.end(), found.begin(), found.end());
+  plane_caves.clear();
 
   auto solid = [](VoxelState v) { return !IsOutside(v); };
   int64_t filled = 0;

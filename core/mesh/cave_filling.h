@@ -25,7 +25,9 @@ namespace membrane {
 //      (26,6)-simple against the current solid, until a pass adds nothing.
 // Returns the number of voxels filled. Shells and genus of the solid never change.
 // Cost: O(voxels) for steps 1-2, then O(cave voxels) per pass; a few byte arrays of grid size.
-int64_t FillCaves(VoxelGrid& grid);
+// `threads` (<= 1: the calling thread) share step 1's box filters and step 2, plane by plane;
+// the flood and step 3 run on the calling thread. The grid is the same for any count.
+int64_t FillCaves(VoxelGrid& grid, int threads = 1);
 
 }  // namespace membrane
 

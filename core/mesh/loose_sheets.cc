@@ -1,23 +1,34 @@
 #include "core/mesh/loose_sheets.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "core/engine/voxel_state_words.h"
+#include "core/mesh/parallel_tasks.h"
 
 namespace membrane {
-int64_t RemoveLooseSheets(VoxelGrid& grid) {
+int64_t RemoveLooseSheets(VoxelGrid& grid, int threads) {
   // A component holds an inside voxel iff one of its boundary voxels touches one: any 26-path
   // from a boundary voxel to the rest of its component leaves the boundary voxels through an
-  // inside voxel. So flood the boundary voxels from those that touch an inside voxel.
+  // inside voxel. So flood the boundary voxels from those that touch an inside voxel. The scan
+  // goes plane by plane on the threads (each plane marks and lists its own voxels); the kept
+  // set is the flood's closure, the same in any order.
   const std::array<int64_t, 26>& off = grid.neighbour_offsets();
   const VoxelState* s = grid.states().data();
-  std::vector<char> kept(static_cast<size_t>(grid.size()), 0);
-  std::vector<int64_t> stack;
-  std::vector<int64_t> boundary;
   const auto& d = grid.dims();
-  for (int z = 1; z < d[2] - 1; ++z)
+  const int64_t plane = int64_t{d[0]} * d[1];
+  std::vector<char> kept(static_cast<size_t>(grid.size()));
+  RunTasks(threads, d[2], [&](int, int64_t z) {
+    std::fill(kept.begin() + z * plane, kept.begin() + (z + 1) * plane, 0);
+  });
+  const int inner_planes = d[2] > 2 ? d[2] - 2 : 0;
+  std::vector<std::vector<int64_t>> plane_boundary(inner_planes), plane_seeds(inner_planes);
+  RunTasks(threads, inner_planes, [&](int, int64_t task) {
+    const int z = static_cast<int>(task) + 1;
+    std::vector<int64_t>& boundary = plane_boundary[task];
+    std::vector<int64_t>& seeds = plane_seeds[task];
     for (int y = 1; y < d[1] - 1; ++y)
       for (int x = 1; x < d[0] - 1; ++x) {
         const int64_t i = grid.Index(x, y, z);
@@ -31,10 +42,16 @@ int64_t RemoveLooseSheets(VoxelGrid& grid) {
         for (int64_t o : off)
           if (IsInside(s[i + o])) {
             kept[i] = 1;
-            stack.push_back(i);
+            seeds.push_back(i);
             break;
           }
       }
+  });
+  std::vector<int64_t> stack;
+  for (std::vector<int64_t>& seeds : plane_seeds) {
+    stack.insert(stack.end(), seeds.begin(), seeds.end());
+    std::vector<int64_t>().swap(seeds);
+  }
   while (!stack.empty()) {
     const int64_t i = stack.back();
     stack.pop_back();
@@ -46,11 +63,12 @@ int64_t RemoveLooseSheets(VoxelGrid& grid) {
     }
   }
   int64_t removed = 0;
-  for (int64_t i : boundary)
-    if (!kept[i]) {
-      grid.set(i, OutsideState(0));
-      ++removed;
-    }
+  for (const std::vector<int64_t>& boundary : plane_boundary)
+    for (int64_t i : boundary)
+      if (!kept[i]) {
+        grid.set(i, OutsideState(0));
+        ++removed;
+      }
   return removed;
 }
 

@@ -16,8 +16,10 @@ namespace membrane {
 // Input: a membrane grid (outside / boundary / inside states; the array border outside).
 // Effect: every 26-component of non-outside voxels that holds no inside voxel becomes
 // OutsideState(0). Components with an inside voxel are untouched.
-// Returns the number of voxels removed. O(voxels).
-int64_t RemoveLooseSheets(VoxelGrid& grid);
+// Returns the number of voxels removed. O(voxels). `threads` (<= 1: the calling thread) share
+// the scan of the grid, plane by plane; the flood runs on the calling thread. The grid is the
+// same for any count.
+int64_t RemoveLooseSheets(VoxelGrid& grid, int threads = 1);
 
 }  // namespace membrane
 

@@ -36,10 +36,10 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
   const ProgressRange prepare = progress.Part(0, kPrepareShare);
   prepare.Begin(3);
   // Loose sheets go first so that cave filling cannot thicken a sheet into something kept.
-  if (options.remove_loose_sheets) s.loose_sheet_voxels = RemoveLooseSheets(grid);
+  if (options.remove_loose_sheets) s.loose_sheet_voxels = RemoveLooseSheets(grid, options.fit_options.threads);
   prepare.Add(1);
   if (cancel.cancelled()) return absl::CancelledError("surface cancelled");
-  if (options.fill_caves) s.cave_voxels = FillCaves(grid);
+  if (options.fill_caves) s.cave_voxels = FillCaves(grid, options.fit_options.threads);
   prepare.Add(1);
   if (cancel.cancelled()) return absl::CancelledError("surface cancelled");
   if (options.bridging_scans > 0) {

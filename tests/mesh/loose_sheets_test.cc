@@ -1,5 +1,7 @@
 #include "core/mesh/loose_sheets.h"
 
+#include <vector>
+
 #include "core/engine/voxel_topology.h"
 #include "gtest/gtest.h"
 #include "tests/mesh/test_grids.h"
@@ -38,6 +40,28 @@ TEST(LooseSheets, KeepsEverySolidWithInsideVoxels) {
   VoxelGrid g = TwoBallsGrid(32, 6, 3);
   EXPECT_EQ(RemoveLooseSheets(g), 0);
   EXPECT_EQ(ComputeVoxelTopology(g).shells, 2);
+}
+
+// Plates on many planes, loose and attached, beside two balls: the scan's planes on 1, 2 and
+// 3 threads remove the same voxels.
+TEST(LooseSheets, SameGridForAnyThreadCount) {
+  VoxelGrid shape = TwoBallsGrid(48, 9, 3);
+  for (int z = 4; z < 44; z += 6)
+    for (int y = 3; y < 10; ++y)
+      for (int x = 3; x < 45; ++x) shape.set(Coord{x, y, z}, kBoundaryFrozen);
+  for (int z = 3; z < 45; ++z) shape.set(Coord{24, 24, z}, kBoundaryFrozen);  // through a ball
+  std::vector<VoxelGrid> cleaned;
+  std::vector<int64_t> removed;
+  for (int threads : {1, 2, 3}) {
+    VoxelGrid g = shape;
+    removed.push_back(RemoveLooseSheets(g, threads));
+    cleaned.push_back(std::move(g));
+  }
+  EXPECT_GE(removed[0], 7 * 7 * 42);
+  for (int k = 1; k < 3; ++k) {
+    EXPECT_EQ(removed[k], removed[0]) << "threads " << k + 1;
+    EXPECT_TRUE(cleaned[k].states() == cleaned[0].states()) << "threads " << k + 1;
+  }
 }
 
 }  // namespace

@@ -50,7 +50,9 @@ int64_t Floor(double v) {
 // cells one after the other, which keeps the faces' data in cache.
 class SortedFaceCells {
  public:
-  explicit SortedFaceCells(const BigVector<Box>& boxes) {
+  // The entries are made and sorted in blocks of boxes on `threads`; the sort is stable, so
+  // the entries' order does not depend on the count.
+  SortedFaceCells(const BigVector<Box>& boxes, int threads) {
     Box all = boxes[0];
     double extent_sum = 0;
     for (const Box& b : boxes) {
@@ -74,34 +76,37 @@ class SortedFaceCells {
     pos_bits_ = std::bit_width(static_cast<uint64_t>(boxes.size()));
     cell_ = std::max({2.0 * extent_sum / boxes.size(), diag / ((1 << 20) - 2), 1e-30});
     const double max_entries = 16.0 * boxes.size() + 64;
-    double entries = 0;
+    std::vector<int64_t> counts;  // entries per block of boxes
     for (;;) {
       for (int k = 0; k < 3; ++k) dims_[k] = Cell(all.hi[k], k) + 1;
       if (std::bit_width(static_cast<uint64_t>(dims_[0] * dims_[1] * dims_[2])) + pos_bits_ > 64) {
         cell_ *= 2;
         continue;
       }
-      entries = 0;
-      for (const Box& b : boxes) {
-        double n = 1;
-        for (int k = 0; k < 3; ++k) n *= Cell(b.hi[k], k) - Cell(b.lo[k], k) + 1;
-        entries += n;
-        if (entries > max_entries) break;
-      }
+      counts = CountEntries(boxes, threads, max_entries);
+      double entries = 0;
+      for (int64_t count : counts) entries += static_cast<double>(count);
       if (entries <= max_entries) break;
       cell_ *= 1.5;
     }
-    entries_.reserve(static_cast<size_t>(entries));
-    for (size_t p = 0; p < boxes.size(); ++p) {
-      const CellCoord lo = CellOf(boxes[p].lo), hi = CellOf(boxes[p].hi);
-      for (int64_t z = lo[2]; z <= hi[2]; ++z)
-        for (int64_t y = lo[1]; y <= hi[1]; ++y)
-          for (int64_t x = lo[0]; x <= hi[0]; ++x) {
-            const uint64_t key = static_cast<uint64_t>(x + dims_[0] * (y + dims_[1] * z));
-            entries_.push_back(key << pos_bits_ | static_cast<uint64_t>(p));
-          }
-    }
-    RadixSort(static_cast<uint64_t>(dims_[0] * dims_[1] * dims_[2]));
+    // Each block writes its boxes' entries from its own offset: position order, as one loop.
+    std::vector<size_t> offset(counts.size() + 1, 0);
+    for (size_t b = 0; b < counts.size(); ++b) offset[b + 1] = offset[b] + counts[b];
+    entries_.resize(offset.back());
+    RunTasks(threads, static_cast<int64_t>(counts.size()), [&](int, int64_t block) {
+      size_t e = offset[block];
+      const size_t end = std::min(boxes.size(), static_cast<size_t>(block + 1) * kBoxesPerBlock);
+      for (size_t p = static_cast<size_t>(block) * kBoxesPerBlock; p < end; ++p) {
+        const CellCoord lo = CellOf(boxes[p].lo), hi = CellOf(boxes[p].hi);
+        for (int64_t z = lo[2]; z <= hi[2]; ++z)
+          for (int64_t y = lo[1]; y <= hi[1]; ++y)
+            for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+              const uint64_t key = static_cast<uint64_t>(x + dims_[0] * (y + dims_[1] * z));
+              entries_[e++] = key << pos_bits_ | static_cast<uint64_t>(p);
+            }
+      }
+    });
+    RadixSort(static_cast<uint64_t>(dims_[0] * dims_[1] * dims_[2]), threads);
   }
 
   int64_t Cell(float v, int axis) const { return Floor((v - lo_[axis]) / cell_); }
@@ -119,20 +124,64 @@ class SortedFaceCells {
   }
 
  private:
+  static constexpr size_t kBoxesPerBlock = 16384;
+
+  // The entries of each block of kBoxesPerBlock boxes at the current cell size; a block stops
+  // counting past `limit` (the caller then coarsens the cells anyway).
+  std::vector<int64_t> CountEntries(const BigVector<Box>& boxes, int threads,
+                                    double limit) const {
+    std::vector<int64_t> counts((boxes.size() + kBoxesPerBlock - 1) / kBoxesPerBlock, 0);
+    RunTasks(threads, static_cast<int64_t>(counts.size()), [&](int, int64_t block) {
+      const size_t end = std::min(boxes.size(), static_cast<size_t>(block + 1) * kBoxesPerBlock);
+      int64_t n = 0;
+      for (size_t p = static_cast<size_t>(block) * kBoxesPerBlock; p < end; ++p) {
+        int64_t cells = 1;
+        for (int k = 0; k < 3; ++k) cells *= Cell(boxes[p].hi[k], k) - Cell(boxes[p].lo[k], k) + 1;
+        n += cells;
+        if (static_cast<double>(n) > limit) break;
+      }
+      counts[block] = n;
+    });
+    return counts;
+  }
+
   // LSD radix sort of the packed entries by their key bits, 11 bits per pass. Stable, and the
   // entries were made in position order, so a cell lists its faces by increasing position.
-  void RadixSort(uint64_t key_limit) {
+  // Each pass counts the digits of slices of the entries side by side, then each slice writes
+  // its entries from its own offsets (digit first, slice second): the same order as one loop.
+  void RadixSort(uint64_t key_limit, int threads) {
     constexpr int kBits = 11;
     constexpr uint64_t kMask = (1 << kBits) - 1;
+    constexpr size_t kMinSlice = size_t{1} << 16;
     const int passes = (std::bit_width(key_limit) + kBits - 1) / kBits;
-    BigVector<uint64_t> other(entries_.size());
-    std::vector<size_t> count(kMask + 2);
+    const size_t n = entries_.size();
+    const size_t slices =
+        threads <= 1 ? 1 : std::clamp<size_t>(n / kMinSlice, 1, 4 * static_cast<size_t>(threads));
+    auto slice_begin = [&](size_t s) { return n * s / slices; };
+    BigVector<uint64_t> other(n);
+    std::vector<std::vector<size_t>> count(slices, std::vector<size_t>(kMask + 1));
     for (int pass = 0; pass < passes; ++pass) {
       const int shift = pos_bits_ + pass * kBits;
-      std::fill(count.begin(), count.end(), 0);
-      for (uint64_t e : entries_) ++count[((e >> shift) & kMask) + 1];
-      for (size_t d = 0; d <= kMask; ++d) count[d + 1] += count[d];
-      for (uint64_t e : entries_) other[count[(e >> shift) & kMask]++] = e;
+      RunTasks(threads, static_cast<int64_t>(slices), [&](int, int64_t s) {
+        std::vector<size_t>& c = count[s];
+        std::fill(c.begin(), c.end(), 0);
+        for (size_t e = slice_begin(s); e < slice_begin(s + 1); ++e)
+          ++c[(entries_[e] >> shift) & kMask];
+      });
+      size_t start = 0;
+      for (size_t d = 0; d <= kMask; ++d)
+        for (size_t s = 0; s < slices; ++s) {
+          const size_t c = count[s][d];
+          count[s][d] = start;
+          start += c;
+        }
+      RunTasks(threads, static_cast<int64_t>(slices), [&](int, int64_t s) {
+        std::vector<size_t>& at = count[s];
+        for (size_t e = slice_begin(s); e < slice_begin(s + 1); ++e) {
+          const uint64_t v = entries_[e];
+          other[at[(v >> shift) & kMask]++] = v;
+        }
+      });
       entries_.swap(other);
     }
   }
@@ -153,7 +202,7 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
     progress.Done();
     return pairs;
   }
-  const SortedFaceCells cells(p.box);
+  const SortedFaceCells cells(p.box, threads);
   const size_t n = p.face.size();
   // Lowest cell of each box: the lowest cell of two boxes' overlap is the per-axis maximum of
   // theirs, so each pair is tested once, in that cell. Face planes are computed once per face:
@@ -261,14 +310,32 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMes
                                                                ProgressRange progress) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
+  // Blocks of faces count their valid faces, then write them from their own offsets: index
+  // order, as one loop.
+  constexpr int32_t kFacesPerBlock = 16384;
+  const int64_t blocks = (int64_t{nf} + kFacesPerBlock - 1) / kFacesPerBlock;
+  auto block_end = [&](int64_t block) {
+    return static_cast<int32_t>(std::min<int64_t>(nf, (block + 1) * kFacesPerBlock));
+  };
+  std::vector<size_t> offset(blocks + 1, 0);
+  RunTasks(threads, blocks, [&](int, int64_t block) {
+    size_t valid = 0;
+    for (int32_t f = static_cast<int32_t>(block * kFacesPerBlock); f < block_end(block); ++f)
+      valid += ValidFace(mesh.faces[f], nv);
+    offset[block + 1] = valid;
+  });
+  for (int64_t block = 0; block < blocks; ++block) offset[block + 1] += offset[block];
   Participants p;
-  p.face.reserve(nf);
-  p.box.reserve(nf);
-  for (int32_t f = 0; f < nf; ++f) {
-    if (!ValidFace(mesh.faces[f], nv)) continue;
-    p.face.push_back(f);
-    p.box.push_back(BoxOfFace(mesh, f));
-  }
+  p.face.resize(offset.back());
+  p.box.resize(offset.back());
+  RunTasks(threads, blocks, [&](int, int64_t block) {
+    size_t at = offset[block];
+    for (int32_t f = static_cast<int32_t>(block * kFacesPerBlock); f < block_end(block); ++f) {
+      if (!ValidFace(mesh.faces[f], nv)) continue;
+      p.face[at] = f;
+      p.box[at++] = BoxOfFace(mesh, f);
+    }
+  });
   return SearchPairs(mesh, p, threads, cancel, progress);
 }
 

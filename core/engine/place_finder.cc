@@ -8,26 +8,30 @@
 namespace membrane {
 
 // Every plane of a snapshot comes from the arena (the closed form needs fewer).
-static_assert(kPlaceFinderPlanes <= WorkPlanes::kArenaPlanes);
+static_assert(kPlaceFinderPlanes + kAnchorRowPlanes <= WorkPlanes::kArenaPlanes);
 
 PlaceFinder::PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes)
     : grid_(grid), planes_(planes) {}
 
 std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelToken& cancel) {
-  if (!planes_.Ensure(kPlaceFinderPlanes, cancel)) return std::nullopt;
+  const bool rows = n >= kAnchorRowsMinPlate;
+  if (!planes_.Ensure(kPlaceFinderPlanes + (rows ? kAnchorRowPlanes : 0), cancel)) {
+    return std::nullopt;
+  }
   n_ = n;
   const auto st = grid_.strides();
-  // Planes 0-5 hold E_o and 6-11 DC_o until the next snapshot; the rest are work planes.
+  // Planes 0-5 hold E_o (and, for big plates, planes kPlaceFinderPlanes.. DC_o) until the
+  // next snapshot; the rest are work planes.
   for (int o = 0; o < 6; ++o) {
     anchors_[o] = &planes_.plane(o);
-    anchor_rows_[o] = &planes_.plane(6 + o);
+    anchor_rows_[o] = rows ? &planes_.plane(kPlaceFinderPlanes + o) : nullptr;
   }
-  FlatBitset& out = planes_.plane(12);
-  FlatBitset& bs = planes_.plane(13);
+  FlatBitset& out = planes_.plane(6);
+  FlatBitset& bs = planes_.plane(7);
   FillStatePlane(grid_.states(), StatePredicate::kOutside, out);
   FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, bs);
   if (cancel.cancelled()) return std::nullopt;
-  FlatBitset& free_cells = planes_.plane(14);  // outside or boundary soft, off the border
+  FlatBitset& free_cells = planes_.plane(8);  // outside or boundary soft, off the border
   free_cells.AssignOrAnd(out, bs, planes_.interior());
 
   // The anchors of orientation (a, sign) are the plates whose cells are free and whose back
@@ -36,8 +40,8 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   // Both signs share the two eroded planes, and the three axes share the erosions along z
   // and along x: 8 erosion runs instead of 12. Copies are folded into the first pass of each
   // run (the *From operations): the planes fit in cache, so a copy costs as much as a pass.
-  FlatBitset& free_z = planes_.plane(15);
-  FlatBitset& out_z = planes_.plane(16);
+  FlatBitset& free_z = planes_.plane(9);
+  FlatBitset& out_z = planes_.plane(10);
   free_z.ErodeRunFrom(free_cells, n, st[2]);
   out_z.ErodeRunFrom(out, n, st[2]);
   if (cancel.cancelled()) return std::nullopt;
@@ -48,26 +52,31 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
 
   // Candidates: bs & the union over axes of the cells covered by a plate of either sign
   // (And distributes over the union, so it is applied once at the end).
-  FlatBitset& candidates = planes_.plane(17);
-  FlatBitset& covered = planes_.plane(18);
+  FlatBitset& candidates = planes_.plane(11);
+  FlatBitset& covered = planes_.plane(12);
   for (int a = 0; a < 3; ++a) {
     if (cancel.cancelled()) return std::nullopt;
     // In-plane axes (u, v) = (y, z), (z, x), (x, y): one more erosion of a shared plane.
     const bool from_z = a != 2;
     const int last_axis = a == 1 ? 0 : 1;
-    FlatBitset& free_square = planes_.plane(19);
-    FlatBitset& out_square = planes_.plane(20);
+    FlatBitset& free_square = planes_.plane(13);
+    FlatBitset& out_square = planes_.plane(14);
     free_square.ErodeRunFrom(from_z ? free_z : free_x, n, st[last_axis]);
     out_square.ErodeRunFrom(from_z ? out_z : out_x, n, st[last_axis]);
     const int64_t su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
     for (int o = 2 * a; o < 2 * a + 2; ++o) {
       FlatBitset& e = planes_.plane(o);
       e.AssignAndShifted(free_square, out_square, kOrientations[o].sign * st[a]);
-      planes_.plane(6 + o).DilateRunFrom(e, n, sv);
+      if (rows) planes_.plane(kPlaceFinderPlanes + o).DilateRunFrom(e, n, sv);
     }
     // Dilation distributes over the union of both signs' plates.
     FlatBitset& axis_covered = a == 0 ? candidates : covered;
-    axis_covered.AssignOr(planes_.plane(6 + 2 * a), planes_.plane(6 + 2 * a + 1));
+    if (rows) {
+      axis_covered.AssignOr(*anchor_rows_[2 * a], *anchor_rows_[2 * a + 1]);
+    } else {
+      axis_covered.AssignOr(planes_.plane(2 * a), planes_.plane(2 * a + 1));
+      axis_covered.DilateRun(n, sv);
+    }
     axis_covered.DilateRun(n, su);
     if (a != 0) candidates.Or(covered);
   }
@@ -91,7 +100,11 @@ std::optional<Plate> PlaceFinder::PlaceFor(int64_t index) const {
     const Orientation& orient = kOrientations[o];
     const int k = c[orient.axis], u = c[orient.u_axis()], v = c[orient.v_axis()];
     for (int u0 = std::max(u - n_ + 1, 0); u0 <= u; ++u0) {
-      if (!anchor_rows_[o]->test(grid_.Index(PlateCell(orient, k, u0, v)))) continue;
+      // The row test only skips rows whose anchors the loop below would not find.
+      if (anchor_rows_[o] != nullptr &&
+          !anchor_rows_[o]->test(grid_.Index(PlateCell(orient, k, u0, v)))) {
+        continue;
+      }
       for (int v0 = std::max(v - n_ + 1, 0); v0 <= v; ++v0) {
         if (anchors_[o]->test(grid_.Index(PlateCell(orient, k, u0, v0)))) {
           return Plate{o, k, u0, v0};

@@ -20,13 +20,19 @@
 
 namespace membrane {
 
-inline constexpr int kPlaceFinderPlanes = 21;
+// Work planes of a snapshot, and the six more (the anchor rows DC_o) of a snapshot for plates
+// of kAnchorRowsMinPlate and more: below it, PlaceFor tests the n x n anchors of each
+// orientation directly, and the planes stay unallocated.
+inline constexpr int kPlaceFinderPlanes = 15;
+inline constexpr int kAnchorRowPlanes = 6;
+inline constexpr int kAnchorRowsMinPlate = 8;
 
 class PlaceFinder {
  public:
   // Keeps references to `grid` and `planes` (made for that grid), which must outlive the
-  // finder. A snapshot overwrites the first kPlaceFinderPlanes planes; PlaceFor reads them,
-  // so nothing else may write them in between.
+  // finder. A snapshot overwrites the first kPlaceFinderPlanes planes (and the next
+  // kAnchorRowPlanes for n >= kAnchorRowsMinPlate); PlaceFor reads them, so nothing else may
+  // write them in between.
   PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes);
 
   // Takes a snapshot for plate size n >= 1 of the current grid: every plate whose cells are
@@ -46,7 +52,7 @@ class PlaceFinder {
   WorkPlanes& planes_;
   int n_ = 0;
   // Set by the last snapshot: E_o, the lowest corner of each fitting plate, and DC_o, E_o
-  // dilated along v by n.
+  // dilated along v by n (null below kAnchorRowsMinPlate).
   std::array<const FlatBitset*, 6> anchors_{};
   std::array<const FlatBitset*, 6> anchor_rows_{};
 };

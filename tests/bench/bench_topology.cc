@@ -32,12 +32,16 @@ namespace {
 
 constexpr char kUsage[] =
     "usage: bench_topology [--factors 1,1.25,1.5,2] [--models NAME,...] [--no-synthetic]\n"
-    "                      [--no-real] [--locate] [--retry T,S,W] [--shared DIR]\n"
+    "                      [--no-real] [--locate] [--retry T,S,W] [--thick-wall-run K]\n"
+    "                      [--depth-bound D] [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
     "  --locate         print where the handles and merges of every miss are\n"
     "  --retry T,S,W    the handle retry's tunnel, short-loop and wall-notch plate sizes\n"
     "                   (ShrinkOptions::retry; 0 = none of that kind)\n"
+    "  --thick-wall-run K  the thick-wall incursion test's longest hard run (1 = the\n"
+    "                   paper's test only; ChainRules::thick_wall_run)\n"
+    "  --depth-bound D  the small plates' depth bound (0 = unbounded; ChainRules::depth_bound)\n"
     "  --shared DIR     the shared folder holding data/clouds (default: $MEMBRANE_SHARED_DIR,\n"
     "                   else <repo>/../shared)\n";
 
@@ -75,6 +79,10 @@ bool ParseArgs(int argc, char** argv, Options& o) {
           !absl::SimpleAtoi(f[2], &o.shrink.retry.wall_notch_min_plate)) {
         return false;
       }
+    } else if (arg == "--thick-wall-run" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.thick_wall_run)) return false;
+    } else if (arg == "--depth-bound" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.depth_bound)) return false;
     } else if (arg == "--no-synthetic") {
       o.synthetic = false;
     } else if (arg == "--no-real") {

@@ -10,18 +10,21 @@
 #include "core/engine/topology_guard.h"
 
 namespace membrane {
-// The planes of a closed-form generation, named.
+// The planes of a closed-form generation, named. The apply step's planes reuse planes of the
+// sweeps that are not read again by then (free_cells once the squares are made, back, reach,
+// the first square).
 struct ClosedFormPlanes {
   explicit ClosedFormPlanes(WorkPlanes& p)
       : interior(p.interior()), out0(p.plane(0)), free_cells(p.plane(1)), out(p.plane(2)),
         back(p.plane(3)), reach(p.plane(4)), tmp(p.plane(5)), fresh(p.plane(6)),
-        was_boundary_soft(p.plane(7)), adjacent(p.plane(8)), converted(p.plane(9)),
-        near_hard(p.plane(10)), scratch_a(p.plane(11)), scratch_b(p.plane(12)),
-        squares{&p.plane(13), &p.plane(14), &p.plane(5)} {}
+        scratch_a(p.plane(7)), scratch_b(p.plane(8)),
+        squares{&p.plane(9), &p.plane(10), &p.plane(5)},
+        was_boundary_soft(p.plane(3)), adjacent(p.plane(4)), converted(p.plane(1)),
+        near_hard(p.plane(9)) {}
   const FlatBitset& interior;
-  FlatBitset &out0, &free_cells, &out, &back, &reach, &tmp, &fresh, &was_boundary_soft,
-      &adjacent, &converted, &near_hard, &scratch_a, &scratch_b;
+  FlatBitset &out0, &free_cells, &out, &back, &reach, &tmp, &fresh, &scratch_a, &scratch_b;
   FlatBitset* squares[3];  // per plate axis; the third reuses `tmp` once it is free
+  FlatBitset &was_boundary_soft, &adjacent, &converted, &near_hard;  // the apply step's
 };
 
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,

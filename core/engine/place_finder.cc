@@ -27,12 +27,13 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
     anchor_rows_[o] = rows ? &planes_.plane(kPlaceFinderPlanes + o) : nullptr;
   }
   FlatBitset& out = planes_.plane(6);
-  FlatBitset& bs = planes_.plane(7);
+  FlatBitset& free_cells = planes_.plane(7);  // outside or boundary soft, off the border
+  // Boundary soft first, in the plane that becomes free_cells: it is filled again at the end
+  // rather than kept in a plane of its own.
+  FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, free_cells);
   FillStatePlane(grid_.states(), StatePredicate::kOutside, out);
-  FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, bs);
   if (cancel.cancelled()) return std::nullopt;
-  FlatBitset& free_cells = planes_.plane(8);  // outside or boundary soft, off the border
-  free_cells.AssignOrAnd(out, bs, planes_.interior());
+  free_cells.AssignOrAnd(out, free_cells, planes_.interior());
 
   // The anchors of orientation (a, sign) are the plates whose cells are free and whose back
   // side is outside: E = erode_uv(free & out shifted by sign along a), and erosion commutes
@@ -40,8 +41,8 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   // Both signs share the two eroded planes, and the three axes share the erosions along z
   // and along x: 8 erosion runs instead of 12. Copies are folded into the first pass of each
   // run (the *From operations): the planes fit in cache, so a copy costs as much as a pass.
-  FlatBitset& free_z = planes_.plane(9);
-  FlatBitset& out_z = planes_.plane(10);
+  FlatBitset& free_z = planes_.plane(8);
+  FlatBitset& out_z = planes_.plane(9);
   free_z.ErodeRunFrom(free_cells, n, st[2]);
   out_z.ErodeRunFrom(out, n, st[2]);
   if (cancel.cancelled()) return std::nullopt;
@@ -52,15 +53,14 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
 
   // Candidates: bs & the union over axes of the cells covered by a plate of either sign
   // (And distributes over the union, so it is applied once at the end).
-  FlatBitset& candidates = planes_.plane(11);
-  FlatBitset& covered = planes_.plane(12);
+  FlatBitset& candidates = planes_.plane(10);
   for (int a = 0; a < 3; ++a) {
     if (cancel.cancelled()) return std::nullopt;
     // In-plane axes (u, v) = (y, z), (z, x), (x, y): one more erosion of a shared plane.
     const bool from_z = a != 2;
     const int last_axis = a == 1 ? 0 : 1;
-    FlatBitset& free_square = planes_.plane(13);
-    FlatBitset& out_square = planes_.plane(14);
+    FlatBitset& free_square = planes_.plane(11);
+    FlatBitset& out_square = planes_.plane(12);
     free_square.ErodeRunFrom(from_z ? free_z : free_x, n, st[last_axis]);
     out_square.ErodeRunFrom(from_z ? out_z : out_x, n, st[last_axis]);
     const int64_t su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
@@ -69,7 +69,9 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
       e.AssignAndShifted(free_square, out_square, kOrientations[o].sign * st[a]);
       if (rows) planes_.plane(kPlaceFinderPlanes + o).DilateRunFrom(e, n, sv);
     }
-    // Dilation distributes over the union of both signs' plates.
+    // Dilation distributes over the union of both signs' plates. The squares are not read
+    // again for this axis, so out_square holds the axis' cells for the later axes.
+    FlatBitset& covered = out_square;
     FlatBitset& axis_covered = a == 0 ? candidates : covered;
     if (rows) {
       axis_covered.AssignOr(*anchor_rows_[2 * a], *anchor_rows_[2 * a + 1]);
@@ -80,6 +82,8 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
     axis_covered.DilateRun(n, su);
     if (a != 0) candidates.Or(covered);
   }
+  FlatBitset& bs = planes_.plane(11);  // free_square is not read again
+  FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, bs);
   candidates.And(bs);
   std::vector<int64_t> result;
   const uint64_t* cw = candidates.words();

@@ -23,7 +23,7 @@ namespace membrane {
 // Work planes of a snapshot, and the six more (the anchor rows DC_o) of a snapshot for plates
 // of kAnchorRowsMinPlate and more: below it, PlaceFor tests the n x n anchors of each
 // orientation directly, and the planes stay unallocated.
-inline constexpr int kPlaceFinderPlanes = 15;
+inline constexpr int kPlaceFinderPlanes = 13;
 inline constexpr int kAnchorRowPlanes = 6;
 inline constexpr int kAnchorRowsMinPlate = 8;
 

@@ -2,9 +2,9 @@
 //
 // Neither keeps anything in its planes from one generation to the next (a closed-form
 // generation runs before its generation's first snapshot, and a snapshot is taken again at
-// the start of every generation that runs chains), so one set serves both: 15 planes (21 when
-// chains run with plates of kAnchorRowsMinPlate or more), 132 MB on a 70 M voxel grid and
-// 4.1 GB on a 10M-point torus's 2.2e9 voxels, where a set each would be 36 planes.
+// the start of every generation that runs chains), so one set serves both: 13 planes (19 when
+// chains run with plates of kAnchorRowsMinPlate or more), 115 MB on a 70 M voxel grid and
+// 3.5 GB on a 10M-point torus's 2.2e9 voxels, where a set each would be 24 planes.
 #ifndef MEMBRANE_CORE_ENGINE_WORK_PLANES_H_
 #define MEMBRANE_CORE_ENGINE_WORK_PLANES_H_
 
@@ -30,7 +30,7 @@ class WorkPlanes {
   bool Ensure(int count, const CancelToken& cancel);
 
   // Planes cut from one huge-page arena (PlaneArena); more are allocated on their own.
-  static constexpr int kArenaPlanes = 21;
+  static constexpr int kArenaPlanes = 19;
 
   // Plane i < the largest count ensured so far.
   FlatBitset& plane(int i) { return *planes_[static_cast<size_t>(i)]; }

@@ -163,8 +163,11 @@ int64_t FillCaves(VoxelGrid& grid, int threads) {
   // The grid-wide passes go plane by plane on the threads (the first touch of each mask's
   // pages too, which the kernel clears on the touching thread).
   Mask deep(n);
-  RunTasks(threads, d[2], [&](int, int64_t z) {
-    for (int64_t i = z * plane; i < (z + 1) * plane; ++i) deep[i] = IsOutside(s[i]) ? 1 : 0;
+  // A raw pointer copied into the task: a byte store through a reference's target could
+  // alias the vector itself, which would keep the loop from vectorizing.
+  char* const deep_bytes = deep.data();
+  RunTasks(threads, d[2], [deep_bytes, s, plane](int, int64_t z) {
+    for (int64_t i = z * plane; i < (z + 1) * plane; ++i) deep_bytes[i] = IsOutside(s[i]) ? 1 : 0;
   });
   // Two grid-sized masks at a time, not three: the erosion's scratch goes before the flood
   // makes its mask, and `deep`, read by the flood alone, is the dilation's scratch (the filter

@@ -54,43 +54,53 @@ class Relaxer {
   // the kernel's page clearing over them too.
   absl::Status ComputeDlc() {
     const int64_t n = grid_.size(), sy = grid_.dim(0), sz = sy * grid_.dim(1);
-    ByteArray cat = NewByteArray(n), sum = NewByteArray(n);
+    if (n < 3) return absl::OkStatus();  // Relax() lets no grid this small through
+    ByteArray cat_array = NewByteArray(n), sum_array = NewByteArray(n);
     dlc_ = NewByteArray(n);
-    const VoxelState* s = grid_.states().data();
+    // Raw pointers, captured by value and copied into each task: the byte stores could alias
+    // anything reached through a reference, which would keep the loops from vectorizing.
+    int8_t* const cat = cat_array.get();
+    int8_t* const sum = sum_array.get();
+    int8_t* const dlc = dlc_.get();
+    const VoxelState* const s = grid_.states().data();
     auto pass = [&](int64_t from, int64_t to, auto fn) -> absl::Status {
       if (to <= from) return absl::OkStatus();
       TaskCancel stop(cancel_, threads_, 1);
       RunTasks(threads_, (to - from + kVoxelsPerPoll - 1) / kVoxelsPerPoll,
-               [&](int worker, int64_t task) {
+               [&stop, from, to, fn](int worker, int64_t task) {
                  if (stop.Poll(worker)) return;
+                 const auto body = fn;
                  const int64_t begin = from + task * kVoxelsPerPoll;
                  const int64_t end = std::min(to, begin + kVoxelsPerPoll);
-                 for (int64_t i = begin; i < end; ++i) fn(i);
+                 for (int64_t i = begin; i < end; ++i) body(i);
                });
       return stop.fired() ? Cancel() : absl::OkStatus();
     };
     // Each pass writes every voxel whose neighbours along its axis exist (across row ends
     // too: the values there are only read for border voxels, which never move), and the
     // rest are zeroed, so nothing uninitialised is ever read.
-    absl::Status st = pass(0, n, [&](int64_t i) { cat[i] = static_cast<int8_t>(Category(s[i])); });
+    absl::Status st =
+        pass(0, n, [cat, s](int64_t i) { cat[i] = static_cast<int8_t>(Category(s[i])); });
     sum[0] = sum[n - 1] = 0;
     if (st.ok())
-      st = pass(1, n - 1,
-                [&](int64_t i) { sum[i] = static_cast<int8_t>(cat[i - 1] + cat[i] + cat[i + 1]); });
-    std::fill(dlc_.get(), dlc_.get() + std::min(sy, n), 0);
-    std::fill(dlc_.get() + std::max<int64_t>(n - sy, 0), dlc_.get() + n, 0);
+      st = pass(1, n - 1, [sum, cat](int64_t i) {
+        sum[i] = static_cast<int8_t>(cat[i - 1] + cat[i] + cat[i + 1]);
+      });
+    std::fill(dlc, dlc + std::min(sy, n), 0);
+    std::fill(dlc + std::max<int64_t>(n - sy, 0), dlc + n, 0);
     if (st.ok())
-      st = pass(sy, n - sy, [&](int64_t i) {
-        dlc_[i] = static_cast<int8_t>(sum[i - sy] + sum[i] + sum[i + sy]);
+      st = pass(sy, n - sy, [dlc, sum, sy](int64_t i) {
+        dlc[i] = static_cast<int8_t>(sum[i - sy] + sum[i] + sum[i + sy]);
       });
     if (st.ok())
-      st = pass(sz, n - sz, [&](int64_t i) {
-        sum[i] = static_cast<int8_t>(dlc_[i - sz] + dlc_[i] + dlc_[i + sz]);
+      st = pass(sz, n - sz, [sum, dlc, sz](int64_t i) {
+        sum[i] = static_cast<int8_t>(dlc[i - sz] + dlc[i] + dlc[i + sz]);
       });
-    std::fill(dlc_.get(), dlc_.get() + std::min(sz, n), 0);
-    std::fill(dlc_.get() + std::max<int64_t>(n - sz, 0), dlc_.get() + n, 0);
+    std::fill(dlc, dlc + std::min(sz, n), 0);
+    std::fill(dlc + std::max<int64_t>(n - sz, 0), dlc + n, 0);
     if (st.ok())
-      st = pass(sz, n - sz, [&](int64_t i) { dlc_[i] = static_cast<int8_t>(sum[i] - cat[i]); });
+      st = pass(sz, n - sz,
+                [dlc, sum, cat](int64_t i) { dlc[i] = static_cast<int8_t>(sum[i] - cat[i]); });
     return st;
   }
 

@@ -64,7 +64,7 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
   LocalProgress observer(progress, input_name, source);
   const ErrorContext errors{
       .invalid_argument_prefix = absl::StrCat(input_name, ": "),
-      .resource_exhausted_advice = "; use a larger --voxel-size or raise --voxel-budget",
+      .resource_exhausted_advice = "; use a larger --voxel-size",
   };
   absl::StatusOr<ReconstructionReport> report =
       RunReconstruction(params.options, {source, gate, sink, observer}, errors, cancel);

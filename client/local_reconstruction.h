@@ -38,10 +38,11 @@ struct ReconstructionParams {
 // closed or not manifold (the caller decides what that means).
 // Errors: the reader's status (InvalidArgument / NotFound, message naming the
 // file) for unreadable input; InvalidArgument naming the file for a degenerate cloud (no
-// points, all equal, coplanar); ResourceExhausted for a grid over the voxel budget, naming
-// --voxel-size and --voxel-budget, and for a grid or a surface over params.memory_limit_bytes
-// (checked before the grid is allocated and again once the membrane is known, when a noisy
-// cloud's foam of a membrane shows), naming the bytes and --memory-limit; Cancelled when
+// points, all equal, coplanar); ResourceExhausted naming --voxel-size for a grid over a given
+// --voxel-budget (naming the budget) or over the machine's memory, and for a grid or a surface
+// over params.memory_limit_bytes (checked before the grid is allocated and again once the
+// membrane is known, when a noisy cloud's foam of a membrane shows), naming the bytes and
+// --memory-limit; Cancelled when
 // `cancel` fires; InvalidArgument naming the output path when it cannot be written. Standard
 // output ("-") gets the mesh once the run is over, and nothing before.
 absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const ReconstructionParams& params,

@@ -22,7 +22,7 @@ absl::Status CheckMemoryLimit(int64_t bytes, int64_t limit, const std::string& w
 
 absl::Status MemoryLimitGate::AdmitGrid(const PlannedGrid& grid, int64_t points,
                                         const CancelToken& /*cancel*/) {
-  grid_bytes_ = grid.bytes;
+  grid_ = grid;
   return CheckMemoryLimit(
       grid.bytes, limit_,
       absl::StrFormat("the grid of %d voxels and the %d points need", grid.voxels, points), "",
@@ -32,7 +32,7 @@ absl::Status MemoryLimitGate::AdmitGrid(const PlannedGrid& grid, int64_t points,
 absl::Status MemoryLimitGate::AdmitSurface(const MembraneCounts& membrane,
                                            const CancelToken& /*cancel*/) {
   return CheckMemoryLimit(
-      grid_bytes_ + SurfaceBytesEstimate(membrane), limit_,
+      SurfaceBytesEstimate(grid_, membrane), limit_,
       absl::StrFormat("the membrane (%d voxels) needs", membrane.membrane_voxels()),
       " for its surface and the grid",
       "; noise makes a foam of a membrane: is this the scan of one object?");

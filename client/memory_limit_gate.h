@@ -22,13 +22,14 @@ class MemoryLimitGate : public ResourceGate {
                          const CancelToken& cancel) override;
 
   // ResourceExhausted "the membrane (N voxels) needs about B for its surface and the grid,
-  // over the memory limit ...; noise makes a foam of a membrane: ..." when the grid's and the
-  // surface's bytes together are over the limit. Never waits.
+  // over the memory limit ...; noise makes a foam of a membrane: ..." when the stages from the
+  // surface on (SurfaceBytesEstimate: the grid held beside the surface included) are over the
+  // limit. Never waits.
   absl::Status AdmitSurface(const MembraneCounts& membrane, const CancelToken& cancel) override;
 
  private:
   int64_t limit_;
-  int64_t grid_bytes_ = 0;  // admitted by AdmitGrid
+  PlannedGrid grid_;  // admitted by AdmitGrid
 };
 
 }  // namespace membrane::client

@@ -59,7 +59,7 @@ struct ReconstructFlags {
   int64_t quantization = kDefaultUploadBits;
   bool quantization_given = false;
   int64_t compression_level = 7;
-  int64_t voxel_budget = kDefaultVoxelBudget;
+  int64_t voxel_budget = 0;   // 0: no cap in voxels (the memory limit decides)
   int64_t memory_limit = -1;  // -1: what the machine has available
   std::string stats_json;
   double timeout = 0;
@@ -116,7 +116,9 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
                  "added; 0 = the surface as built")
       ->capture_default_str();
   app.add_option("--voxel-budget", f.voxel_budget,
-                 "largest voxel grid to allocate (padding included), 1 byte per voxel")
+                 "largest voxel grid to allocate (padding included); 0 (default) = no cap in "
+                 "voxels: the memory the run needs by its estimates decides (--memory-limit, "
+                 "or the server's memory budget)")
       ->capture_default_str();
   app.add_option("--memory-limit", f.memory_limit,
                  "with --local: most bytes the run may need by its estimates, checked before "
@@ -173,7 +175,7 @@ absl::Status CheckFlagValues(const ReconstructFlags& f) {
       f.target_faces == 0 ? absl::OkStatus()
                           : CheckIntRange("--target-faces", f.target_faces, kMinTargetFaces,
                                           kMaxTargetFaces, "0 = no decimation"),
-      CheckIntRange("--voxel-budget", f.voxel_budget, 1, kMaxVoxelBudget),
+      CheckIntRange("--voxel-budget", f.voxel_budget, 0, kMaxVoxelBudget, "0 = no cap"),
       CheckIntRange("--memory-limit", f.memory_limit, -1, kMaxMemoryLimit,
                     "-1 = what is available, 0 = no limit"),
       f.stats_json.empty() ? absl::OkStatus() : CheckOutputPath("--stats-json", f.stats_json),
@@ -256,8 +258,8 @@ RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f, FileFormat output_
   const bool drc_output = output_format == FileFormat::kDrc;
   p.set_quantization(drc_output ? static_cast<int32_t>(f.quantization) : 0);
   p.set_compression_level(static_cast<int32_t>(f.compression_level));
-  // The client's default budget is the core's; the server caps it with its own.
-  p.set_voxel_budget(f.voxel_budget == kDefaultVoxelBudget ? 0 : f.voxel_budget);
+  // 0 asks for the server's own; the server caps a budget with its own.
+  p.set_voxel_budget(f.voxel_budget);
   r.upload.position_quantization_bits = static_cast<int>(f.quantization);
   r.adapt_upload_bits = !f.quantization_given;
   r.upload.compression_level = static_cast<int>(f.compression_level);

@@ -41,8 +41,7 @@ namespace membrane::server {
 
 struct DiskJobStoreOptions {
   // Largest DIR/<id>.job read at start-up: a larger one is skipped (store_unreadable) rather
-  // than read whole. A record is the job's events and its Draco mesh; meshes of the largest
-  // grids (--voxel-budget 4e8) stay well under it.
+  // than read whole. A record is the job's events and its Draco mesh.
   int64_t max_record_bytes = int64_t{256} << 20;
   // Largest upload kept (--max-upload-bytes); its file may hold a few bytes more (the header).
   int64_t max_upload_bytes = int64_t{512} << 20;

@@ -102,7 +102,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   // A grid over the budget: the message says which job fields change it.
   ErrorContext errors;
   errors.resource_exhausted_advice =
-      "; use a larger voxel_size (the server's voxel budget caps voxel_budget)";
+      "; use a larger voxel_size (a positive voxel budget of the server caps voxel_budget)";
   absl::StatusOr<ReconstructionReport> report =
       RunReconstruction(settings->reconstruction, {source, gate, sink, observer}, errors,
                         job->cancel_token());

@@ -60,7 +60,9 @@ ABSL_FLAG(std::string, replica, "",
           "of its job ids so that a balancer routes calls about a job here; empty = none");
 ABSL_FLAG(int64_t, max_upload_bytes, 512LL << 20, "largest Draco upload, bytes");
 ABSL_FLAG(int64_t, max_points, 50'000'000, "largest decoded cloud, points");
-ABSL_FLAG(int64_t, voxel_budget, 400'000'000, "largest grid of one job, voxels (padding included)");
+ABSL_FLAG(int64_t, voxel_budget, 0,
+          "largest grid of one job, voxels (padding included); 0 = no cap in voxels: the "
+          "memory budget decides, on the job's estimated bytes");
 ABSL_FLAG(int64_t, memory_budget_bytes, -1,
           "estimated bytes across running jobs (about 6 per voxel, and 1000 per membrane voxel "
           "for the surface); -1 = 3/4 of this machine's memory, or of its container's limit "
@@ -215,12 +217,13 @@ bool OptionsFromFlags(ServerOptions& o) {
   }
   if (!ReadSecrets(o)) return false;
   if (o.queue < 0 || o.max_calls < 0 || o.max_upload_bytes <= 0 || o.max_points <= 0 ||
-      o.voxel_budget <= 0 || o.result_ttl_seconds < 0 || o.grace_seconds < 0 ||
+      o.voxel_budget < 0 || o.result_ttl_seconds < 0 || o.grace_seconds < 0 ||
       o.decoder_timeout_seconds <= 0 || !(o.stall_seconds >= 0) || !(o.max_job_seconds >= 0) ||
       !(o.progress_after_seconds >= 0)) {
     std::fprintf(stderr,
                  "membraned: --queue, --max-calls, --grace-seconds, --result-ttl-seconds, "
-                 "--stall-seconds, --progress-after-seconds and --max-job-seconds must be >= 0; "
+                 "--stall-seconds, --progress-after-seconds, --max-job-seconds and "
+                 "--voxel-budget must be >= 0; "
                  "the other limits > 0\n");
     return false;
   }

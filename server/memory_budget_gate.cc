@@ -1,17 +1,22 @@
 #include "server/memory_budget_gate.h"
 
+#include <algorithm>
+
 #include "absl/strings/str_cat.h"
 
 namespace membrane::server {
 
 absl::Status MemoryBudgetGate::AdmitGrid(const PlannedGrid& grid, int64_t /*points*/,
                                          const CancelToken& cancel) {
+  grid_ = grid;
   return share_.Add(grid.bytes, cancel);
 }
 
 absl::Status MemoryBudgetGate::AdmitSurface(const MembraneCounts& membrane,
                                             const CancelToken& cancel) {
-  absl::Status admission = share_.Add(SurfaceBytesEstimate(membrane), cancel);
+  // The share holds the grid's peak already; the surface's estimate counts the grid too.
+  const int64_t more = std::max<int64_t>(SurfaceBytesEstimate(grid_, membrane) - grid_.bytes, 0);
+  absl::Status admission = share_.Add(more, cancel);
   if (!absl::IsResourceExhausted(admission)) return admission;
   return absl::ResourceExhaustedError(absl::StrCat("the surface of a membrane of ",
                                                    membrane.membrane_voxels(),

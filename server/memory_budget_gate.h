@@ -1,5 +1,6 @@
 // A job's share of the server's memory budget (memory_budget.h), reserved as the pipeline
-// asks: the grid's estimate before it is allocated, the surface's once the membrane is known.
+// asks: the grid's estimate before it is allocated, the surface's once the membrane is known
+// (the larger of the two is the job's peak: the share grows to it, never by their sum).
 #ifndef MEMBRANE_SERVER_MEMORY_BUDGET_GATE_H_
 #define MEMBRANE_SERVER_MEMORY_BUDGET_GATE_H_
 
@@ -19,12 +20,14 @@ class MemoryBudgetGate : public ResourceGate {
   absl::Status AdmitGrid(const PlannedGrid& grid, int64_t points,
                          const CancelToken& cancel) override;
 
-  // Adds the surface's bytes to the share; a ResourceExhausted then begins "the surface of a
-  // membrane of N voxels (a noisy cloud makes a foam of one): ".
+  // Grows the share to the surface's bytes (SurfaceBytesEstimate, which counts the grid held
+  // beside it) when they are above the grid's; a ResourceExhausted then begins "the surface of
+  // a membrane of N voxels (a noisy cloud makes a foam of one): ".
   absl::Status AdmitSurface(const MembraneCounts& membrane, const CancelToken& cancel) override;
 
  private:
   MemoryBudget::Share share_;
+  PlannedGrid grid_;  // admitted by AdmitGrid
 };
 
 }  // namespace membrane::server

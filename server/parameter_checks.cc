@@ -15,6 +15,7 @@ namespace {
 
 constexpr int kMaxInitialPlate = 100000;  // ValidateShrinkOptions' bound
 constexpr int64_t kMaxTargetFaces = int64_t{1} << 31;  // faces are indexed by int32
+constexpr int64_t kMaxVoxelBudget = 1'000'000'000'000;  // the client's --voxel-budget bound
 
 absl::Status CheckRange(const char* field, int64_t value, int64_t low, int64_t high) {
   if (value >= low && value <= high) return absl::OkStatus();
@@ -45,7 +46,8 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
        {CheckRange("initial_plate", p.initial_plate(), 0, kMaxInitialPlate),
         CheckRange("quantization", p.quantization(), 0, 30),
         CheckRange("compression_level", p.compression_level(), 0, 10),
-        CheckRange("voxel_budget", p.voxel_budget(), 0, server_voxel_budget),
+        CheckRange("voxel_budget", p.voxel_budget(), 0,
+                   server_voxel_budget > 0 ? server_voxel_budget : kMaxVoxelBudget),
         p.has_target_faces()
             ? CheckRange("target_faces", p.target_faces(), kMinTargetFaces, kMaxTargetFaces)
             : absl::OkStatus()}) {

@@ -38,7 +38,8 @@ struct ServerOptions {
   int max_calls = 1000;                     // calls served at once, of any kind; 0 = no limit
   int64_t max_upload_bytes = 512 << 20;     // Draco bytes of one upload
   int64_t max_points = 50'000'000;          // points of one decoded cloud
-  int64_t voxel_budget = 400'000'000;       // voxels of one job's grid, padding included
+  // Voxels of one job's grid, padding included; 0: no cap (the memory budget decides).
+  int64_t voxel_budget = 0;
   int64_t memory_budget_bytes = 0;          // estimated bytes across running jobs; 0 = no limit
   std::string memory_budget_source;         // for the log: the flag, or what the default took
   int64_t upload_memory_bytes = 0;          // uploads held at once (UploadMemory); 0 = no limit

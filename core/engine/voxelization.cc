@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <utility>
 
 #include "absl/container/flat_hash_set.h"
@@ -197,9 +198,9 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
                                       const VoxelizeOptions& options, ProgressRange progress) {
   absl::StatusOr<Box3d> bounds = CheckedBounds(points);
   if (!bounds.ok()) return bounds.status();
-  if (options.voxel_budget <= 0) {
-    return absl::InvalidArgumentError(
-        absl::StrFormat("voxel budget %d must be positive", options.voxel_budget));
+  if (options.voxel_budget < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "voxel budget %d must be positive, or 0 for none", options.voxel_budget));
   }
   double l = options.voxel_size;
   if (l == 0.0) l = FormulaVoxelSize(*bounds, points);
@@ -216,11 +217,16 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
     cells[d] = std::floor(extent[d] / l) + 1.0 + 2.0 * VoxelGrid::kPadding;
     total *= cells[d];
   }
-  if (total > static_cast<double>(options.voxel_budget) || cells[0] > 1e9 || cells[1] > 1e9 ||
-      cells[2] > 1e9) {
-    return absl::ResourceExhaustedError(absl::StrFormat(
-        "voxel size %g gives a %.0fx%.0fx%.0f grid (%.3g voxels), over the voxel budget of %.3g",
-        l, cells[0], cells[1], cells[2], total, static_cast<double>(options.voxel_budget)));
+  const bool over_budget =
+      options.voxel_budget > 0 && total > static_cast<double>(options.voxel_budget);
+  if (over_budget || cells[0] > 1e9 || cells[1] > 1e9 || cells[2] > 1e9) {
+    const std::string limit =
+        over_budget ? absl::StrFormat("the voxel budget of %.3g",
+                                      static_cast<double>(options.voxel_budget))
+                    : std::string("the largest grid side of 1e9 voxels");
+    return absl::ResourceExhaustedError(
+        absl::StrFormat("voxel size %g gives a %.0fx%.0fx%.0f grid (%.3g voxels), over %s", l,
+                        cells[0], cells[1], cells[2], total, limit));
   }
 
   if (absl::Status s = CheckGridFitsFloat(*bounds, l, cells); !s.ok()) return s;

@@ -13,13 +13,13 @@
 
 namespace membrane {
 
-inline constexpr int64_t kDefaultVoxelBudget = 400'000'000;
-
 struct VoxelizeOptions {
   // Voxel edge length l in model units; 0 estimates it with the paper's formula (1).
   double voxel_size = 0.0;
-  // Largest grid (voxels, padding included) that may be allocated.
-  int64_t voxel_budget = kDefaultVoxelBudget;
+  // Largest grid (voxels, padding included) that may be allocated; 0: no cap in voxels. The
+  // pipeline's memory estimates (core/pipeline/memory_estimate.h) are what refuses a grid by
+  // default: a cap in voxels refuses what a dense grid would need, not what would not fit.
+  int64_t voxel_budget = 0;
 };
 
 struct Voxelization {
@@ -65,7 +65,8 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points);
 // finite and positive, or coordinates so far from the origin that float32 positions there are
 // more than a quarter of a voxel apart (naming both), or so large that the grid around them
 // passes float32's range (naming both ranges); ResourceExhausted, naming the grid and
-// the budget, when the grid would exceed options.voxel_budget. Nothing is allocated before the
+// the budget, when the grid would exceed a positive options.voxel_budget (a negative one is
+// InvalidArgument). Nothing is allocated before the
 // budget check. `progress` counts the initial membrane's rows, then the points' voxels sorted
 // and marked (counting never changes the grid).
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,

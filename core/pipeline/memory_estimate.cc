@@ -3,16 +3,61 @@
 #include <algorithm>
 #include <cmath>
 
+#include "absl/status/status.h"
 #include "absl/strings/str_format.h"
 #include "core/engine/voxel_grid.h"
+#include "core/pipeline/machine_memory.h"
 
 namespace membrane {
 namespace {
 
-constexpr int64_t kBytesPerVoxel = 6;
-// The decoded cloud, the pipeline's copy for the surface fit, and slack for the mesh.
-constexpr int64_t kBytesPerPoint = 4 * sizeof(Point3f);
-constexpr int64_t kBytesPerBoundaryVoxel = 1000;
+// One stage's bytes: a fixed part plus so many bytes per voxel of the grid, per point of the
+// cloud and per boundary voxel of the final membrane. Figures from bench_memory (see
+// EstimateStageBytes), rounded up.
+struct StageCost {
+  double fixed;
+  double per_voxel;
+  double per_point;
+  double per_membrane_voxel;
+};
+
+// The process besides its data: code, libraries, the allocator's arenas, threads' stacks (3-15
+// MB measured before a run; the rest is margin for the stages' small structures).
+constexpr double kProcessBytes = 32e6;
+// The decoded cloud: float32 x, y, z. Every stage holds it.
+constexpr double kCloudBytes = 12;
+
+// Measured with bench_memory on a torus of 1M and 2M points (7.0e7 and 2.0e8 voxels, 0.77 and
+// 1.55 boundary voxels a point), each stage's peak fitted to the grid, the cloud and the
+// membrane, then rounded up; uniform noise checks the surface's share (below).
+// Decode: the cloud.
+constexpr StageCost kDecode = {kProcessBytes, 0, kCloudBytes, 0};
+// Voxelize: the grid (1 byte a voxel), the points' sorted voxels (8 bytes a point); formula
+// (1)'s hash set of distinct points before it (27 bytes a point, freed before the grid).
+constexpr StageCost kVoxelize = {kProcessBytes, 1, kCloudBytes + 36, 0};
+// The shrink: the grid and its bit planes, 5.0 bytes a voxel in all (10M points, 2.2e9
+// voxels: 4.9).
+constexpr StageCost kShrink = {kProcessBytes, 5.2, kCloudBytes, 0};
+// The relaxation: the grid and three byte arrays, 4.2 bytes a voxel.
+constexpr StageCost kRelax = {kProcessBytes, 4.4, kCloudBytes, 0};
+// The surface, while the grid's copy is cleaned up: the grid, the copy and the cave filling's
+// two masks (4 bytes a voxel); then, while the mesh is built and fitted: the grid and its copy
+// (2.3 bytes a voxel in the fit) and the mesh and the fit's structures (580 bytes a boundary
+// voxel on the torus, 600 on 100k points of uniform noise, whose foam of a membrane has 2.2
+// faces a boundary voxel).
+constexpr StageCost kSurfaceCleanUp = {kProcessBytes, 4.1, kCloudBytes, 0};
+constexpr StageCost kSurfaceFit = {kProcessBytes, 2.4, kCloudBytes, 800};
+// The check and the encoding beside it: the grid, the mesh, the check's and the encoder's
+// structures (340-390 bytes a boundary voxel on the torus, 380 on noise).
+constexpr StageCost kCheck = {kProcessBytes, 1, kCloudBytes, 500};
+
+int64_t Bytes(const StageCost& cost, int64_t voxels, int64_t points, int64_t membrane_voxels) {
+  // In double: a planned grid can hold 9e18 voxels before any budget caps it.
+  const double bytes = cost.fixed + cost.per_voxel * static_cast<double>(voxels) +
+                       cost.per_point * static_cast<double>(points) +
+                       cost.per_membrane_voxel * static_cast<double>(membrane_voxels);
+  return static_cast<int64_t>(std::min(bytes, 9e18));
+}
 
 }  // namespace
 
@@ -28,20 +73,52 @@ absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOpti
     voxels *= std::floor(side / plan.voxel_size) + 1 + 2 * VoxelGrid::kPadding;
   }
   plan.voxels = static_cast<int64_t>(std::min(voxels, 9e18));
-  plan.bytes = GridBytesEstimate(std::min(plan.voxels, voxelize.voxel_budget),
-                                 static_cast<int64_t>(cloud.points.size()));
+  plan.points = static_cast<int64_t>(cloud.points.size());
+  const int64_t counted =
+      voxelize.voxel_budget > 0 ? std::min(plan.voxels, voxelize.voxel_budget) : plan.voxels;
+  plan.bytes = GridBytesEstimate(counted, plan.points);
   return plan;
 }
 
-int64_t GridBytesEstimate(int64_t voxels, int64_t points) {
-  // In double: a planned grid can hold 9e18 voxels before any budget caps it.
-  const double bytes = static_cast<double>(voxels) * kBytesPerVoxel +
-                       static_cast<double>(points) * kBytesPerPoint;
-  return static_cast<int64_t>(std::min(bytes, 9e18));
+absl::Status CheckMemoryCeiling(const PlannedGrid& grid, int64_t ceiling_bytes) {
+  std::string what;
+  if (ceiling_bytes == -1) {
+    const MachineMemory machine = ReadMachineMemory();
+    ceiling_bytes = machine.total_bytes;
+    what = absl::StrFormat("the %s of memory this machine has (%s)", BytesText(ceiling_bytes),
+                           machine.total_source);
+  } else {
+    what = absl::StrFormat("the ceiling of %s", BytesText(ceiling_bytes));
+  }
+  if (ceiling_bytes <= 0 || grid.bytes <= ceiling_bytes) return absl::OkStatus();
+  return absl::ResourceExhaustedError(absl::StrFormat(
+      "voxel size %g gives a grid of %.3g voxels: with the %d points it needs about %s, more "
+      "than %s",
+      grid.voxel_size, static_cast<double>(grid.voxels), grid.points, BytesText(grid.bytes),
+      what));
 }
 
-int64_t SurfaceBytesEstimate(const MembraneCounts& membrane) {
-  return kBytesPerBoundaryVoxel * membrane.membrane_voxels();
+StageBytes EstimateStageBytes(int64_t voxels, int64_t points, const MembraneCounts& membrane) {
+  const int64_t m = membrane.membrane_voxels();
+  StageBytes s;
+  s.decode = Bytes(kDecode, voxels, points, m);
+  s.voxelize = Bytes(kVoxelize, voxels, points, m);
+  s.shrink = Bytes(kShrink, voxels, points, m);
+  s.relax = Bytes(kRelax, voxels, points, m);
+  s.surface = std::max(Bytes(kSurfaceCleanUp, voxels, points, m),
+                       Bytes(kSurfaceFit, voxels, points, m));
+  s.check = Bytes(kCheck, voxels, points, m);
+  return s;
+}
+
+int64_t GridBytesEstimate(int64_t voxels, int64_t points) {
+  const StageBytes s = EstimateStageBytes(voxels, points, MembraneCounts{});
+  return std::max({s.decode, s.voxelize, s.shrink, s.relax});
+}
+
+int64_t SurfaceBytesEstimate(const PlannedGrid& grid, const MembraneCounts& membrane) {
+  const StageBytes s = EstimateStageBytes(grid.voxels, grid.points, membrane);
+  return std::max(s.surface, s.check);
 }
 
 std::string BytesText(int64_t bytes) {

@@ -1,7 +1,9 @@
-// What a reconstruction will need in memory, estimated before it allocates: the grid and the
-// cloud before voxelizing, the surface once the membrane is known. The server's memory budget
-// and `membrane reconstruct --local`'s memory limit refuse a job on these numbers, before the
-// kernel's OOM killer would end it.
+// What a reconstruction will hold in memory, estimated before it allocates: stage by stage,
+// from the grid and the cloud before voxelizing, and from the membrane before the surface. A
+// run's peak is the largest stage's, not their sum: each stage frees its working sets before
+// the next begins. The server's memory budget and `membrane reconstruct --local`'s memory
+// limit refuse a job on these numbers, before the kernel's OOM killer would end it; the
+// pipeline refuses a grid over the machine's memory whatever the gate.
 #ifndef MEMBRANE_CORE_PIPELINE_MEMORY_ESTIMATE_H_
 #define MEMBRANE_CORE_PIPELINE_MEMORY_ESTIMATE_H_
 
@@ -21,25 +23,48 @@ struct PlannedGrid {
   Box3d bounds;           // CheckedBounds of the points
   double voxel_size = 0;  // voxelize.voxel_size when > 0, else formula (1)'s (model units)
   int64_t voxels = 0;     // padding included
-  // GridBytesEstimate of the grid and the points; a grid over voxelize.voxel_budget counts at
-  // the budget (Voxelize refuses it, with the grid in its message, before allocating).
+  int64_t points = 0;     // the cloud's
+  // GridBytesEstimate of the grid and the points; a grid over a positive voxelize.voxel_budget
+  // counts at the budget (Voxelize refuses it, with the grid in its message, before
+  // allocating).
   int64_t bytes = 0;
 };
 // InvalidArgument for a degenerate cloud (CheckedBounds' message). Callers that then voxelize
 // pass the planned voxel_size on, so that formula (1) does not count the points again.
 absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize);
 
-// The bytes of a reconstruction before its surface: the grid and the shrink's working sets
-// (under 6 bytes per voxel on the bench clouds) plus the cloud and its copies (48 per point).
+// The most a planned grid may need whatever the run's gate admits: ResourceExhausted "voxel size
+// L gives a grid of V voxels: with the P points it needs about B, more than the M of memory
+// this machine has (SOURCE)" when `grid.bytes` is over the ceiling. `ceiling_bytes` -1: the
+// machine's memory (ReadMachineMemory's total_bytes; no check when unknown); 0: none; else the
+// ceiling itself (named "the ceiling of M" then). Such a grid could never be allocated: without
+// this check a run without a memory limit would end in the kernel's OOM killer instead.
+absl::Status CheckMemoryCeiling(const PlannedGrid& grid, int64_t ceiling_bytes);
+
+// The bytes a run holds at the peak of each stage, the process's own (code, libraries) and the
+// cloud's included: what its peak RSS would read if the stage ran alone. Measured against the
+// kernel's high-water mark stage by stage in tests/bench/bench_memory.cc (torus, 100k to 10M
+// points; uniform noise), each at or above the measured peak.
+struct StageBytes {
+  int64_t decode = 0;    // the decoded cloud (a file reader's own buffers are the source's)
+  int64_t voxelize = 0;  // the grid, the points' sorted voxels, formula (1)'s distinct points
+  int64_t shrink = 0;    // the grid and the shrink's bit planes
+  int64_t relax = 0;     // the grid and the relaxation's three byte arrays
+  int64_t surface = 0;   // the grid, its copy cleaned up for the surface, the mesh and fit
+  int64_t check = 0;     // the grid, the mesh, the check's and the encoder's structures
+};
+// `membrane` is only read for the surface and check stages (zero counts: their grid share).
+StageBytes EstimateStageBytes(int64_t voxels, int64_t points, const MembraneCounts& membrane);
+
+// The peak of the stages before the surface (decode, voxelize, shrink, relax): what is
+// admitted before the grid is allocated. Saturates instead of overflowing.
 int64_t GridBytesEstimate(int64_t voxels, int64_t points);
 
-// The bytes BuildSurface and the mesh check may take beyond the grid and the cloud, for a
-// membrane with these counts (CountMembrane): its boundary voxels times 1000. Measured on the
-// ten real clouds and on uniform noise (whose membrane is a foam: its surface takes 28 times
-// what the grid does), both surfaces: 1.8-2.7 faces per boundary voxel. Each run's peak RSS
-// stayed within GridBytesEstimate plus 800 bytes per boundary voxel, but for cuberille on 20k
-// noise points (1.2 times that); 1000 leaves a margin.
-int64_t SurfaceBytesEstimate(const MembraneCounts& membrane);
+// The peak of the stages from the surface on (surface, decimate, check, encode) for the
+// membrane of `grid`'s run, the grid itself included: what must fit once the membrane is
+// known. The surface of uniform noise (a foam of a membrane: 1.8-2.7 faces per boundary voxel)
+// takes many times its grid's bytes.
+int64_t SurfaceBytesEstimate(const PlannedGrid& grid, const MembraneCounts& membrane);
 
 // `bytes` for a person: "512 KB", "38.1 MB", "2.61 GB" (powers of 1000, 3 significant digits).
 std::string BytesText(int64_t bytes);

@@ -28,6 +28,9 @@ struct ReconstructionOptions {
   // it closed, manifold, outward, uncrossed and of the same topology allows: the decimate
   // stage (mesh_decimation.h). 0: the surface as built.
   int64_t target_faces = 0;
+  // The most memory a run may be planned to take, whatever its ResourceGate admits
+  // (CheckMemoryCeiling): -1, the machine's; 0, none; else bytes.
+  int64_t memory_ceiling_bytes = -1;
 };
 
 }  // namespace membrane

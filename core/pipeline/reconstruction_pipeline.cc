@@ -90,7 +90,12 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   // count the points again.
   absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, options.voxelize);
   if (!plan.ok()) return with_context(plan.status());
+  // The gate first: its message names the limit the caller can change. The ceiling then
+  // catches what a gate without a limit admits.
   if (absl::Status s = adapters.gate.AdmitGrid(*plan, report.points, cancel); !s.ok()) return s;
+  if (absl::Status s = CheckMemoryCeiling(*plan, options.memory_ceiling_bytes); !s.ok()) {
+    return with_context(s);
+  }
   VoxelizeOptions voxelize = options.voxelize;
   voxelize.voxel_size = plan->voxel_size;
 

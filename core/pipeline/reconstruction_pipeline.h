@@ -44,7 +44,8 @@ struct PipelineAdapters {
 // (WithErrorContext): InvalidArgument for options out of range, a degenerate cloud (no
 // points, all equal, coplanar), a cloud that gives no surface or a face target below what its
 // surface's topology needs; ResourceExhausted for a grid
-// over options.voxelize.voxel_budget; Cancelled "reconstruction cancelled after STAGE" when
+// over options.voxelize.voxel_budget or whose estimate is over options.memory_ceiling_bytes
+// (CheckMemoryCeiling); Cancelled "reconstruction cancelled after STAGE" when
 // `cancel` fires. The token is polled within the source, the gate, the shrink, the
 // relaxation, the smooth surface and the check, and between stages, so a cancel takes effect
 // within milliseconds (the sink alone is not polled).

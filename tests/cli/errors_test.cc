@@ -159,13 +159,34 @@ TEST_F(ErrorsTest, NonNumericValueIsInvalidInput) {
   EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("--voxel-size")));
 }
 
-TEST_F(ErrorsTest, TinyVoxelSizeExceedsTheVoxelBudget) {
+// By default a grid is refused by its bytes, not by its voxels: the memory limit names them.
+TEST_F(ErrorsTest, TinyVoxelSizeExceedsTheMemoryLimit) {
   const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"), "--local",
-                           "--voxel-size", "1e-6"});
+                           "--voxel-size", "1e-4"});
   EXPECT_EQ(r.exit_code, 3);
-  EXPECT_THAT(ErrorLines(r.err), ElementsAre(HasSubstr("voxel budget")));
+  EXPECT_THAT(ErrorLines(r.err),
+              ElementsAre(AllOf(HasSubstr("voxels and the"), HasSubstr("points need about"),
+                                HasSubstr("over the memory limit of"))));
   EXPECT_THAT(r.err, ::testing::EndsWith("\n"));
   EXPECT_THAT(ErrorLines(r.err).back(), HasSubstr("--voxel-size"));
+}
+
+// Without a memory limit, a grid larger than the machine is still refused before it is made.
+TEST_F(ErrorsTest, TinyVoxelSizeWithoutAMemoryLimitExceedsTheMachine) {
+  const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"), "--local",
+                           "--voxel-size", "1e-4", "--memory-limit", "0"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(AllOf(HasSubstr("of memory this machine has"),
+                                                   HasSubstr("--voxel-size"))));
+}
+
+// A --voxel-budget given still caps the grid in voxels, naming itself.
+TEST_F(ErrorsTest, GridOverAGivenVoxelBudgetNamesIt) {
+  const CliResult r = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"), "--local",
+                           "--voxel-size", "0.01", "--voxel-budget", "1000"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(ErrorLines(r.err), ElementsAre(AllOf(HasSubstr("over the voxel budget of 1e+03"),
+                                                   HasSubstr("--voxel-size"))));
 }
 
 // Uniform noise has no surface to find: its membrane is a foam whose surface takes many times
@@ -179,15 +200,15 @@ TEST_F(ErrorsTest, NoiseWhoseSurfaceIsOverTheMemoryLimitIsRefused) {
       out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
   }
   const CliResult r = Run({"reconstruct", path, "-o", dir_.File("out.ply"), "--local",
-                           "--quiet", "--memory-limit", "30000000"});
+                           "--quiet", "--memory-limit", "60000000"});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_THAT(ErrorLines(r.err),
-              ElementsAre(AllOf(HasSubstr("for its surface"), HasSubstr("memory limit of 30 MB"),
+              ElementsAre(AllOf(HasSubstr("for its surface"), HasSubstr("memory limit of 60 MB"),
                                 HasSubstr("--memory-limit"), HasSubstr("foam"))));
   EXPECT_FALSE(std::ifstream(dir_.File("out.ply")).good()) << "out.ply was written";
   // A real cloud of the same size goes through under the same limit.
   const CliResult sphere = Run({"reconstruct", SphereCloud(20000), "-o", dir_.File("s.ply"),
-                                "--local", "--quiet", "--memory-limit", "30000000"});
+                                "--local", "--quiet", "--memory-limit", "60000000"});
   EXPECT_EQ(sphere.exit_code, 0) << sphere.err;
 }
 

@@ -77,10 +77,17 @@ TEST(Voxelization, DensityRatioCountsVoxelsWithSeveralPoints) {
 TEST(Voxelization, GridOverBudgetIsResourceExhaustedNamingGridAndBudget) {
   VoxelizeOptions o;
   o.voxel_size = 0.0001;
+  o.voxel_budget = 400'000'000;
   auto v = Voxelize(Cube8().points, o);
   ASSERT_EQ(v.status().code(), absl::StatusCode::kResourceExhausted);
   EXPECT_THAT(v.status().message(), HasSubstr("10005x10005x10005"));
   EXPECT_THAT(v.status().message(), HasSubstr("voxel budget of 4e+08"));
+}
+
+TEST(Voxelization, NegativeBudgetIsInvalidArgument) {
+  VoxelizeOptions o;
+  o.voxel_budget = -1;
+  EXPECT_EQ(Voxelize(Cube8().points, o).status().code(), absl::StatusCode::kInvalidArgument);
 }
 
 TEST(Voxelization, NoPointsIsInvalidArgument) {

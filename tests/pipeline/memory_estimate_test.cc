@@ -1,5 +1,10 @@
 // The estimates the memory budget and the --local memory limit refuse jobs on.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <utility>
 
 #include "core/engine/voxelization.h"
 #include "core/pipeline/memory_estimate.h"
@@ -21,8 +26,20 @@ TEST(PlanGrid, PlansTheGridVoxelizeAllocates) {
     ASSERT_TRUE(v.ok()) << v.status();
     EXPECT_EQ(plan->voxels, v->grid.size()) << "voxel size " << voxel_size;
     EXPECT_EQ(plan->voxel_size, v->grid.voxel_size());
+    EXPECT_EQ(plan->points, 20000);
     EXPECT_EQ(plan->bytes, GridBytesEstimate(v->grid.size(), 20000));
   }
+}
+
+TEST(PlanGrid, AGridOverAGivenBudgetCountsAtTheBudget) {
+  absl::StatusOr<PointCloud> cloud =
+      SynthesizeShape(SynthOptions{.shape = "torus", .points = 20000});
+  ASSERT_TRUE(cloud.ok()) << cloud.status();
+  absl::StatusOr<PlannedGrid> plan =
+      PlanGrid(*cloud, VoxelizeOptions{.voxel_size = 0.001, .voxel_budget = 1000});
+  ASSERT_TRUE(plan.ok()) << plan.status();
+  EXPECT_GT(plan->voxels, 1000);
+  EXPECT_EQ(plan->bytes, GridBytesEstimate(1000, 20000));
 }
 
 TEST(PlanGrid, ADegenerateCloudIsInvalidArgument) {
@@ -33,17 +50,74 @@ TEST(PlanGrid, ADegenerateCloudIsInvalidArgument) {
 }
 
 TEST(GridBytesEstimate, SaturatesInsteadOfOverflowing) {
-  EXPECT_EQ(GridBytesEstimate(1000, 10), 6000 + 480);
   EXPECT_GT(GridBytesEstimate(4'000'000'000'000'000'000, 0), int64_t{1} << 62);
 }
 
-TEST(SurfaceBytesEstimate, CountsTheBoundaryVoxels) {
+// Each stage frees its working sets before the next: the run holds the largest stage's bytes,
+// not their sum.
+TEST(GridBytesEstimate, IsTheLargestStageBeforeTheSurface) {
+  for (const auto& [voxels, points] : {std::pair<int64_t, int64_t>{1000, 10'000'000},
+                                      {2'170'000'000, 10'000'000},
+                                      {100'000'000, 0}}) {
+    const StageBytes s = EstimateStageBytes(voxels, points, MembraneCounts{});
+    EXPECT_EQ(GridBytesEstimate(voxels, points),
+              std::max({s.decode, s.voxelize, s.shrink, s.relax}));
+    EXPECT_LT(GridBytesEstimate(voxels, points), s.decode + s.voxelize + s.shrink + s.relax);
+  }
+}
+
+TEST(SurfaceBytesEstimate, IsTheLargestStageFromTheSurfaceOnAndGrowsWithTheMembrane) {
+  PlannedGrid grid;
+  grid.voxels = 100'000'000;
+  grid.points = 1'000'000;
   MembraneCounts counts;
-  counts.hard_voxels = 10;
-  counts.frozen_voxels = 20;
-  counts.soft_voxels = 30;
-  counts.inside_soft_voxels = 1'000'000;  // the solid's inside takes no surface
-  EXPECT_EQ(SurfaceBytesEstimate(counts), 60'000);
+  counts.hard_voxels = 10'000;
+  counts.frozen_voxels = 20'000;
+  counts.soft_voxels = 30'000;
+  const StageBytes s = EstimateStageBytes(grid.voxels, grid.points, counts);
+  EXPECT_EQ(SurfaceBytesEstimate(grid, counts), std::max(s.surface, s.check));
+  MembraneCounts inside = counts;
+  inside.inside_soft_voxels = 50'000'000;  // the solid's inside takes no surface
+  EXPECT_EQ(SurfaceBytesEstimate(grid, inside), SurfaceBytesEstimate(grid, counts));
+  MembraneCounts foam = counts;
+  foam.soft_voxels += 1'000'000;
+  EXPECT_GT(SurfaceBytesEstimate(grid, foam), SurfaceBytesEstimate(grid, counts));
+}
+
+// A plan as PlanGrid makes it, for a grid too large to make a cloud for in a unit test.
+PlannedGrid Plan(double voxel_size, int64_t voxels, int64_t points) {
+  PlannedGrid plan;
+  plan.voxel_size = voxel_size;
+  plan.voxels = voxels;
+  plan.points = points;
+  plan.bytes = GridBytesEstimate(voxels, points);
+  return plan;
+}
+
+// A 10M-point torus at formula (1) is a 1295^3 grid (2.17e9 voxels): it fits the 3/4 of a
+// 24 GB machine that membraned takes by default. Fifty million points at formula (1) are a
+// grid of 2.4e10 voxels: more than such a machine has.
+TEST(CheckMemoryCeiling, RefusesWhatNoMachineOfThatSizeHolds) {
+  constexpr int64_t kMachine = int64_t{24} << 30;
+  const PlannedGrid ten_million = Plan(0.0015826, 2'171'747'375, 10'000'000);
+  EXPECT_LT(ten_million.bytes, kMachine / 4 * 3);
+  EXPECT_TRUE(CheckMemoryCeiling(ten_million, kMachine).ok());
+  const PlannedGrid fifty_million = Plan(0.00070775, 24'170'000'000, 50'000'000);
+  const absl::Status refused = CheckMemoryCeiling(fifty_million, kMachine);
+  EXPECT_EQ(refused.code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_THAT(std::string(refused.message()),
+              ::testing::AllOf(::testing::HasSubstr("voxel size 0.00070775"),
+                               ::testing::HasSubstr("2.42e+10 voxels"),
+                               ::testing::HasSubstr("50000000 points"),
+                               ::testing::HasSubstr("the ceiling of 25.8 GB")));
+  EXPECT_TRUE(CheckMemoryCeiling(fifty_million, 0).ok());  // none
+}
+
+TEST(CheckMemoryCeiling, TheDefaultIsTheMachinesMemory) {
+  const PlannedGrid huge = Plan(1e-6, int64_t{1} << 60, 1000);
+  const absl::Status refused = CheckMemoryCeiling(huge, -1);
+  EXPECT_EQ(refused.code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_THAT(std::string(refused.message()), ::testing::HasSubstr("of memory this machine has"));
 }
 
 TEST(BytesText, ThreeSignificantDigitsInPowersOfAThousand) {

@@ -289,6 +289,20 @@ TEST(ReconstructionPipeline, ItsOwnErrorsGetTheCallersWords) {
                       ::testing::EndsWith("; try a larger voxel")));
   }
   {
+    // Whatever the gate admits, a grid over the memory ceiling is refused before it is made.
+    InMemoryCloudSource source(SampledSphere());
+    NoResourceLimit gate;
+    InMemoryMeshSink sink;
+    ReconstructionOptions options;
+    options.memory_ceiling_bytes = 1000;
+    const Outcome run = RunWith(source, gate, sink, options);
+    EXPECT_EQ(run.report.status().code(), absl::StatusCode::kResourceExhausted);
+    EXPECT_THAT(std::string(run.report.status().message()),
+                AllOf(HasSubstr("voxels: with the"), HasSubstr("more than the ceiling of 1 KB"),
+                      ::testing::EndsWith("; try a larger voxel")));
+    EXPECT_EQ(run.log.events.back(), "finished decode");  // nothing voxelized
+  }
+  {
     InMemoryCloudSource source(SampledSphere());
     NoResourceLimit gate;
     InMemoryMeshSink sink;

@@ -1,5 +1,6 @@
-// The memory budget's shares: a job's reservation grows stage by stage, waits while others
-// hold the memory, and gives up when every holder waits (no share would ever shrink).
+// The memory budget's shares: a job's reservation grows stage by stage (to the largest stage's
+// estimate, through its MemoryBudgetGate), waits while others hold the memory, and gives up
+// when every holder waits (no share would ever shrink).
 #include <atomic>
 #include <optional>
 #include <thread>
@@ -9,6 +10,7 @@
 #include "absl/synchronization/notification.h"
 #include "absl/time/clock.h"
 #include "server/memory_budget.h"
+#include "server/memory_budget_gate.h"
 
 namespace membrane::server {
 namespace {
@@ -94,6 +96,55 @@ TEST(MemoryBudget, NoBudgetGrantsEverything) {
   MemoryBudget budget(0);
   MemoryBudget::Share share(budget);
   EXPECT_TRUE(share.Add(int64_t{1} << 50, CancelToken()).ok());
+}
+
+// A job holds the larger of its grid's and its surface's estimates, not their sum: the surface's
+// counts the grid it is built beside.
+TEST(MemoryBudgetGate, TheShareGrowsToTheSurfacesPeakNotByIt) {
+  MemoryBudget budget(int64_t{1} << 40);
+  MemoryBudgetGate gate(budget);
+  PlannedGrid grid;
+  grid.voxels = 100'000'000;
+  grid.points = 1'000'000;
+  grid.bytes = GridBytesEstimate(grid.voxels, grid.points);
+  ASSERT_TRUE(gate.AdmitGrid(grid, grid.points, CancelToken()).ok());
+  EXPECT_EQ(budget.reserved(), grid.bytes);
+  MembraneCounts small;  // a surface smaller than the shrink's peak takes nothing more
+  small.hard_voxels = 1000;
+  ASSERT_LT(SurfaceBytesEstimate(grid, small), grid.bytes);
+  ASSERT_TRUE(gate.AdmitSurface(small, CancelToken()).ok());
+  EXPECT_EQ(budget.reserved(), grid.bytes);
+}
+
+TEST(MemoryBudgetGate, ALargeSurfaceTakesItsPeak) {
+  MemoryBudget budget(int64_t{1} << 40);
+  MemoryBudgetGate gate(budget);
+  PlannedGrid grid;
+  grid.voxels = 1'000'000;
+  grid.points = 100'000;
+  grid.bytes = GridBytesEstimate(grid.voxels, grid.points);
+  ASSERT_TRUE(gate.AdmitGrid(grid, grid.points, CancelToken()).ok());
+  MembraneCounts foam;
+  foam.soft_voxels = 900'000;
+  ASSERT_TRUE(gate.AdmitSurface(foam, CancelToken()).ok());
+  EXPECT_EQ(budget.reserved(), SurfaceBytesEstimate(grid, foam));
+}
+
+TEST(MemoryBudgetGate, ASurfaceOverTheBudgetNamesTheMembrane) {
+  PlannedGrid grid;
+  grid.voxels = 1'000'000;
+  grid.points = 100'000;
+  grid.bytes = GridBytesEstimate(grid.voxels, grid.points);
+  MemoryBudget budget(grid.bytes + 1000);
+  MemoryBudgetGate gate(budget);
+  ASSERT_TRUE(gate.AdmitGrid(grid, grid.points, CancelToken()).ok());
+  MembraneCounts foam;
+  foam.soft_voxels = 900'000;
+  const absl::Status refused = gate.AdmitSurface(foam, CancelToken());
+  EXPECT_EQ(refused.code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_NE(refused.message().find("the surface of a membrane of 900000 voxels"),
+            std::string::npos)
+      << refused.message();
 }
 
 TEST(DefaultMemoryBudget, IsThreeQuartersOfTheTotalOrNoLimitWhenUnknown) {

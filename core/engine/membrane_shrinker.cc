@@ -9,6 +9,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/types/span.h"
 #include "core/engine/closed_form_generation.h"
+#include "core/engine/gap_refill.h"
 #include "core/engine/handle_retry.h"
 #include "core/engine/plate_schedule.h"
 #include "core/engine/silhouette.h"
@@ -86,6 +87,11 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
         !s.ok()) {
       return s;
     }
+  }
+  {
+    absl::StatusOr<GapRefillStats> refill = RefillGapChannels(grid_, options_.refill, cancel_);
+    if (!refill.ok()) return refill.status();
+    result.refill = *refill;
   }
   if (options_.connect_inside_hard) {
     absl::StatusOr<PostProcessStats> post = ConnectInsideHardVoxels(grid_, cancel_);

@@ -70,6 +70,7 @@ struct ShrinkResult {
   int64_t preshrink_outside_voxels = 0;
   PostProcessStats post_process;
   HandleRetry handle_retry;
+  GapRefillStats refill;
   double seconds = 0.0;
 };
 

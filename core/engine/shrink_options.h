@@ -6,6 +6,7 @@
 
 #include "absl/status/status.h"
 #include "core/engine/contraction.h"
+#include "core/engine/gap_refill.h"
 #include "core/engine/plate_schedule.h"
 #include "core/engine/topology_guard.h"
 
@@ -35,6 +36,7 @@ struct ShrinkOptions {
   bool silhouette_preshrink = false;  // algorithm-notes 3 (Fig. 21b); off by default
   bool connect_inside_hard = true;  // section 7 post-process
   HandleRetryOptions retry;
+  GapRefillOptions refill;          // channels carved through data gaps (gap_refill.h)
 };
 
 // Validates options: InvalidArgument naming the field and its allowed range.

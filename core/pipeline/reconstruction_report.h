@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/engine/gap_refill.h"
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/post_process.h"
 #include "core/mesh/hole_caps.h"
@@ -69,6 +70,7 @@ struct ReconstructionReport {
   int planned_generations = 0;               // plate sizes of the schedule, known before shrinking
   std::vector<GenerationStats> generations;  // one per plate size, the last has plate size 1
   PostProcessStats post_process;
+  GapRefillStats gap_refill;   // ShrinkResult::refill
   HandleRetry handle_retry;    // ShrinkResult::handle_retry
   MembraneCounts membrane;     // the final DMS, before relaxation
   RelaxationStats relaxation;  // all 0 with --no-relax

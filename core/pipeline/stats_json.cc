@@ -142,6 +142,7 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"surface\": ", JsonString(r.surface), ",\n  \"relaxed\": ", JsonBool(r.relaxed),
       ",\n  \"threads\": ", r.threads,
       ",\n  \"post_process\": ", PostProcessJson(r.post_process),
+      ",\n  \"gap_refill\": {\"refilled_voxels\": ", r.gap_refill.refilled_voxels, "}",
       ",\n  \"handle_retry\": ", HandleRetryJson(r.handle_retry),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
       ",\n  \"hole_caps\": ", HoleCapsJson(r.hole_caps),

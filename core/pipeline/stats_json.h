@@ -21,6 +21,7 @@ namespace membrane {
 // Extra keys: data_grid (grid without padding), schedule, surface, relaxed; per generation
 // generation, contractions, undone_contractions, guard_refusals, depth_refusals, passes;
 // post_process {inside_hard_before, inside_hard_after, carved_voxels, bridge_voxels};
+// gap_refill {refilled_voxels} (GapRefillStats);
 // handle_retry {ran, kept, from_generation, loose_tunnels, shells_before, genus_before,
 // shells_after, genus_after, web_voxels, web_hard_rim, seconds} (HandleRetry);
 // relaxation {phase1_moves, phase1_added, phase2_moves, phase2_uncovered, not_simple};

@@ -1,0 +1,50 @@
+// Refill of channels carved through data gaps (issue 17, cause 3): on scanner clouds the
+// membrane enters the solid through a part the scanner did not see and carves a blind channel
+// behind walls whose data lies on their far side. The channel's own walls hold no data.
+#ifndef MEMBRANE_CORE_ENGINE_GAP_REFILL_H_
+#define MEMBRANE_CORE_ENGINE_GAP_REFILL_H_
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "core/base/cancel_token.h"
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+struct GapRefillOptions {
+  bool enabled = true;
+  // A voxel is in a gap when no hard voxel lies within this Chebyshev distance (voxels): the
+  // surface's gap test (hole caps) at the voxel's scale.
+  int gap_radius = 2;
+  // It lies behind gap walls when, of the 6 axis rays from it, at least this many enter the
+  // solid through two non-hard voxels and meet a hard voxel further on (from inside a channel
+  // every way but the way in runs into the solid's unscanned interior; from a concavity seen
+  // from outside, rays meet the scanned walls first or leave through the opening).
+  int min_enclosed_rays = 4;
+};
+
+struct GapRefillStats {
+  int64_t refilled_voxels = 0;  // outside voxels returned to the solid
+};
+
+// Input: a shrunk grid (the membrane invariants hold; every outside voxel 6-connected to the
+// array border).
+// Effect: returns to the solid every outside voxel that is in a gap and behind gap walls (see
+// GapRefillOptions) and reached from the membrane through such voxels, that is 6-adjacent to
+// the solid when it is added and whose addition is (26,6)-simple, repeating until none is
+// left, from the membrane inwards. So the fill starts
+// only on membrane far from any data, never closes a hole or joins two shells (each addition
+// changes no topology), and stays gap_radius voxels from every hard voxel. A refilled voxel
+// with an outside neighbour is FROZEN BOUNDARY (Property 3), others INSIDE; a boundary
+// voxel left with no outside neighbour becomes INSIDE: the membrane invariants still hold.
+// The region is read once, on the grid as it comes (the fill's own voxels would block the
+// rays). Memory: 8 bytes per grid row and axis (the hard voxels' extremes per row), and hash
+// sets of the region's voxels. Errors: Cancelled when `cancel` fires (the grid is then a valid
+// membrane, partly refilled); InvalidArgument for options out of range.
+absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefillOptions& options,
+                                                 const CancelToken& cancel);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_GAP_REFILL_H_

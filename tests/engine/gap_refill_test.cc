@@ -1,0 +1,165 @@
+// The refill of channels carved through data gaps: an outside channel whose walls hold no data,
+// entered through a gap in a scanned skin, returns to the solid; a concavity with scanned walls
+// and a hole through the solid keep their shape and their topology.
+#include "core/engine/gap_refill.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <functional>
+
+#include "core/engine/local_topology.h"
+#include "core/engine/membrane_invariants.h"
+#include "core/engine/voxel_topology.h"
+
+namespace membrane {
+namespace {
+
+constexpr int kN = 30;  // the solid box's side
+constexpr int kAt = 4;  // the box's first voxel on each axis (padding and an outside layer)
+
+// A final membrane around the box [kAt, kAt + kN)^3: its skin hard (a scanned surface) except
+// where `gap(x, y, z)` (box coordinates) holds, the voxels where `carved` holds outside
+// (generation 9), the rest of the grid outside (generation 1). Positions and frozen states as
+// the shrink leaves them: a non-outside voxel beside the outside is BOUNDARY, a soft one with
+// an outside face neighbour FROZEN.
+using BoxPredicate = std::function<bool(int, int, int)>;
+VoxelGrid Box(const BoxPredicate& gap, const BoxPredicate& carved) {
+  const int dim = kN + 2 * kAt;
+  VoxelGrid grid({dim, dim, dim}, {0, 0, 0}, 1.0, OutsideState(1));
+  for (int z = 0; z < kN; ++z)
+    for (int y = 0; y < kN; ++y)
+      for (int x = 0; x < kN; ++x) {
+        const int64_t v = grid.Index(x + kAt, y + kAt, z + kAt);
+        const bool skin = std::min({x, y, z, kN - 1 - x, kN - 1 - y, kN - 1 - z}) == 0;
+        if (carved(x, y, z)) {
+          grid.set(v, OutsideState(9));
+        } else {
+          grid.set(v, skin && !gap(x, y, z) ? kInsideHard : kInsideSoft);
+        }
+      }
+  for (int64_t v = 0; v < grid.size(); ++v) {
+    if (IsOutside(grid.at(v)) || grid.OnArrayBorder(grid.CoordOf(v))) continue;
+    const uint32_t outside = OutsideMask(grid, v);
+    if ((outside & ~kCentreBit) == 0) continue;
+    VoxelState s = grid.at(v) | kBoundaryBit;
+    if (s == kBoundarySoft && (outside & FaceNeighboursMask()) != 0) s = kBoundaryFrozen;
+    grid.set(v, s);
+  }
+  return grid;
+}
+
+bool Never(int, int, int) { return false; }
+
+int64_t OutsideIn(const VoxelGrid& grid, int z_from) {
+  int64_t count = 0;
+  for (int z = z_from; z < kN; ++z)
+    for (int y = 0; y < kN; ++y)
+      for (int x = 0; x < kN; ++x)
+        count += IsOutside(grid.at(grid.Index(x + kAt, y + kAt, z + kAt)));
+  return count;
+}
+
+void ExpectValidMembrane(const VoxelGrid& grid) {
+  const absl::Status s = CheckMembraneInvariants(grid, InvariantOptions{});
+  EXPECT_TRUE(s.ok()) << s;
+}
+
+// A 10 x 10 gap in the bottom skin and a channel 8 x 8 wide carved from it 20 voxels up into
+// the solid: the channel's walls hold no data, and from inside it every ray but the way out
+// enters such a wall. It is refilled up to gap_radius voxels from the skin's data; the outside
+// below the gap (rays into the solid only upwards) stays.
+TEST(RefillGapChannels, AChannelThroughAGapIsRefilled) {
+  auto gap = [](int x, int y, int z) { return z == 0 && x >= 10 && x < 20 && y >= 10 && y < 20; };
+  auto channel = [](int x, int y, int z) {
+    return z < 20 && x >= 11 && x < 19 && y >= 11 && y < 19;
+  };
+  VoxelGrid grid = Box(gap, channel);
+  ExpectValidMembrane(grid);
+  ASSERT_EQ(OutsideIn(grid, 3), 8 * 8 * 17);
+  const VoxelTopology before = ComputeVoxelTopology(grid);
+  absl::StatusOr<GapRefillStats> stats =
+      RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(OutsideIn(grid, 3), 0);
+  EXPECT_GE(stats->refilled_voxels, 8 * 8 * 17);
+  for (int y = 0; y < kAt; ++y)  // below the box
+    EXPECT_TRUE(IsOutside(grid.at(grid.Index(kAt + 15, y, kAt + 15))));
+  EXPECT_TRUE(IsOutside(grid.at(grid.Index(kAt + 15, kAt + 15, kAt - 1))));
+  ExpectValidMembrane(grid);
+  const VoxelTopology after = ComputeVoxelTopology(grid);
+  EXPECT_EQ(after.shells, before.shells);
+  EXPECT_EQ(after.genus, before.genus);
+}
+
+// The same channel where the scanner saw its walls (hard voxels around it): a concavity seen
+// from outside, left as it is.
+TEST(RefillGapChannels, AChannelWithScannedWallsStays) {
+  auto gap = [](int x, int y, int z) { return z == 0 && x >= 10 && x < 20 && y >= 10 && y < 20; };
+  auto channel = [](int x, int y, int z) {
+    return z < 20 && x >= 11 && x < 19 && y >= 11 && y < 19;
+  };
+  VoxelGrid grid = Box(gap, channel);
+  for (int z = 0; z <= 20; ++z)
+    for (int y = 10; y < 20; ++y)
+      for (int x = 10; x < 20; ++x) {
+        const int64_t v = grid.Index(x + kAt, y + kAt, z + kAt);
+        if (IsOutside(grid.at(v))) continue;
+        grid.set(v, IsBoundary(grid.at(v)) ? kBoundaryHard : kInsideHard);
+      }
+  ExpectValidMembrane(grid);
+  const std::vector<VoxelState> before = grid.states();
+  absl::StatusOr<GapRefillStats> stats =
+      RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->refilled_voxels, 0);
+  EXPECT_EQ(grid.states(), before);
+}
+
+// A hole 8 x 8 wide through the box between two gaps, its walls without data: the fill may
+// narrow it, but never closes it (each added voxel is simple): one shell of genus 1.
+TEST(RefillGapChannels, AHoleThroughGapWallsStaysOpen) {
+  auto gap = [](int x, int y, int) { return x >= 10 && x < 20 && y >= 10 && y < 20; };
+  auto hole = [](int x, int y, int) { return x >= 11 && x < 19 && y >= 11 && y < 19; };
+  VoxelGrid grid = Box(gap, hole);
+  ExpectValidMembrane(grid);
+  ASSERT_EQ(ComputeVoxelTopology(grid).genus, std::vector<int>{1});
+  absl::StatusOr<GapRefillStats> stats =
+      RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  ExpectValidMembrane(grid);
+  const VoxelTopology after = ComputeVoxelTopology(grid);
+  EXPECT_EQ(after.shells, 1);
+  EXPECT_EQ(after.genus, std::vector<int>{1});
+}
+
+TEST(RefillGapChannels, DisabledChangesNothing) {
+  auto gap = [](int x, int y, int z) { return z == 0 && x >= 10 && x < 20 && y >= 10 && y < 20; };
+  auto channel = [](int x, int y, int z) {
+    return z < 20 && x >= 11 && x < 19 && y >= 11 && y < 19;
+  };
+  VoxelGrid grid = Box(gap, channel);
+  const std::vector<VoxelState> before = grid.states();
+  GapRefillOptions options;
+  options.enabled = false;
+  absl::StatusOr<GapRefillStats> stats = RefillGapChannels(grid, options, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->refilled_voxels, 0);
+  EXPECT_EQ(grid.states(), before);
+}
+
+TEST(RefillGapChannels, OptionsOutOfRangeAreRefused) {
+  VoxelGrid grid = Box(Never, Never);
+  GapRefillOptions options;
+  options.gap_radius = 0;
+  EXPECT_EQ(RefillGapChannels(grid, options, CancelToken::Never()).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  options = GapRefillOptions{};
+  options.min_enclosed_rays = 7;
+  const absl::Status s = RefillGapChannels(grid, options, CancelToken::Never()).status();
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("min_enclosed_rays 7"), absl::string_view::npos) << s;
+}
+
+}  // namespace
+}  // namespace membrane

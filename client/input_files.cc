@@ -1,5 +1,7 @@
 #include "client/input_files.h"
 
+#include <utility>
+
 #include "absl/strings/str_cat.h"
 #include "client/format_flags.h"
 #include "client/std_streams.h"
@@ -30,6 +32,17 @@ DecodeLimits DecoderLimits(const std::string& bytes, const std::string& path) {
   return limits;
 }
 
+// A cloud read with its points that are not finite dropped (`count` of them), refused
+// instead when `invalid` says so, naming the flag that drops them.
+absl::StatusOr<PointCloud> WithInvalidPoints(absl::StatusOr<PointCloud> cloud, size_t count,
+                                             const std::string& path, InvalidPoints invalid,
+                                             size_t* dropped) {
+  if (!cloud.ok()) return cloud;
+  if (count > 0 && invalid == InvalidPoints::kRefuse) return InvalidPointsError(path, count);
+  if (dropped != nullptr) *dropped = count;
+  return cloud;
+}
+
 // ReadPointCloudFromBuffer, with the refusal of points that are not finite naming the flag
 // that drops them.
 absl::StatusOr<PointCloud> ReadCloudBuffer(const std::string& bytes, FileFormat format,
@@ -38,10 +51,7 @@ absl::StatusOr<PointCloud> ReadCloudBuffer(const std::string& bytes, FileFormat 
   size_t count = 0;
   absl::StatusOr<PointCloud> cloud =
       ReadPointCloudFromBuffer(bytes, format, path, InvalidPoints::kDrop, &count);
-  if (!cloud.ok()) return cloud;
-  if (count > 0 && invalid == InvalidPoints::kRefuse) return InvalidPointsError(path, count);
-  if (dropped != nullptr) *dropped = count;
-  return cloud;
+  return WithInvalidPoints(std::move(cloud), count, path, invalid, dropped);
 }
 
 }  // namespace
@@ -63,9 +73,16 @@ absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, absl::string_
                                           size_t* dropped) {
   // A file's name is checked before it is read: a wrong extension fails at once.
   if (!IsStdStream(path)) {
-    if (absl::Status s = InputFormat(path, format_flag, FileUse::kReadPointCloud).status();
-        !s.ok()) {
-      return s;
+    absl::StatusOr<FileFormat> format = InputFormat(path, format_flag, FileUse::kReadPointCloud);
+    if (!format.ok()) return format.status();
+    // Draco goes to a decoder process as bytes; the rest is read here, a binary PLY in pieces
+    // (ReadPointCloudFile), so that a large scan's file and its points are not both held.
+    if (*format != FileFormat::kDrc) {
+      if (dropped != nullptr) *dropped = 0;
+      size_t count = 0;
+      absl::StatusOr<PointCloud> cloud =
+          ReadPointCloudFile(path, *format, InputName(path), InvalidPoints::kDrop, &count);
+      return WithInvalidPoints(std::move(cloud), count, InputName(path), invalid, dropped);
     }
   }
   absl::StatusOr<std::string> bytes = ReadInputBytes(path);

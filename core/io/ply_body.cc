@@ -1,9 +1,7 @@
 #include "core/io/ply_body.h"
 
-#include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -14,6 +12,7 @@
 #include "core/io/coordinate_shift.h"
 #include "core/io/parse_error.h"
 #include "core/io/ply_value_source.h"
+#include "core/io/ply_vertex_rows.h"
 
 namespace membrane {
 namespace {
@@ -78,12 +77,8 @@ bool Float32Positions(const PlyElement& element, const ElementPlan& plan) {
 absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
                            absl::string_view source, PlyBinarySource& in, CoordinateShift& shift,
                            TriangleMesh* out) {
-  std::vector<size_t> offsets;
-  size_t row_bytes = 0;
-  for (const PlyProperty& property : element.properties) {
-    offsets.push_back(row_bytes);
-    row_bytes += ScalarSize(property.type);
-  }
+  const PlyVertexRows layout = VertexRowLayout(element, plan.x, plan.y, plan.z, in.order());
+  const size_t row_bytes = layout.row_bytes;
   const size_t start = in.offset();
   if (!in.MayHoldRows(element.count, row_bytes)) {
     const uint64_t whole_rows = in.remaining() / row_bytes;
@@ -94,33 +89,8 @@ absl::Status ReadFixedRows(const PlyElement& element, const ElementPlan& plan,
   }
   const char* rows = in.Take(element.count * row_bytes);
   if (plan.role != ElementPlan::Role::kVertex) return absl::OkStatus();
-  const PlyProperty& px = element.properties[plan.x];
-  const PlyProperty& py = element.properties[plan.y];
-  const PlyProperty& pz = element.properties[plan.z];
-  const ByteOrder order = in.order();
   out->vertices.resize(element.count);
-  const bool float32_positions = Float32Positions(element, plan);
-  const bool native_floats =
-      float32_positions &&
-      (order == ByteOrder::kLittleEndian) == (std::endian::native == std::endian::little);
-  if (native_floats) {
-    // The common scan layout: copy the floats as they are, no per-value conversion.
-    for (uint64_t r = 0; r < element.count; ++r) {
-      const char* row = rows + r * row_bytes;
-      Point3f& p = out->vertices[r];
-      std::memcpy(&p[0], row + offsets[plan.x], sizeof(float));
-      std::memcpy(&p[1], row + offsets[plan.y], sizeof(float));
-      std::memcpy(&p[2], row + offsets[plan.z], sizeof(float));
-    }
-    return absl::OkStatus();
-  }
-  for (uint64_t r = 0; r < element.count; ++r) {
-    const char* row = rows + r * row_bytes;
-    const double x = DecodeScalar(row + offsets[plan.x], px.type, order);
-    const double y = DecodeScalar(row + offsets[plan.y], py.type, order);
-    const double z = DecodeScalar(row + offsets[plan.z], pz.type, order);
-    out->vertices[r] = shift.NarrowStored(x, y, z, float32_positions);
-  }
+  DecodeVertexRows(rows, element.count, layout, shift, out->vertices.data());
   return absl::OkStatus();
 }
 

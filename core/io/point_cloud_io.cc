@@ -1,5 +1,6 @@
 #include "core/io/point_cloud_io.h"
 
+#include <optional>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
@@ -12,6 +13,7 @@
 #include "core/io/parse_error.h"
 #include "core/io/pcd_reader.h"
 #include "core/io/ply_reader.h"
+#include "core/io/ply_stream.h"
 #include "core/io/ply_writer.h"
 #include "core/io/xyz_reader.h"
 #include "core/io/xyz_writer.h"
@@ -38,15 +40,40 @@ absl::StatusOr<PointCloud> Parse(absl::string_view data, FileFormat format,
       absl::StrCat(source, ": point clouds cannot be read from ", FormatName(format), " files"));
 }
 
+// `cloud` with its points that are not finite refused or dropped as `invalid` says.
+absl::StatusOr<PointCloud> CheckedPoints(PointCloud cloud, absl::string_view source,
+                                         InvalidPoints invalid, size_t* dropped) {
+  if (dropped != nullptr) *dropped = 0;
+  if (invalid == InvalidPoints::kDrop) {
+    const size_t count = DropNonFinitePoints(&cloud.points);
+    if (dropped != nullptr) *dropped = count;
+    return cloud;
+  }
+  absl::Status finite = CheckFinitePoints(cloud.points, source);
+  if (!finite.ok()) return finite;
+  return cloud;
+}
+
 }  // namespace
 
 absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path, InvalidPoints invalid,
                                           size_t* dropped) {
   absl::StatusOr<FileFormat> format = FormatFromPath(path, FileUse::kReadPointCloud);
   if (!format.ok()) return format.status();
+  return ReadPointCloudFile(path, *format, path, invalid, dropped);
+}
+
+absl::StatusOr<PointCloud> ReadPointCloudFile(const std::string& path, FileFormat format,
+                                              absl::string_view source, InvalidPoints invalid,
+                                              size_t* dropped) {
+  if (format == FileFormat::kPly) {
+    if (std::optional<PointCloud> streamed = StreamPlyPointCloud(path)) {
+      return CheckedPoints(*std::move(streamed), source, invalid, dropped);
+    }
+  }
   absl::StatusOr<std::string> bytes = ReadFileBytes(path);
   if (!bytes.ok()) return bytes.status();
-  return ReadPointCloudFromBuffer(*bytes, *format, path, invalid, dropped);
+  return ReadPointCloudFromBuffer(*bytes, format, source, invalid, dropped);
 }
 
 absl::StatusOr<PointCloud> ReadPointCloudFromBuffer(absl::string_view data, FileFormat format,
@@ -56,14 +83,7 @@ absl::StatusOr<PointCloud> ReadPointCloudFromBuffer(absl::string_view data, File
   if (data.empty()) return absl::InvalidArgumentError(absl::StrCat(source, ": the file is empty"));
   absl::StatusOr<PointCloud> cloud = Parse(data, format, source);
   if (!cloud.ok()) return cloud.status();
-  if (invalid == InvalidPoints::kDrop) {
-    const size_t count = DropNonFinitePoints(&cloud->points);
-    if (dropped != nullptr) *dropped = count;
-    return cloud;
-  }
-  absl::Status finite = CheckFinitePoints(cloud->points, source);
-  if (!finite.ok()) return finite;
-  return cloud;
+  return CheckedPoints(*std::move(cloud), source, invalid, dropped);
 }
 
 absl::StatusOr<std::string> WritePointCloudToBuffer(const PointCloud& cloud, FileFormat format,

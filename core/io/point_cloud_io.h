@@ -26,10 +26,19 @@ enum class InvalidPoints {
 // The point cloud in the file at `path`, its format chosen by the extension
 // (case-insensitive): .ply, .obj, .xyz/.txt/.pts, .pcd, .drc (a Draco mesh gives its
 // vertices). NotFound naming the path when it does not exist; otherwise as
-// ReadPointCloudFromBuffer with `path` as the source.
+// ReadPointCloudFile with `path` as the source.
 absl::StatusOr<PointCloud> ReadPointCloud(const std::string& path,
                                           InvalidPoints invalid = InvalidPoints::kRefuse,
                                           size_t* dropped = nullptr);
+
+// The point cloud in the file at `path`, read as `format`, `source` naming it in messages: as
+// ReadFileBytes then ReadPointCloudFromBuffer (their errors), but a binary PLY file is read in
+// pieces into the points (StreamPlyPointCloud), never whole: a scan's file and its points are
+// not both held.
+absl::StatusOr<PointCloud> ReadPointCloudFile(const std::string& path, FileFormat format,
+                                              absl::string_view source,
+                                              InvalidPoints invalid = InvalidPoints::kRefuse,
+                                              size_t* dropped = nullptr);
 
 // The point cloud in `data`, read as `format`. `source` names the input in messages. A cloud
 // of zero points is OK when the file is well formed. Errors:

@@ -147,7 +147,8 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   adjacent.ForEach([&](int64_t i) {
     if (cancelled || outcome.incursions > 0 || !IsHardOrFrozen(s[i])) return;
     if ((++outcome.checks & 4095) == 0 && cancel.cancelled()) cancelled = true;
-    if (IncursionAt(grid, i, options.rules.thick_wall_run)) ++outcome.incursions;
+    if (IncursionAt(grid, i, options.rules.thick_wall_run, options.rules.thick_wall_detour))
+      ++outcome.incursions;
   });
   if (!cancelled && outcome.incursions == 0 && options.rules.topology_guard) {
     FlatBitset& near_hard = ws.near_hard;

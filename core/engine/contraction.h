@@ -28,6 +28,9 @@ struct ChainRules {
   int depth_bound_max_plate = 2;  // the plate sizes the depth bound applies to: n <= this
   int thick_wall_run = 3;         // algorithm-notes 15: longest hard run of the thick-wall
                                   // incursion test; 1 = the paper's test only
+  int thick_wall_detour = 0;      // the thick-wall test does not fire when the run's two ends
+                                  // are joined through the outside within this Chebyshev
+                                  // radius (a thin part); 0 = off (engine-decisions.md)
   bool topology_guard = true;     // algorithm-notes 12
 };
 

@@ -1,5 +1,8 @@
 #include "core/engine/incursion_test.h"
 
+#include <cstdlib>  // std::abs
+#include <vector>
+
 #include "core/engine/local_topology.h"
 
 namespace membrane {
@@ -27,6 +30,42 @@ uint64_t FloodBox(uint64_t seed, uint64_t allowed, int len) {
   }
 }
 
+// Whether the outside voxels a and b are joined by a 6-path of outside voxels inside the cube
+// of radius r (Chebyshev) around `centre`: a breadth-first search over at most (2r + 1)^3
+// voxels.
+bool JoinedInCube(const VoxelGrid& grid, int64_t centre, int64_t a, int64_t b, int r) {
+  const Coord c = grid.CoordOf(centre);
+  static constexpr int kSteps[6][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                       {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+  const int side = 2 * r + 1;
+  std::vector<uint8_t> seen(static_cast<size_t>(side) * side * side, 0);
+  std::vector<Coord> queue;
+  auto local = [&](const Coord& q) {
+    return (q.x - c.x + r) + side * ((q.y - c.y + r) + side * (q.z - c.z + r));
+  };
+  const Coord ca = grid.CoordOf(a), cb = grid.CoordOf(b);
+  auto in_cube = [&](const Coord& q) {
+    return std::abs(q.x - c.x) <= r && std::abs(q.y - c.y) <= r && std::abs(q.z - c.z) <= r;
+  };
+  if (!in_cube(ca) || !in_cube(cb)) return false;
+  queue.push_back(ca);
+  seen[local(ca)] = 1;
+  const VoxelState* s = grid.states().data();
+  for (size_t h = 0; h < queue.size(); ++h) {
+    const Coord q = queue[h];
+    if (q.x == cb.x && q.y == cb.y && q.z == cb.z) return true;
+    for (const auto& e : kSteps) {
+      const Coord n{q.x + e[0], q.y + e[1], q.z + e[2]};
+      if (!in_cube(n) || !grid.Contains(n)) continue;
+      const int l = local(n);
+      if (seen[l] || !IsOutside(s[grid.Index(n)])) continue;
+      seen[l] = 1;
+      queue.push_back(n);
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 bool PaperIncursion(const VoxelGrid& grid, int64_t index) {
@@ -49,7 +88,7 @@ bool PaperIncursion(const VoxelGrid& grid, int64_t index) {
   return false;
 }
 
-bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run) {
+bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run, int detour) {
   const auto st = grid.strides();
   const VoxelState* s = grid.states().data();
   for (int d = 0; d < 3; ++d) {
@@ -71,7 +110,14 @@ bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run) {
           if (IsOutside(s[at])) outside |= 1ull << (t * 9 + i * 3 + j);
         }
     const uint64_t bit_a = 1ull << 4, bit_b = 1ull << ((len - 1) * 9 + 4);
-    if ((FloodBox(bit_a, outside, len) & bit_b) == 0) return true;
+    if ((FloodBox(bit_a, outside, len) & bit_b) != 0) continue;
+    // Joined around the run a little further out: a thin part (a leg, a horn, a belt), both
+    // of whose sides are the exterior, not a wall with a dig behind it.
+    if (detour > 0 &&
+        JoinedInCube(grid, index, index + (lo - 1) * sd, index + (hi + 1) * sd, detour)) {
+      continue;
+    }
+    return true;
   }
   return false;
 }

@@ -55,6 +55,10 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(
         absl::StrFormat("thick_wall_run %d is out of range [1, 5]", o.chain.thick_wall_run));
   }
+  if (o.chain.thick_wall_detour < 0 || o.chain.thick_wall_detour > 16) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "thick_wall_detour %d is out of range [0, 16] (0 = off)", o.chain.thick_wall_detour));
+  }
   return absl::OkStatus();
 }
 

@@ -34,7 +34,8 @@ namespace {
 constexpr char kUsage[] =
     "usage: bench_topology [--factors 1,1.25,1.5,2] [--models NAME,...] [--no-synthetic]\n"
     "                      [--no-real] [--locate] [--retry T,S,W] [--thick-wall-run K]\n"
-    "                      [--depth-bound D] [--rerun-thin K] [--shared DIR]\n"
+    "                      [--thick-wall-detour R] [--depth-bound D] [--rerun-thin K]\n"
+    "                      [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
     "  --locate         print where the handles and merges of every miss are\n"
@@ -42,6 +43,8 @@ constexpr char kUsage[] =
     "                   (ShrinkOptions::retry; 0 = none of that kind)\n"
     "  --thick-wall-run K  the thick-wall incursion test's longest hard run (1 = the\n"
     "                   paper's test only; ChainRules::thick_wall_run)\n"
+    "  --thick-wall-detour R  the radius within which the thick-wall run's ends joined through\n"
+    "                   the outside stop the test (0 = off; ChainRules::thick_wall_detour)\n"
     "  --depth-bound D  the small plates' depth bound (0 = unbounded; ChainRules::depth_bound)\n"
     "  --rerun-thin K   when a result has handles, shrink the grid again with a thick-wall run\n"
     "                   of K and keep that result if it has fewer handles and no fewer shells\n"
@@ -86,6 +89,8 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       }
     } else if (arg == "--thick-wall-run" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.thick_wall_run)) return false;
+    } else if (arg == "--thick-wall-detour" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.thick_wall_detour)) return false;
     } else if (arg == "--depth-bound" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.depth_bound)) return false;
     } else if (arg == "--rerun-thin" && has_value) {

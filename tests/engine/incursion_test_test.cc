@@ -47,8 +47,39 @@ TEST(IncursionTest, ThickWallOfTwoHardVoxelsFires) {
   g.set(Coord{2, 3, 3}, OutsideState(1));
   g.set(Coord{5, 3, 3}, OutsideState(2));
   EXPECT_FALSE(PaperIncursion(g, g.Index(3, 3, 3)));
-  EXPECT_TRUE(ThickWallIncursion(g, g.Index(3, 3, 3), 3));
-  EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 1));
+  EXPECT_TRUE(ThickWallIncursion(g, g.Index(3, 3, 3), 3, 0));
+  EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 1, 0));
+}
+
+// A thin part two hard voxels thick whose sides are joined through the outside two voxels
+// away from it (outside the 3-wide box): fires without the detour or with a cube too small to
+// hold the path, not with a detour of 4 (a leg, not a wall with a dig behind it).
+TEST(IncursionTest, ThickWallJoinedAroundWithinTheDetourDoesNotFire) {
+  VoxelGrid g({13, 13, 13}, {0, 0, 0}, 1.0, kInsideSoft);
+  g.set(Coord{6, 6, 6}, kBoundaryHard);
+  g.set(Coord{7, 6, 6}, kBoundaryHard);
+  g.set(Coord{5, 6, 6}, OutsideState(1));
+  g.set(Coord{8, 6, 6}, OutsideState(2));
+  // 5,6,6 -> 5,7,6 -> 5,8,6 -> ... -> 8,8,6 -> 8,7,6 -> 8,6,6; 6,7,6 and 7,7,6 stay inside.
+  for (int x = 5; x <= 8; ++x) g.set(Coord{x, 8, 6}, OutsideState(1));
+  g.set(Coord{5, 7, 6}, OutsideState(1));
+  g.set(Coord{8, 7, 6}, OutsideState(2));
+  const int64_t v = g.Index(6, 6, 6);
+  EXPECT_TRUE(ThickWallIncursion(g, v, 3, 0));
+  EXPECT_TRUE(ThickWallIncursion(g, v, 3, 1));
+  EXPECT_FALSE(ThickWallIncursion(g, v, 3, 4));
+  EXPECT_FALSE(IncursionAt(g, v, 3, 4));
+}
+
+// The same wall with no outside path around it within the cube: a dig behind a wall fires.
+TEST(IncursionTest, ThickWallNotJoinedWithinTheDetourFires) {
+  VoxelGrid g({13, 13, 13}, {0, 0, 0}, 1.0, kInsideSoft);
+  g.set(Coord{6, 6, 6}, kBoundaryHard);
+  g.set(Coord{7, 6, 6}, kBoundaryHard);
+  g.set(Coord{5, 6, 6}, OutsideState(1));
+  g.set(Coord{8, 6, 6}, OutsideState(2));
+  for (int x = 5; x <= 8; ++x) g.set(Coord{x, 11, 6}, OutsideState(1));  // 5 voxels away
+  EXPECT_TRUE(ThickWallIncursion(g, g.Index(6, 6, 6), 3, 4));
 }
 
 TEST(IncursionTest, ThickWallWithAnOutsidePathAroundDoesNotFire) {
@@ -58,7 +89,7 @@ TEST(IncursionTest, ThickWallWithAnOutsidePathAroundDoesNotFire) {
   for (int x = 2; x <= 5; ++x) g.set(Coord{x, 4, 3}, OutsideState(1));
   g.set(Coord{2, 3, 3}, OutsideState(1));
   g.set(Coord{5, 3, 3}, OutsideState(2));
-  EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 3));
+  EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 3, 0));
 }
 
 TEST(IncursionTest, FrozenVoxelsActAsHard) {
@@ -66,7 +97,7 @@ TEST(IncursionTest, FrozenVoxelsActAsHard) {
   g.set(Coord{3, 3, 3}, kBoundaryFrozen);
   g.set(Coord{3, 2, 3}, OutsideState(1));
   g.set(Coord{3, 4, 3}, OutsideState(3));
-  EXPECT_TRUE(IncursionAt(g, g.Index(3, 3, 3), 3));
+  EXPECT_TRUE(IncursionAt(g, g.Index(3, 3, 3), 3, 4));
 }
 
 }  // namespace

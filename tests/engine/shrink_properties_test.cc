@@ -176,6 +176,9 @@ TEST(ShrinkOptionsValidation, OutOfRangeOptionsNameTheField) {
   o = {};
   o.chain.thick_wall_run = 9;
   EXPECT_THAT(ValidateShrinkOptions(o).message(), HasSubstr("thick_wall_run 9 is out of range [1, 5]"));
+  o = {};
+  o.chain.thick_wall_detour = -1;
+  EXPECT_THAT(ValidateShrinkOptions(o).message(), HasSubstr("thick_wall_detour -1 is out of range"));
 }
 
 TEST(ShrinkPostProcess, InsideHardVoxelsAreConnectedToTheMembrane) {

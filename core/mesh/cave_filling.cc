@@ -26,18 +26,24 @@ void BoxFilter(const VoxelGrid& grid, Mask& mask, Mask& tmp, char beyond, int th
   const int nx = grid.dim(0), ny = grid.dim(1), nz = grid.dim(2);
   const int64_t sy = nx, sz = int64_t{nx} * ny;
   auto combine = [](char a, char b, char c) -> char { return kErode ? (a & b & c) : (a | b | c); };
+  // The tasks copy what they read into locals: a byte store could alias anything reached
+  // through the closure, which would keep the row loops from vectorizing.
   // Along x.
   RunTasks(threads, nz, [&](int, int64_t z) {
+    const int w = nx;
+    const char out = beyond;
+    const char* const from = mask.data();
+    char* const to = tmp.data();
     for (int64_t row = z * ny; row < (z + 1) * ny; ++row) {
-      const char* m = mask.data() + row * nx;
-      char* t = tmp.data() + row * nx;
-      if (nx == 1) {
-        t[0] = combine(beyond, m[0], beyond);
+      const char* m = from + row * w;
+      char* t = to + row * w;
+      if (w == 1) {
+        t[0] = combine(out, m[0], out);
         continue;
       }
-      t[0] = combine(beyond, m[0], m[1]);
-      for (int x = 1; x + 1 < nx; ++x) t[x] = combine(m[x - 1], m[x], m[x + 1]);
-      t[nx - 1] = combine(m[nx - 2], m[nx - 1], beyond);
+      t[0] = combine(out, m[0], m[1]);
+      for (int x = 1; x + 1 < w; ++x) t[x] = combine(m[x - 1], m[x], m[x + 1]);
+      t[w - 1] = combine(m[w - 2], m[w - 1], out);
     }
   });
   mask.swap(tmp);
@@ -47,14 +53,20 @@ void BoxFilter(const VoxelGrid& grid, Mask& mask, Mask& tmp, char beyond, int th
     const int n = axis == 1 ? ny : nz;
     const int64_t step = axis == 1 ? sy : sz;
     RunTasks(threads, nz, [&](int, int64_t z) {
-      for (int y = 0; y < ny; ++y) {
-        const int64_t i = y * sy + z * sz;
-        const int c = axis == 1 ? y : static_cast<int>(z);
-        const char* lo = c > 0 ? mask.data() + i - step : beyond_row.data();
-        const char* mid = mask.data() + i;
-        const char* hi = c + 1 < n ? mask.data() + i + step : beyond_row.data();
-        char* t = tmp.data() + i;
-        for (int x = 0; x < nx; ++x) t[x] = combine(lo[x], mid[x], hi[x]);
+      const int w = nx, rows = ny, count = n;
+      const int64_t row_step = sy, plane_step = sz, axis_step = step;
+      const bool along_y = axis == 1;
+      const char* const from = mask.data();
+      const char* const outside_row = beyond_row.data();
+      char* const to = tmp.data();
+      for (int y = 0; y < rows; ++y) {
+        const int64_t i = y * row_step + z * plane_step;
+        const int c = along_y ? y : static_cast<int>(z);
+        const char* lo = c > 0 ? from + i - axis_step : outside_row;
+        const char* mid = from + i;
+        const char* hi = c + 1 < count ? from + i + axis_step : outside_row;
+        char* t = to + i;
+        for (int x = 0; x < w; ++x) t[x] = combine(lo[x], mid[x], hi[x]);
       }
     });
     mask.swap(tmp);

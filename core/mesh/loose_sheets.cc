@@ -1,6 +1,5 @@
 #include "core/mesh/loose_sheets.h"
 
-#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -18,11 +17,7 @@ int64_t RemoveLooseSheets(VoxelGrid& grid, int threads) {
   const std::array<int64_t, 26>& off = grid.neighbour_offsets();
   const VoxelState* s = grid.states().data();
   const auto& d = grid.dims();
-  const int64_t plane = int64_t{d[0]} * d[1];
-  std::vector<char> kept(static_cast<size_t>(grid.size()));
-  RunTasks(threads, d[2], [&](int, int64_t z) {
-    std::fill(kept.begin() + z * plane, kept.begin() + (z + 1) * plane, 0);
-  });
+  std::vector<char> kept(static_cast<size_t>(grid.size()), 0);
   const int inner_planes = d[2] > 2 ? d[2] - 2 : 0;
   std::vector<std::vector<int64_t>> plane_boundary(inner_planes), plane_seeds(inner_planes);
   RunTasks(threads, inner_planes, [&](int, int64_t task) {

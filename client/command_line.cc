@@ -26,7 +26,7 @@ namespace {
 constexpr char kExitStatusHelp[] =
     "Exit status: 0 success; 2 usage error (unknown command or flag, missing argument); "
     "3 invalid input (unreadable or malformed file, unknown extension, a parameter value out "
-    "of range or not a number, input the core rejects such as a grid over the voxel budget, a missing or wrong "
+    "of range or not a number, input the core rejects such as a grid over the memory limit, a missing or wrong "
     "--token-file); "
     "4 server unavailable or busy, or --timeout expired; 5 job failed or cancelled, or "
     "`check` found the mesh not closed, not manifold or not oriented. Every error prints one "

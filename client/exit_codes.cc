@@ -6,7 +6,8 @@ ExitCode ExitCodeFor(const absl::Status& status) {
   switch (status.code()) {
     case absl::StatusCode::kOk: return kExitSuccess;
     // Local runs have no server, so ResourceExhausted can only be the input's own fault
-    // (a grid over the voxel budget), not a busy server.
+    // (a grid over the memory limit, the machine's memory or a voxel budget), not a busy
+    // server.
     case absl::StatusCode::kInvalidArgument:
     case absl::StatusCode::kNotFound:
     case absl::StatusCode::kOutOfRange:

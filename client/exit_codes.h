@@ -16,7 +16,7 @@ enum ExitCode : int {
 };
 
 // The exit status for a failed (non-OK) `status` from a command:
-//   InvalidArgument, NotFound, OutOfRange, ResourceExhausted (the voxel budget),
+//   InvalidArgument, NotFound, OutOfRange, ResourceExhausted (a grid over a limit),
 //   PermissionDenied, Unauthenticated (a missing or wrong --token-file), Unimplemented (an
 //   unsupported file variant), DataLoss -> 3;
 //   DeadlineExceeded, Unavailable -> 4; everything else (Cancelled, Internal, ...) -> 5.

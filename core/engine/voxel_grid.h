@@ -45,7 +45,7 @@ class VoxelGrid {
 
   VoxelGrid() = default;
   // A grid of dims[0] x dims[1] x dims[2] voxels (padding included), all set to `fill`.
-  // The caller has checked the voxel budget (see Voxelize()).
+  // The caller has checked that the grid fits (Voxelize(), the pipeline's memory estimates).
   VoxelGrid(std::array<int, 3> dims, std::array<double, 3> origin, double voxel_size,
             VoxelState fill = kInsideSoft)
       : dims_(dims), origin_(origin), voxel_size_(voxel_size),

@@ -14,8 +14,8 @@ struct ErrorContext {
   // Put before the message of an InvalidArgument (a degenerate cloud, options out of range,
   // no surface): "scan.ply: " names the input of `membrane reconstruct --local`.
   std::string invalid_argument_prefix;
-  // Put after the message of a ResourceExhausted (a grid over the voxel budget): which flags
-  // or job fields give a smaller grid.
+  // Put after the message of a ResourceExhausted (a grid over a voxel budget or the machine's
+  // memory): which flags or job fields give a smaller grid.
   std::string resource_exhausted_advice;
 };
 

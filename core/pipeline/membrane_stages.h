@@ -20,8 +20,8 @@ namespace membrane {
 
 // The voxel grid of `cloud` (Voxelize with `voxelize`), its sizes, density and any scatter
 // warning in `report`. Voxelize's errors: InvalidArgument for a degenerate cloud,
-// ResourceExhausted for a grid over the voxel budget. `progress` counts Voxelize's work, then
-// the scatter test.
+// ResourceExhausted for a grid over a given voxel budget. `progress` counts Voxelize's work,
+// then the scatter test.
 absl::StatusOr<Voxelization> VoxelizeStage(const VoxelizeOptions& voxelize,
                                            const PointCloud& cloud, const CancelToken& cancel,
                                            ReconstructionReport& report,

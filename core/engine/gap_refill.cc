@@ -66,15 +66,21 @@ class HardRowExtremes {
   std::array<std::vector<int32_t>, 3> lo_, hi_;
 };
 
-// The number of the 6 axis rays from the outside voxel v that meet a gap wall: the first
-// non-outside voxel on the ray and the one after it are both soft or frozen (the ray enters
-// the solid where it holds no data) and a hard voxel lies further on (the solid's far side).
-// A ray that meets the data first looks at a scanned wall from outside it.
-int RaysIntoGapWalls(const VoxelGrid& grid, const HardRowExtremes& rows, int64_t v) {
+// Of the 6 axis rays from an outside voxel: those that meet a gap wall (the first non-outside
+// voxel on the ray and the one after it are both soft or frozen: the ray enters the solid where
+// it holds no data, and a hard voxel lies further on: the solid's far side), and those that
+// leave through the outside to the array's border (the way out). A ray that meets the data
+// first looks at a scanned wall from outside it.
+struct RayCounts {
+  int gap_walls = 0;
+  int open = 0;
+};
+
+RayCounts CountRays(const VoxelGrid& grid, const HardRowExtremes& rows, int64_t v) {
   const Coord c = grid.CoordOf(v);
   const int at[3] = {c.x, c.y, c.z};
   const auto st = grid.strides();
-  int count = 0;
+  RayCounts count;
   for (int d = 0; d < 3; ++d)
     for (int sign = -1; sign <= 1; sign += 2) {
       int t = at[d] + sign;
@@ -83,10 +89,14 @@ int RaysIntoGapWalls(const VoxelGrid& grid, const HardRowExtremes& rows, int64_t
         t += sign;
         u += sign * st[d];
       }
-      if (t <= 0 || t >= grid.dim(d) - 1 || IsOutside(grid.at(u)) || IsHard(grid.at(u))) continue;
+      if (t <= 0 || t >= grid.dim(d) - 1 || IsOutside(grid.at(u))) {
+        ++count.open;
+        continue;
+      }
+      if (IsHard(grid.at(u))) continue;
       const VoxelState next = grid.at(u + sign * st[d]);
       if (IsOutside(next) || IsHard(next)) continue;
-      count += rows.HardPast(d, c, t + sign, sign);
+      count.gap_walls += rows.HardPast(d, c, t + sign, sign);
     }
   return count;
 }
@@ -138,10 +148,11 @@ VoxelState Settled(const VoxelGrid& grid, int64_t v) {
 absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefillOptions& options,
                                                  const CancelToken& cancel) {
   if (options.gap_radius < 1 || options.gap_radius > 16 || options.min_enclosed_rays < 1 ||
-      options.min_enclosed_rays > 6) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("gap refill options out of range: gap_radius ", options.gap_radius,
-                     " (1..16), min_enclosed_rays ", options.min_enclosed_rays, " (1..6)"));
+      options.min_enclosed_rays > 6 || options.max_open_rays < 0 || options.max_open_rays > 6) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "gap refill options out of range: gap_radius ", options.gap_radius,
+        " (1..16), min_enclosed_rays ", options.min_enclosed_rays, " (1..6), max_open_rays ",
+        options.max_open_rays, " (0..6)"));
   }
   GapRefillStats stats;
   if (!options.enabled) return stats;
@@ -153,7 +164,8 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   auto in_region = [&](int64_t v) {
     if (!IsOutside(grid.at(v)) || grid.OnArrayBorder(grid.CoordOf(v))) return false;
     if (!InGap(grid, grid.CoordOf(v), options.gap_radius)) return false;
-    return RaysIntoGapWalls(grid, rays, v) >= options.min_enclosed_rays;
+    const RayCounts count = CountRays(grid, rays, v);
+    return count.gap_walls >= options.min_enclosed_rays && count.open <= options.max_open_rays;
   };
   absl::flat_hash_set<int64_t> region, rejected;
   std::vector<int64_t> frontier;

@@ -22,6 +22,10 @@ struct GapRefillOptions {
   // every way but the way in runs into the solid's unscanned interior; from a concavity seen
   // from outside, rays meet the scanned walls first or leave through the opening).
   int min_enclosed_rays = 4;
+  // And at most this many of its rays leave through the outside to the grid's border without
+  // meeting the solid: a channel has one way out; a gap between two parts (an unscanned
+  // belly between legs) opens two or more ways.
+  int max_open_rays = 1;
 };
 
 struct GapRefillStats {

@@ -133,6 +133,23 @@ TEST(RefillGapChannels, AHoleThroughGapWallsStaysOpen) {
   EXPECT_EQ(after.genus, std::vector<int>{1});
 }
 
+// A channel has one way out: with none allowed (max_open_rays 0) its voxels, whose rays leave
+// downwards through the gap, are not refilled.
+TEST(RefillGapChannels, RaysOpenToTheBorderAreCounted) {
+  auto gap = [](int x, int y, int z) { return z == 0 && x >= 10 && x < 20 && y >= 10 && y < 20; };
+  auto channel = [](int x, int y, int z) {
+    return z < 20 && x >= 11 && x < 19 && y >= 11 && y < 19;
+  };
+  VoxelGrid grid = Box(gap, channel);
+  const std::vector<VoxelState> before = grid.states();
+  GapRefillOptions options;
+  options.max_open_rays = 0;
+  absl::StatusOr<GapRefillStats> stats = RefillGapChannels(grid, options, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->refilled_voxels, 0);
+  EXPECT_EQ(grid.states(), before);
+}
+
 TEST(RefillGapChannels, DisabledChangesNothing) {
   auto gap = [](int x, int y, int z) { return z == 0 && x >= 10 && x < 20 && y >= 10 && y < 20; };
   auto channel = [](int x, int y, int z) {
@@ -159,6 +176,10 @@ TEST(RefillGapChannels, OptionsOutOfRangeAreRefused) {
   const absl::Status s = RefillGapChannels(grid, options, CancelToken::Never()).status();
   EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(s.message().find("min_enclosed_rays 7"), absl::string_view::npos) << s;
+  options = GapRefillOptions{};
+  options.max_open_rays = -1;
+  EXPECT_EQ(RefillGapChannels(grid, options, CancelToken::Never()).status().code(),
+            absl::StatusCode::kInvalidArgument);
 }
 
 }  // namespace

@@ -222,7 +222,8 @@ absl::StatusOr<DiskJobStore::Loaded> DiskJobStore::Load(const HookMaker& make_ho
   }
   // Oldest first, as they were added.
   const auto older = [](const auto& a, const auto& b) {
-    return a->Snapshot().created_unix_seconds() < b->Snapshot().created_unix_seconds();
+    return a->RecordSnapshot().created_unix_seconds() <
+           b->RecordSnapshot().created_unix_seconds();
   };
   std::sort(jobs.begin(), jobs.end(), older);
   std::sort(loaded.resumed.begin(), loaded.resumed.end(), older);
@@ -432,7 +433,7 @@ absl::Status DiskJobStore::Write(const Job& job, bool& ended) const {
   // JobDone, which reads as unfinished until the write its end enqueued replaces it.
   const std::vector<v1::JobEvent> closing = job.ClosingEvents(kChunkBytes);
   const std::vector<v1::JobEvent> events = job.Events();
-  const v1::Job snapshot = job.Snapshot();
+  const v1::Job snapshot = job.RecordSnapshot();
   ended = !closing.empty();
   std::string bytes;
   {

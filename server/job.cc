@@ -76,18 +76,30 @@ void Job::ReleaseUploadHold() {
 
 v1::Job Job::Snapshot() const {
   absl::MutexLock lock(&mutex_);
+  return SnapshotLocked(/*as_closed=*/true);
+}
+
+v1::Job Job::RecordSnapshot() const {
+  absl::MutexLock lock(&mutex_);
+  return SnapshotLocked(/*as_closed=*/false);
+}
+
+v1::Job Job::SnapshotLocked(bool as_closed) const {
+  // Until the end is written down, a client sees the job running: its end, result and error
+  // come together with the record that makes them durable.
+  const bool ended = as_closed ? ClosedLocked() : DoneLocked();
   v1::Job job;
   job.set_id(id_);
-  job.set_state(state_);
+  job.set_state(ended || !DoneLocked() ? state_ : v1::RUNNING);
   job.set_queue_position(state_ == v1::QUEUED ? queue_position_ : 0);
   job.set_stage(stage_);
-  if (!status_.ok()) *job.mutable_error() = ToRpcStatus(status_);
+  if (ended && !status_.ok()) *job.mutable_error() = ToRpcStatus(status_);
   job.set_peer(peer_);
   job.set_client(client_);
   job.set_upload_bytes(upload_bytes_);
-  job.set_mesh_bytes(mesh_->size());
+  if (ended) job.set_mesh_bytes(mesh_->size());
   job.set_created_unix_seconds(absl::ToDoubleSeconds(created_at_ - absl::UnixEpoch()));
-  if (DoneLocked()) {
+  if (ended) {
     job.set_finished_unix_seconds(absl::ToDoubleSeconds(finished_at_ - absl::UnixEpoch()));
   }
   *job.mutable_parameters() = parameters_;
@@ -96,7 +108,7 @@ v1::Job Job::Snapshot() const {
 
 v1::JobState Job::state() const {
   absl::MutexLock lock(&mutex_);
-  return state_;
+  return DoneLocked() && !ClosedLocked() ? v1::RUNNING : state_;
 }
 
 bool Job::done() const {
@@ -220,7 +232,11 @@ size_t Job::WaitForEvents(size_t next, absl::Duration timeout,
 
 std::optional<Job::Outcome> Job::Closing() const {
   absl::MutexLock lock(&mutex_);
-  if (!DoneLocked()) return std::nullopt;
+  if (!ClosedLocked()) return std::nullopt;
+  return OutcomeLocked();
+}
+
+Job::Outcome Job::OutcomeLocked() const {
   Outcome outcome;
   if (state_ == v1::SUCCEEDED) {
     v1::ResultHeader* result = outcome.result.emplace().mutable_result();
@@ -238,8 +254,12 @@ std::optional<Job::Outcome> Job::Closing() const {
 
 std::vector<v1::JobEvent> Job::ClosingEvents(size_t chunk_bytes) const {
   std::vector<v1::JobEvent> events;
-  std::optional<Outcome> outcome = Closing();
-  if (!outcome.has_value()) return events;
+  std::optional<Outcome> outcome;
+  {
+    absl::MutexLock lock(&mutex_);
+    if (!DoneLocked()) return events;
+    outcome = OutcomeLocked();
+  }
   if (outcome->result.has_value()) {
     events.push_back(std::move(*outcome->result));
     for (size_t at = 0; at < outcome->mesh->size(); at += chunk_bytes) {

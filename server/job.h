@@ -72,9 +72,15 @@ class Job {
   void ReadUpload(const std::function<void(absl::string_view)>& read) const
       ABSL_LOCKS_EXCLUDED(mutex_);
 
-  // The resource as GetJob returns it.
+  // The resource as GetJob returns it. A job that has ended but is not closed yet (its end not
+  // yet written down, see closed()) is RUNNING here, without its error, mesh size or finish
+  // time: a client told SUCCEEDED can fetch the result at once, and no crash takes it back.
   v1::Job Snapshot() const ABSL_LOCKS_EXCLUDED(mutex_);
+  // The job as a durable store writes it down: Snapshot() with the end as soon as there is one.
+  v1::Job RecordSnapshot() const ABSL_LOCKS_EXCLUDED(mutex_);
+  // Snapshot()'s state.
   v1::JobState state() const ABSL_LOCKS_EXCLUDED(mutex_);
+  // Ended (SUCCEEDED, FAILED or CANCELLED), whether or not closed.
   bool done() const ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Followers deliver a job's end (ResultHeader, mesh, JobDone) only once it is closed: done,
@@ -133,12 +139,13 @@ class Job {
     std::shared_ptr<const std::string> mesh;
     v1::JobEvent done;
   };
-  // The outcome of a finished job; nullopt while the job runs.
+  // The outcome of a closed job; nullopt until the job is closed.
   std::optional<Outcome> Closing() const ABSL_LOCKS_EXCLUDED(mutex_);
 
-  // The closing events of a finished job: ResultHeader, mesh chunks of at most `chunk_bytes`
-  // (SUCCEEDED only), then JobDone. Empty while the job runs. The chunks copy the mesh: for
-  // one writer at a time (the store), not for every follower (Closing, MeshChunkEvent).
+  // The closing events of a finished job, closed or not (for the store that closes it):
+  // ResultHeader, mesh chunks of at most `chunk_bytes` (SUCCEEDED only), then JobDone. Empty
+  // while the job runs. The chunks copy the mesh: for one writer at a time (the store), not
+  // for every follower (Closing, MeshChunkEvent).
   std::vector<v1::JobEvent> ClosingEvents(size_t chunk_bytes) const ABSL_LOCKS_EXCLUDED(mutex_);
 
   // The stage, progress and generation events so far.
@@ -161,6 +168,10 @@ class Job {
   bool ClosedLocked() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
   void FinishLocked(v1::JobState state, const absl::Status& status)
       ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  // The job's snapshot, its end shown once closed (`as_closed`) or once done.
+  v1::Job SnapshotLocked(bool as_closed) const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  // The outcome of a done job.
+  Outcome OutcomeLocked() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
 
   const std::string id_;
   const std::string peer_;

@@ -357,12 +357,20 @@ TEST(DiskJobStoreTest, AJobClosesOnceItsEndIsWritten) {
   }
   EXPECT_TRUE(job->done());
   EXPECT_FALSE(job->closed());
+  // Clients see it running until then; the record has its end.
+  EXPECT_EQ(job->Snapshot().state(), v1::RUNNING);
+  EXPECT_EQ(job->state(), v1::RUNNING);
+  EXPECT_FALSE(job->Closing().has_value());
+  EXPECT_EQ(job->RecordSnapshot().state(), v1::SUCCEEDED);
+  EXPECT_FALSE(job->ClosingEvents(1 << 20).empty());
   {
     absl::MutexLock lock(&faults->mutex);
     faults->hold_records = false;
   }
   store.Flush();
   EXPECT_TRUE(job->closed());
+  EXPECT_EQ(job->Snapshot().state(), v1::SUCCEEDED);
+  EXPECT_TRUE(job->Closing().has_value());
   EXPECT_FALSE(Exists(dir.File("jobs") + "/00000000000000f1.upload"));
 }
 

@@ -25,6 +25,9 @@ struct DiskFaults {
   // its record); set to false to let them through.
   absl::Mutex mutex;
   bool hold_records ABSL_GUARDED_BY(mutex) = false;
+  // While hold_records, this many more *.job writes go through before the next one waits (the
+  // record that accepts a job, for a test that holds the record of its end).
+  int passing_records ABSL_GUARDED_BY(mutex) = 0;
   int held ABSL_GUARDED_BY(mutex) = 0;  // writes waiting now
 };
 

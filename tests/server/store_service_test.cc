@@ -7,6 +7,8 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include "absl/synchronization/mutex.h"
+#include "absl/time/time.h"
 #include "google/rpc/error_details.pb.h"
 #include "google/rpc/status.pb.h"
 #include "tests/server/faulty_store_files.h"
@@ -107,6 +109,60 @@ TEST_F(StoreServiceTest, FullStoreRefusesTheUploadThatDoesNotFit) {
   r = Reconstruct(large, {});
   ASSERT_TRUE(r.status.ok()) << r.status.error_message();
   EXPECT_EQ(r.FinalState(), v1::SUCCEEDED);
+}
+
+// GetJob and the HTTP API tell a job's end only once its record is on disk: a client told
+// SUCCEEDED can fetch the mesh at once, and no crash takes that end back. The record of the
+// job's end is held (the one that accepted it goes through) while the job is looked at.
+TEST_F(StoreServiceTest, AJobSucceedsForClientsOnceItsEndIsOnDisk) {
+  options_.http_listen = "127.0.0.1:0";
+  options_.web_dir = MEMBRANE_SOURCE_DIR "/server/web";
+  StartServer();
+  {
+    absl::MutexLock lock(&faults_->mutex);
+    faults_->hold_records = true;
+    faults_->passing_records = 1;
+  }
+  const std::string id = StartJobInBackground(DracoCloud("sphere", 2000), {});
+  ASSERT_FALSE(id.empty());
+  {
+    absl::MutexLock lock(&faults_->mutex);
+    ASSERT_TRUE(faults_->mutex.AwaitWithTimeout(
+        absl::Condition(
+            +[](DiskFaults* f) ABSL_EXCLUSIVE_LOCKS_REQUIRED(f->mutex) { return f->held == 1; },
+            faults_.get()),
+        absl::Seconds(60)));
+  }
+  // The job has ended; its end is being written.
+  {
+    grpc::ClientContext context;
+    v1::GetJobRequest request;
+    request.set_job_id(id);
+    v1::Job job;
+    ASSERT_TRUE(stub_->GetJob(&context, request, &job).ok());
+    EXPECT_EQ(job.state(), v1::RUNNING);
+    EXPECT_EQ(job.mesh_bytes(), 0u);
+    EXPECT_EQ(job.finished_unix_seconds(), 0);
+  }
+  const int port = server_->http_port();
+  EXPECT_NE(HttpGet(port, "/api/jobs/" + id).find("\"state\":\"RUNNING\""), std::string::npos)
+      << HttpGet(port, "/api/jobs/" + id);
+  EXPECT_EQ(HttpCall(port, "GET", "/api/jobs/" + id + "/mesh.drc").status, 409);
+  {
+    absl::MutexLock lock(&faults_->mutex);
+    faults_->hold_records = false;
+  }
+  EXPECT_EQ(Watch(id).FinalState(), v1::SUCCEEDED);
+  grpc::ClientContext context;
+  v1::GetJobRequest request;
+  request.set_job_id(id);
+  v1::Job job;
+  ASSERT_TRUE(stub_->GetJob(&context, request, &job).ok());
+  EXPECT_EQ(job.state(), v1::SUCCEEDED);
+  EXPECT_GT(job.mesh_bytes(), 0u);
+  const HttpReply mesh = HttpCall(port, "GET", "/api/jobs/" + id + "/mesh.drc");
+  EXPECT_EQ(mesh.status, 200);
+  EXPECT_EQ(mesh.body.size(), job.mesh_bytes());
 }
 
 }  // namespace

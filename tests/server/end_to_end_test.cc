@@ -1,9 +1,14 @@
 // membraned and membrane as processes on a free loopback port, driven as a user would.
+#include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <regex>
 #include <string>
@@ -446,40 +451,70 @@ TEST_F(EndToEndTest, ClientWaitsForAServerThatComesBack) {
 
 // SIGTERM leaves the store as a crash does: the running job finishes within the grace period,
 // the queued one stays queued on disk and runs at the next start, under its id.
+// A decoder for --decoder_path that holds each decode until the test opens its gate: it
+// opens the FIFO `gate` (read-write, so that the open does not wait for a writer), writes
+// `started`, waits for a line from the gate, then runs membrane-decode (beside membraned) with
+// its arguments and input. A job is then running for as long as the test wants, whatever the
+// machine's load, and the test waits on events, not on a job's duration.
+std::string GatedDecoder(const ScratchDir& dir, const std::string& gate,
+                         const std::string& started) {
+  const std::string membraned = MEMBRANED_BINARY;
+  const std::string decoder = membraned.substr(0, membraned.rfind('/')) + "/membrane-decode";
+  const std::string script = dir.File("gated-decode.sh");
+  EXPECT_EQ(mkfifo(gate.c_str(), 0600), 0) << gate;
+  WriteText(script, "#!/bin/sh\nexec 3<>'" + gate + "'\necho started > '" + started +
+                        "'\nread line <&3\nexec 3<&-\nexec '" + decoder + "' \"$@\"\n");
+  EXPECT_EQ(chmod(script.c_str(), 0700), 0) << script;
+  return script;
+}
+
+// Lets the gated decoder go on: a line to its FIFO. Without O_NONBLOCK the open would wait for a
+// reader; with it, no reader (the decoder gone) is an error at once, not a hang.
+void OpenGate(const std::string& gate) {
+  const int fd = open(gate.c_str(), O_WRONLY | O_NONBLOCK);
+  ASSERT_GE(fd, 0) << gate << ": " << std::strerror(errno);
+  EXPECT_EQ(write(fd, "go\n", 3), 3);
+  close(fd);
+}
+
 TEST_F(EndToEndTest, StopKeepsQueuedJobsForTheNextStart) {
   const std::string store = "--store-dir=" + dir_.File("jobs");
-  StartServer({store, "--grace-seconds=60"});
+  const std::string gate = dir_.File("gate"), started_file = dir_.File("decode.started");
+  // The first job runs until the gate opens, after the stop: the grace period and the decode's
+  // limit only bound a failure, never the test's normal course.
+  StartServer({store, "--grace_seconds=600", "--decoder_timeout_seconds=600",
+               "--decoder_path=" + GatedDecoder(dir_, gate, started_file)});
   const std::string cloud = Synth("sphere", 20000);
-  // Long enough that the second job is accepted while it runs, well within the grace period.
-  auto first = RunInBackground({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("a.ply"),
-                                "--server", address_, "--voxel-size", "0.008", "-q"},
+  auto first = RunInBackground({"reconstruct", Synth("sphere", 10000), "-o", dir_.File("a.ply"),
+                                "--server", address_, "-q"},
                                "first");
-  std::string log = WaitForText(log_, "event=job_started", 20);
+  std::string log = WaitForText(log_, "event=job_started", 60);
   std::smatch started;
   ASSERT_TRUE(std::regex_search(log, started, std::regex("event=job_started job=([0-9a-f]+)")))
       << log;
   const std::string running_id = started[1].str();
-  auto second = RunInBackground({"reconstruct", cloud, "-o", dir_.File("b.ply"), "--server",
-                                 address_, "-q"},
-                                "second");
-  // The other job accepted (a job's job_accepted line may follow its job_started).
-  std::string queued_id;
-  const std::regex accepted("event=job_accepted job=([0-9a-f]+)");
-  for (int i = 0; i < 200 && queued_id.empty(); ++i) {
-    log = ReadText(log_);
-    for (auto it = std::sregex_iterator(log.begin(), log.end(), accepted);
-         it != std::sregex_iterator(); ++it) {
-      if ((*it)[1].str() != running_id) queued_id = (*it)[1].str();
-    }
-    if (queued_id.empty()) absl::SleepFor(absl::Milliseconds(100));
-  }
-  ASSERT_FALSE(queued_id.empty()) << log;
+  ASSERT_NE(WaitForText(started_file, "started", 60).find("started"), std::string::npos)
+      << ReadText(log_);
+  // Not quiet: its client says when the server has the job, and where in the queue.
+  auto second = RunInBackground(
+      {"reconstruct", cloud, "-o", dir_.File("b.ply"), "--server", address_}, "second");
+  const std::string second_err = WaitForText(dir_.File("second.err"), "accepted", 60);
+  std::smatch accepted;
+  ASSERT_TRUE(std::regex_search(second_err, accepted,
+                                std::regex("job ([0-9a-f]+) accepted, queue position 1")))
+      << second_err;
+  const std::string queued_id = accepted[1].str();
+  ASSERT_NE(queued_id, running_id);
   server_->Signal(SIGTERM);
-  EXPECT_EQ(server_->Wait(60), 0);
+  ASSERT_NE(WaitForText(log_, "event=server_stopping", 60).find("event=server_stopping"),
+            std::string::npos)
+      << ReadText(log_);
+  OpenGate(gate);
+  EXPECT_EQ(server_->Wait(600), 0);
   log = ReadText(log_);
   EXPECT_NE(log.find("outcome=OK"), std::string::npos) << log;  // the running job finished
   EXPECT_EQ(log.find("outcome=CANCELLED"), std::string::npos) << log;
-  EXPECT_EQ(first->Wait(30), 0) << ReadText(dir_.File("first.err"));
+  EXPECT_EQ(first->Wait(60), 0) << ReadText(dir_.File("first.err"));
   second->Signal(SIGKILL);
   second->Wait(10);
   MembranedProcess restarted = StartMembraned(dir_, "restarted", {store});

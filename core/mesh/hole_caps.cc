@@ -214,13 +214,15 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
   if (!(o.gap_radius > 0) || o.min_gap_vertices < 1 || o.rim_rings < 0 ||
       o.harmonic_iterations < 0 || !(o.tolerance > 0) || o.sample_rings < 1 ||
       o.max_samples < 3 || !(o.smoothing >= 0) || !(o.min_rim_cosine >= -1) ||
-      o.back_off_halvings < 0)
+      o.back_off_halvings < 0 || !(o.max_shell_share > 0 && o.max_shell_share <= 1) ||
+      o.min_median_points < 1 || o.min_median_points > 1000)
     return absl::InvalidArgumentError(absl::StrCat(
         "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
         o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",
         o.harmonic_iterations, ", tolerance ", o.tolerance, ", sample_rings ", o.sample_rings,
         ", max_samples ", o.max_samples, ", smoothing ", o.smoothing, ", min_rim_cosine ",
-        o.min_rim_cosine, ", back_off_halvings ", o.back_off_halvings));
+        o.min_rim_cosine, ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ",
+        o.max_shell_share, ", min_median_points ", o.min_median_points));
   return absl::OkStatus();
 }
 
@@ -257,22 +259,30 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   if (!options.enabled || nv == 0 || points.empty()) return absl::OkStatus();
   const double l = voxel_size;
 
-  // Gap vertices: no input point within gap_radius.
+  // Gap vertices: no input point within gap_radius. The other vertices' counts of points
+  // within gap_radius, in a histogram (the last bin holds every larger count), for their median.
   std::vector<char> gap(nv, 0);
+  bool sparse = false;
   {
     const double radius = options.gap_radius * l;
     const PointRowGrid grid(points, radius);
     int64_t count = 0;
+    std::vector<int64_t> histogram(options.min_median_points + 1, 0);
     for (int32_t v = 0; v < nv; ++v) {
       if (v % kCancelPollVertices == 0 && cancel.cancelled())
         return absl::CancelledError("hole caps cancelled");
-      bool near = false;
+      int near = 0;
       grid.ForEachWithin(ToVec3d(mesh.vertices[v]), radius,
-                         [&](const Point3f&, double) { near = true; });
-      gap[v] = !near;
+                         [&](const Point3f&, double) { ++near; });
+      gap[v] = near == 0;
       count += gap[v];
+      if (near > 0) ++histogram[std::min(near, options.min_median_points)];
     }
     if (count < options.min_gap_vertices) return absl::OkStatus();
+    // Below the median: more than half of the vertices on the data have fewer points near.
+    int64_t fewer = 0;
+    for (int k = 0; k < options.min_median_points; ++k) fewer += histogram[k];
+    sparse = 2 * fewer > nv - count;
   }
   if (cancel.cancelled()) return absl::CancelledError("hole caps cancelled");
   Rows nb, star;
@@ -290,12 +300,35 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
         for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) grown[*u] = 1;
     free.swap(grown);
   }
+  // Each vertex's shell and the shells' sizes, for the share of a region in its shell.
+  std::vector<int32_t> shell(nv, -1);
+  std::vector<int64_t> shell_size;
+  for (int32_t s = 0; s < nv; ++s) {
+    if (shell[s] >= 0) continue;
+    const int32_t id = static_cast<int32_t>(shell_size.size());
+    std::vector<int32_t> stack{s};
+    shell[s] = id;
+    int64_t size = 0;
+    while (!stack.empty()) {
+      const int32_t v = stack.back();
+      stack.pop_back();
+      ++size;
+      for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u)
+        if (shell[*u] < 0) {
+          shell[*u] = id;
+          stack.push_back(*u);
+        }
+    }
+    shell_size.push_back(size);
+  }
   std::vector<std::vector<int32_t>> regions;
   for (auto& c : Components(nb, free)) {
     bool held = false;
     for (int32_t v : c)
       for (const int32_t* u = nb.begin(v); u != nb.end(v) && !held; ++u) held = !free[*u];
-    if (held) {
+    const double share =
+        static_cast<double>(c.size()) / static_cast<double>(shell_size[shell[c[0]]]);
+    if (held && share <= options.max_shell_share && !sparse) {
       regions.push_back(std::move(c));
     } else {
       ++st.uncapped_regions;

@@ -23,6 +23,17 @@ struct HoleCapOptions {
   double gap_radius = 2.0;
   // Gaps with fewer vertices are left to the fit: a crease of the surface nets, not a hole.
   int min_gap_vertices = 8;
+  // A grown gap region that holds more than this share of its shell's vertices is left: a
+  // hole is bounded by data that describe the surface around it, and where most of a shell is
+  // gap the points scatter about it (a voxel far below their spacing), not a scan with holes.
+  // Such a region's "rim" is a few points scattered through it: the cap's plane and spline
+  // mean nothing there, lift it tens of voxels and cost the whole surface many times over.
+  double max_shell_share = 0.5;
+  // Caps need data dense at the gap radius: when the median vertex on the data (one with a
+  // point within gap_radius) has fewer than this many points within gap_radius, the points
+  // lie about as far apart as that radius (a voxel far below their spacing), a vertex with
+  // none near is the spacing between points, not a hole, and no region is capped.
+  int min_median_points = 6;
   // Each gap region grows by this many rings of faces before it is capped: the vertices beside
   // a gap lie on the membrane's wall down into the hole, not on the data, and a cap held by
   // them would keep the wall's slope.
@@ -54,7 +65,9 @@ struct HoleCapOptions {
 struct HoleCapStats {
   int64_t regions = 0;          // gap regions capped
   int64_t vertices = 0;         // vertices of the caps (rims' rings included)
-  int64_t uncapped_regions = 0;  // gap regions left: no vertex on the data to hold a cap
+  // Gap regions left: no vertex on the data to hold a cap, more than max_shell_share of
+  // their shell, or all of them on data too sparse (min_median_points).
+  int64_t uncapped_regions = 0;
   int64_t harmonic_starts = 0;   // caps with no height field: the thin plate from the harmonic map
   int64_t iterations = 0;       // conjugate-gradient iterations, both solves
   int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
@@ -64,9 +77,10 @@ struct HoleCapStats {
 // Input: `mesh` closed, manifold, outward and free of self-intersections (SurfaceNets'), in
 // model units; `voxel_size` > 0; `points` the input cloud.
 // Effect: finds the gap regions (connected sets of vertices with no point within gap_radius,
-// each of at least min_gap_vertices, grown by rim_rings rings) and spans each with a cap: its
-// vertices are spread by the harmonic map of the region (every other vertex fixed), projected
-// on the least-squares plane of the rim samples (the fixed vertices within sample_rings rings)
+// each of at least min_gap_vertices, grown by rim_rings rings, each at most max_shell_share of
+// its shell; none when the data are sparse, see min_median_points) and spans each with a
+// cap: its vertices are spread by the harmonic map of the region (every other vertex fixed),
+// projected on the least-squares plane of the rim samples (the fixed vertices within sample_rings rings)
 // and lifted to the thin-plate spline through the samples' heights over that plane (where
 // there are too few samples, the rim is no height field (min_rim_cosine) or the spline is
 // singular, the harmonic map stays); then thin_plate_iterations conjugate-gradient iterations

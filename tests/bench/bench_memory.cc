@@ -9,8 +9,6 @@
 //
 // Exit status 1 when a run fails or the kernel's high-water mark cannot be reset (then no stage
 // peak can be told from the run's).
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -27,6 +25,7 @@
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/synth/synthesize.h"
 #include "tests/bench/bench_util.h"
+#include "tests/bench/child_process.h"
 #include "tests/support/uniform_noise.h"
 
 namespace membrane::bench {
@@ -66,13 +65,7 @@ bool ParseArgs(int argc, char** argv, Options& o) {
     if (a == "--quick") {
       o.points = {20'000, 60'000};
     } else if (a == "--points" && has_value) {
-      o.points.clear();
-      for (absl::string_view s : absl::StrSplit(argv[++i], ',')) {
-        int64_t n = 0;
-        if (!absl::SimpleAtoi(s, &n) || n < 1) return false;
-        o.points.push_back(n);
-      }
-      if (o.points.empty()) return false;
+      if (!ParsePointCounts(argv[++i], o.points)) return false;
     } else if (a == "--shape" && has_value) {
       o.shape = argv[++i];
     } else if (a == "--bits" && has_value) {
@@ -191,30 +184,6 @@ Row RunOne(const Options& o, int64_t points) {
   return row;
 }
 
-// Runs RunOne in a child process; its Row comes back through a pipe.
-Row RunInChild(const Options& o, int64_t points) {
-  int fds[2];
-  if (pipe(fds) != 0) return Row{};
-  std::fflush(stdout);
-  const pid_t pid = fork();
-  if (pid < 0) return Row{};
-  if (pid == 0) {
-    close(fds[0]);
-    const Row row = RunOne(o, points);
-    const ssize_t n = write(fds[1], &row, sizeof row);
-    _exit(n == static_cast<ssize_t>(sizeof row) ? 0 : 1);
-  }
-  close(fds[1]);
-  Row row;
-  const ssize_t n = read(fds[0], &row, sizeof row);
-  close(fds[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  if (n != static_cast<ssize_t>(sizeof row) || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    return Row{};
-  return row;
-}
-
 double Mb(int64_t bytes) { return static_cast<double>(bytes) / 1e6; }
 
 int Main(int argc, char** argv) {
@@ -227,7 +196,7 @@ int Main(int argc, char** argv) {
               LoadAverage().c_str());
   bool failed = false;
   for (int64_t n : o.points) {
-    const Row r = RunInChild(o, n);
+    const Row r = RunInChild<Row>([&] { return RunOne(o, n); });
     if (!r.ok) {
       std::printf("%lld points: FAILED\n", static_cast<long long>(n));
       failed = true;

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <fstream>
 
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
 
 namespace membrane::bench {
 
@@ -23,6 +25,16 @@ std::string LoadAverage() {
   std::string a, b, c;
   in >> a >> b >> c;
   return absl::StrCat(a, " ", b, " ", c);
+}
+
+bool ParsePointCounts(absl::string_view list, std::vector<int64_t>& out) {
+  out.clear();
+  for (absl::string_view s : absl::StrSplit(list, ',')) {
+    int64_t n = 0;
+    if (!absl::SimpleAtoi(s, &n) || n < 1) return false;
+    out.push_back(n);
+  }
+  return !out.empty();
 }
 
 }  // namespace membrane::bench

@@ -4,10 +4,10 @@
 #include <cstring>
 #include <vector>
 
+#include "core/base/parallel_tasks.h"
 #include "core/engine/huge_page_allocator.h"
 #include "core/engine/local_topology.h"
 #include "core/engine/voxel_state_words.h"
-#include "core/mesh/parallel_tasks.h"
 
 namespace membrane {
 namespace {

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/parallel_tasks.h"
 #include "core/engine/voxel_state_words.h"
-#include "core/mesh/parallel_tasks.h"
 
 namespace membrane {
 int64_t RemoveLooseSheets(VoxelGrid& grid, int threads) {

@@ -7,14 +7,14 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/base/parallel_tasks.h"
+#include "core/geometry/vec3.h"
 #include "core/mesh/fan_embedding.h"
 #include "core/mesh/near_point_sums.h"
-#include "core/mesh/parallel_tasks.h"
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_row_grid.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/triangle_intersection.h"
-#include "core/geometry/vec3.h"
 
 namespace membrane {
 namespace {

@@ -8,10 +8,10 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/base/parallel_tasks.h"
 #include "core/engine/huge_page_allocator.h"
 #include "core/engine/local_topology.h"
 #include "core/engine/voxel_state_words.h"
-#include "core/mesh/parallel_tasks.h"
 
 namespace membrane {
 namespace {

@@ -7,8 +7,8 @@
 #include <limits>
 #include <optional>
 
+#include "core/base/parallel_tasks.h"
 #include "core/engine/huge_page_allocator.h"
-#include "core/mesh/parallel_tasks.h"
 #include "core/mesh/triangle_intersection.h"
 
 namespace membrane {

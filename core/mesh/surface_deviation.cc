@@ -8,8 +8,8 @@
 #include <utility>
 
 #include "absl/container/flat_hash_map.h"
+#include "core/base/parallel_tasks.h"
 #include "core/geometry/vec3.h"
-#include "core/mesh/parallel_tasks.h"
 
 namespace membrane {
 namespace {

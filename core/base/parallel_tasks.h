@@ -1,7 +1,7 @@
 // Numbered tasks spread over a few threads, for the loops of the surface and the mesh check
 // whose iterations are independent (the crossing search's cells, the fit's slabs).
-#ifndef MEMBRANE_CORE_MESH_PARALLEL_TASKS_H_
-#define MEMBRANE_CORE_MESH_PARALLEL_TASKS_H_
+#ifndef MEMBRANE_CORE_BASE_PARALLEL_TASKS_H_
+#define MEMBRANE_CORE_BASE_PARALLEL_TASKS_H_
 
 #include <algorithm>
 #include <atomic>
@@ -50,4 +50,4 @@ class TaskCancel {
 
 }  // namespace membrane
 
-#endif  // MEMBRANE_CORE_MESH_PARALLEL_TASKS_H_
+#endif  // MEMBRANE_CORE_BASE_PARALLEL_TASKS_H_

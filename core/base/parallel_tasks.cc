@@ -1,4 +1,4 @@
-#include "core/mesh/parallel_tasks.h"
+#include "core/base/parallel_tasks.h"
 
 #include <algorithm>
 #include <atomic>

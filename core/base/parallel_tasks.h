@@ -1,5 +1,5 @@
-// Numbered tasks spread over a few threads, for the loops of the surface and the mesh check
-// whose iterations are independent (the crossing search's cells, the fit's slabs).
+// Numbered tasks spread over a few threads, for the loops whose iterations are independent (the
+// voxelization's planes, the fit's slabs, the crossing search's cells).
 #ifndef MEMBRANE_CORE_BASE_PARALLEL_TASKS_H_
 #define MEMBRANE_CORE_BASE_PARALLEL_TASKS_H_
 

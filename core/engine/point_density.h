@@ -20,9 +20,13 @@ std::array<int, 3> DataDims(const Box3d& bounds, double voxel_size);
 
 // The data-region voxel of each point, x + nx (y + ny z) with (nx, ny, nz) = `dims` (DataDims
 // of the same bounds and size), sorted so that a voxel's points are adjacent. Voxel x of a
-// point is floor((p - bounds.min) / voxel_size), clamped into the region.
+// point is floor((p - bounds.min) / voxel_size), clamped into the region. On `threads`
+// threads (RunTasks): the points are dealt into slabs of z planes in fixed blocks and each
+// slab sorted apart; the result is the one sorted list, whatever the count. Memory: the list
+// and a count per block and slab.
 std::vector<int64_t> SortedPointVoxels(absl::Span<const Point3f> points, const Box3d& bounds,
-                                       double voxel_size, const std::array<int, 3>& dims);
+                                       double voxel_size, const std::array<int, 3>& dims,
+                                       int threads = 1);
 
 struct PointDensity {
   int64_t voxels_with_one_point = 0;
@@ -35,10 +39,10 @@ struct PointDensity {
   }
 };
 
-// Calls visit(voxel, points_in_it) once per occupied voxel of `sorted` (SortedPointVoxels), in
-// order, and returns the counts.
+// Calls visit(voxel, points_in_it) once per occupied voxel of `sorted` (SortedPointVoxels, or a
+// part of it that splits no voxel's run), in order, and returns the counts.
 template <typename Visit>
-PointDensity ForEachOccupiedVoxel(const std::vector<int64_t>& sorted, Visit visit) {
+PointDensity ForEachOccupiedVoxel(absl::Span<const int64_t> sorted, Visit visit) {
   PointDensity d;
   for (size_t i = 0; i < sorted.size();) {
     size_t j = i;
@@ -51,9 +55,10 @@ PointDensity ForEachOccupiedVoxel(const std::vector<int64_t>& sorted, Visit visi
 }
 
 // The counts for `points` in voxels of edge `voxel_size` laid from bounds.min (`bounds` must
-// hold every point, as CheckedBounds' does). Cost: one sort of the points' voxel indices.
+// hold every point, as CheckedBounds' does). Cost: one sort of the points' voxel indices, on
+// `threads` threads (SortedPointVoxels).
 PointDensity MeasurePointDensity(absl::Span<const Point3f> points, const Box3d& bounds,
-                                 double voxel_size);
+                                 double voxel_size, int threads = 1);
 
 }  // namespace membrane
 

@@ -2,14 +2,17 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <string>
 #include <utility>
 
 #include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
+#include "core/base/parallel_tasks.h"
 #include "core/engine/point_density.h"
 #include "core/geometry/vec3.h"
 
@@ -21,15 +24,28 @@ double EstimateVoxelSize(const Box3d& bounds, int64_t points) {
   return std::sqrt(area2 / static_cast<double>(std::max<int64_t>(points, 1)));
 }
 
-int64_t DistinctPointCount(absl::Span<const Point3f> points) {
-  absl::flat_hash_set<Point3f> seen;
-  seen.reserve(points.size());
-  for (const Point3f& p : points) seen.insert(p);
-  return static_cast<int64_t>(seen.size());
+int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads) {
+  const int parts = std::max(threads, 1);
+  // Which part a point falls in: a multiplicative hash of its coordinates' bits, +0 for -0
+  // since the two are equal points. Cheaper than the sets' own hash, and independent of it.
+  auto part_of = [parts](const Point3f& p) {
+    uint64_t h = 0;
+    for (const float c : p) h = (h ^ std::bit_cast<uint32_t>(c + 0.0f)) * 0x9E3779B97F4A7C15u;
+    return static_cast<int64_t>((h >> 32) * static_cast<uint64_t>(parts) >> 32);
+  };
+  std::vector<int64_t> distinct(parts, 0);
+  RunTasks(threads, parts, [&](int, int64_t part) {
+    absl::flat_hash_set<Point3f> seen;
+    seen.reserve(points.size() / parts);
+    for (const Point3f& p : points)
+      if (parts == 1 || part_of(p) == part) seen.insert(p);
+    distinct[part] = static_cast<int64_t>(seen.size());
+  });
+  return std::accumulate(distinct.begin(), distinct.end(), int64_t{0});
 }
 
-double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points) {
-  return EstimateVoxelSize(bounds, DistinctPointCount(points));
+double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points, int threads) {
+  return EstimateVoxelSize(bounds, DistinctPointCount(points, threads));
 }
 
 namespace {
@@ -192,6 +208,38 @@ absl::Status CheckGridFitsFloat(const Box3d& bounds, double voxel_size, const do
       cloud_low, cloud_high, voxel_size, low, high, side, kLimit));
 }
 
+// Makes HARD the voxel of every entry of `sorted` (SortedPointVoxels over `data_dims`) and
+// counts the occupied voxels. Tasks take slabs of z planes, found by the first entry of each:
+// a voxel's run never spans two, and no two tasks write the same plane.
+PointDensity MarkHardVoxels(absl::Span<const int64_t> sorted, const std::array<int, 3>& data_dims,
+                            int threads, VoxelGrid& grid) {
+  constexpr int kSlabPlanes = 8;
+  const int p = VoxelGrid::kPadding;
+  const int64_t nx = data_dims[0], ny = data_dims[1];
+  const int64_t slabs = (data_dims[2] + kSlabPlanes - 1) / kSlabPlanes;
+  auto first_of_slab = [&](int64_t s) {
+    return std::lower_bound(sorted.begin(), sorted.end(), s * kSlabPlanes * nx * ny) -
+           sorted.begin();
+  };
+  std::vector<PointDensity> parts(slabs);
+  RunTasks(threads, slabs, [&](int, int64_t s) {
+    const int64_t begin = first_of_slab(s);
+    parts[s] = ForEachOccupiedVoxel(
+        sorted.subspan(begin, first_of_slab(s + 1) - begin), [&](int64_t voxel, int64_t) {
+          const int64_t index = grid.Index(static_cast<int>(voxel % nx) + p,
+                                           static_cast<int>(voxel / nx % ny) + p,
+                                           static_cast<int>(voxel / (nx * ny)) + p);
+          grid.set(index, IsBoundary(grid.at(index)) ? kBoundaryHard : kInsideHard);
+        });
+  });
+  PointDensity total;
+  for (const PointDensity& d : parts) {
+    total.voxels_with_one_point += d.voxels_with_one_point;
+    total.voxels_with_more_points += d.voxels_with_more_points;
+  }
+  return total;
+}
+
 }  // namespace
 
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
@@ -203,7 +251,7 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
         "voxel budget %d must be positive, or 0 for none", options.voxel_budget));
   }
   double l = options.voxel_size;
-  if (l == 0.0) l = FormulaVoxelSize(*bounds, points);
+  if (l == 0.0) l = FormulaVoxelSize(*bounds, points, options.threads);
   if (!std::isfinite(l) || l <= 0.0) {
     return absl::InvalidArgumentError(
         absl::StrFormat("voxel size %g must be finite and positive", l));
@@ -246,15 +294,16 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
 
   // Initial membrane: the data region is INSIDE, its outer layer BOUNDARY. Row by row: a row
   // of the outer layer is all boundary, any other row boundary at its two ends (a grid of 2e9
-  // voxels set one at a time took seconds).
+  // voxels set one at a time took seconds). Each task fills one z plane.
   const int p = VoxelGrid::kPadding;
   VoxelState* states = v.grid.mutable_states().data();
   const int64_t row_length = dims[0] - 2 * p;
-  // Half for the rows, half for the points: the rows follow the grid's volume and the sort the
-  // points' count, and either can be the larger.
-  const ProgressRange rows = progress.Part(0, 0.5);
-  rows.Begin(dims[2] - 2 * p);
-  for (int z = p; z < dims[2] - p; ++z) {
+  // Half for the planes, half for the points: the planes follow the grid's volume and the sort
+  // the points' count, and either can be the larger.
+  const ProgressRange planes = progress.Part(0, 0.5);
+  planes.Begin(dims[2] - 2 * p);
+  RunTasks(options.threads, dims[2] - 2 * p, [&](int, int64_t task) {
+    const int z = p + static_cast<int>(task);
     for (int y = p; y < dims[1] - p; ++y) {
       VoxelState* row = states + v.grid.Index(p, y, z);
       const bool outer = y == p || z == p || y == dims[1] - p - 1 || z == dims[2] - p - 1;
@@ -262,20 +311,15 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
       row[0] = kBoundarySoft;
       row[row_length - 1] = kBoundarySoft;
     }
-    rows.Add(1);
-  }
+    planes.Add(1);
+  });
 
   // Voxel of each point, sorted, so that runs give the points per voxel without a per-voxel
   // counter array.
-  const std::vector<int64_t> sorted = SortedPointVoxels(points, *bounds, l, v.data_dims);
+  const std::vector<int64_t> sorted =
+      SortedPointVoxels(points, *bounds, l, v.data_dims, options.threads);
   progress.Part(0.5, 0.9).Done();
-  const int64_t nx = v.data_dims[0], ny = v.data_dims[1];
-  const PointDensity density = ForEachOccupiedVoxel(sorted, [&](int64_t voxel, int64_t) {
-    const int64_t index = v.grid.Index(static_cast<int>(voxel % nx) + p,
-                                       static_cast<int>(voxel / nx % ny) + p,
-                                       static_cast<int>(voxel / (nx * ny)) + p);
-    v.grid.set(index, IsBoundary(v.grid.at(index)) ? kBoundaryHard : kInsideHard);
-  });
+  const PointDensity density = MarkHardVoxels(sorted, v.data_dims, options.threads, v.grid);
   v.voxels_with_one_point = density.voxels_with_one_point;
   v.voxels_with_more_points = density.voxels_with_more_points;
   v.hard_voxels = v.voxels_with_one_point + v.voxels_with_more_points;

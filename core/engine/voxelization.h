@@ -20,6 +20,9 @@ struct VoxelizeOptions {
   // pipeline's memory estimates (core/pipeline/memory_estimate.h) are what refuses a grid by
   // default: a cap in voxels refuses what a dense grid would need, not what would not fit.
   int64_t voxel_budget = 0;
+  // Threads for the distinct-point count, the initial membrane's planes and the points' voxels
+  // (RunTasks); the grid and the counts are the same for any number.
+  int threads = 1;
 };
 
 struct Voxelization {
@@ -44,12 +47,14 @@ double EstimateVoxelSize(const Box3d& bounds, int64_t points);
 
 // How many different points `points` holds (equal coordinates counted once): formula (1)'s
 // n, since a point given twice samples the surface once (a file concatenated with itself, a
-// scanner repeating its points). Linear expected time, one hash set of the points.
-int64_t DistinctPointCount(absl::Span<const Point3f> points);
+// scanner repeating its points). Linear expected time: on `threads` threads, each keeps a hash
+// set of the points of its part (parts by a hash of the coordinates; equal points share a
+// part), and the count is theirs summed.
+int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads = 1);
 
 // Formula (1) for `points`, whose box is `bounds` (CheckedBounds'): EstimateVoxelSize over
-// their distinct count. What Voxelize uses when no voxel size is given.
-double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points);
+// their distinct count (on `threads` threads). What Voxelize uses when no voxel size is given.
+double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points, int threads = 1);
 
 // Bounding box of `points`. InvalidArgument when there are no points, when some coordinates
 // are NaN or infinite (with their count), when all points are equal, or when they lie on one
@@ -67,8 +72,9 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points);
 // passes float32's range (naming both ranges); ResourceExhausted, naming the grid and
 // the budget, when the grid would exceed a positive options.voxel_budget (a negative one is
 // InvalidArgument). Nothing is allocated before the
-// budget check. `progress` counts the initial membrane's rows, then the points' voxels sorted
-// and marked (counting never changes the grid).
+// budget check. `progress` counts the initial membrane's planes, then the points' voxels
+// sorted and marked (counting never changes the grid). options.threads share the distinct
+// count, the planes and the points' voxels (SortedPointVoxels), marked in slabs of z planes.
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
                                       const VoxelizeOptions& options,
                                       ProgressRange progress = ProgressRange());

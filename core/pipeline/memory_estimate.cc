@@ -69,7 +69,8 @@ absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOpti
   PlannedGrid plan;
   plan.bounds = *bounds;
   plan.voxel_size =
-      voxelize.voxel_size > 0 ? voxelize.voxel_size : FormulaVoxelSize(*bounds, cloud.points);
+      voxelize.voxel_size > 0 ? voxelize.voxel_size
+                              : FormulaVoxelSize(*bounds, cloud.points, voxelize.threads);
   double voxels = 1;
   for (const double side : bounds->Extent()) {
     voxels *= std::floor(side / plan.voxel_size) + 1 + 2 * VoxelGrid::kPadding;

@@ -29,6 +29,7 @@ struct PlannedGrid {
   // allocating).
   int64_t bytes = 0;
 };
+// Formula (1), when voxelize.voxel_size is 0, counts the points on voxelize.threads threads.
 // InvalidArgument for a degenerate cloud (CheckedBounds' message). Callers that then voxelize
 // pass the planned voxel_size on, so that formula (1) does not count the points again.
 absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize);

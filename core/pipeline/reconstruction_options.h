@@ -21,8 +21,9 @@ struct ReconstructionOptions {
   // they are). The surface is built on that grid and checked there, so the report describes
   // the positions delivered, not positions the encoding then moves.
   int output_quantization_bits = 0;
-  // Threads of the smooth surface's fit and of the mesh check, 1..kMaxReconstructionThreads;
-  // the other stages use the calling thread. The mesh is the same for any value.
+  // Threads of the stages that split their work by the geometry (the voxelization, the
+  // relaxation's passes, the smooth surface, the mesh check, the decimation's error measure;
+  // docs/design.md, "Threads"), 1..kMaxReconstructionThreads. The mesh is the same for any value.
   int threads = 1;
   // At most this many faces in the mesh delivered (>= kMinTargetFaces), or as few as keeping
   // it closed, manifold, outward, uncrossed and of the same topology allows: the decimate

@@ -88,7 +88,9 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   // Planned before anything is allocated, so that the gate can refuse a grid too large for
   // the memory at hand; the planned voxel size is passed on, so that formula (1) does not
   // count the points again.
-  absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, options.voxelize);
+  VoxelizeOptions voxelize = options.voxelize;
+  voxelize.threads = options.threads;
+  absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, voxelize);
   if (!plan.ok()) return with_context(plan.status());
   // The gate first: its message names the limit the caller can change. The ceiling then
   // catches what a gate without a limit admits.
@@ -96,7 +98,6 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   if (absl::Status s = CheckMemoryCeiling(*plan, options.memory_ceiling_bytes); !s.ok()) {
     return with_context(s);
   }
-  VoxelizeOptions voxelize = options.voxelize;
   voxelize.voxel_size = plan->voxel_size;
 
   absl::StatusOr<Voxelization> voxelization =

@@ -1,0 +1,81 @@
+// Voxelize, DistinctPointCount and SortedPointVoxels on several threads give what one thread
+// gives: the work is split by blocks of points and slabs of z planes, never by the count.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/engine/point_density.h"
+#include "core/engine/voxelization.h"
+#include "gtest/gtest.h"
+
+namespace membrane {
+namespace {
+
+// A sphere of `n` points, denser near its poles (voxels with one and with several points),
+// with its first tenth given again, so that blocks of points, slabs of planes and duplicates
+// all come into play.
+std::vector<Point3f> UnevenSphere(int n) {
+  std::vector<Point3f> points;
+  for (int i = 0; i < n; ++i) {
+    const double u = (i + 0.5) / n;
+    const double z = std::copysign(std::pow(std::fabs(2 * u - 1), 0.7), 2 * u - 1);
+    const double r = std::sqrt(std::max(0.0, 1 - z * z)), t = 2.399963 * i;
+    points.push_back({float(r * std::cos(t)), float(r * std::sin(t)), float(z)});
+  }
+  points.insert(points.end(), points.begin(), points.begin() + n / 10);
+  return points;
+}
+
+TEST(VoxelizationThreads, GridAndCountsAreTheSameForAnyThreadCount) {
+  const std::vector<Point3f> points = UnevenSphere(200000);
+  absl::StatusOr<Voxelization> one = Voxelize(points, {});
+  ASSERT_TRUE(one.ok()) << one.status();
+  ASSERT_GT(one->voxels_with_one_point, 0);
+  ASSERT_GT(one->voxels_with_more_points, 0);
+  for (int threads : {2, 3, 4, 7}) {
+    absl::StatusOr<Voxelization> v = Voxelize(points, VoxelizeOptions{.threads = threads});
+    ASSERT_TRUE(v.ok()) << v.status();
+    EXPECT_EQ(v->grid.voxel_size(), one->grid.voxel_size()) << threads;
+    EXPECT_EQ(v->grid.dims(), one->grid.dims()) << threads;
+    EXPECT_TRUE(v->grid.states() == one->grid.states()) << threads << " threads";
+    EXPECT_EQ(v->hard_voxels, one->hard_voxels) << threads;
+    EXPECT_EQ(v->voxels_with_one_point, one->voxels_with_one_point) << threads;
+    EXPECT_EQ(v->voxels_with_more_points, one->voxels_with_more_points) << threads;
+  }
+}
+
+TEST(VoxelizationThreads, DistinctPointCountIsTheSameForAnyThreadCount) {
+  std::vector<Point3f> points = UnevenSphere(100000);
+  // Equal under ==, so one point: +0 and -0.
+  points.push_back({0.0f, 0.0f, 0.0f});
+  points.push_back({-0.0f, 0.0f, -0.0f});
+  for (int threads : {1, 2, 3, 4, 8}) {
+    EXPECT_EQ(DistinctPointCount(points, threads), 100001) << threads << " threads";
+  }
+}
+
+TEST(VoxelizationThreads, SortedPointVoxelsIsTheSortedListForAnyThreadCount) {
+  const std::vector<Point3f> points = UnevenSphere(150000);
+  Box3d box;
+  box.min = {-0.9, -1, -1};  // some points outside: clamped into the region
+  box.max = {1, 1, 1};
+  const double size = 0.013;
+  const std::array<int, 3> dims = DataDims(box, size);
+  std::vector<int64_t> expected;
+  for (const Point3f& p : points) {
+    int64_t c[3];
+    for (int d = 0; d < 3; ++d) {
+      c[d] = std::clamp(static_cast<int64_t>(std::floor((p[d] - box.min[d]) / size)), int64_t{0},
+                        int64_t{dims[d]} - 1);
+    }
+    expected.push_back(c[0] + dims[0] * (c[1] + int64_t{dims[1]} * c[2]));
+  }
+  std::sort(expected.begin(), expected.end());
+  for (int threads : {1, 2, 3, 4}) {
+    EXPECT_TRUE(SortedPointVoxels(points, box, size, dims, threads) == expected)
+        << threads << " threads";
+  }
+}
+
+}  // namespace
+}  // namespace membrane

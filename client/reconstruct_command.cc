@@ -133,7 +133,8 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
                "no progress lines on stderr and no generation table on stdout (the summary "
                "line and errors stay)");
   app.add_option("--threads", f.threads,
-                 "with --local: threads of the surface fit and the mesh check, [0, 256]; 0 = the "
+                 "with --local: threads of the voxelization, the relaxation, the surface and the "
+                 "mesh check, [0, 256]; 0 = the "
                  "cores of this machine (the mesh is the same for any value)")
       ->capture_default_str()
       ->needs(local);

@@ -25,7 +25,10 @@ double EstimateVoxelSize(const Box3d& bounds, int64_t points) {
 }
 
 int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads) {
-  const int parts = std::max(threads, 1);
+  // Every part reads every point: beyond a few parts the reads cost more than the inserts
+  // they share out.
+  constexpr int kMaxParts = 8;
+  const int parts = std::clamp(threads, 1, kMaxParts);
   // Which part a point falls in: a multiplicative hash of its coordinates' bits, +0 for -0
   // since the two are equal points. Cheaper than the sets' own hash, and independent of it.
   auto part_of = [parts](const Point3f& p) {
@@ -209,16 +212,18 @@ absl::Status CheckGridFitsFloat(const Box3d& bounds, double voxel_size, const do
 }
 
 // Makes HARD the voxel of every entry of `sorted` (SortedPointVoxels over `data_dims`) and
-// counts the occupied voxels. Tasks take slabs of z planes, found by the first entry of each:
-// a voxel's run never spans two, and no two tasks write the same plane.
+// counts the occupied voxels. Tasks take slabs of z planes (8, or more for a grid of over 32k
+// planes, so that there are at most 4096), found by the first entry of each: a voxel's run
+// never spans two, and no two tasks write the same plane.
 PointDensity MarkHardVoxels(absl::Span<const int64_t> sorted, const std::array<int, 3>& data_dims,
                             int threads, VoxelGrid& grid) {
-  constexpr int kSlabPlanes = 8;
+  constexpr int64_t kMaxSlabs = 4096;
   const int p = VoxelGrid::kPadding;
-  const int64_t nx = data_dims[0], ny = data_dims[1];
-  const int64_t slabs = (data_dims[2] + kSlabPlanes - 1) / kSlabPlanes;
+  const int64_t nx = data_dims[0], ny = data_dims[1], nz = data_dims[2];
+  const int64_t slab_planes = std::max<int64_t>(8, (nz + kMaxSlabs - 1) / kMaxSlabs);
+  const int64_t slabs = (nz + slab_planes - 1) / slab_planes;
   auto first_of_slab = [&](int64_t s) {
-    return std::lower_bound(sorted.begin(), sorted.end(), s * kSlabPlanes * nx * ny) -
+    return std::lower_bound(sorted.begin(), sorted.end(), s * slab_planes * nx * ny) -
            sorted.begin();
   };
   std::vector<PointDensity> parts(slabs);

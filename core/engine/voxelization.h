@@ -47,9 +47,9 @@ double EstimateVoxelSize(const Box3d& bounds, int64_t points);
 
 // How many different points `points` holds (equal coordinates counted once): formula (1)'s
 // n, since a point given twice samples the surface once (a file concatenated with itself, a
-// scanner repeating its points). Linear expected time: on `threads` threads, each keeps a hash
-// set of the points of its part (parts by a hash of the coordinates; equal points share a
-// part), and the count is theirs summed.
+// scanner repeating its points). Linear expected time: on `threads` threads (at most 8 parts),
+// each part a hash set of its points (parts by a hash of the coordinates; equal points share
+// a part), and the count is theirs summed.
 int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads = 1);
 
 // Formula (1) for `points`, whose box is `bounds` (CheckedBounds'): EstimateVoxelSize over

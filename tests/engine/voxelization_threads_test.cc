@@ -44,6 +44,24 @@ TEST(VoxelizationThreads, GridAndCountsAreTheSameForAnyThreadCount) {
   }
 }
 
+TEST(VoxelizationThreads, TallGridOfManySlabsIsTheSameForAnyThreadCount) {
+  // 40,000 planes: slabs of more than 8 planes each.
+  std::vector<Point3f> points;
+  for (int i = 0; i < 120000; ++i) {
+    const double t = 0.61 * i;
+    points.push_back({float(std::cos(t)), float(std::sin(t)), float(i / 3.0)});
+  }
+  const VoxelizeOptions one_thread{.voxel_size = 1.0};
+  absl::StatusOr<Voxelization> one = Voxelize(points, one_thread);
+  ASSERT_TRUE(one.ok()) << one.status();
+  ASSERT_GT(one->grid.dim(2), 40000);
+  absl::StatusOr<Voxelization> three = Voxelize(points, {.voxel_size = 1.0, .threads = 3});
+  ASSERT_TRUE(three.ok()) << three.status();
+  EXPECT_TRUE(three->grid.states() == one->grid.states());
+  EXPECT_EQ(three->hard_voxels, one->hard_voxels);
+  EXPECT_EQ(three->voxels_with_more_points, one->voxels_with_more_points);
+}
+
 TEST(VoxelizationThreads, DistinctPointCountIsTheSameForAnyThreadCount) {
   std::vector<Point3f> points = UnevenSphere(100000);
   // Equal under ==, so one point: +0 and -0.

@@ -1,8 +1,5 @@
 // membraned and membrane as processes on a free loopback port, driven as a user would.
-#include <errno.h>
-#include <fcntl.h>
 #include <signal.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -29,6 +26,7 @@
 #include "tests/support/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/server/draco_upload.h"
+#include "tests/server/gated_decoder.h"
 #include "tests/server/http_get.h"
 #include "tests/server/membraned_process.h"
 #include "tests/server/subprocess.h"
@@ -66,9 +64,28 @@ class EndToEndTest : public ::testing::Test {
 
   void ExpectHealthy() { EXPECT_EQ(Run({"health", "--server", address_}).exit_code, 0); }
 
+  // Flags for StartServer that hold every decode at gate_ until the test opens it
+  // (GatedDecoder): a job then runs, in its decode, for as long as the test wants, whatever
+  // the machine's load. The decode's wall-clock limit then bounds a failure only.
+  std::vector<std::string> HoldDecodes() {
+    const std::string membraned = MEMBRANED_BINARY;
+    gate_ = std::make_unique<GatedDecoder>(
+        dir_, membraned.substr(0, membraned.rfind('/')) + "/membrane-decode");
+    return {"--decoder_path=" + gate_->path(), "--decoder_timeout_seconds=600"};
+  }
+
+  // `flags` and `more`, for StartServer.
+  static std::vector<std::string> Flags(std::vector<std::string> flags,
+                                        const std::vector<std::string>& more) {
+    flags.insert(flags.end(), more.begin(), more.end());
+    return flags;
+  }
+
   ScratchDir dir_;
   std::string log_;
   std::string address_;
+  // Before server_: a server killed outright leaves its held decodes to the gate's end.
+  std::unique_ptr<GatedDecoder> gate_;
   std::unique_ptr<Subprocess> server_;
 };
 
@@ -235,15 +252,12 @@ TEST_F(EndToEndTest, DroppedClientReattachesAndGetsItsMesh) {
 }
 
 TEST_F(EndToEndTest, BusyServerIsRetriedWithBackoffThenExitFour) {
-  StartServer({"--queue=0", "--retry_delay_seconds=0.3"});
-  const std::string big = Synth("sphere", 30000);
-  // The slow job must hold the one worker past the busy client's 12 s on an idle machine too:
-  // at voxel 0.008 it ends in about 6 s on 2 cores; 0.0065 takes over a minute (it is
-  // cancelled below).
-  auto slow = RunInBackground({"reconstruct", big, "-o", dir_.File("slow.ply"), "--server",
-                               address_, "--voxel-size", "0.0065", "-q"},
+  StartServer(Flags({"--queue=0", "--retry_delay_seconds=0.3"}, HoldDecodes()));
+  // The held job keeps the one worker until it is cancelled below.
+  auto slow = RunInBackground({"reconstruct", Synth("sphere", 3000), "-o", dir_.File("slow.ply"),
+                               "--server", address_, "-q"},
                               "slow");
-  ASSERT_NE(WaitForText(log_, "event=job_started", 20).find("job_started"), std::string::npos);
+  ASSERT_TRUE(gate_->WaitForDecodes(1)) << ReadText(log_);
   // Asked again until the timeout, however many attempts that takes: 0.3 s (the server's
   // delay), then 0.5, 1, 2 and 4 s of backoff, each with up to 20% more, so the sixth refusal
   // comes within 9.4 s. The client stops waiting as soon as the next attempt would fall past
@@ -272,12 +286,11 @@ TEST_F(EndToEndTest, BusyServerIsRetriedWithBackoffThenExitFour) {
 // With every call thread busy (--max-calls), gRPC itself refuses calls. The client takes that
 // for a busy server, as a full queue: it retries, and exits 4 at its timeout, not 3.
 TEST_F(EndToEndTest, ServerOutOfCallThreadsIsRetriedThenExitFour) {
-  StartServer({"--max-calls=1"});
-  const std::string big = Synth("sphere", 30000);
-  auto slow = RunInBackground({"reconstruct", big, "-o", dir_.File("slow.ply"), "--server",
-                               address_, "--voxel-size", "0.008", "-q"},
+  StartServer(Flags({"--max-calls=1"}, HoldDecodes()));
+  auto slow = RunInBackground({"reconstruct", Synth("sphere", 3000), "-o", dir_.File("slow.ply"),
+                               "--server", address_, "-q"},
                               "slow");
-  ASSERT_NE(WaitForText(log_, "event=job_started", 20).find("job_started"), std::string::npos);
+  ASSERT_TRUE(gate_->WaitForDecodes(1)) << ReadText(log_);
   const CliResult list = Run({"jobs", "list", "--server", address_});
   ASSERT_EQ(list.exit_code, 0) << list.err;
   const std::string id = list.out.substr(0, list.out.find(' '));
@@ -328,20 +341,21 @@ TEST_F(EndToEndTest, MetricsEndpointCountsAJob) {
 // under its id, from the upload it kept.
 TEST_F(EndToEndTest, StoreDirKeepsResultsAcrossACrash) {
   const std::string store = "--store-dir=" + dir_.File("jobs");
-  StartServer({store});
+  StartServer(Flags({store}, HoldDecodes()));
   const std::string cloud = Synth("sphere", 20000);
+  gate_->Open();  // for the job that finishes
   const CliResult done = Run({"reconstruct", cloud, "-o", dir_.File("m.ply"), "--server",
                               address_, "-q"});
   ASSERT_EQ(done.exit_code, 0) << done.err;
   const CliResult list = Run({"jobs", "list", "--server", address_});
   const std::string finished = list.out.substr(0, list.out.find(' '));
-  auto slow = RunInBackground({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("s.ply"),
-                               "--server", address_, "--voxel-size", "0.008", "-q"},
+  auto slow = RunInBackground({"reconstruct", Synth("sphere", 3000), "-o", dir_.File("s.ply"),
+                               "--server", address_, "-q"},
                               "slow");
-  // The slow job is the second to start. Bounded generously: on a loaded machine the client
-  // reads and uploads its cloud slowly, and a kill before the job runs tests nothing. Its
-  // job_accepted line, which names it, may come after job_started (the worker can start it
-  // while the handler writes it to the store).
+  // The held job is the second to reach the gate. Bounded generously: on a loaded machine the
+  // client reads and uploads its cloud slowly. Its job_accepted line, which names it, may come
+  // after its decode started (the worker can start it while the handler writes it to the
+  // store).
   std::string log;
   const auto twice = [&](const std::string& event) {
     const size_t first = log.find(event);
@@ -349,7 +363,7 @@ TEST_F(EndToEndTest, StoreDirKeepsResultsAcrossACrash) {
   };
   const auto started_twice = [&] {
     log = ReadText(log_);
-    return twice("event=job_started") && twice("event=job_accepted");
+    return gate_->Decodes() >= 2 && twice("event=job_accepted");
   };
   const absl::Time end = absl::Now() + absl::Seconds(120);
   while (!started_twice() && absl::Now() < end) absl::SleepFor(absl::Milliseconds(50));
@@ -379,8 +393,8 @@ TEST_F(EndToEndTest, StoreDirKeepsResultsAcrossACrash) {
   EXPECT_EQ(watch.exit_code, 0) << watch.err;
   EXPECT_TRUE(ReadText(dir_.File("again.ply")) == ReadText(dir_.File("m.ply")))
       << "the stored mesh differs";
-  // The resumed job runs from its start (seconds of CPU): past the watch's default 30 s on a
-  // loaded machine, so the bound is only a failure's.
+  // The resumed job runs from its start, with the server's own decoder: on a loaded machine
+  // past the watch's default 30 s, so the bound is only a failure's.
   const CliResult resumed = Run({"jobs", "watch", running, "-o", dir_.File("resumed.ply"),
                                  "--server", address_, "-q", "--timeout", "600"});
   EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
@@ -419,13 +433,12 @@ TEST_F(EndToEndTest, ClientGetsItsMeshFromTheSameJobAfterACrash) {
 // server and gets its mesh once the server is back; so does a client that a full queue was
 // refusing when the server went away.
 TEST_F(EndToEndTest, ClientWaitsForAServerThatComesBack) {
-  StartServer({"--queue=0", "--retry_delay_seconds=0.3"});
+  StartServer(Flags({"--queue=0", "--retry_delay_seconds=0.3"}, HoldDecodes()));
   const std::string address = address_;
-  auto slow = RunInBackground({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("s.ply"),
-                               "--server", address, "--voxel-size", "0.008", "-q"},
-                              "slow");
-  ASSERT_NE(WaitForText(log_, "event=job_started", 60).find("job_started"), std::string::npos);
   const std::string cloud = Synth("sphere", 3000);
+  auto slow = RunInBackground(
+      {"reconstruct", cloud, "-o", dir_.File("s.ply"), "--server", address, "-q"}, "slow");
+  ASSERT_TRUE(gate_->WaitForDecodes(1)) << ReadText(log_);
   auto refused = RunInBackground({"reconstruct", cloud, "-o", dir_.File("refused.ply"),
                                   "--server", address, "--timeout", "120"},
                                  "refused");
@@ -453,39 +466,11 @@ TEST_F(EndToEndTest, ClientWaitsForAServerThatComesBack) {
 
 // SIGTERM leaves the store as a crash does: the running job finishes within the grace period,
 // the queued one stays queued on disk and runs at the next start, under its id.
-// A decoder for --decoder_path that holds each decode until the test opens its gate: it
-// opens the FIFO `gate` (read-write, so that the open does not wait for a writer), writes
-// `started`, waits for a line from the gate, then runs membrane-decode (beside membraned) with
-// its arguments and input. A job is then running for as long as the test wants, whatever the
-// machine's load, and the test waits on events, not on a job's duration.
-std::string GatedDecoder(const ScratchDir& dir, const std::string& gate,
-                         const std::string& started) {
-  const std::string membraned = MEMBRANED_BINARY;
-  const std::string decoder = membraned.substr(0, membraned.rfind('/')) + "/membrane-decode";
-  const std::string script = dir.File("gated-decode.sh");
-  EXPECT_EQ(mkfifo(gate.c_str(), 0600), 0) << gate;
-  WriteText(script, "#!/bin/sh\nexec 3<>'" + gate + "'\necho started > '" + started +
-                        "'\nread line <&3\nexec 3<&-\nexec '" + decoder + "' \"$@\"\n");
-  EXPECT_EQ(chmod(script.c_str(), 0700), 0) << script;
-  return script;
-}
-
-// Lets the gated decoder go on: a line to its FIFO. Without O_NONBLOCK the open would wait for a
-// reader; with it, no reader (the decoder gone) is an error at once, not a hang.
-void OpenGate(const std::string& gate) {
-  const int fd = open(gate.c_str(), O_WRONLY | O_NONBLOCK);
-  ASSERT_GE(fd, 0) << gate << ": " << std::strerror(errno);
-  EXPECT_EQ(write(fd, "go\n", 3), 3);
-  close(fd);
-}
-
 TEST_F(EndToEndTest, StopKeepsQueuedJobsForTheNextStart) {
   const std::string store = "--store-dir=" + dir_.File("jobs");
-  const std::string gate = dir_.File("gate"), started_file = dir_.File("decode.started");
-  // The first job runs until the gate opens, after the stop: the grace period and the decode's
-  // limit only bound a failure, never the test's normal course.
-  StartServer({store, "--grace_seconds=600", "--decoder_timeout_seconds=600",
-               "--decoder_path=" + GatedDecoder(dir_, gate, started_file)});
+  // The first job runs until the gate opens, after the stop: the grace period only bounds a
+  // failure, never the test's normal course.
+  StartServer(Flags({store, "--grace_seconds=600"}, HoldDecodes()));
   const std::string cloud = Synth("sphere", 20000);
   auto first = RunInBackground({"reconstruct", Synth("sphere", 10000), "-o", dir_.File("a.ply"),
                                 "--server", address_, "-q"},
@@ -495,8 +480,7 @@ TEST_F(EndToEndTest, StopKeepsQueuedJobsForTheNextStart) {
   ASSERT_TRUE(std::regex_search(log, started, std::regex("event=job_started job=([0-9a-f]+)")))
       << log;
   const std::string running_id = started[1].str();
-  ASSERT_NE(WaitForText(started_file, "started", 60).find("started"), std::string::npos)
-      << ReadText(log_);
+  ASSERT_TRUE(gate_->WaitForDecodes(1)) << ReadText(log_);
   // Not quiet: its client says when the server has the job, and where in the queue.
   auto second = RunInBackground(
       {"reconstruct", cloud, "-o", dir_.File("b.ply"), "--server", address_}, "second");
@@ -511,7 +495,7 @@ TEST_F(EndToEndTest, StopKeepsQueuedJobsForTheNextStart) {
   ASSERT_NE(WaitForText(log_, "event=server_stopping", 60).find("event=server_stopping"),
             std::string::npos)
       << ReadText(log_);
-  OpenGate(gate);
+  gate_->Open();
   EXPECT_EQ(server_->Wait(600), 0);
   log = ReadText(log_);
   EXPECT_NE(log.find("outcome=OK"), std::string::npos) << log;  // the running job finished
@@ -544,9 +528,9 @@ TEST_F(EndToEndTest, UnwritableStoreDirFailsTheStart) {
 }
 
 TEST_F(EndToEndTest, TimeoutCancelsTheJobOnTheServer) {
-  StartServer();
-  const CliResult r = Run({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("m.ply"),
-                           "--server", address_, "--voxel-size", "0.008", "--timeout", "1"});
+  StartServer(HoldDecodes());
+  const CliResult r = Run({"reconstruct", Synth("sphere", 3000), "-o", dir_.File("m.ply"),
+                           "--server", address_, "--timeout", "1"});
   EXPECT_EQ(r.exit_code, 4) << r.err;
   const std::string log = WaitForText(log_, "outcome=CANCELLED", 5);
   EXPECT_NE(log.find("deadline"), std::string::npos) << log;
@@ -556,10 +540,10 @@ TEST_F(EndToEndTest, TimeoutCancelsTheJobOnTheServer) {
 // Ctrl-C on `reconstruct --server` leaves the accepted job running and prints the command
 // that gets its mesh, or cancels it with --on-interrupt=cancel; either way one line, exit 130.
 TEST_F(EndToEndTest, InterruptLeavesTheJobRunningAndSaysHowToFollowIt) {
-  StartServer();
-  auto slow = RunInBackground({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("s.ply"),
-                               "--server", address_, "--voxel-size", "0.008"},
-                              "slow");
+  StartServer(HoldDecodes());
+  auto slow = RunInBackground(
+      {"reconstruct", Synth("sphere", 3000), "-o", dir_.File("s.ply"), "--server", address_},
+      "slow");
   const std::string accepted = WaitForText(dir_.File("slow.err"), "accepted", 20);
   ASSERT_NE(accepted.find("accepted"), std::string::npos) << accepted;
   slow->Signal(SIGINT);
@@ -580,10 +564,9 @@ TEST_F(EndToEndTest, InterruptLeavesTheJobRunningAndSaysHowToFollowIt) {
 }
 
 TEST_F(EndToEndTest, InterruptWithOnInterruptCancelCancelsTheJob) {
-  StartServer();
-  auto slow = RunInBackground({"reconstruct", Synth("sphere", 30000), "-o", dir_.File("s.ply"),
-                               "--server", address_, "--voxel-size", "0.008",
-                               "--on-interrupt", "cancel"},
+  StartServer(HoldDecodes());
+  auto slow = RunInBackground({"reconstruct", Synth("sphere", 3000), "-o", dir_.File("s.ply"),
+                               "--server", address_, "--on-interrupt", "cancel"},
                               "slow");
   const std::string accepted = WaitForText(dir_.File("slow.err"), "accepted", 20);
   ASSERT_NE(accepted.find("accepted"), std::string::npos) << accepted;

@@ -71,6 +71,7 @@ TEST_F(ServiceTest, HealthAnswersForTheServiceByName) {
 TEST_F(ServiceTest, JobsAreSeenOnlyByTheirClientAndOperators) {
   options_.clients = {{"alice", "tok-alice"}, {"bob", "tok-bob"}, {"ops", "tok-ops", true}};
   ::testing::internal::CaptureStderr();
+  HoldDecodes();
   StartServer();
   const auto context_of = [](const std::string& token) {
     auto context = std::make_unique<grpc::ClientContext>();
@@ -97,10 +98,11 @@ TEST_F(ServiceTest, JobsAreSeenOnlyByTheirClientAndOperators) {
     return ids;
   };
   token_ = "tok-alice";
+  gate_->Open();  // for the job that finishes
   const CallResult done = Reconstruct(DracoCloud("sphere", 2000), {});
   ASSERT_TRUE(done.status.ok()) << done.status.error_message();
   const std::string id = done.JobId();
-  const std::string running = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  const std::string running = StartHeldJob();
   ASSERT_FALSE(running.empty());
 
   EXPECT_TRUE(get("tok-alice", id).ok());

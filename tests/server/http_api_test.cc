@@ -229,8 +229,9 @@ TEST_F(HttpApiTest, AStoppingServerAnswersWaitingEventsRequestsAtOnce) {
   // only the stop can end a request waiting for its events.
   ScratchDir dir;
   options_.store_dir = dir.File("jobs");
+  HoldDecodes();
   StartServer();
-  const std::string id = StartJobInBackground(DracoCloud("sphere", 20000), SlowParameters());
+  const std::string id = StartHeldJob();
   const std::string events = "/api/jobs/" + id + "/events?after=1000000&wait=20";
   HttpReply waited;
   absl::Duration took;
@@ -249,8 +250,9 @@ TEST_F(HttpApiTest, AStoppingServerAnswersWaitingEventsRequestsAtOnce) {
 }
 
 TEST_F(HttpApiTest, CancelStopsARunningJobAndItHasNoMesh) {
+  HoldDecodes();
   StartServer();
-  const std::string id = StartJobInBackground(DracoCloud("sphere", 20000), SlowParameters());
+  const std::string id = StartHeldJob();
   const std::string job = "/api/jobs/" + id;
   EXPECT_EQ(Get(job + "/mesh.drc").status, 409);
   EXPECT_EQ(Get(job + "/preview.png").status, 409);

@@ -79,10 +79,23 @@ std::string ServiceTest::DracoCloud(const std::string& shape, int points) {
   return LosslessDracoCloud(shape, points);
 }
 
-v1::Parameters ServiceTest::SlowParameters() {
-  v1::Parameters p;
-  p.set_voxel_size(0.008);
-  return p;
+void ServiceTest::HoldDecodes() {
+  gate_dir_ = std::make_unique<ScratchDir>();
+  gate_ = std::make_unique<GatedDecoder>(*gate_dir_, MEMBRANE_DECODE_BINARY);
+  options_.decoder_path = gate_->path();
+  // The decode's wall-clock limit bounds a failure only, never a hold's normal course.
+  options_.decoder_timeout_seconds = 600;
+}
+
+std::string ServiceTest::StartHeldJob() {
+  EXPECT_NE(gate_, nullptr) << "StartHeldJob without HoldDecodes";
+  if (gate_ == nullptr) return "";
+  const int before = gate_->Decodes();
+  const std::string id = StartJobInBackground(DracoCloud("sphere", 2000), {});
+  EXPECT_FALSE(id.empty());
+  if (id.empty()) return "";
+  EXPECT_TRUE(gate_->WaitForDecodes(before + 1)) << "job " << id << " never reached the gate";
+  return id;
 }
 
 namespace {

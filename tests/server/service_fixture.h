@@ -19,6 +19,8 @@
 #include "membrane/v1/reconstruction.grpc.pb.h"
 #include "server/clock.h"
 #include "server/membrane_server.h"
+#include "tests/server/gated_decoder.h"
+#include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
 
@@ -104,8 +106,14 @@ class ServiceTest : public ::testing::Test {
   // Watches the health service until it answers `status` (true) or `seconds` pass (false).
   bool WaitForHealth(const std::string& status, double seconds = 30);
 
-  // Parameters of a job that runs for many seconds (a fine grid), for cancel and queue tests.
-  static v1::Parameters SlowParameters();
+  // Makes every job's decode wait at a gate until the test opens it (GatedDecoder): call
+  // before StartServer. A job held so runs for as long as the test wants, whatever the
+  // machine's load; cancel, deadline and queue tests wait on events, not on a slow job.
+  void HoldDecodes();
+  // With HoldDecodes: starts a job of a small cloud (StartJobInBackground) and returns its id
+  // once its decode is held at the gate (empty, and a test failure, when it does not get
+  // there). The job keeps the one worker until the gate opens (gate_->Open()) or it ends.
+  std::string StartHeldJob();
 
   // Adds token_, when set, to a call's metadata as its bearer token.
   void Authorize(grpc::ClientContext& context) const;
@@ -117,6 +125,9 @@ class ServiceTest : public ::testing::Test {
   TestClock clock_;
   // The disk store's file operations for StartServer (a test's that fail); null: the real ones.
   std::unique_ptr<server::StoreFiles> store_files_;
+  // Set by HoldDecodes: the gate's files, and the gate.
+  std::unique_ptr<ScratchDir> gate_dir_;
+  std::unique_ptr<GatedDecoder> gate_;
   std::unique_ptr<server::MembraneServer> server_;
   std::string address_;
   std::unique_ptr<v1::Reconstruction::Stub> stub_;

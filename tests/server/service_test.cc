@@ -382,7 +382,12 @@ TEST_F(ServiceTest, ResultsExpireAfterTheirTimeToLive) {
 
 TEST_F(ServiceTest, CancelJobStopsARunningJobWithin100MsAndFreesTheWorker) {
   StartServer();
-  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  // The one test whose job computes when cancelled: the latency under test is a compute
+  // stage's (the shrink's), and it is CPU time, so a job of several CPU seconds (a fine grid)
+  // is still in its shrink when the cancel comes, whatever the load.
+  v1::Parameters fine_grid;
+  fine_grid.set_voxel_size(0.008);
+  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), fine_grid);
   ASSERT_FALSE(id.empty());
   ASSERT_TRUE(WaitForStage(*stub_, id, "shrink"));
   grpc::ClientContext context;
@@ -406,16 +411,17 @@ TEST_F(ServiceTest, CancelJobStopsARunningJobWithin100MsAndFreesTheWorker) {
 // free again.
 TEST_F(ServiceTest, JobRunningPastMaxJobSecondsFailsDeadlineExceeded) {
   options_.max_job_seconds = 60;
+  HoldDecodes();
   StartServer();
-  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  const std::string id = StartHeldJob();
   ASSERT_FALSE(id.empty());
-  ASSERT_TRUE(WaitForStage(*stub_, id, "shrink"));
   clock_.Advance(absl::Seconds(61));
   const v1::Job done = WaitUntilDone(*stub_, id, 30);
   EXPECT_EQ(done.state(), v1::FAILED);
   EXPECT_EQ(done.error().code(), static_cast<int>(grpc::StatusCode::DEADLINE_EXCEEDED));
   EXPECT_NE(done.error().message().find("--max-job-seconds of 60 s"), std::string::npos)
       << done.error().message();
+  gate_->Open();  // for the next job
   const CallResult next = Reconstruct(DracoCloud("sphere", 2000), {}, {}, 20);
   EXPECT_TRUE(next.status.ok()) << next.status.error_message();
 }
@@ -447,8 +453,9 @@ TEST_F(ServiceTest, JobsOverMaxJobSecondsByTheEstimatesAreRefusedBeforeTheyRun) 
 }
 
 TEST_F(ServiceTest, ExpiredDeadlineCancelsTheJob) {
+  HoldDecodes();
   StartServer();
-  const CallResult r = Reconstruct(DracoCloud("sphere", 30000), SlowParameters(), {}, 1.5);
+  const CallResult r = Reconstruct(DracoCloud("sphere", 2000), {}, {}, 1.5);
   EXPECT_EQ(r.status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
   const std::string id = r.JobId();
   ASSERT_FALSE(id.empty());
@@ -461,8 +468,9 @@ TEST_F(ServiceTest, ExpiredDeadlineCancelsTheJob) {
 
 TEST_F(ServiceTest, DroppedCallCancelsTheJobWhenConfigured) {
   options_.on_disconnect = server::DisconnectPolicy::kCancel;
+  HoldDecodes();
   StartServer();
-  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  const std::string id = StartHeldJob();
   ASSERT_FALSE(id.empty());
   background_contexts_.back()->TryCancel();
   const v1::Job done = WaitUntilDone(*stub_, id, 3);
@@ -472,10 +480,10 @@ TEST_F(ServiceTest, DroppedCallCancelsTheJobWhenConfigured) {
 }
 
 TEST_F(ServiceTest, FullQueueIsResourceExhaustedWithARetryDelay) {
+  HoldDecodes();
   StartServer();  // 1 worker, queue of 1
-  const std::string cloud = DracoCloud("sphere", 30000);
-  ASSERT_FALSE(StartJobInBackground(cloud, SlowParameters()).empty());  // running
-  ASSERT_FALSE(StartJobInBackground(cloud, SlowParameters()).empty());  // queued
+  ASSERT_FALSE(StartHeldJob().empty());                                       // running
+  ASSERT_FALSE(StartJobInBackground(DracoCloud("sphere", 2000), {}).empty());  // queued
   const CallResult r = Reconstruct(DracoCloud("sphere", 1000), {}, {}, 10);
   ASSERT_EQ(r.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   google::rpc::Status details;
@@ -490,6 +498,7 @@ TEST_F(ServiceTest, FullQueueIsResourceExhaustedWithARetryDelay) {
 // calls by code, stage seconds, and the queue and workers as they are at the scrape.
 TEST_F(ServiceTest, MetricsCountJobsRefusalsAndStages) {
   options_.metrics_listen = "127.0.0.1:0";
+  HoldDecodes();
   StartServer();  // 1 worker, queue of 1
   ASSERT_GT(server_->metrics_port(), 0);
   const int port = server_->metrics_port();
@@ -497,14 +506,14 @@ TEST_F(ServiceTest, MetricsCountJobsRefusalsAndStages) {
   EXPECT_EQ(MetricValue(m, "membrane_jobs_accepted_total"), 0) << m;
   EXPECT_EQ(MetricValue(m, "membrane_job_seconds_count{state=\"FAILED\"}"), 0) << m;
 
+  gate_->Open();  // for the job that succeeds
   ASSERT_TRUE(Reconstruct(DracoCloud("sphere", 2000), {}).status.ok());
   UploadTweaks corrupt;
   corrupt.wrong_checksum = true;
   EXPECT_EQ(Reconstruct(DracoCloud("sphere", 2000), {}, corrupt).status.error_code(),
             grpc::StatusCode::INVALID_ARGUMENT);
-  const std::string cloud = DracoCloud("sphere", 30000);
-  const std::string running = StartJobInBackground(cloud, SlowParameters());
-  const std::string queued = StartJobInBackground(cloud, SlowParameters());
+  const std::string running = StartHeldJob();
+  const std::string queued = StartJobInBackground(DracoCloud("sphere", 2000), {});
   ASSERT_FALSE(running.empty());
   ASSERT_FALSE(queued.empty());
   m = HttpGet(port, "/metrics");
@@ -532,8 +541,8 @@ TEST_F(ServiceTest, MetricsCountJobsRefusalsAndStages) {
       << m;
   EXPECT_EQ(MetricValue(m, "membrane_job_seconds_count{state=\"CANCELLED\"}"), 2) << m;
   EXPECT_EQ(MetricValue(m, "membrane_stage_seconds_count{stage=\"encode\"}"), 1) << m;
-  // The cancelled running job may or may not have finished decoding.
-  EXPECT_GE(MetricValue(m, "membrane_stage_seconds_count{stage=\"decode\"}"), 1) << m;
+  // The cancelled running job was cancelled in its decode.
+  EXPECT_EQ(MetricValue(m, "membrane_stage_seconds_count{stage=\"decode\"}"), 1) << m;
   EXPECT_GT(MetricValue(m, "membrane_mesh_bytes_total"), 0) << m;
   // The worker leaves its cancelled job a moment after the job says CANCELLED.
   for (int i = 0; i < 50 && MetricValue(m, "membrane_jobs_running") != 0; ++i) {
@@ -575,22 +584,13 @@ TEST_F(ServiceTest, UnboundMetricsAddressFailsTheStart) {
 // Uploads are held from their header until their job is decoded, within
 // --upload-memory-bytes: a full queue of large uploads cannot take the machine's memory.
 TEST_F(ServiceTest, UploadsHeldOverTheirMemoryAreRefusedUntilOneIsReleased) {
-  const std::string cloud = DracoCloud("sphere", 30000);
-  options_.upload_memory_bytes = static_cast<int64_t>(cloud.size());  // one upload at a time
+  const std::string cloud = DracoCloud("sphere", 2000);  // StartHeldJob's
+  options_.upload_memory_bytes = 2 * static_cast<int64_t>(cloud.size());  // two at a time
+  HoldDecodes();
   StartServer();  // 1 worker, queue of 1
-  const std::string running = StartJobInBackground(cloud, SlowParameters());
+  const std::string running = StartHeldJob();  // holds its upload: it is not decoded yet
   ASSERT_FALSE(running.empty());
-  // Once decoded, the running job's upload is given back.
-  for (int i = 0; i < 200; ++i) {
-    grpc::ClientContext context;
-    v1::GetJobRequest request;
-    request.set_job_id(running);
-    v1::Job job;
-    ASSERT_TRUE(stub_->GetJob(&context, request, &job).ok());
-    if (!job.stage().empty() && job.stage() != "decode") break;
-    absl::SleepFor(absl::Milliseconds(20));
-  }
-  const std::string queued = StartJobInBackground(cloud, SlowParameters());  // holds it all
+  const std::string queued = StartJobInBackground(cloud, {});  // holds the rest
   ASSERT_FALSE(queued.empty());
   const CallResult busy = Reconstruct(cloud, {}, {}, 10);
   ASSERT_EQ(busy.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
@@ -605,7 +605,12 @@ TEST_F(ServiceTest, UploadsHeldOverTheirMemoryAreRefusedUntilOneIsReleased) {
   request.set_job_id(queued);
   v1::Job job;
   ASSERT_TRUE(stub_->CancelJob(&context, request, &job).ok());
-  EXPECT_FALSE(StartJobInBackground(cloud, SlowParameters()).empty());
+  ASSERT_FALSE(StartJobInBackground(cloud, {}).empty());  // queued behind the running job
+  // Once decoded, the running job's upload is given back: with the next job held at the gate
+  // in its turn, holding its own, one more upload fits.
+  gate_->Open();
+  ASSERT_TRUE(gate_->WaitForDecodes(2));
+  EXPECT_FALSE(StartJobInBackground(cloud, {}).empty());
 }
 
 TEST_F(ServiceTest, UploadOverTheWholeUploadMemoryIsRefusedWithoutRetry) {
@@ -660,8 +665,9 @@ TEST_F(ServiceTest, ScatteredCloudsWarningComesWithTheVoxelizeStage) {
 // RESOURCE_EXHAUSTED instead of threads piling up, and the server serves again once they end.
 TEST_F(ServiceTest, CallsPastTheLimitAreResourceExhausted) {
   options_.max_calls = 6;
+  HoldDecodes();
   StartServer();
-  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
+  const std::string id = StartHeldJob();
   ASSERT_FALSE(id.empty());
   std::vector<std::thread> watchers;
   std::vector<grpc::ClientContext> contexts(12);
@@ -827,13 +833,12 @@ TEST_F(ServiceTest, ClientThatReadsNothingIsCutOffAndTheJobGoesOn) {
 }
 
 TEST_F(ServiceTest, QueuedJobReportsItsPosition) {
+  HoldDecodes();
   StartServer();
-  const std::string cloud = DracoCloud("sphere", 30000);
-  const std::string running = StartJobInBackground(cloud, SlowParameters());
+  // On the worker, held in its decode: else the second job would be second in the queue.
+  const std::string running = StartHeldJob();
   ASSERT_FALSE(running.empty());
-  // On the worker: else the second job would be second in the queue.
-  ASSERT_TRUE(WaitFor([&] { return GetJob(*stub_, running).state() == v1::RUNNING; }, 30));
-  const std::string queued = StartJobInBackground(cloud, SlowParameters());
+  const std::string queued = StartJobInBackground(DracoCloud("sphere", 2000), {});
   grpc::ClientContext context;
   v1::GetJobRequest request;
   request.set_job_id(queued);
@@ -872,10 +877,9 @@ TEST_F(ServiceTest, ShutdownMakesHealthNotServingAndRefusesNewJobs) {
 }
 
 TEST_F(ServiceTest, ShutdownCancelsJobsStillRunningAfterTheGracePeriod) {
+  HoldDecodes();
   StartServer();
-  const std::string id = StartJobInBackground(DracoCloud("sphere", 30000), SlowParameters());
-  ASSERT_FALSE(id.empty());
-  ASSERT_TRUE(WaitForStage(*stub_, id, "shrink"));
+  ASSERT_FALSE(StartHeldJob().empty());
   const absl::Time start = absl::Now();
   server_->Shutdown(absl::Milliseconds(300));
   EXPECT_LT(absl::Now() - start, absl::Seconds(3));

@@ -17,6 +17,8 @@ namespace membrane {
 namespace {
 
 constexpr int kPollSteps = 1024;
+// The DLC's share of the progress; the two phases share the rest.
+constexpr double kDlcShare = 1.0 / 3;
 constexpr int64_t kVoxelsPerPoll = int64_t{1} << 18;
 constexpr int kPadding = VoxelGrid::kPadding;
 
@@ -38,11 +40,13 @@ ByteArray NewByteArray(int64_t n) {
 
 class Relaxer {
  public:
-  Relaxer(VoxelGrid& grid, int threshold, int threads, const CancelToken& cancel)
+  Relaxer(VoxelGrid& grid, int threshold, int threads, const CancelToken& cancel,
+          ProgressRange progress)
       : grid_(grid),
         threshold_(threshold),
         threads_(threads),
         cancel_(cancel),
+        progress_(progress),
         offsets_(grid.neighbour_offsets()) {}
 
   // DLC of every voxel not on the array border, by three 1-D box sums of the categories. Each
@@ -63,17 +67,26 @@ class Relaxer {
     int8_t* const sum = sum_array.get();
     int8_t* const dlc = dlc_.get();
     const VoxelState* const s = grid_.states().data();
+    // The five passes share the first third of the progress, a fifth each, chunk by chunk.
+    int passes_done = 0;
     auto pass = [&](int64_t from, int64_t to, auto fn) -> absl::Status {
+      const ProgressRange part =
+          progress_.Part(kDlcShare * passes_done / 5, kDlcShare * (passes_done + 1) / 5);
+      ++passes_done;
+      // Asked here too: the workers ask only on the calling thread, which may get no chunk.
+      if (cancel_.cancelled()) return Cancel();
       if (to <= from) return absl::OkStatus();
       TaskCancel stop(cancel_, threads_, 1);
-      RunTasks(threads_, (to - from + kVoxelsPerPoll - 1) / kVoxelsPerPoll,
-               [&stop, from, to, fn](int worker, int64_t task) {
-                 if (stop.Poll(worker)) return;
-                 const auto body = fn;
-                 const int64_t begin = from + task * kVoxelsPerPoll;
-                 const int64_t end = std::min(to, begin + kVoxelsPerPoll);
-                 for (int64_t i = begin; i < end; ++i) body(i);
-               });
+      const int64_t chunks = (to - from + kVoxelsPerPoll - 1) / kVoxelsPerPoll;
+      part.Begin(chunks);
+      RunTasks(threads_, chunks, [&stop, from, to, fn, part](int worker, int64_t task) {
+        if (stop.Poll(worker)) return;
+        const auto body = fn;
+        const int64_t begin = from + task * kVoxelsPerPoll;
+        const int64_t end = std::min(to, begin + kVoxelsPerPoll);
+        for (int64_t i = begin; i < end; ++i) body(i);
+        part.Add(1);
+      });
       return stop.fired() ? Cancel() : absl::OkStatus();
     };
     // Each pass writes every voxel whose neighbours along its axis exist (across row ends
@@ -107,6 +120,13 @@ class Relaxer {
   // sign = -1: phase 1 (DLC <= -threshold); +1: phase 2 (DLC >= threshold).
   absl::Status Phase(int sign, RelaxationStats& stats) {
     sign_ = sign;
+    // Each phase has half of what the DLC leaves: its scan, then its steps, half each.
+    const double phase_share = (1 - kDlcShare) / 2;
+    const ProgressRange phase =
+        sign < 0 ? progress_.Part(kDlcShare, kDlcShare + phase_share)
+                 : progress_.Part(kDlcShare + phase_share, 1);
+    const ProgressRange scan = phase.Part(0, 0.5), taken = phase.Part(0.5, 1);
+    if (cancel_.cancelled()) return Cancel();
     for (auto& b : buckets_) {
       b.items.clear();
       b.next = 0;
@@ -118,6 +138,7 @@ class Relaxer {
     const int planes = d[2] - 2 * kPadding;
     std::vector<std::vector<int64_t>> found(planes);
     TaskCancel stop(cancel_, threads_, 1);
+    scan.Begin(planes);
     RunTasks(threads_, planes, [&](int worker, int64_t plane) {
       if (stop.Poll(worker)) return;
       const int z = kPadding + static_cast<int>(plane);
@@ -132,11 +153,17 @@ class Relaxer {
           if (Qualifies(i)) found[plane].push_back(i);
           ++x;
         }
+      scan.Add(1);
     });
     if (stop.fired()) return Cancel();
-    for (const std::vector<int64_t>& list : found)
+    int64_t first_found = 0;
+    for (const std::vector<int64_t>& list : found) {
       for (int64_t i : list) buckets_[Key(i)].items.push_back(i);
-    int64_t steps = 0;
+      first_found += static_cast<int64_t>(list.size());
+    }
+    // Every voxel first found is taken once at least; the ones queued again count beyond.
+    taken.Begin(first_found);
+    int64_t steps = 0, takes = 0;
     for (int key = 26; key >= threshold_;) {
       Bucket& b = buckets_[key];
       if (b.next == b.items.size()) {
@@ -144,6 +171,7 @@ class Relaxer {
         continue;
       }
       const int64_t v = b.items[b.next++];
+      if (++takes % kPollSteps == 0) taken.Add(kPollSteps);
       if (!Movable(v) || Key(v) != key) continue;  // stale entry
       if (++steps % kPollSteps == 0 && cancel_.cancelled()) return Cancel();
       touched_.clear();
@@ -153,6 +181,7 @@ class Relaxer {
       // A move can raise a neighbour above the current key: restart from the top.
       key = 26;
     }
+    taken.Add(takes % kPollSteps);
     return absl::OkStatus();
   }
 
@@ -261,6 +290,7 @@ class Relaxer {
   const int threshold_;
   const int threads_;
   const CancelToken& cancel_;
+  const ProgressRange progress_;
   const std::array<int64_t, 26>& offsets_;
   ByteArray dlc_;
   std::array<Bucket, 27> buckets_;
@@ -278,14 +308,14 @@ int DiscreteLocalCurvature(const VoxelGrid& grid, const Coord& c) {
 }
 
 absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelToken& cancel,
-                                      const RelaxationOptions& options) {
+                                      const RelaxationOptions& options, ProgressRange progress) {
   if (options.threshold < 1 || options.threshold > 26)
     return absl::InvalidArgumentError(
         absl::StrCat("relaxation threshold ", options.threshold, " is outside [1, 26]"));
   RelaxationStats stats;
   for (int a = 0; a < 3; ++a)
     if (membrane.dim(a) < 2 * kPadding + 1) return stats;  // no movable voxel
-  Relaxer relaxer(membrane, options.threshold, options.threads, cancel);
+  Relaxer relaxer(membrane, options.threshold, options.threads, cancel, progress);
   if (absl::Status s = relaxer.ComputeDlc(); !s.ok()) return s;
   if (absl::Status s = relaxer.Phase(-1, stats); !s.ok()) return s;
   if (absl::Status s = relaxer.Phase(+1, stats); !s.ok()) return s;

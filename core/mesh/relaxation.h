@@ -33,6 +33,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {
@@ -65,9 +66,13 @@ int DiscreteLocalCurvature(const VoxelGrid& grid, const Coord& c);
 // Returns the counts of each phase. Errors: InvalidArgument when threshold is outside [1, 26];
 // Cancelled when `cancel` fired (polled every few thousand steps and between the passes
 // of the initial scan, so within milliseconds); the grid is then a valid membrane, relaxed in
-// part (every step is atomic).
+// part (every step is atomic). `progress` counts the DLC's passes (its first third), then each
+// phase (a third each): the scan's planes, then the queued voxels taken, which reach the
+// phase's end once every voxel first found has been taken (voxels queued again count on
+// without moving it further). Counting changes nothing in the result.
 absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelToken& cancel,
-                                      const RelaxationOptions& options = {});
+                                      const RelaxationOptions& options = {},
+                                      ProgressRange progress = ProgressRange());
 
 }  // namespace membrane
 

@@ -63,12 +63,13 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
 }
 
 absl::Status RelaxStage(const CancelToken& cancel, int threads, VoxelGrid& grid,
-                        ReconstructionReport& report, ReconstructionObserver& observer) {
+                        ReconstructionReport& report, ReconstructionObserver& observer,
+                        ProgressRange progress) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kRelax, report);
   RelaxationOptions relax_options;
   relax_options.threads = threads;
-  absl::StatusOr<RelaxationStats> stats = Relax(grid, cancel, relax_options);
+  absl::StatusOr<RelaxationStats> stats = Relax(grid, cancel, relax_options, progress);
   if (!stats.ok()) return stats.status();
   report.relaxed = true;
   report.relaxation = *stats;

@@ -36,10 +36,11 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
                          ReconstructionObserver& observer);
 
 // Relaxes the final membrane of `grid` (paper section 5), its grid-wide passes on `threads`
-// (the same grid for any count); its counts in `report`. Cancelled within milliseconds of
-// `cancel` firing.
+// (the same grid for any count); its counts in `report`, its work on `progress` (Relax's).
+// Cancelled within milliseconds of `cancel` firing.
 absl::Status RelaxStage(const CancelToken& cancel, int threads, VoxelGrid& grid,
-                        ReconstructionReport& report, ReconstructionObserver& observer);
+                        ReconstructionReport& report, ReconstructionObserver& observer,
+                        ProgressRange progress);
 
 }  // namespace membrane
 

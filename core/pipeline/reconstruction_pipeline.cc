@@ -112,7 +112,9 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   report.membrane = CountMembrane(grid);
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kShrink); !s.ok()) return s;
   if (options.relax) {
-    if (absl::Status s = RelaxStage(cancel, options.threads, grid, report, observer); !s.ok())
+    if (absl::Status s =
+            RelaxStage(cancel, options.threads, grid, report, observer, ticker.progress());
+        !s.ok())
       return with_context(s);
   }
 

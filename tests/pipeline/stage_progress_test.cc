@@ -1,7 +1,7 @@
 // The progress of long stages: the fraction a stage tells never goes back, and the stages
-// that count their work (surface, check) end at 1, for both surfaces; progress is told
-// between a stage's start and its end, never at the same time as another call; and counting
-// changes nothing in the mesh.
+// that count their work (voxelize, relax, surface, check) end at 1, for both surfaces;
+// progress is told between a stage's start and its end, never at the same time as another
+// call; and counting changes nothing in the mesh.
 #include <atomic>
 #include <cstdint>
 #include <map>
@@ -17,6 +17,10 @@
 
 namespace membrane::testing {
 namespace {
+
+// A grid fine enough for the torus's relaxation to take a while: 0.3 s on 2 loaded cores,
+// told in 36 distinct fractions at the test's millisecond schedule.
+constexpr double kLongRelaxVoxel = 0.01;
 
 PointCloud SampledTorus() {
   absl::StatusOr<PointCloud> cloud =
@@ -92,7 +96,7 @@ TEST(StageProgress, FractionsNeverGoBackAndLongStagesEndAtOne) {
         last = *f;
       }
     }
-    for (const char* stage : {"voxelize", "surface", "check"}) {
+    for (const char* stage : {"voxelize", "relax", "surface", "check"}) {
       ASSERT_FALSE(log.calls[stage].empty());
       EXPECT_EQ(log.calls[stage].back(), std::optional<double>(1.0)) << stage;
     }
@@ -103,6 +107,35 @@ TEST(StageProgress, FractionsNeverGoBackAndLongStagesEndAtOne) {
     // The stages that do not count their work say so.
     EXPECT_EQ(log.calls["encode"].back(), std::nullopt);
   }
+}
+
+// A relaxation of many voxels is told in steps: its DLC passes, then each phase's scan and the
+// voxels it takes, so a watcher sees it move rather than a bare time.
+TEST(StageProgress, ALongRelaxationReportsIncreasingFractions) {
+  InMemoryCloudSource source(SampledTorus());
+  NoResourceLimit gate;
+  InMemoryMeshSink sink;
+  ProgressLog log;
+  ReconstructionOptions options;
+  options.voxelize.voxel_size = kLongRelaxVoxel;
+  options.surface = SurfaceKind::kCuberille;
+  const absl::StatusOr<ReconstructionReport> report =
+      RunReconstruction(options, {source, gate, sink, log}, ErrorContext{}, CancelToken::Never());
+  ASSERT_TRUE(report.ok()) << report.status();
+  const std::vector<std::optional<double>>& fractions = log.calls["relax"];
+  std::vector<double> inside;  // the distinct fractions strictly between 0 and 1, in order
+  for (const std::optional<double>& f : fractions) {
+    // Only a tick before the first pass begins has no fraction yet.
+    if (!f.has_value()) {
+      EXPECT_TRUE(inside.empty());
+      continue;
+    }
+    if (*f > 0 && *f < 1 && (inside.empty() || *f != inside.back())) inside.push_back(*f);
+  }
+  EXPECT_GE(inside.size(), 3u) << "seconds: " << report->seconds.relax
+                                << ", ticks: " << fractions.size();
+  for (size_t i = 1; i < inside.size(); ++i) EXPECT_GT(inside[i], inside[i - 1]);
+  EXPECT_EQ(fractions.back(), std::optional<double>(1.0));
 }
 
 TEST(StageProgress, DecimationCountsItsFacesToTheEnd) {

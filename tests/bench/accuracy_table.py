@@ -22,7 +22,10 @@ are those of the run that filled the cache). Membrane meshes are written to a te
 
   /usr/bin/python3 tests/bench/accuracy_table.py --membrane build/client/membrane \
       [--baseline OLD/client/membrane] [--models spot] [--protocols uniform,holes] \
-      [--no-poisson] [--out tests/bench/accuracy-YYYY-MM-DD.txt]
+      [--no-poisson] [--split] [--out tests/bench/accuracy-YYYY-MM-DD.txt]
+
+--split adds a line per mesh: the Chamfer parts on the data and in the cloud's gaps, the deepest
+point off the reference, in voxels (tests/bench/gap_split.py; Poisson's at the membrane's voxel).
 
 Run it with Debian's interpreter (python3-numpy, python3-scipy, python3-open3d).
 """
@@ -35,6 +38,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+import gap_split
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PROTOCOL_ARGS = {
@@ -100,7 +105,8 @@ def baseline_row(args, model, protocol, cloud, tmp):
     build: measuring it again would give the same mesh)."""
     with open(args.baseline, 'rb') as fh:
         digest = hashlib.sha256(fh.read()).hexdigest()[:16]
-    cached = os.path.join(args.cache, 'baseline', digest, f'{model}-{protocol}.json')
+    suffix = '-split' if args.split else ''
+    cached = os.path.join(args.cache, 'baseline', digest, f'{model}-{protocol}{suffix}.json')
     if os.path.exists(cached):
         with open(cached) as fh:
             return json.load(fh)
@@ -125,6 +131,10 @@ def membrane_row(args, binary, model, cloud, tmp, tag):
     row = score(args, out, model, cloud, voxel)
     row['cpu'] = cpu
     row['voxel'] = voxel
+    if args.split:
+        row['split'] = gap_split.split(
+            out, os.path.join(args.shared, 'data', 'models', f'{model}.obj'), cloud, voxel,
+            200000, args.eval)
     return row
 
 
@@ -151,6 +161,14 @@ def poisson_row(args, model, protocol, cloud):
 WIDTH = 43
 
 
+def fmt_split(split):
+    return (f"on data {split['data_pct']:.4f} + gap {split['gap_pct']:.4f} "
+            f"(gap {100 * split['gap_mesh_share']:.1f}% of the mesh, "
+            f"{100 * split['gap_gt_share']:.1f}% of the reference), "
+            f"deepest {split['deepest']:.1f} voxels, cut-off {split['cut_off']:.1f}, "
+            f"gap signed {split['signed_gap']:+.2f}")
+
+
 def fmt(row):
     if row is None:
         return ' ' * WIDTH
@@ -175,6 +193,8 @@ def main():
                                                       os.path.join(REPO, '..', 'cache')))
     ap.add_argument('--python', default='/usr/bin/python3')
     ap.add_argument('--no-poisson', action='store_true')
+    ap.add_argument('--split', action='store_true',
+                    help='also where the error lies (gap_split.py): a line per mesh')
     ap.add_argument('--out', help='also write the table here')
     args = ap.parse_args()
     args.eval = args.eval or os.path.join(args.shared, 'tools', 'eval')
@@ -221,6 +241,16 @@ def main():
                 emit(f"{model + '/' + protocol:24} {fmt(before)} | {fmt(after)} | "
                      f"{fmt(poisson)} | {ratio}")
                 results.append((model, protocol, before, after, poisson))
+                for tag, row in (('before', before), ('after', after)):
+                    if row and 'split' in row:
+                        emit(f"#   {tag:7} {fmt_split(row['split'])}")
+                if args.split and poisson and 'error' not in poisson and 'voxel' in after:
+                    # Poisson's mesh split at the membrane's voxel: the same gaps.
+                    mesh = os.path.join(args.cache, 'poisson', f'{model}-{protocol}.ply')
+                    split = gap_split.split(
+                        mesh, os.path.join(args.shared, 'data', 'models', f'{model}.obj'),
+                        cloud, after['voxel'], 200000, args.eval)
+                    emit(f"#   Poisson {fmt_split(split)}")
     emit('# means over the clouds above (Chamfer %, F@1%, CPU s)')
     for protocol in args.protocols.split(','):
         cols = []

@@ -283,6 +283,16 @@ HttpResponse HttpApi::Download(Job& job, const std::string& file) const {
   if (same) {
     response = BytesResponse(outcome->mesh, "application/octet-stream");
   } else {
+    // The conversion holds a decoded mesh and its new bytes: memory the jobs' budget covers.
+    const v1::MeshSummary summary =
+        outcome->result.has_value() ? outcome->result->result().mesh() : v1::MeshSummary();
+    MemoryBudget::Share share(memory_);
+    if (absl::Status s = share.TryAdd(MeshConversionBytes(summary.vertices(), summary.faces()),
+                                      absl::StrCat("converting job '", job.id(), "''s mesh to ",
+                                                   file == "mesh.ply" ? "PLY" : "Draco"));
+        !s.ok()) {
+      return ErrorResponse(s);
+    }
     absl::StatusOr<std::string> converted =
         MeshInFormat(*outcome->mesh, job.parameters(), format);
     if (!converted.ok()) return ErrorResponse(absl::InternalError(converted.status().message()));

@@ -13,7 +13,8 @@
 //                                        kMaxEventWaitSeconds) for one or for the job's end
 //   POST /api/jobs/ID/cancel            Job, as CancelJob
 //   GET  /api/jobs/ID/mesh.drc, mesh.ply   the mesh (SUCCEEDED only), converted when the job
-//                                        produced the other format
+//                                        produced the other format, within the memory budget
+//                                        (429 when the conversion does not fit)
 //   GET  /api/jobs/ID/preview.png       the PNG preview of the mesh (SUCCEEDED only; drawn
 //                                        now for a job restored from the store without one)
 //   GET  /api/jobs/ID/points            the sample of the input points: float32 x y z,
@@ -22,7 +23,8 @@
 // Job, JobEvent and MeshSummary are the messages of proto/membrane/v1/reconstruction.proto in
 // protobuf's JSON mapping with the proto field names (64-bit integers as strings). Errors are
 // {"error": {"code": "NOT_FOUND", "message": "..."}} with 400, 401 (and WWW-Authenticate:
-// Bearer), 404 (unknown, expired, or another client's job), 405, 409 (no mesh yet).
+// Bearer), 404 (unknown, expired, or another client's job), 405, 409 (no mesh yet), 429 (a
+// conversion over the memory budget).
 #ifndef MEMBRANE_SERVER_HTTP_API_H_
 #define MEMBRANE_SERVER_HTTP_API_H_
 
@@ -37,6 +39,7 @@
 #include "server/caller.h"
 #include "server/clock.h"
 #include "server/job_store.h"
+#include "server/memory_budget.h"
 #include "server/server_options.h"
 
 namespace membrane::server {
@@ -67,10 +70,13 @@ HttpResponse ErrorResponse(const absl::Status& status);
 
 class HttpApi {
  public:
-  // `options`, `store` and `clock` (not owned) must outlive the API. `clock` times the
-  // results' TTL, as for the gRPC service.
-  HttpApi(const ServerOptions& options, JobStore& store, const Clock& clock)
-      : options_(options), store_(store), clock_(clock) {}
+  // `options`, `store`, `clock` and `memory` (not owned) must outlive the API. `clock` times
+  // the results' TTL, as for the gRPC service; a download converted to the other format
+  // reserves its estimate (MeshConversionBytes) from `memory`, the jobs' budget, or is refused
+  // with 429 and the numbers.
+  HttpApi(const ServerOptions& options, JobStore& store, const Clock& clock,
+          MemoryBudget& memory)
+      : options_(options), store_(store), clock_(clock), memory_(memory) {}
 
   // The answer to `request`, whose path starts with "/api/". Blocks up to
   // kMaxEventWaitSeconds for an events request.
@@ -92,6 +98,7 @@ class HttpApi {
   const ServerOptions& options_;
   JobStore& store_;
   const Clock& clock_;
+  MemoryBudget& memory_;
   std::atomic<bool> stopping_{false};
 };
 

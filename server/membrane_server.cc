@@ -71,7 +71,7 @@ MembraneServer::MembraneServer(ServerOptions options, const Clock* clock,
                    ReleaseFreedMemory();
                  }),
       service_(options_, *store_, scheduler_, upload_memory_, metrics_, clock_),
-      http_api_(options_, *store_, clock_) {
+      http_api_(options_, *store_, clock_, memory_) {
   disk_store_ = dynamic_cast<DiskJobStore*>(store_.get());
 }
 

@@ -28,18 +28,25 @@ MemoryBudget::Share::~Share() {
   --budget_.holders_;
 }
 
-absl::Status MemoryBudget::Share::Add(int64_t bytes, const CancelToken& cancel) {
-  MemoryBudget& b = budget_;
-  if (b.total_ <= 0 || bytes <= 0) {
+std::optional<absl::Status> MemoryBudget::Share::Settled(int64_t bytes, absl::string_view what,
+                                                         absl::string_view advice) {
+  if (budget_.total_ <= 0 || bytes <= 0) {
     bytes_ += std::max<int64_t>(bytes, 0);
     return absl::OkStatus();
   }
-  if (bytes_ + bytes > b.total_) {
-    return absl::ResourceExhaustedError(absl::StrFormat(
-        "the job needs about %d bytes, over the server's memory budget of %d bytes; use a "
-        "larger voxel_size",
-        bytes_ + bytes, b.total_));
+  if (bytes_ + bytes > budget_.total_) {
+    return absl::ResourceExhaustedError(
+        absl::StrFormat("%s needs about %d bytes, over the server's memory budget of %d bytes%s",
+                        what, bytes_ + bytes, budget_.total_, advice));
   }
+  return std::nullopt;
+}
+
+absl::Status MemoryBudget::Share::Add(int64_t bytes, const CancelToken& cancel) {
+  if (std::optional<absl::Status> s = Settled(bytes, "the job", "; use a larger voxel_size")) {
+    return *s;
+  }
+  MemoryBudget& b = budget_;
   absl::MutexLock lock(&b.mutex_);
   const bool holder = bytes_ > 0;
   // Every holder waiting means no share will shrink: waiting would never end.
@@ -69,6 +76,24 @@ absl::Status MemoryBudget::Share::Add(int64_t bytes, const CancelToken& cancel) 
   if (!status.ok()) return status;
   b.reserved_ += bytes;
   if (!holder) ++b.holders_;
+  bytes_ += bytes;
+  return absl::OkStatus();
+}
+
+absl::Status MemoryBudget::Share::TryAdd(int64_t bytes, absl::string_view what) {
+  if (std::optional<absl::Status> s = Settled(bytes, what, " (--memory-budget-bytes)")) {
+    return *s;
+  }
+  MemoryBudget& b = budget_;
+  absl::MutexLock lock(&b.mutex_);
+  if (b.reserved_ + bytes > b.total_) {
+    return absl::ResourceExhaustedError(absl::StrFormat(
+        "%s needs about %d bytes while the running jobs hold %d of the server's memory budget "
+        "of %d bytes; retry later",
+        what, bytes, b.reserved_, b.total_));
+  }
+  b.reserved_ += bytes;
+  if (bytes_ == 0) ++b.holders_;
   bytes_ += bytes;
   return absl::OkStatus();
 }

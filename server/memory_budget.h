@@ -5,9 +5,11 @@
 #define MEMBRANE_SERVER_MEMORY_BUDGET_H_
 
 #include <cstdint>
+#include <optional>
 
 #include "absl/base/thread_annotations.h"
 #include "absl/status/status.h"
+#include "absl/strings/string_view.h"
 #include "absl/synchronization/mutex.h"
 #include "core/base/cancel_token.h"
 
@@ -34,9 +36,20 @@ class MemoryBudget {
     // destroyed. Cancelled when `cancel` fires while waiting (looked at every 50 ms).
     absl::Status Add(int64_t bytes, const CancelToken& cancel);
 
+    // Adds `bytes` to the share now when they fit beside the other shares; never waits (for
+    // work that a caller can ask for again, a download's conversion). ResourceExhausted naming
+    // `what` and the numbers otherwise: over the whole budget, or over what is free now.
+    absl::Status TryAdd(int64_t bytes, absl::string_view what);
+
     int64_t bytes() const { return bytes_; }
 
    private:
+    // Takes `bytes` at once when the budget has no limit (or there is nothing to take), and
+    // refuses a share that would exceed the whole budget, naming `what` and `advice`; nullopt
+    // when neither applies and the caller reserves them.
+    std::optional<absl::Status> Settled(int64_t bytes, absl::string_view what,
+                                        absl::string_view advice);
+
     MemoryBudget& budget_;
     int64_t bytes_ = 0;
   };

@@ -10,6 +10,12 @@ namespace {
 
 bool IsPly(v1::MeshFormat format) { return format == v1::MESH_FORMAT_PLY; }
 
+// MeshConversionBytes's costs, above both directions measured on a 1.53M-face torus mesh
+// (767k vertices): Draco to PLY peaked 103 MB over the Draco bytes, PLY to Draco 166 MB over
+// the PLY bytes (190 MB here; tests/bench/2026-12-03-download-memory.txt).
+constexpr int64_t kConversionBytesPerVertex = 48;
+constexpr int64_t kConversionBytesPerFace = 100;
+
 Origin3d OriginOf(const v1::Parameters& parameters) {
   if (parameters.origin_size() != 3) return {0, 0, 0};
   return {parameters.origin(0), parameters.origin(1), parameters.origin(2)};
@@ -33,6 +39,10 @@ absl::StatusOr<TriangleMesh> ResultMesh(const std::string& mesh_bytes,
   }
   mesh->origin = {0, 0, 0};
   return mesh;
+}
+
+int64_t MeshConversionBytes(int64_t vertices, int64_t faces) {
+  return kConversionBytesPerVertex * vertices + kConversionBytesPerFace * faces;
 }
 
 absl::StatusOr<std::string> MeshInFormat(const std::string& mesh_bytes,

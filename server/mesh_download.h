@@ -21,6 +21,11 @@ absl::StatusOr<TriangleMesh> ResultMesh(const std::string& mesh_bytes,
 // format; otherwise a Draco job's mesh as binary PLY (at position + origin, in double when the
 // job has an origin, as a PLY job would have it), or a PLY job's mesh as lossless Draco (its
 // positions without the origin, as a Draco job returns them). ResultMesh's errors.
+// The bytes MeshInFormat holds at its peak converting a mesh of `vertices` and `faces` to the
+// other format, `mesh_bytes` (the job's, already held) not counted: Draco's decoder or encoder
+// and its structures, the mesh, and the converted bytes (tests/bench/bench_download_memory.cc).
+int64_t MeshConversionBytes(int64_t vertices, int64_t faces);
+
 absl::StatusOr<std::string> MeshInFormat(const std::string& mesh_bytes,
                                          const v1::Parameters& parameters, v1::MeshFormat format);
 

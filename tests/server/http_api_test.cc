@@ -224,6 +224,33 @@ TEST_F(HttpApiTest, AJobRestoredFromTheStoreGetsItsPreviewWhenAsked) {
   EXPECT_EQ(Get(job + "/points").status, 409);
 }
 
+// A download in the other format is converted within the jobs' memory budget: one whose
+// conversion is over the whole budget is refused with 429 and the numbers, not an OOM, and the
+// format the job produced is sent as it is. (The job ran without a budget, on a first start of
+// the same store.)
+TEST_F(HttpApiTest, AConversionOverTheMemoryBudgetIsRefused) {
+  ScratchDir dir;
+  options_.store_dir = dir.File("jobs");
+  StartServer();
+  const CallResult done = Reconstruct(DracoCloud("sphere", 2000), {});
+  ASSERT_EQ(done.FinalState(), v1::SUCCEEDED) << done.status.error_message();
+  server_->Shutdown(absl::ZeroDuration());
+  server_.reset();
+  options_.memory_budget_bytes = 1000;
+  StartServer();
+  const std::string job = "/api/jobs/" + done.JobId();
+  const HttpReply ply = Get(job + "/mesh.ply");
+  EXPECT_EQ(ply.status, 429) << ply.body;
+  EXPECT_TRUE(absl::StrContains(ply.body, "RESOURCE_EXHAUSTED")) << ply.body;
+  EXPECT_TRUE(absl::StrContains(ply.body, "converting job '" + done.JobId() + "''s mesh to PLY"))
+      << ply.body;
+  EXPECT_TRUE(absl::StrContains(ply.body, "over the server's memory budget of 1000 bytes"))
+      << ply.body;
+  const HttpReply drc = Get(job + "/mesh.drc");
+  ASSERT_EQ(drc.status, 200) << drc.body;
+  EXPECT_EQ(drc.body, done.Mesh());
+}
+
 TEST_F(HttpApiTest, AStoppingServerAnswersWaitingEventsRequestsAtOnce) {
   // With a store, a job still running at the stop is kept unfinished: it never ends here, so
   // only the stop can end a request waiting for its events.

@@ -26,6 +26,31 @@ TEST(MemoryBudget, ShareOverTheWholeBudgetIsRefusedAtOnce) {
   EXPECT_EQ(share.bytes(), 60);
 }
 
+// A download's conversion takes what is free now or is refused at once: it never waits
+// behind the jobs, and its refusal names what it needed and what the jobs hold.
+TEST(MemoryBudget, TryAddTakesWhatIsFreeNowAndNeverWaits) {
+  MemoryBudget budget(100);
+  const CancelToken cancel;
+  MemoryBudget::Share job(budget);
+  ASSERT_TRUE(job.Add(70, cancel).ok());
+  {
+    MemoryBudget::Share download(budget);
+    const absl::Status busy = download.TryAdd(40, "converting");
+    EXPECT_EQ(busy.code(), absl::StatusCode::kResourceExhausted);
+    EXPECT_NE(busy.message().find("converting needs about 40 bytes while the running jobs hold "
+                                  "70 of the server's memory budget of 100 bytes; retry later"),
+              std::string::npos)
+        << busy.message();
+    const absl::Status over = download.TryAdd(101, "converting");
+    EXPECT_NE(over.message().find("over the server's memory budget of 100 bytes"),
+              std::string::npos)
+        << over.message();
+    ASSERT_TRUE(download.TryAdd(30, "converting").ok());
+    EXPECT_EQ(budget.reserved(), 100);
+  }
+  EXPECT_EQ(budget.reserved(), 70);  // given back with the share
+}
+
 TEST(MemoryBudget, GrowthWaitsUntilAnotherJobEnds) {
   MemoryBudget budget(100);
   const CancelToken cancel;

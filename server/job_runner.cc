@@ -91,7 +91,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   // The web console draws a sample of the points over the mesh.
   SamplingSource source(upload, *job);
   // Held until the job ends.
-  MemoryBudgetGate memory_gate(memory_);
+  MemoryBudgetGate memory_gate(memory_, settings->reconstruction.output_quantization_bits);
   TimeLimitGate gate(memory_gate, options_.max_job_seconds,
                      settings->reconstruction.output_quantization_bits);
   DracoMeshSink draco_sink(settings->mesh_encoding.compression_level);

@@ -9,11 +9,18 @@
 
 namespace membrane::server {
 
+// The bytes Draco's encoder holds in its tables of 2^bits entries, whatever the mesh: 4 an
+// entry (a 1M-point torus's mesh peaked 3.56 GB higher at 30 bits than at 11, 3.3 bytes an
+// entry; tests/bench/2026-12-03-download-memory.txt); 0 for bits 0 (float32 positions).
+int64_t DracoTableBytes(int quantization_bits);
+
 class MemoryBudgetGate : public ResourceGate {
  public:
   // `budget` (not owned) must outlive the gate. The share is held until the gate is
-  // destroyed: keep it until the job has ended.
-  explicit MemoryBudgetGate(MemoryBudget& budget) : share_(budget) {}
+  // destroyed: keep it until the job has ended. `output_quantization_bits` is the job's Draco
+  // encoding's (0: none): the encoder's tables join the surface's share (DracoTableBytes).
+  MemoryBudgetGate(MemoryBudget& budget, int output_quantization_bits)
+      : share_(budget), output_quantization_bits_(output_quantization_bits) {}
 
   // Adds the grid's bytes to the share (MemoryBudget::Share::Add: waits while other jobs hold
   // the memory; its ResourceExhausted and Cancelled as they are).
@@ -21,12 +28,14 @@ class MemoryBudgetGate : public ResourceGate {
                          const CancelToken& cancel) override;
 
   // Grows the share to the surface's bytes (SurfaceBytesEstimate, which counts the grid held
-  // beside it) when they are above the grid's; a ResourceExhausted then begins "the surface of
-  // a membrane of N voxels (a noisy cloud makes a foam of one): ".
+  // beside it) when they are above the grid's, plus the Draco encoder's tables; a
+  // ResourceExhausted then begins "the surface of a membrane of N voxels (a noisy cloud makes a
+  // foam of one): ".
   absl::Status AdmitSurface(const MembraneCounts& membrane, const CancelToken& cancel) override;
 
  private:
   MemoryBudget::Share share_;
+  const int output_quantization_bits_;
   PlannedGrid grid_;  // admitted by AdmitGrid
 };
 

@@ -1,6 +1,7 @@
 // The memory budget's shares: a job's reservation grows stage by stage (to the largest stage's
 // estimate, through its MemoryBudgetGate), waits while others hold the memory, and gives up
 // when every holder waits (no share would ever shrink).
+#include <algorithm>
 #include <atomic>
 #include <optional>
 #include <thread>
@@ -127,7 +128,7 @@ TEST(MemoryBudget, NoBudgetGrantsEverything) {
 // counts the grid it is built beside.
 TEST(MemoryBudgetGate, TheShareGrowsToTheSurfacesPeakNotByIt) {
   MemoryBudget budget(int64_t{1} << 40);
-  MemoryBudgetGate gate(budget);
+  MemoryBudgetGate gate(budget, 0);
   PlannedGrid grid;
   grid.voxels = 100'000'000;
   grid.points = 1'000'000;
@@ -143,7 +144,7 @@ TEST(MemoryBudgetGate, TheShareGrowsToTheSurfacesPeakNotByIt) {
 
 TEST(MemoryBudgetGate, ALargeSurfaceTakesItsPeak) {
   MemoryBudget budget(int64_t{1} << 40);
-  MemoryBudgetGate gate(budget);
+  MemoryBudgetGate gate(budget, 0);
   PlannedGrid grid;
   grid.voxels = 1'000'000;
   grid.points = 100'000;
@@ -161,7 +162,7 @@ TEST(MemoryBudgetGate, ASurfaceOverTheBudgetNamesTheMembrane) {
   grid.points = 100'000;
   grid.bytes = GridBytesEstimate(grid.voxels, grid.points);
   MemoryBudget budget(grid.bytes + 1000);
-  MemoryBudgetGate gate(budget);
+  MemoryBudgetGate gate(budget, 0);
   ASSERT_TRUE(gate.AdmitGrid(grid, grid.points, CancelToken()).ok());
   MembraneCounts foam;
   foam.soft_voxels = 900'000;
@@ -170,6 +171,26 @@ TEST(MemoryBudgetGate, ASurfaceOverTheBudgetNamesTheMembrane) {
   EXPECT_NE(refused.message().find("the surface of a membrane of 900000 voxels"),
             std::string::npos)
       << refused.message();
+}
+
+// Draco's encoder holds tables of 2^bits entries whatever the mesh (3.56 GB more at 30 bits
+// than at 11 on a 1M-point torus): a job's surface share counts them beside the surface.
+TEST(MemoryBudgetGate, TheSurfaceShareCountsTheEncodersTables) {
+  EXPECT_EQ(DracoTableBytes(0), 0);
+  EXPECT_EQ(DracoTableBytes(11), 4 << 11);
+  EXPECT_GE(DracoTableBytes(30), int64_t{3'560'000'000});
+  PlannedGrid grid;
+  grid.voxels = 1'000'000;
+  grid.points = 100'000;
+  grid.bytes = GridBytesEstimate(grid.voxels, grid.points);
+  MembraneCounts membrane;
+  membrane.soft_voxels = 10'000;
+  MemoryBudget budget(int64_t{1} << 40);
+  MemoryBudgetGate gate(budget, 30);
+  ASSERT_TRUE(gate.AdmitGrid(grid, grid.points, CancelToken()).ok());
+  ASSERT_TRUE(gate.AdmitSurface(membrane, CancelToken()).ok());
+  EXPECT_EQ(budget.reserved(),
+            std::max(SurfaceBytesEstimate(grid, membrane), grid.bytes) + DracoTableBytes(30));
 }
 
 TEST(DefaultMemoryBudget, IsThreeQuartersOfTheTotalOrNoLimitWhenUnknown) {

@@ -147,7 +147,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   adjacent.ForEach([&](int64_t i) {
     if (cancelled || outcome.incursions > 0 || !IsHardOrFrozen(s[i])) return;
     if ((++outcome.checks & 4095) == 0 && cancel.cancelled()) cancelled = true;
-    if (IncursionAt(grid, i, options.rules.thick_wall_run, options.rules.thick_wall_detour))
+    if (IncursionAt(grid, i, options.rules.thick_wall_run, options.thin_part()))
       ++outcome.incursions;
   });
   if (!cancelled && outcome.incursions == 0 && options.rules.topology_guard) {

@@ -92,7 +92,7 @@ bool ChainRunner::Contract(int o, int layer, const Region& r) {
       int64_t i = CellIndex(o, l, u, cv_lo - 1);
       for (int v = cv_lo - 1; v <= cv_hi + 1; ++v, i += sv) {
         if (IsHardOrFrozen(s[i]) && IncursionAt(grid_, i, options_.rules.thick_wall_run,
-                                                options_.rules.thick_wall_detour))
+                                                options_.thin_part()))
           return false;
       }
     }

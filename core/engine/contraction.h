@@ -15,6 +15,8 @@
 
 #include "absl/container/flat_hash_set.h"
 #include "core/base/cancel_token.h"
+#include "core/engine/hard_voxel_points.h"
+#include "core/engine/incursion_test.h"
 #include "core/engine/plate.h"
 #include "core/engine/topology_guard.h"
 #include "core/engine/voxel_grid.h"
@@ -28,9 +30,12 @@ struct ChainRules {
   int depth_bound_max_plate = 2;  // the plate sizes the depth bound applies to: n <= this
   int thick_wall_run = 3;         // algorithm-notes 15: longest hard run of the thick-wall
                                   // incursion test; 1 = the paper's test only
-  int thick_wall_detour = 0;      // the thick-wall test does not fire when the run's two ends
-                                  // are joined through the outside within this Chebyshev
-                                  // radius (a thin part); 0 = off (engine-decisions.md)
+  // The thin-part exception of the thick-wall test (incursion_test.h, engine-decisions.md):
+  // it does not fire when the run's two ends are joined through the outside within the
+  // Chebyshev radius thick_wall_detour (0 = never) and the run's points lie at least
+  // thin_part_min_spread voxels from their best plane (data on both sides; 0 = not read).
+  int thick_wall_detour = 4;
+  double thin_part_min_spread = 0.25;
   bool topology_guard = true;     // algorithm-notes 12
 };
 
@@ -39,7 +44,12 @@ struct ChainOptions {
   int generation_label = 1;  // written into the voxels this generation turns outside
   ChainRules rules;
   GuardOptions guard;        // its plate size; its sizes are used when rules.topology_guard
+  const HardVoxelPoints* points = nullptr;  // the input points (the thin-part exception)
   int plate_size() const { return guard.plate_size; }
+  // The thin-part exception of the thick-wall test these options ask for.
+  ThinPartRule thin_part() const {
+    return {rules.thick_wall_detour, rules.thin_part_min_spread, points};
+  }
 };
 
 // kSkipped: the start plate no longer fits (nothing changed).

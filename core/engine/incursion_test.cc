@@ -66,6 +66,21 @@ bool JoinedInCube(const VoxelGrid& grid, int64_t centre, int64_t a, int64_t b, i
   return false;
 }
 
+// Whether the points around the run [lo, hi] along axis d through `index` (one voxel either
+// side across it) show data on both of its sides (ThinPartRule::min_spread).
+bool ThinPartData(const VoxelGrid& grid, int64_t index, int d, int lo, int hi,
+                  const ThinPartRule& thin) {
+  if (thin.min_spread <= 0) return true;
+  if (thin.points == nullptr) return false;
+  const Coord c = grid.CoordOf(index);
+  Coord a = c, b = c;
+  for (int k = 0; k < 3; ++k) {
+    a[k] = k == d ? c[k] + lo : c[k] - 1;
+    b[k] = k == d ? c[k] + hi : c[k] + 1;
+  }
+  return thin.points->PlaneSpread(grid, a, b) >= thin.min_spread;
+}
+
 }  // namespace
 
 bool PaperIncursion(const VoxelGrid& grid, int64_t index) {
@@ -88,7 +103,8 @@ bool PaperIncursion(const VoxelGrid& grid, int64_t index) {
   return false;
 }
 
-bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run, int detour) {
+bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run,
+                         const ThinPartRule& thin) {
   const auto st = grid.strides();
   const VoxelState* s = grid.states().data();
   for (int d = 0; d < 3; ++d) {
@@ -111,10 +127,11 @@ bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run, int d
         }
     const uint64_t bit_a = 1ull << 4, bit_b = 1ull << ((len - 1) * 9 + 4);
     if ((FloodBox(bit_a, outside, len) & bit_b) != 0) continue;
-    // Joined around the run a little further out: a thin part (a leg, a horn, a belt), both
-    // of whose sides are the exterior, not a wall with a dig behind it.
-    if (detour > 0 &&
-        JoinedInCube(grid, index, index + (lo - 1) * sd, index + (hi + 1) * sd, detour)) {
+    // Joined around the run a little further out, with data on both of its sides: a thin
+    // part (a leg, a horn, a belt), both of whose sides are the exterior, not a wall with a
+    // dig behind it. The points are read first: they are cheaper than the search.
+    if (thin.detour > 0 && ThinPartData(grid, index, d, lo, hi, thin) &&
+        JoinedInCube(grid, index, index + (lo - 1) * sd, index + (hi + 1) * sd, thin.detour)) {
       continue;
     }
     return true;

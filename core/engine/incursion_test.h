@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "core/engine/hard_voxel_points.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {
@@ -14,21 +15,35 @@ namespace membrane {
 // `index` must lie at least one voxel from the array border.
 bool PaperIncursion(const VoxelGrid& grid, int64_t index);
 
+// When a thick-wall run is taken for a thin part rather than a wall with a dig behind it
+// (ChainRules::thick_wall_detour and thin_part_min_spread).
+struct ThinPartRule {
+  int detour = 0;          // radius (voxels) within which the run's ends must be joined; 0 = never
+  double min_spread = 0;   // least PlaneSpread of the run's points (voxels); 0 = not read
+  const HardVoxelPoints* points = nullptr;  // the input points; none: min_spread is never met
+};
+
 // The thick-wall extension: for some axis, the run of hard or frozen non-outside voxels through
 // the voxel (at most `max_run` long) is longer than one, the voxels A and B just beyond its ends
-// are outside with different generations, and no 6-path of outside voxels joins A and B inside
-// the box spanning A..B along the axis and one voxel either side across it, nor (when
-// detour > 0) inside the cube of radius `detour` around the voxel: A and B joined around the
-// run within a few voxels are the two sides of a thin part, not a wall with a dig behind it.
-// A or B outside that cube counts as not joined; the cube is clipped to the array. `index`
-// must lie at least max_run voxels from the array border (the padding guarantees it for hard
-// voxels when max_run <= 3).
-bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run, int detour);
+// are outside with different generations, no 6-path of outside voxels joins A and B inside
+// the box spanning A..B along the axis and one voxel either side across it, and the run is no
+// thin part. It is one (`thin`) when thin.detour > 0, A and B are joined through the outside
+// inside the cube of radius thin.detour around the voxel (A or B outside that cube counts as
+// not joined; the cube is clipped to the array), and, when thin.min_spread > 0, the points of
+// the box spanning the run along the axis and one voxel either side across it lie at least
+// thin.min_spread voxels from their best plane (HardVoxelPoints::PlaneSpread): data on both
+// sides of the run, the two faces of a leg, a horn or a belt. A scanned wall at the rim of a
+// data hole is joined around too, but its points lie on one surface: the test fires there, so
+// that plates do not dig behind it. `index` must lie at least max_run voxels from the array
+// border (the padding guarantees it for hard voxels when max_run <= 3).
+bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run,
+                        const ThinPartRule& thin);
 
 // Either test fires (the thick one only when max_run > 1).
-inline bool IncursionAt(const VoxelGrid& grid, int64_t index, int max_run, int detour) {
+inline bool IncursionAt(const VoxelGrid& grid, int64_t index, int max_run,
+                        const ThinPartRule& thin) {
   return PaperIncursion(grid, index) ||
-         (max_run > 1 && ThickWallIncursion(grid, index, max_run, detour));
+         (max_run > 1 && ThickWallIncursion(grid, index, max_run, thin));
 }
 
 }  // namespace membrane

@@ -48,7 +48,7 @@ size_t RetryFrom(const std::vector<int>& sizes, const ShrinkOptions& options,
 }  // namespace
 
 MembraneShrinker::MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options,
-                                   const CancelToken& cancel)
+                                   const CancelToken& cancel, absl::Span<const Point3f> points)
     : grid_(grid),
       options_(options),
       cancel_(cancel),
@@ -58,7 +58,13 @@ MembraneShrinker::MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options
       retry_from_(RetryFrom(sizes_, options, strict_)),
       planes_(grid),
       finder_(grid, planes_),
-      runner_(grid) {}
+      runner_(grid) {
+  // Only the thin-part exception reads the points.
+  if (options.chain.thick_wall_run > 1 && options.chain.thick_wall_detour > 0 &&
+      options.chain.thin_part_min_spread > 0 && !points.empty()) {
+    points_.emplace(grid, points);
+  }
+}
 
 absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_generation) {
   const Clock::time_point start = Clock::now();
@@ -110,6 +116,7 @@ ChainOptions MembraneShrinker::ChainOptionsFor(size_t g, TunnelRules rules) cons
   chain.guard.sizes = rules == TunnelRules::kStrict ? strict_ : options_.guard;
   chain.guard.classify_strict = rules == TunnelRules::kDefault && g >= retry_from_;
   chain.guard.strict = strict_;
+  chain.points = points_ ? &*points_ : nullptr;
   return chain;
 }
 
@@ -191,11 +198,18 @@ bool MembraneShrinker::Restore(const ShrinkCheckpoint& from) {
   return true;
 }
 
-absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions& options,
+absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, absl::Span<const Point3f> points,
+                                            const ShrinkOptions& options,
                                             const GenerationCallback& on_generation,
                                             const CancelToken& cancel) {
   if (absl::Status s = ValidateShrinkOptions(options); !s.ok()) return s;
-  return MembraneShrinker(grid, options, cancel).Run(on_generation);
+  return MembraneShrinker(grid, options, cancel, points).Run(on_generation);
+}
+
+absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions& options,
+                                            const GenerationCallback& on_generation,
+                                            const CancelToken& cancel) {
+  return ShrinkMembrane(grid, {}, options, on_generation, cancel);
 }
 
 }  // namespace membrane

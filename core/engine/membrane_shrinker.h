@@ -13,12 +13,15 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "absl/types/span.h"
 #include "core/base/cancel_token.h"
 #include "core/engine/compact_states.h"
 #include "core/engine/contraction.h"
+#include "core/engine/hard_voxel_points.h"
 #include "core/engine/place_finder.h"
 #include "core/engine/post_process.h"
 #include "core/engine/shrink_options.h"
@@ -77,7 +80,10 @@ struct ShrinkResult {
 // Called after every generation, on the shrinking thread.
 using GenerationCallback = std::function<void(const GenerationStats&)>;
 
-// Shrinks the initial membrane of `grid` (as built by Voxelize) into the final DMS.
+// Shrinks the initial membrane of `grid` (as built by Voxelize from `points`) into the final
+// DMS. The points are read by the thin-part exception of the thick-wall incursion test
+// (ChainRules::thin_part_min_spread, incursion_test.h); they are indexed once (12 bytes a
+// point and 12 a hard voxel, held during the shrink) when that exception is on.
 // `generations` holds the rows of the generations kept: after a kept handle retry, the retry's
 // rows (handle_retry set) replace the first run's from HandleRetry::from_generation on.
 // `on_generation` sees every first-run row as it finishes, then, when a retry is kept, the
@@ -85,6 +91,13 @@ using GenerationCallback = std::function<void(const GenerationStats&)>;
 // After success the membrane invariants hold (CheckMembraneInvariants) and `grid` holds the
 // final DMS. `on_generation` may be empty. Cancelled when `cancel` fires (within
 // milliseconds; `grid` is then a valid but unfinished DMS); InvalidArgument for bad options.
+absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, absl::Span<const Point3f> points,
+                                            const ShrinkOptions& options,
+                                            const GenerationCallback& on_generation,
+                                            const CancelToken& cancel);
+
+// The same without the points: the thin-part exception finds no data on both sides of a run
+// and never applies (the thick-wall test fires as with thick_wall_detour 0).
 absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions& options,
                                             const GenerationCallback& on_generation,
                                             const CancelToken& cancel);
@@ -105,10 +118,12 @@ enum class TunnelRules { kDefault, kStrict };
 // and the work planes, place finder and chain runner every generation reuses.
 class MembraneShrinker {
  public:
-  // Keeps references to `grid` (as built by Voxelize), `options` (valid by
+  // Keeps references to `grid` (as built by Voxelize from `points`), `options` (valid by
   // ValidateShrinkOptions) and `cancel`, which must outlive the shrinker. Takes the plate sizes
-  // and labels of the grid's data box (Algorithm 1); allocates no planes yet.
-  MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options, const CancelToken& cancel);
+  // and labels of the grid's data box (Algorithm 1); allocates no planes yet. Indexes the
+  // points when the thin-part exception reads them (ShrinkMembrane).
+  MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options, const CancelToken& cancel,
+                   absl::Span<const Point3f> points = {});
 
   MembraneShrinker(const MembraneShrinker&) = delete;
   MembraneShrinker& operator=(const MembraneShrinker&) = delete;
@@ -158,6 +173,7 @@ class MembraneShrinker {
   WorkPlanes planes_;  // allocated at the first snapshot or closed form
   PlaceFinder finder_;
   ChainRunner runner_;
+  std::optional<HardVoxelPoints> points_;  // when the thin-part exception reads them
 };
 
 }  // namespace membrane

@@ -59,6 +59,11 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "thick_wall_detour %d is out of range [0, 16] (0 = off)", o.chain.thick_wall_detour));
   }
+  if (!(o.chain.thin_part_min_spread >= 0 && o.chain.thin_part_min_spread <= 8)) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "thin_part_min_spread %g is out of range [0, 8] voxels (0 = not read)",
+        o.chain.thin_part_min_spread));
+  }
   return absl::OkStatus();
 }
 

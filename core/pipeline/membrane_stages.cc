@@ -38,7 +38,7 @@ absl::StatusOr<Voxelization> VoxelizeStage(const VoxelizeOptions& voxelize,
 }
 
 absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken& cancel,
-                         VoxelGrid& grid, ReconstructionReport& report,
+                         VoxelGrid& grid, const PointCloud& cloud, ReconstructionReport& report,
                          ReconstructionObserver& observer) {
   const Stopwatch watch;
   // The shrinker computes the same schedule; asking for it here gives observers the "3/9"
@@ -51,7 +51,7 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
     observer.GenerationFinished(g, planned);
   };
   absl::StatusOr<ShrinkResult> result =
-      ShrinkMembrane(grid, options.shrink, on_generation, cancel);
+      ShrinkMembrane(grid, cloud.points, options.shrink, on_generation, cancel);
   if (!result.ok()) return result.status();
   report.generations = std::move(result->generations);
   report.post_process = result->post_process;

@@ -28,11 +28,11 @@ absl::StatusOr<Voxelization> VoxelizeStage(const VoxelizeOptions& voxelize,
                                            ReconstructionObserver& observer,
                                            ProgressRange progress = ProgressRange());
 
-// Shrinks the membrane of `grid` (ShrinkMembrane with options.shrink), each plate generation
-// told to the observer; the generations, post-process and handle retry in `report`.
-// Cancelled within milliseconds of `cancel` firing.
+// Shrinks the membrane of `grid`, voxelized from `cloud` (ShrinkMembrane with options.shrink and
+// the cloud's points), each plate generation told to the observer; the generations,
+// post-process and handle retry in `report`. Cancelled within milliseconds of `cancel` firing.
 absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken& cancel,
-                         VoxelGrid& grid, ReconstructionReport& report,
+                         VoxelGrid& grid, const PointCloud& cloud, ReconstructionReport& report,
                          ReconstructionObserver& observer);
 
 // Relaxes the final membrane of `grid` (paper section 5), its grid-wide passes on `threads`

@@ -106,7 +106,7 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kVoxelize); !s.ok()) return s;
   VoxelGrid& grid = voxelization->grid;
 
-  if (absl::Status s = ShrinkStage(options, cancel, grid, report, observer); !s.ok()) {
+  if (absl::Status s = ShrinkStage(options, cancel, grid, *cloud, report, observer); !s.ok()) {
     return with_context(s);
   }
   report.membrane = CountMembrane(grid);

@@ -396,7 +396,7 @@ Summary RunModel(const BenchOptions& o, const Model& m, bool open3d_available,
     const double w0 = Now();
     const double c0 = ProcessCpu();
     absl::StatusOr<ShrinkResult> result =
-        ShrinkMembrane(vox->grid, o.shrink, {}, CancelToken::Never());
+        ShrinkMembrane(vox->grid, cloud->points, o.shrink, {}, CancelToken::Never());
     const double c1 = ProcessCpu();
     const double w1 = Now();
     if (!result.ok()) return fail(result.status(), "shrink");

@@ -34,7 +34,8 @@ namespace {
 constexpr char kUsage[] =
     "usage: bench_topology [--factors 1,1.25,1.5,2] [--models NAME,...] [--no-synthetic]\n"
     "                      [--no-real] [--locate] [--retry T,S,W] [--thick-wall-run K]\n"
-    "                      [--thick-wall-detour R] [--depth-bound D] [--rerun-thin K]\n"
+    "                      [--thick-wall-detour R] [--thin-part-spread S] [--depth-bound D]\n"
+    "                      [--rerun-thin K]\n"
     "                      [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
@@ -45,6 +46,8 @@ constexpr char kUsage[] =
     "                   paper's test only; ChainRules::thick_wall_run)\n"
     "  --thick-wall-detour R  the radius within which the thick-wall run's ends joined through\n"
     "                   the outside stop the test (0 = off; ChainRules::thick_wall_detour)\n"
+    "  --thin-part-spread S  and the run's points must lie S voxels off their best plane\n"
+    "                   (0 = not read; ChainRules::thin_part_min_spread)\n"
     "  --depth-bound D  the small plates' depth bound (0 = unbounded; ChainRules::depth_bound)\n"
     "  --rerun-thin K   when a result has handles, shrink the grid again with a thick-wall run\n"
     "                   of K and keep that result if it has fewer handles and no fewer shells\n"
@@ -91,6 +94,8 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.thick_wall_run)) return false;
     } else if (arg == "--thick-wall-detour" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.thick_wall_detour)) return false;
+    } else if (arg == "--thin-part-spread" && has_value) {
+      if (!absl::SimpleAtod(argv[++i], &o.shrink.chain.thin_part_min_spread)) return false;
     } else if (arg == "--depth-bound" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.depth_bound)) return false;
     } else if (arg == "--rerun-thin" && has_value) {
@@ -146,7 +151,7 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
   const VoxelGrid voxelized = o.rerun_thin > 0 ? vox->grid : VoxelGrid();
   double t0 = Now();
   absl::StatusOr<ShrinkResult> result =
-      ShrinkMembrane(vox->grid, o.shrink, {}, CancelToken::Never());
+      ShrinkMembrane(vox->grid, cloud.points, o.shrink, {}, CancelToken::Never());
   double seconds = Now() - t0;
   ++tally.runs;
   if (!result.ok()) {
@@ -165,7 +170,7 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
     ShrinkOptions thin = o.shrink;
     thin.chain.thick_wall_run = o.rerun_thin;
     t0 = Now();
-    absl::StatusOr<ShrinkResult> second = ShrinkMembrane(again, thin, {}, CancelToken::Never());
+    absl::StatusOr<ShrinkResult> second = ShrinkMembrane(again, cloud.points, thin, {}, CancelToken::Never());
     if (second.ok()) {
       VoxelTopology topo2 = ComputeVoxelTopology(again);
       seconds += Now() - t0;

@@ -1,5 +1,8 @@
 #include "core/engine/incursion_test.h"
 
+#include <vector>
+
+#include "core/engine/hard_voxel_points.h"
 #include "gtest/gtest.h"
 
 namespace membrane {
@@ -47,8 +50,8 @@ TEST(IncursionTest, ThickWallOfTwoHardVoxelsFires) {
   g.set(Coord{2, 3, 3}, OutsideState(1));
   g.set(Coord{5, 3, 3}, OutsideState(2));
   EXPECT_FALSE(PaperIncursion(g, g.Index(3, 3, 3)));
-  EXPECT_TRUE(ThickWallIncursion(g, g.Index(3, 3, 3), 3, 0));
-  EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 1, 0));
+  EXPECT_TRUE(ThickWallIncursion(g, g.Index(3, 3, 3), 3, ThinPartRule{.detour = 0}));
+  EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 1, ThinPartRule{.detour = 0}));
 }
 
 // A thin part two hard voxels thick whose sides are joined through the outside two voxels
@@ -65,10 +68,56 @@ TEST(IncursionTest, ThickWallJoinedAroundWithinTheDetourDoesNotFire) {
   g.set(Coord{5, 7, 6}, OutsideState(1));
   g.set(Coord{8, 7, 6}, OutsideState(2));
   const int64_t v = g.Index(6, 6, 6);
-  EXPECT_TRUE(ThickWallIncursion(g, v, 3, 0));
-  EXPECT_TRUE(ThickWallIncursion(g, v, 3, 1));
-  EXPECT_FALSE(ThickWallIncursion(g, v, 3, 4));
-  EXPECT_FALSE(IncursionAt(g, v, 3, 4));
+  EXPECT_TRUE(ThickWallIncursion(g, v, 3, ThinPartRule{.detour = 0}));
+  EXPECT_TRUE(ThickWallIncursion(g, v, 3, ThinPartRule{.detour = 1}));
+  EXPECT_FALSE(ThickWallIncursion(g, v, 3, ThinPartRule{.detour = 4}));
+  EXPECT_FALSE(IncursionAt(g, v, 3, ThinPartRule{.detour = 4}));
+}
+
+// The grid of ThickWallJoinedAroundWithinTheDetourDoesNotFire: a run of two hard voxels, (6, 6, 6)
+// and (7, 6, 6), whose ends are joined through the outside 2 voxels away.
+VoxelGrid JoinedAroundRun() {
+  VoxelGrid g({13, 13, 13}, {0, 0, 0}, 1.0, kInsideSoft);
+  g.set(Coord{6, 6, 6}, kBoundaryHard);
+  g.set(Coord{7, 6, 6}, kBoundaryHard);
+  g.set(Coord{5, 6, 6}, OutsideState(1));
+  g.set(Coord{8, 6, 6}, OutsideState(2));
+  for (int x = 5; x <= 8; ++x) g.set(Coord{x, 8, 6}, OutsideState(1));
+  g.set(Coord{5, 7, 6}, OutsideState(1));
+  g.set(Coord{8, 7, 6}, OutsideState(2));
+  return g;
+}
+
+// Points on the plane x = x0 across the box of the run (y, z in [5, 8)).
+void AddFace(float x0, std::vector<Point3f>& points) {
+  for (float y = 5.1f; y < 8; y += 0.2f)
+    for (float z = 5.1f; z < 8; z += 0.2f) points.push_back({x0, y, z});
+}
+
+// Data on both faces of the run (a leg 2 voxels thick): the thin-part exception holds.
+TEST(IncursionTest, ThinPartWithDataOnBothSidesDoesNotFire) {
+  const VoxelGrid g = JoinedAroundRun();
+  std::vector<Point3f> points;
+  AddFace(6.05f, points);
+  AddFace(7.95f, points);
+  const HardVoxelPoints index(g, points);
+  const ThinPartRule rule{.detour = 4, .min_spread = 0.4, .points = &index};
+  EXPECT_FALSE(ThickWallIncursion(g, g.Index(6, 6, 6), 3, rule));
+  EXPECT_FALSE(IncursionAt(g, g.Index(7, 6, 6), 3, rule));
+}
+
+// Data on one surface only (a scanned wall at a data hole's rim, joined around the rim): the
+// test fires, and so it does without points to read.
+TEST(IncursionTest, JoinedAroundWithDataOnOneSideFires) {
+  const VoxelGrid g = JoinedAroundRun();
+  std::vector<Point3f> points;
+  AddFace(6.9f, points);
+  AddFace(7.05f, points);
+  const HardVoxelPoints index(g, points);
+  EXPECT_TRUE(ThickWallIncursion(g, g.Index(6, 6, 6), 3,
+                                 ThinPartRule{.detour = 4, .min_spread = 0.4, .points = &index}));
+  EXPECT_TRUE(ThickWallIncursion(g, g.Index(6, 6, 6), 3,
+                                 ThinPartRule{.detour = 4, .min_spread = 0.4, .points = nullptr}));
 }
 
 // The same wall with no outside path around it within the cube: a dig behind a wall fires.
@@ -79,7 +128,7 @@ TEST(IncursionTest, ThickWallNotJoinedWithinTheDetourFires) {
   g.set(Coord{5, 6, 6}, OutsideState(1));
   g.set(Coord{8, 6, 6}, OutsideState(2));
   for (int x = 5; x <= 8; ++x) g.set(Coord{x, 11, 6}, OutsideState(1));  // 5 voxels away
-  EXPECT_TRUE(ThickWallIncursion(g, g.Index(6, 6, 6), 3, 4));
+  EXPECT_TRUE(ThickWallIncursion(g, g.Index(6, 6, 6), 3, ThinPartRule{.detour = 4}));
 }
 
 TEST(IncursionTest, ThickWallWithAnOutsidePathAroundDoesNotFire) {
@@ -89,7 +138,7 @@ TEST(IncursionTest, ThickWallWithAnOutsidePathAroundDoesNotFire) {
   for (int x = 2; x <= 5; ++x) g.set(Coord{x, 4, 3}, OutsideState(1));
   g.set(Coord{2, 3, 3}, OutsideState(1));
   g.set(Coord{5, 3, 3}, OutsideState(2));
-  EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 3, 0));
+  EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 3, ThinPartRule{.detour = 0}));
 }
 
 TEST(IncursionTest, FrozenVoxelsActAsHard) {
@@ -97,7 +146,7 @@ TEST(IncursionTest, FrozenVoxelsActAsHard) {
   g.set(Coord{3, 3, 3}, kBoundaryFrozen);
   g.set(Coord{3, 2, 3}, OutsideState(1));
   g.set(Coord{3, 4, 3}, OutsideState(3));
-  EXPECT_TRUE(IncursionAt(g, g.Index(3, 3, 3), 3, 4));
+  EXPECT_TRUE(IncursionAt(g, g.Index(3, 3, 3), 3, ThinPartRule{.detour = 4}));
 }
 
 }  // namespace

@@ -41,18 +41,10 @@ struct KnownMiss {
   double factor;
 };
 constexpr KnownMiss kKnownMisses[] = {
-    {"stanford-bunny-scan", 1.25}, {"stanford-bunny-variable", 2.0},
-    {"spot-scan", 1.25}, {"horse-scan", 1.0},
-    {"horse-scan", 1.5}, {"horse-scan", 2.0},
-    {"horse-variable", 1.0}, {"horse-variable", 2.0},
-    {"beast-scan", 1.0}, {"beast-scan", 1.25},
-    {"beast-scan", 1.5}, {"beast-scan", 2.0},
-    {"beast-variable", 1.0}, {"beast-variable", 1.25},
-    {"beast-variable", 1.5}, {"beast-variable", 2.0},
-    {"ogre-belt-scan", 1.5}, {"cow-spot-belt-scan", 1.0},
+    {"spot-scan", 1.25},          {"cow-spot-belt-scan", 1.0},
     {"cow-spot-belt-scan", 1.25}, {"cow-spot-belt-scan", 1.5},
-    {"cow-spot-belt-scan", 2.0}, {"pierced-disk-scan", 1.0},
-    {"pierced-disk-scan", 1.25}, {"pierced-disk-scan", 1.5},
+    {"cow-spot-belt-scan", 2.0},  {"pierced-disk-scan", 1.0},
+    {"pierced-disk-scan", 1.25},  {"pierced-disk-scan", 1.5},
     {"pierced-disk-scan", 2.0},
 };
 

@@ -179,6 +179,10 @@ TEST(ShrinkOptionsValidation, OutOfRangeOptionsNameTheField) {
   o = {};
   o.chain.thick_wall_detour = -1;
   EXPECT_THAT(ValidateShrinkOptions(o).message(), HasSubstr("thick_wall_detour -1 is out of range"));
+  o = {};
+  o.chain.thin_part_min_spread = -0.5;
+  EXPECT_THAT(ValidateShrinkOptions(o).message(),
+              HasSubstr("thin_part_min_spread -0.5 is out of range"));
 }
 
 TEST(ShrinkPostProcess, InsideHardVoxelsAreConnectedToTheMembrane) {

@@ -31,7 +31,7 @@ absl::StatusOr<ShrinkRun> ShrinkCloud(const PointCloud& cloud, double factor,
   ShrinkRun run;
   run.voxels = std::move(*voxels);
   absl::StatusOr<ShrinkResult> result =
-      ShrinkMembrane(run.voxels.grid, options, {}, CancelToken::Never());
+      ShrinkMembrane(run.voxels.grid, cloud.points, options, {}, CancelToken::Never());
   if (!result.ok()) return result.status();
   run.result = std::move(*result);
   run.topology = ComputeVoxelTopology(run.voxels.grid);

@@ -1,0 +1,90 @@
+#include "core/engine/hard_voxel_points.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+namespace membrane {
+namespace {
+
+// Smallest eigenvalue of the symmetric matrix a b c / b d e / c e f (the trigonometric
+// solution of its characteristic cubic).
+double SmallestEigenvalue(double a, double b, double c, double d, double e, double f) {
+  const double q = (a + d + f) / 3;
+  const double off = b * b + c * c + e * e;
+  const double p2 = (a - q) * (a - q) + (d - q) * (d - q) + (f - q) * (f - q) + 2 * off;
+  if (p2 <= 0) return q;  // a multiple of the identity
+  const double p = std::sqrt(p2 / 6);
+  const double ma = (a - q) / p, mb = b / p, mc = c / p, md = (d - q) / p, me = e / p,
+               mf = (f - q) / p;
+  const double det = ma * (md * mf - me * me) - mb * (mb * mf - me * mc) + mc * (mb * me - md * mc);
+  const double phi = std::acos(std::clamp(det / 2, -1.0, 1.0)) / 3;
+  return q + 2 * p * std::cos(phi + 2 * std::numbers::pi / 3);
+}
+
+}  // namespace
+
+HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f> points) {
+  const auto& origin = grid.origin();
+  const double inv = 1.0 / grid.voxel_size();
+  std::vector<std::pair<int64_t, uint32_t>> order(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    Coord c;
+    for (int d = 0; d < 3; ++d) {
+      const double f = std::floor((points[i][d] - origin[d]) * inv);
+      c[d] = static_cast<int>(std::clamp(f, 0.0, static_cast<double>(grid.dim(d) - 1)));
+    }
+    order[i] = {grid.Index(c), static_cast<uint32_t>(i)};
+  }
+  std::sort(order.begin(), order.end());
+  positions_.reserve(order.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    if (k == 0 || order[k].first != order[k - 1].first) {
+      voxels_.push_back(order[k].first);
+      starts_.push_back(static_cast<uint32_t>(k));
+    }
+    const Point3f& p = points[order[k].second];
+    positions_.push_back({static_cast<float>((p[0] - origin[0]) * inv),
+                          static_cast<float>((p[1] - origin[1]) * inv),
+                          static_cast<float>((p[2] - origin[2]) * inv)});
+  }
+  starts_.push_back(static_cast<uint32_t>(order.size()));
+}
+
+double HardVoxelPoints::PlaneSpread(const VoxelGrid& grid, const Coord& lo, const Coord& hi,
+                                    int min_points) const {
+  Coord a, b;
+  for (int d = 0; d < 3; ++d) {
+    a[d] = std::max(lo[d], 0);
+    b[d] = std::min(hi[d], grid.dim(d) - 1);
+    if (a[d] > b[d]) return -1;
+  }
+  // Sums relative to the box's centre, so that they stay small.
+  const double cx = 0.5 * (a.x + b.x + 1), cy = 0.5 * (a.y + b.y + 1), cz = 0.5 * (a.z + b.z + 1);
+  double n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+  for (int z = a.z; z <= b.z; ++z)
+    for (int y = a.y; y <= b.y; ++y) {
+      // The box's voxels of one x-row are consecutive indices.
+      const int64_t first = grid.Index(a.x, y, z), last = grid.Index(b.x, y, z);
+      for (size_t k = std::lower_bound(voxels_.begin(), voxels_.end(), first) - voxels_.begin();
+           k < voxels_.size() && voxels_[k] <= last; ++k) {
+        for (uint32_t i = starts_[k]; i < starts_[k + 1]; ++i) {
+          const double x = positions_[i][0] - cx, yy = positions_[i][1] - cy,
+                       zz = positions_[i][2] - cz;
+          n += 1;
+          sx += x, sy += yy, sz += zz;
+          sxx += x * x, sxy += x * yy, sxz += x * zz;
+          syy += yy * yy, syz += yy * zz, szz += zz * zz;
+        }
+      }
+    }
+  if (n < min_points) return -1;
+  const double mx = sx / n, my = sy / n, mz = sz / n;
+  const double smallest =
+      SmallestEigenvalue(sxx / n - mx * mx, sxy / n - mx * my, sxz / n - mx * mz,
+                         syy / n - my * my, syz / n - my * mz, szz / n - mz * mz);
+  return std::sqrt(std::max(0.0, smallest));
+}
+
+}  // namespace membrane

@@ -1,0 +1,53 @@
+#include "core/engine/hard_voxel_points.h"
+
+#include <vector>
+
+#include "gtest/gtest.h"
+
+namespace membrane {
+namespace {
+
+// A 10^3 grid of unit voxels from the origin: voxel (x, y, z) covers [x, x + 1) and so on.
+VoxelGrid UnitGrid() { return VoxelGrid({10, 10, 10}, {0, 0, 0}, 1.0, kInsideSoft); }
+
+// Points on the plane x = x0, on a lattice of step 0.25 over y, z in [3, 6).
+void AddPlane(float x0, std::vector<Point3f>& points) {
+  for (float y = 3.125f; y < 6; y += 0.25f)
+    for (float z = 3.125f; z < 6; z += 0.25f) points.push_back({x0, y, z});
+}
+
+TEST(HardVoxelPointsTest, OneSurfaceLiesOnItsPlane) {
+  std::vector<Point3f> points;
+  AddPlane(4.5f, points);
+  const VoxelGrid g = UnitGrid();
+  const HardVoxelPoints index(g, points);
+  EXPECT_EQ(index.points(), static_cast<int64_t>(points.size()));
+  EXPECT_NEAR(index.PlaneSpread(g, Coord{3, 3, 3}, Coord{5, 5, 5}), 0.0, 1e-3);
+}
+
+// Two surfaces 1 voxel apart (the faces of a part 1 voxel thick): half their distance (less
+// than the 0.87 voxels the points spread along each surface in a box 3 voxels wide).
+TEST(HardVoxelPointsTest, TwoFacingSurfacesSpreadByHalfTheirDistance) {
+  std::vector<Point3f> points;
+  AddPlane(4.0f, points);
+  AddPlane(5.0f, points);
+  const VoxelGrid g = UnitGrid();
+  const HardVoxelPoints index(g, points);
+  EXPECT_NEAR(index.PlaneSpread(g, Coord{3, 3, 3}, Coord{5, 5, 5}), 0.5, 1e-3);
+  // A box holding one of them only sees one surface.
+  EXPECT_NEAR(index.PlaneSpread(g, Coord{3, 3, 3}, Coord{4, 5, 5}), 0.0, 1e-3);
+}
+
+TEST(HardVoxelPointsTest, TooFewPointsAreNoEvidence) {
+  const std::vector<Point3f> points = {{4.5f, 4.5f, 4.5f}, {4.2f, 4.7f, 4.1f}, {4.9f, 4.1f, 4.4f}};
+  const VoxelGrid g = UnitGrid();
+  const HardVoxelPoints index(g, points);
+  EXPECT_EQ(index.PlaneSpread(g, Coord{3, 3, 3}, Coord{5, 5, 5}), -1);
+  // Three points lie on their plane.
+  EXPECT_NEAR(index.PlaneSpread(g, Coord{3, 3, 3}, Coord{5, 5, 5}, 3), 0.0, 1e-3);
+  // A box past the array holds nothing.
+  EXPECT_EQ(index.PlaneSpread(g, Coord{12, 0, 0}, Coord{14, 2, 2}, 1), -1);
+}
+
+}  // namespace
+}  // namespace membrane

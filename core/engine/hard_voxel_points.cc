@@ -38,6 +38,10 @@ HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f
     order[i] = {grid.Index(c), static_cast<uint32_t>(i)};
   }
   std::sort(order.begin(), order.end());
+  size_t voxels = 0;
+  for (size_t k = 0; k < order.size(); ++k) voxels += k == 0 || order[k].first != order[k - 1].first;
+  voxels_.reserve(voxels);
+  starts_.reserve(voxels + 1);
   positions_.reserve(order.size());
   for (size_t k = 0; k < order.size(); ++k) {
     if (k == 0 || order[k].first != order[k - 1].first) {

@@ -19,7 +19,8 @@ class HardVoxelPoints {
   // Indexes `points` by the voxel of `grid` each lies in (voxel floor((p - origin) / l), as
   // Voxelize placed them; a point past the array is clamped into it). The grid's states are
   // not read, and the grid is not kept: queries take it again. Memory: 12 bytes a point and
-  // 12 a voxel holding points; cost: one sort of the points' voxel indices.
+  // 12 a voxel holding points (16 bytes a point more while it is built); cost: one sort of
+  // the points' voxel indices.
   HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f> points);
 
   // How far the points of the voxels in the box [lo, hi] (voxel coordinates, inclusive,

@@ -38,8 +38,9 @@ constexpr StageCost kVoxelize = {kProcessBytes, 1, kCloudBytes + 36, 0};
 // The shrink: the grid (1 byte a voxel), the interior plane and up to 19 work planes (1 bit a
 // voxel each: 19 when a generation of plates of 8 or more runs chains, 13 otherwise), and the
 // handle retry's checkpoints as runs of equal bytes (a small fraction of a byte a voxel): 3.5
-// bytes a voxel at most.
-constexpr StageCost kShrink = {kProcessBytes, 3.6, kCloudBytes, 0};
+// bytes a voxel at most; and the points indexed by voxel for the thin-part test
+// (HardVoxelPoints: 24 bytes a point at most, 40 while it is built, before any plane).
+constexpr StageCost kShrink = {kProcessBytes, 3.6, kCloudBytes + 24, 0};
 // The relaxation: the grid and three byte arrays, 4.2 bytes a voxel.
 constexpr StageCost kRelax = {kProcessBytes, 4.4, kCloudBytes, 0};
 // The surface, while the grid's copy is cleaned up: the grid, the copy and the cave filling's

@@ -54,28 +54,9 @@ TEST(IncursionTest, ThickWallOfTwoHardVoxelsFires) {
   EXPECT_FALSE(ThickWallIncursion(g, g.Index(3, 3, 3), 1, ThinPartRule{.detour = 0}));
 }
 
-// A thin part two hard voxels thick whose sides are joined through the outside two voxels
-// away from it (outside the 3-wide box): fires without the detour or with a cube too small to
-// hold the path, not with a detour of 4 (a leg, not a wall with a dig behind it).
-TEST(IncursionTest, ThickWallJoinedAroundWithinTheDetourDoesNotFire) {
-  VoxelGrid g({13, 13, 13}, {0, 0, 0}, 1.0, kInsideSoft);
-  g.set(Coord{6, 6, 6}, kBoundaryHard);
-  g.set(Coord{7, 6, 6}, kBoundaryHard);
-  g.set(Coord{5, 6, 6}, OutsideState(1));
-  g.set(Coord{8, 6, 6}, OutsideState(2));
-  // 5,6,6 -> 5,7,6 -> 5,8,6 -> ... -> 8,8,6 -> 8,7,6 -> 8,6,6; 6,7,6 and 7,7,6 stay inside.
-  for (int x = 5; x <= 8; ++x) g.set(Coord{x, 8, 6}, OutsideState(1));
-  g.set(Coord{5, 7, 6}, OutsideState(1));
-  g.set(Coord{8, 7, 6}, OutsideState(2));
-  const int64_t v = g.Index(6, 6, 6);
-  EXPECT_TRUE(ThickWallIncursion(g, v, 3, ThinPartRule{.detour = 0}));
-  EXPECT_TRUE(ThickWallIncursion(g, v, 3, ThinPartRule{.detour = 1}));
-  EXPECT_FALSE(ThickWallIncursion(g, v, 3, ThinPartRule{.detour = 4}));
-  EXPECT_FALSE(IncursionAt(g, v, 3, ThinPartRule{.detour = 4}));
-}
-
-// The grid of ThickWallJoinedAroundWithinTheDetourDoesNotFire: a run of two hard voxels, (6, 6, 6)
-// and (7, 6, 6), whose ends are joined through the outside 2 voxels away.
+// A thin part two hard voxels thick, (6, 6, 6) and (7, 6, 6), whose sides are joined through
+// the outside two voxels away from it (outside the 3-wide box): 5,6,6 -> 5,7,6 -> 5,8,6 -> ...
+// -> 8,8,6 -> 8,7,6 -> 8,6,6; 6,7,6 and 7,7,6 stay inside.
 VoxelGrid JoinedAroundRun() {
   VoxelGrid g({13, 13, 13}, {0, 0, 0}, 1.0, kInsideSoft);
   g.set(Coord{6, 6, 6}, kBoundaryHard);
@@ -88,19 +69,30 @@ VoxelGrid JoinedAroundRun() {
   return g;
 }
 
-// Points on the plane x = x0 across the box of the run (y, z in [5, 8)).
-void AddFace(float x0, std::vector<Point3f>& points) {
-  for (float y = 5.1f; y < 8; y += 0.2f)
-    for (float z = 5.1f; z < 8; z += 0.2f) points.push_back({x0, y, z});
+// Without the detour, or with a cube too small to hold the path, it fires; with a detour of 4
+// (and no data test) it does not: a leg, not a wall with a dig behind it.
+TEST(IncursionTest, ThickWallJoinedAroundWithinTheDetourDoesNotFire) {
+  const VoxelGrid g = JoinedAroundRun();
+  const int64_t v = g.Index(6, 6, 6);
+  EXPECT_TRUE(ThickWallIncursion(g, v, 3, ThinPartRule{.detour = 0}));
+  EXPECT_TRUE(ThickWallIncursion(g, v, 3, ThinPartRule{.detour = 1}));
+  EXPECT_FALSE(ThickWallIncursion(g, v, 3, ThinPartRule{.detour = 4}));
+  EXPECT_FALSE(IncursionAt(g, v, 3, ThinPartRule{.detour = 4}));
+}
+
+// Points on the planes x = x0 and x = x1 across the box of the run (y, z in [5, 8)).
+std::vector<Point3f> PointsOnPlanes(float x0, float x1) {
+  std::vector<Point3f> points;
+  for (float x : {x0, x1})
+    for (float y = 5.1f; y < 8; y += 0.2f)
+      for (float z = 5.1f; z < 8; z += 0.2f) points.push_back({x, y, z});
+  return points;
 }
 
 // Data on both faces of the run (a leg 2 voxels thick): the thin-part exception holds.
 TEST(IncursionTest, ThinPartWithDataOnBothSidesDoesNotFire) {
   const VoxelGrid g = JoinedAroundRun();
-  std::vector<Point3f> points;
-  AddFace(6.05f, points);
-  AddFace(7.95f, points);
-  const HardVoxelPoints index(g, points);
+  const HardVoxelPoints index(g, PointsOnPlanes(6.05f, 7.95f));
   const ThinPartRule rule{.detour = 4, .min_spread = 0.4, .points = &index};
   EXPECT_FALSE(ThickWallIncursion(g, g.Index(6, 6, 6), 3, rule));
   EXPECT_FALSE(IncursionAt(g, g.Index(7, 6, 6), 3, rule));
@@ -110,10 +102,7 @@ TEST(IncursionTest, ThinPartWithDataOnBothSidesDoesNotFire) {
 // test fires, and so it does without points to read.
 TEST(IncursionTest, JoinedAroundWithDataOnOneSideFires) {
   const VoxelGrid g = JoinedAroundRun();
-  std::vector<Point3f> points;
-  AddFace(6.9f, points);
-  AddFace(7.05f, points);
-  const HardVoxelPoints index(g, points);
+  const HardVoxelPoints index(g, PointsOnPlanes(6.9f, 7.05f));
   EXPECT_TRUE(ThickWallIncursion(g, g.Index(6, 6, 6), 3,
                                  ThinPartRule{.detour = 4, .min_spread = 0.4, .points = &index}));
   EXPECT_TRUE(ThickWallIncursion(g, g.Index(6, 6, 6), 3,

@@ -57,11 +57,12 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   // a plane copy into their first pass.
   FlatBitset* const* squares = ws.squares;
   FlatBitset& eroded_z = ws.tmp;
-  eroded_z.ErodeRunFrom(free_cells, n, st[2]);
-  squares[0]->ErodeRunFrom(eroded_z, n, st[1]);  // x: in-plane y, z
-  squares[1]->ErodeRunFrom(eroded_z, n, st[0]);  // y: in-plane z, x
-  squares[2]->ErodeRunFrom(free_cells, n, st[0]);  // overwrites eroded_z, no longer needed
-  squares[2]->ErodeRun(n, st[1]);                  // z: in-plane x, y
+  FlatBitset& scratch = ws.scratch_a;  // for the runs; SpreadAlong's only when it runs
+  eroded_z.ErodeRunFrom(free_cells, n, st[2], scratch);
+  squares[0]->ErodeRunFrom(eroded_z, n, st[1], scratch);  // x: in-plane y, z
+  squares[1]->ErodeRunFrom(eroded_z, n, st[0], scratch);  // y: in-plane z, x
+  squares[2]->ErodeRunFrom(free_cells, n, st[0], scratch);  // overwrites eroded_z
+  squares[2]->ErodeRun(n, st[1], scratch);                  // z: in-plane x, y
   bool square_fits[3];
   for (int a = 0; a < 3; ++a) square_fits[a] = squares[a]->any();
   if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
@@ -85,8 +86,8 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
       // fronts of the axis use the same eroded plane: a step of the least fixed point only
       // needs its plates valid for the current `out`, so updating `out` after both (rather
       // than between them) reaches the same fixed point.
-      back.ErodeRunFrom(out, n, su);
-      back.ErodeRun(n, sv);
+      back.ErodeRunFrom(out, n, su, scratch);
+      back.ErodeRun(n, sv, scratch);
       if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
       // Dig straight on: a plate whose back plate was contracted fits if its square is free.
       reach.AssignAndShifted(*squares[a], back, sa);
@@ -96,8 +97,8 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
       reach.Or(reach_back);
       if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
       // Cells covered by the plates reached (dilation distributes over the union).
-      reach.DilateRun(n, sv);
-      reach.DilateRun(n, su);
+      reach.DilateRun(n, sv, scratch);
+      reach.DilateRun(n, su, scratch);
       if (out.OrChanged(reach)) {
         changed = true;
         ++out_version;

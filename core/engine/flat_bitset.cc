@@ -2,14 +2,7 @@
 
 #include <algorithm>
 
-// Tells the compiler that a loop has no dependence that forbids vectorizing it.
-#if defined(__clang__)
-#define MEMBRANE_IVDEP _Pragma("clang loop vectorize(assume_safety)")
-#elif defined(__GNUC__)
-#define MEMBRANE_IVDEP _Pragma("GCC ivdep")
-#else
-#define MEMBRANE_IVDEP
-#endif
+#include "core/engine/ivdep.h"
 
 namespace membrane {
 

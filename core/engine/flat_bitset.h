@@ -92,6 +92,15 @@ class FlatBitset {
   // have this bitset's size and must not be this bitset.
   void ErodeRunFrom(const FlatBitset& src, int n, int64_t stride);
   void DilateRunFrom(const FlatBitset& src, int n, int64_t stride);
+  // The same four runs (same bits) in a number of passes that does not grow with n: one pass
+  // along x (stride 1) for n >= 64, three along a stride of 129 or more for n >= 17 (blocks of
+  // n along the stride, van Herk / Gil-Werman), the doubling passes otherwise.
+  // `scratch` must have this bitset's size and be neither this bitset nor `src`; its
+  // contents are overwritten. Defined in flat_bitset_long_runs.cc.
+  void ErodeRun(int n, int64_t stride, FlatBitset& scratch);
+  void DilateRun(int n, int64_t stride, FlatBitset& scratch);
+  void ErodeRunFrom(const FlatBitset& src, int n, int64_t stride, FlatBitset& scratch);
+  void DilateRunFrom(const FlatBitset& src, int n, int64_t stride, FlatBitset& scratch);
 
  private:
   // ErodeRun (DilateRun) for a bitset already eroded (dilated) by a run of `len` <= n: the

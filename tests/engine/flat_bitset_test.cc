@@ -115,6 +115,42 @@ TEST(FlatBitsetRuns, FromVariantsEqualCopyThenRun) {
   }
 }
 
+TEST(FlatBitsetRuns, LongRunVariantsGiveTheDoublingBits) {
+  // One pass along x, blocks along strides of 64 and more (a multiple of 64 or not, rows
+  // shorter and longer than the run, blocks cut by the end of the set), the doubling between.
+  for (int64_t bits : {3000, 20011}) {
+    for (int64_t stride : {1, 5, 64, 70, 129, 200, 300, 5000}) {
+      for (int n : {2, 3, 9, 16, 17, 20, 63, 64, 65, 80, 200, 1000}) {
+        const uint32_t seed = static_cast<uint32_t>(bits + stride * 13 + n);
+        // Dense runs of ones for the erosion, sparse ones for the dilation, with long
+        // stretches of each so that runs longer than a word occur.
+        FlatBitset a = RandomBits(bits, 0.97, seed), b = RandomBits(bits, 0.02, seed + 1);
+        for (int64_t i = bits / 3; i < bits / 3 + 700; ++i) a.set(i);
+        FlatBitset eroded = a, dilated = b;
+        eroded.ErodeRun(n, stride);
+        dilated.DilateRun(n, stride);
+        FlatBitset scratch = RandomBits(bits, 0.5, 3);
+        FlatBitset eroded_long = a, dilated_long = b;
+        eroded_long.ErodeRun(n, stride, scratch);
+        dilated_long.DilateRun(n, stride, scratch);
+        FlatBitset eroded_from = RandomBits(bits, 0.5, 4), dilated_from = RandomBits(bits, 0.5, 5);
+        eroded_from.ErodeRunFrom(a, n, stride, scratch);
+        dilated_from.DilateRunFrom(b, n, stride, scratch);
+        for (int64_t w = 0; w < static_cast<int64_t>(a.word_count()); ++w) {
+          ASSERT_EQ(eroded_long.words()[w], eroded.words()[w])
+              << "erode bits " << bits << " stride " << stride << " n " << n << " word " << w;
+          ASSERT_EQ(eroded_from.words()[w], eroded.words()[w])
+              << "erode from, bits " << bits << " stride " << stride << " n " << n;
+          ASSERT_EQ(dilated_long.words()[w], dilated.words()[w])
+              << "dilate bits " << bits << " stride " << stride << " n " << n << " word " << w;
+          ASSERT_EQ(dilated_from.words()[w], dilated.words()[w])
+              << "dilate from, bits " << bits << " stride " << stride << " n " << n;
+        }
+      }
+    }
+  }
+}
+
 TEST(FlatBitsetAssign, AndShiftedOrAndOrAndMatchTheirDefinitions) {
   const int64_t bits = 1000;
   const FlatBitset a = RandomBits(bits, 0.5, 11);

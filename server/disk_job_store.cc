@@ -119,6 +119,13 @@ std::shared_ptr<Job> Lost(Record record, absl::Time now, absl::string_view why) 
 
 }  // namespace
 
+int64_t RecordBytesFor(int64_t max_mesh_bytes) {
+  // The events of a 10M-point job of 20 minutes (1000-odd generations, a progress event a
+  // second) are under 1 MB; the chunks' framing is a few bytes a MiB of mesh.
+  constexpr int64_t kEventBytes = int64_t{16} << 20;
+  return max_mesh_bytes + kEventBytes;
+}
+
 DiskJobStore::DiskJobStore(std::string dir, DiskJobStoreOptions options,
                            std::unique_ptr<StoreFiles> files)
     : dir_(std::move(dir)),

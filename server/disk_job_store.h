@@ -39,10 +39,17 @@
 
 namespace membrane::server {
 
+// The largest record of a job whose mesh (Draco or PLY) has at most `max_mesh_bytes`: the mesh
+// and its chunks' framing, and the job's events (a snapshot, the stage and generation events
+// and a progress event a second: well under a megabyte for a job of hours), with a margin.
+int64_t RecordBytesFor(int64_t max_mesh_bytes);
+
 struct DiskJobStoreOptions {
   // Largest DIR/<id>.job read at start-up: a larger one is skipped (store_unreadable) rather
-  // than read whole. A record is the job's events and its Draco mesh.
-  int64_t max_record_bytes = int64_t{256} << 20;
+  // than read whole. A record is the job's events and its mesh; a server sets it to
+  // RecordBytesFor its largest result (--max-result-bytes), so that every result it returns is
+  // written and read back.
+  int64_t max_record_bytes = RecordBytesFor(int64_t{2} << 30);
   // Largest upload kept (--max-upload-bytes); its file may hold a few bytes more (the header).
   int64_t max_upload_bytes = int64_t{512} << 20;
   // While the disk cannot be written, how often the writer tries it again.

@@ -109,6 +109,14 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   if (!report.ok()) return fail(report.status());
   std::string mesh = settings->ply_mesh ? ply_sink.TakeBytes() : draco_sink.TakeBytes();
   const size_t mesh_bytes = mesh.size();
+  if (static_cast<int64_t>(mesh_bytes) > options_.max_result_bytes) {
+    // Held past the job and written to the store whole: a bound keeps both finite.
+    return fail(absl::ResourceExhaustedError(absl::StrFormat(
+        "the mesh of %d faces takes %d bytes, over the server's --max-result-bytes of %d; ask "
+        "for fewer faces (target_faces)%s",
+        report->mesh.faces, mesh_bytes, options_.max_result_bytes,
+        settings->ply_mesh ? " or a Draco mesh (mesh_format)" : "")));
+  }
   job->SetPreview(sink.TakePng());
   job->Succeed(StatsJson(*report), MeshSummaryOf(report->mesh), std::move(mesh));
   LogEvent("job_finished", {{"job", job->id()},

@@ -60,6 +60,9 @@ ABSL_FLAG(std::string, replica, "",
           "of its job ids so that a balancer routes calls about a job here; empty = none");
 ABSL_FLAG(int64_t, max_upload_bytes, 512LL << 20, "largest Draco upload, bytes");
 ABSL_FLAG(int64_t, max_points, 50'000'000, "largest decoded cloud, points");
+ABSL_FLAG(int64_t, max_result_bytes, 2LL << 30,
+          "largest mesh a job returns, bytes (Draco or PLY); a job whose mesh is larger fails "
+          "RESOURCE_EXHAUSTED");
 ABSL_FLAG(int64_t, voxel_budget, 0,
           "largest grid of one job, voxels (padding included); 0 = no cap in voxels: the "
           "memory budget decides, on the job's estimated bytes");
@@ -177,6 +180,7 @@ bool OptionsFromFlags(ServerOptions& o) {
   }
   o.max_upload_bytes = absl::GetFlag(FLAGS_max_upload_bytes);
   o.max_points = absl::GetFlag(FLAGS_max_points);
+  o.max_result_bytes = absl::GetFlag(FLAGS_max_result_bytes);
   o.voxel_budget = absl::GetFlag(FLAGS_voxel_budget);
   o.memory_budget_bytes = absl::GetFlag(FLAGS_memory_budget_bytes);
   o.upload_memory_bytes = absl::GetFlag(FLAGS_upload_memory_bytes);
@@ -217,6 +221,7 @@ bool OptionsFromFlags(ServerOptions& o) {
   }
   if (!ReadSecrets(o)) return false;
   if (o.queue < 0 || o.max_calls < 0 || o.max_upload_bytes <= 0 || o.max_points <= 0 ||
+      o.max_result_bytes <= 0 ||
       o.voxel_budget < 0 || o.result_ttl_seconds < 0 || o.grace_seconds < 0 ||
       o.decoder_timeout_seconds <= 0 || !(o.stall_seconds >= 0) || !(o.max_job_seconds >= 0) ||
       !(o.progress_after_seconds >= 0)) {

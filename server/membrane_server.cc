@@ -47,6 +47,7 @@ std::unique_ptr<JobStore> MakeStore(const ServerOptions& options,
   if (options.store_dir.empty()) return std::make_unique<InMemoryJobStore>();
   DiskJobStoreOptions store;
   store.max_upload_bytes = options.max_upload_bytes;
+  store.max_record_bytes = RecordBytesFor(options.max_result_bytes);
   // A disk that fails is tried again as often as refused clients are told to come back.
   store.probe_interval = absl::Seconds(std::max(options.retry_delay_seconds, 0.1));
   return std::make_unique<DiskJobStore>(options.store_dir, store,

@@ -38,6 +38,9 @@ struct ServerOptions {
   int max_calls = 1000;                     // calls served at once, of any kind; 0 = no limit
   int64_t max_upload_bytes = 512 << 20;     // Draco bytes of one upload
   int64_t max_points = 50'000'000;          // points of one decoded cloud
+  // Bytes of one job's mesh as returned (Draco or PLY); a larger one fails the job with
+  // RESOURCE_EXHAUSTED. The store's records are bounded by it (RecordBytesFor).
+  int64_t max_result_bytes = int64_t{2} << 30;
   // Voxels of one job's grid, padding included; 0: no cap (the memory budget decides).
   int64_t voxel_budget = 0;
   int64_t memory_budget_bytes = 0;          // estimated bytes across running jobs; 0 = no limit

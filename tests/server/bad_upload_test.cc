@@ -153,6 +153,27 @@ TEST_F(BadUploadTest, JobOverTheMemoryBudgetIsResourceExhausted) {
   EXPECT_EQ(Health(), "SERVING");
 }
 
+// A result is held past its job and written to the store whole: one over --max-result-bytes
+// fails the job, naming the limit and what to ask for instead, and the server keeps serving.
+TEST_F(BadUploadTest, MeshOverTheResultLimitIsResourceExhausted) {
+  server_->Shutdown(absl::ZeroDuration());
+  options_.max_result_bytes = 2000;
+  StartServer();
+  v1::Parameters ply;
+  ply.set_mesh_format(v1::MESH_FORMAT_PLY);
+  for (const v1::Parameters& p : {v1::Parameters{}, ply}) {
+    const CallResult r = Reconstruct(DracoCloud("sphere", 2000), p);
+    EXPECT_EQ(r.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED)
+        << r.status.error_message();
+    EXPECT_NE(r.status.error_message().find("over the server's --max-result-bytes of 2000"),
+              std::string::npos)
+        << r.status.error_message();
+    EXPECT_NE(r.status.error_message().find("target_faces"), std::string::npos)
+        << r.status.error_message();
+  }
+  EXPECT_EQ(Health(), "SERVING");
+}
+
 // Uniform noise has no surface to find: its membrane is a foam whose mesh takes many times
 // the grid's bytes (100k points: 34 MB estimated before the surface, 535 MB at the peak). The
 // surface's share is reserved once the membrane is known, so such an upload is refused instead

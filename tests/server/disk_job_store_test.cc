@@ -333,6 +333,38 @@ TEST(DiskJobStoreTest, OversizedAndNonRegularRecordsAreSkipped) {
   }
 }
 
+// A record bounded by RecordBytesFor the largest mesh holds a mesh of that size with its
+// events: the job is written, and read back after a restart with the same mesh.
+TEST(DiskJobStoreTest, RecordOfTheLargestResultIsWrittenAndLoaded) {
+  ScratchDir dir;
+  const std::string path = dir.File("jobs");
+  constexpr int64_t kMeshBytes = 3 << 20;  // over a chunk, so that chunks are framed
+  DiskJobStoreOptions options;
+  options.max_record_bytes = RecordBytesFor(kMeshBytes);
+  const std::string mesh(kMeshBytes, 'm');
+  {
+    DiskJobStore store(path, options);
+    ASSERT_EQ(LoadCount(store), 0);
+    std::shared_ptr<Job> job = NewJob(store, "00000000000000d1");
+    ASSERT_TRUE(store.Add(job).ok());
+    ASSERT_TRUE(job->Start());
+    job->Succeed("{}", {}, mesh);
+    store.Flush();
+  }
+  const absl::StatusOr<std::string> record = ReadFileBytes(path + "/00000000000000d1.job");
+  ASSERT_TRUE(record.ok());
+  EXPECT_GT(static_cast<int64_t>(record->size()), kMeshBytes);
+  EXPECT_LE(static_cast<int64_t>(record->size()), options.max_record_bytes);
+  DiskJobStore store(path, options);
+  ASSERT_EQ(LoadCount(store), 1);
+  const std::shared_ptr<Job> loaded = store.Find("00000000000000d1");
+  ASSERT_NE(loaded, nullptr);
+  const std::optional<Job::Outcome> outcome = loaded->Closing();
+  ASSERT_TRUE(outcome.has_value());
+  ASSERT_NE(outcome->mesh, nullptr);
+  EXPECT_TRUE(*outcome->mesh == mesh);
+}
+
 // Followers deliver a job's end only once its record is on disk: a crash in between cannot
 // take back a result a client was given.
 TEST(DiskJobStoreTest, AJobClosesOnceItsEndIsWritten) {

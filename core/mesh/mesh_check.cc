@@ -54,16 +54,6 @@ Rows BuildRows(int64_t keys, EachFn each) {
   return rows;
 }
 
-bool IsDegenerate(const TriangleMesh& mesh, const std::array<int32_t, 3>& f) {
-  if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) return true;
-  const Triangle3d t{ToVec3d(mesh.vertices[f[0]]), ToVec3d(mesh.vertices[f[1]]),
-                     ToVec3d(mesh.vertices[f[2]])};
-  const double e =
-      std::max({SquaredNorm(t[1] - t[0]), SquaredNorm(t[2] - t[1]), SquaredNorm(t[0] - t[2])});
-  // Relative test: sin(angle) below 1e-12 is zero area at double precision. On the canonical
-  // normal, so that the answer does not depend on which vertex the face lists first.
-  return SquaredNorm(CanonicalNormal(t)) <= 1e-24 * e * e;
-}
 
 // One fan or cycle: the link edges (a, b) of the faces around a vertex form a connected graph
 // of maximum degree 2. `nodes` and `label` are scratch buffers.
@@ -101,6 +91,17 @@ bool SingleFan(const std::vector<std::pair<int32_t, int32_t>>& link, std::vector
 
 }  // namespace
 
+bool IsDegenerateFace(const TriangleMesh& mesh, const std::array<int32_t, 3>& f) {
+  if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) return true;
+  const Triangle3d t{ToVec3d(mesh.vertices[f[0]]), ToVec3d(mesh.vertices[f[1]]),
+                     ToVec3d(mesh.vertices[f[2]])};
+  const double e =
+      std::max({SquaredNorm(t[1] - t[0]), SquaredNorm(t[2] - t[1]), SquaredNorm(t[0] - t[2])});
+  // Relative test: sin(angle) below 1e-12 is zero area at double precision. On the canonical
+  // normal, so that the answer does not depend on which vertex the face lists first.
+  return SquaredNorm(CanonicalNormal(t)) <= 1e-24 * e * e;
+}
+
 MeshReport CheckMesh(const TriangleMesh& mesh, const CancelToken& cancel, int threads,
                      const std::vector<std::pair<int32_t, int32_t>>* known_crossings,
                      ProgressRange progress) {
@@ -125,7 +126,7 @@ MeshReport CheckMesh(const TriangleMesh& mesh, const CancelToken& cancel, int th
       continue;
     }
     valid[f] = 1;
-    if (IsDegenerate(mesh, t)) ++r.degenerate_faces;
+    if (IsDegenerateFace(mesh, t)) ++r.degenerate_faces;
   }
   topology.Add(nf);
 

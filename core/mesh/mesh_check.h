@@ -5,6 +5,7 @@
 #ifndef MEMBRANE_CORE_MESH_MESH_CHECK_H_
 #define MEMBRANE_CORE_MESH_MESH_CHECK_H_
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -46,6 +47,10 @@ struct MeshReport {
   // -1 for a shell that is not closed and manifold (where the formula means nothing).
   std::vector<int> genus;
 };
+
+// Whether `face` of `mesh` has no area: a repeated index, or corners on one line (to double
+// precision). MeshReport::degenerate_faces counts the faces it is true of.
+bool IsDegenerateFace(const TriangleMesh& mesh, const std::array<int32_t, 3>& face);
 
 // Checks `mesh` (vertices in any units; faces index `mesh.vertices`, CCW seen from outside).
 // Never fails: malformed input shows up in the counts. O(F) plus a uniform-grid broad phase

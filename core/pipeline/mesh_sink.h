@@ -24,8 +24,8 @@ class MeshSink {
   // (the output grid the surface was built on; lossless: float32). Called on the
   // reconstructing thread while the mesh check reads the same mesh on a thread of its own, so
   // it must only read `mesh`. Called a second time when the check finds crossing or flattened
-  // faces on a quantizing grid: the surface is then built again in float32, and the second
-  // mesh replaces the first. A non-OK status ends the run as it is. Not polled for cancel
+  // faces on a quantizing grid that the surface step did not know of (KnownBroken): the
+  // surface is then built again in float32, and the second mesh replaces the first. A non-OK status ends the run as it is. Not polled for cancel
   // (an encoding or a write is short); the pipeline looks at the token after it.
   virtual absl::Status Write(const TriangleMesh& mesh, const PositionGrid& grid) = 0;
 };

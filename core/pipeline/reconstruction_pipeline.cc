@@ -132,6 +132,13 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
     if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
     if (surface->mesh.faces.empty()) return with_context(EmptySurfaceError(report));
     surface->mesh.origin = cloud->origin;  // the mesh is in the cloud's frame
+    // A mesh the check would refuse on this grid is built in float32 at once, without a check
+    // and an encoding that would both be done again. Not when decimating: the collapses can
+    // remove what is broken.
+    if (!output_grid.lossless() && options.target_faces == 0 && KnownBroken(*surface)) {
+      output_grid = OutputGrid(grid, 0);
+      continue;
+    }
     if (absl::Status s = DecimateStage(options, cancel, output_grid, *surface, report, observer,
                                        ticker.progress());
         !s.ok()) {

@@ -1,13 +1,50 @@
 #include "core/pipeline/surface_builder.h"
 
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <utility>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "core/mesh/cuberille.h"
+#include "core/mesh/mesh_check.h"
+#include "core/mesh/self_intersection.h"
 #include "core/mesh/smooth_surface.h"
 
 namespace membrane {
+namespace {
+
+// One flag per vertex of a cuberille of `membrane`: set for the vertices that are not lattice
+// corners (split, edge midpoints, chamfers: 0.2 voxel or more off the lattice on some axis).
+std::vector<char> SplitVertices(const TriangleMesh& cuberille, const VoxelGrid& membrane) {
+  std::vector<char> split(cuberille.vertices.size(), 0);
+  const std::array<double, 3>& origin = membrane.origin();
+  for (size_t v = 0; v < split.size(); ++v) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const double q = (cuberille.vertices[v][axis] - origin[axis]) / membrane.voxel_size();
+      if (std::abs(q - std::round(q)) > 0.05) split[v] = 1;
+    }
+  }
+  return split;
+}
+
+// Whether a face around a split vertex crosses another face of the snapped `cuberille`. The
+// lattice corners keep their order on any grid finer than a voxel, so the faces between them
+// stay apart; only the split sheets, moved apart by a fraction of a voxel, can meet. A few faces
+// in a thousand: a small share of the check's whole search.
+bool SplitFacesCross(const TriangleMesh& cuberille, const std::vector<char>& split, int threads) {
+  std::vector<char> near(cuberille.faces.size(), 0);
+  bool any = false;
+  for (size_t f = 0; f < near.size(); ++f) {
+    for (const int32_t v : cuberille.faces[f]) near[f] |= split[v];
+    any = any || near[f];
+  }
+  return any && !FindIntersectingFacesNear(cuberille, near, threads).empty();
+}
+
+}  // namespace
 
 absl::StatusOr<SurfaceKind> ParseSurfaceKind(absl::string_view name) {
   if (name == "smooth") return SurfaceKind::kSmooth;
@@ -20,6 +57,15 @@ const char* SurfaceKindName(SurfaceKind kind) {
   return kind == SurfaceKind::kSmooth ? "smooth" : "cuberille";
 }
 
+bool KnownBroken(const BuiltSurface& surface) {
+  if (surface.split_crossings) return true;
+  if (surface.crossings && !surface.crossings->empty()) return true;
+  for (const std::array<int32_t, 3>& face : surface.mesh.faces) {
+    if (IsDegenerateFace(surface.mesh, face)) return true;
+  }
+  return false;
+}
+
 absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken& cancel, int threads,
@@ -27,7 +73,9 @@ absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const Point
   BuiltSurface built;
   if (kind == SurfaceKind::kCuberille) {
     built.mesh = Cuberille(membrane);
+    const std::vector<char> split = SplitVertices(built.mesh, membrane);
     for (Point3f& p : built.mesh.vertices) p = grid.Snap(p);
+    built.split_crossings = !grid.lossless() && SplitFacesCross(built.mesh, split, threads);
     progress.Done();
     return built;
   }

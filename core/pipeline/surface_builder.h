@@ -40,7 +40,16 @@ struct BuiltSurface {
   // does. nullopt otherwise (cuberille): a mesh check must search.
   std::optional<std::vector<std::pair<int32_t, int32_t>>> crossings;
   HoleCapStats hole_caps;  // the smooth surface's caps over data holes (zero for cuberille)
+  // The cuberille's faces around its split vertices cross on the output grid: a grid about
+  // as coarse as 0.2 voxel can snap a split vertex onto the sheet it was moved away from.
+  bool split_crossings = false;
 };
+
+// Whether the mesh check is sure to find `surface` broken (self_intersections or
+// degenerate_faces): the build found crossings (the fit's, or the cuberille's around its split
+// vertices), or a face has no area (IsDegenerateFace). false says nothing: only the check can
+// tell.
+bool KnownBroken(const BuiltSurface& surface);
 
 // The closed, manifold, outward surface of `membrane` (a final DMS, its outer layer outside),
 // vertices in model units on `grid` (OutputGrid's; lossless: float32); `cloud` is what the

@@ -32,16 +32,19 @@ namespace membrane::bench {
 namespace {
 
 constexpr char kUsage[] =
-    "usage: bench_memory [--points N,N,...] [--shape NAME] [--bits B] [--quick]\n"
+    "usage: bench_memory [--points N,N,...] [--shape NAME] [--threads N] [--bits B] [--quick]\n"
     "  --points LIST  point counts (default 100000,1000000)\n"
     "  --shape NAME   a shape of `membrane synth` (default torus), or noise: uniform points in\n"
     "                 a cube (a foam of a membrane, the surface's worst case)\n"
+    "  --threads N    ReconstructionOptions::threads, 1..256 (default 1): each thread of the\n"
+    "                 relaxation, the surface fit and the check holds working sets of its own\n"
     "  --bits B       output quantization bits, 0..30 (default 11, the .drc default)\n"
     "  --quick        20000 and 60000 points (the ctest smoke)\n";
 
 struct Options {
   std::vector<int64_t> points = {100'000, 1'000'000};
   std::string shape = "torus";
+  int threads = 1;
   int bits = 11;
 };
 
@@ -68,6 +71,9 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       if (!ParsePointCounts(argv[++i], o.points)) return false;
     } else if (a == "--shape" && has_value) {
       o.shape = argv[++i];
+    } else if (a == "--threads" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.threads) || o.threads < 1 || o.threads > 256)
+        return false;
     } else if (a == "--bits" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.bits) || o.bits < 0 || o.bits > 30) return false;
     } else {
@@ -152,6 +158,7 @@ Row RunOne(const Options& o, int64_t points) {
   }
   ReconstructionOptions options;
   options.output_quantization_bits = o.bits;
+  options.threads = o.threads;
   InMemoryCloudSource source(*std::move(cloud));
   RecordingGate gate;
   DracoMeshSink sink(/*compression_level=*/7);  // the .drc default
@@ -192,8 +199,8 @@ int Main(int argc, char** argv) {
     std::fputs(kUsage, stderr);
     return 2;
   }
-  std::printf("bench_memory: %s, %d output bits, load %s\n", o.shape.c_str(), o.bits,
-              LoadAverage().c_str());
+  std::printf("bench_memory: %s, threads %d, %d output bits, load %s\n", o.shape.c_str(),
+              o.threads, o.bits, LoadAverage().c_str());
   bool failed = false;
   for (int64_t n : o.points) {
     const Row r = RunInChild<Row>([&] { return RunOne(o, n); });

@@ -13,6 +13,7 @@
 #include "core/base/cancel_token.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/io/decode_subprocess.h"
 #include "core/io/file_format.h"
 #include "core/io/point_cloud_io.h"
 
@@ -22,12 +23,17 @@ namespace membrane::client {
 // another `membrane` process; not a subcommand users see.
 inline constexpr char kDecodeHelperFlag[] = "--decode-helper";
 
+// The limits of the child that decodes Draco `bytes` for the readers below, named `path` in
+// its messages: this executable as its own decode helper, a wall and CPU limit of 30 s plus
+// 10 s per MiB of the file, an address space of 1 GiB plus 32 bytes per byte of the file, and
+// no point limit (the user's own file; membraned bounds uploads instead).
+DecodeLimits DecoderLimits(const std::string& bytes, const std::string& path);
+
 // The points of the cloud at `path`, a file or "-" for standard input, in the format
 // `format_flag` names (--input-format; empty: the extension's, or for "-" the one its first
 // bytes show, InputFormat), as ReadPointCloudFromBuffer reads them, except that a Draco cloud
-// is decoded by this executable run as its own decode helper, in a child with a 30 s wall and
-// CPU limit and an address-space limit of 1 GiB plus 32 bytes per byte of the file. Where no
-// child can be started (no /proc), it is decoded in this process. Errors as ReadFileBytes',
+// is decoded by this executable run as its own decode helper, in a child under DecoderLimits.
+// Where no child can be started (no /proc), it is decoded in this process. Errors as ReadFileBytes',
 // ReadInputBytes', InputFormat's and ReadPointCloudFromBuffer's (messages naming the file, or
 // "stdin"), and InvalidArgument "PATH could not be decoded: ..." for a child that fails,
 // crashes or runs out of its limits; Cancelled when `cancel` fires. Points with a NaN or

@@ -23,19 +23,20 @@ namespace membrane {
 // with the workers it has.
 void RunTasks(int threads, int64_t tasks, absl::FunctionRef<void(int worker, int64_t task)> task);
 
-// Cancellation inside RunTasks: worker 0 (the calling thread) polls the caller's `cancel`,
-// and every worker sees the answer through a shared flag, so that the workers all stop at
-// once. `cancel` must outlive this object.
+// Cancellation inside RunTasks: every worker polls the caller's `cancel` (an atomic flag any
+// thread may read), and every worker sees the answer through a shared flag, so that the
+// workers all stop at once, whichever of them runs the tasks (on a loaded machine the calling
+// thread may get none). `cancel` must outlive this object.
 class TaskCancel {
  public:
   TaskCancel(const CancelToken& cancel, int threads, int period)
       : cancel_(cancel), period_(period), since_poll_(std::max(threads, 1), 0) {}
-  // Counts one unit of `worker`'s work; every `period` units, worker 0 asks `cancel`. True
-  // once it has fired.
+  // Counts one unit of `worker`'s work; every `period` of its units, the worker asks
+  // `cancel`. True once it has fired.
   bool Poll(int worker) {
     if (++since_poll_[worker] == period_) {
       since_poll_[worker] = 0;
-      if (worker == 0 && cancel_.cancelled()) fired_.store(true, std::memory_order_relaxed);
+      if (cancel_.cancelled()) fired_.store(true, std::memory_order_relaxed);
     }
     return fired();
   }

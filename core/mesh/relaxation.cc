@@ -73,7 +73,7 @@ class Relaxer {
       const ProgressRange part =
           progress_.Part(kDlcShare * passes_done / 5, kDlcShare * (passes_done + 1) / 5);
       ++passes_done;
-      // Asked here too: the workers ask only on the calling thread, which may get no chunk.
+      // Asked before the pass too: a cancelled pass starts no threads.
       if (cancel_.cancelled()) return Cancel();
       if (to <= from) return absl::OkStatus();
       TaskCancel stop(cancel_, threads_, 1);

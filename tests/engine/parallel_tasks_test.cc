@@ -52,5 +52,17 @@ TEST(ParallelTasks, WorkerZeroIsTheCallingThread) {
   EXPECT_GT(zero_tasks.load(), 0);
 }
 
+TEST(TaskCancel, AWorkerOtherThanTheCallingThreadSeesTheCancel) {
+  // On a loaded machine the calling thread (worker 0) may run none of the tasks: the worker
+  // that runs them must see the cancel itself.
+  CancelToken cancel;
+  TaskCancel stop(cancel, 2, 2);
+  EXPECT_FALSE(stop.Poll(1));
+  cancel.Cancel();
+  EXPECT_TRUE(stop.Poll(1));  // its second unit: it asks the token
+  EXPECT_TRUE(stop.fired());
+  EXPECT_TRUE(stop.Poll(0));  // the other worker sees the shared flag at once
+}
+
 }  // namespace
 }  // namespace membrane

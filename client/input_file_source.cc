@@ -5,9 +5,10 @@
 
 namespace membrane::client {
 
-absl::StatusOr<PointCloud> InputFileSource::Read(const CancelToken& cancel) {
+absl::StatusOr<PointCloud> InputFileSource::Read(const CancelToken& cancel,
+                                                 ProgressRange progress) {
   absl::StatusOr<PointCloud> cloud =
-      ReadInputCloud(path_, format_flag_, cancel, invalid_, &dropped_);
+      ReadInputCloud(path_, format_flag_, cancel, invalid_, &dropped_, progress);
   if (!cloud.ok()) return FileErrorAsInvalidInput(cloud.status());
   return cloud;
 }

@@ -24,7 +24,7 @@ class InputFileSource : public CloudSource {
   // ReadInputCloud (input_files.h: a Draco cloud is decoded in a child process), with the io
   // library's Internal for a file that cannot be read turned into InvalidArgument
   // (FileErrorAsInvalidInput): the messages name the file.
-  absl::StatusOr<PointCloud> Read(const CancelToken& cancel) override;
+  absl::StatusOr<PointCloud> Read(const CancelToken& cancel, ProgressRange progress) override;
 
   // The points Read left out for their NaN or infinite coordinates (InvalidPoints::kDrop).
   size_t dropped() const { return dropped_; }

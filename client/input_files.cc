@@ -78,7 +78,7 @@ std::string DroppedPointsNote(size_t count) {
 
 absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, absl::string_view format_flag,
                                           const CancelToken& cancel, InvalidPoints invalid,
-                                          size_t* dropped) {
+                                          size_t* dropped, ProgressRange progress) {
   // A file's name is checked before it is read: a wrong extension fails at once.
   if (!IsStdStream(path)) {
     absl::StatusOr<FileFormat> format = InputFormat(path, format_flag, FileUse::kReadPointCloud);
@@ -98,19 +98,20 @@ absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, absl::string_
   absl::StatusOr<FileFormat> format =
       InputFormat(path, format_flag, FileUse::kReadPointCloud, *bytes);
   if (!format.ok()) return format.status();
-  return ParseInputCloud(*bytes, *format, InputName(path), cancel, invalid, dropped);
+  return ParseInputCloud(*bytes, *format, InputName(path), cancel, invalid, dropped, progress);
 }
 
 absl::StatusOr<PointCloud> ParseInputCloud(const std::string& bytes, FileFormat format,
                                            const std::string& path, const CancelToken& cancel,
-                                           InvalidPoints invalid, size_t* dropped) {
+                                           InvalidPoints invalid, size_t* dropped,
+                                           ProgressRange progress) {
   if (dropped != nullptr) *dropped = 0;
   if (format != FileFormat::kDrc || bytes.empty()) {
     return ReadCloudBuffer(bytes, format, path, invalid, dropped);
   }
   DecodeLimits limits = DecoderLimits(bytes, path);
   limits.accept_mesh = true;  // as ReadPointCloud: a mesh's vertices
-  absl::StatusOr<PointCloud> cloud = DecodeInSubprocess(bytes, limits, cancel);
+  absl::StatusOr<PointCloud> cloud = DecodeInSubprocess(bytes, limits, cancel, progress);
   // No child (no /proc, out of processes): the checks in front of Draco still stand.
   if (cloud.status().code() == absl::StatusCode::kInternal) {
     return ReadCloudBuffer(bytes, format, path, invalid, dropped);

@@ -11,6 +11,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
 #include "core/io/decode_subprocess.h"
@@ -39,17 +40,20 @@ DecodeLimits DecoderLimits(const std::string& bytes, const std::string& path);
 // crashes or runs out of its limits; Cancelled when `cancel` fires. Points with a NaN or
 // infinite coordinate are refused with InvalidPointsError, or with InvalidPoints::kDrop
 // (--drop-invalid) left out and counted in `dropped` (when not null); a Draco cloud's are
-// refused either way, by its decoder.
+// refused either way, by its decoder. `progress` counts a Draco decode (DecodeInSubprocess);
+// other formats, read in this process, count nothing.
 absl::StatusOr<PointCloud> ReadInputCloud(const std::string& path, absl::string_view format_flag,
                                           const CancelToken& cancel,
                                           InvalidPoints invalid = InvalidPoints::kRefuse,
-                                          size_t* dropped = nullptr);
+                                          size_t* dropped = nullptr,
+                                          ProgressRange progress = ProgressRange());
 
 // The same for a file already read: `bytes` in `format`, named `path` in messages.
 absl::StatusOr<PointCloud> ParseInputCloud(const std::string& bytes, FileFormat format,
                                            const std::string& path, const CancelToken& cancel,
                                            InvalidPoints invalid = InvalidPoints::kRefuse,
-                                           size_t* dropped = nullptr);
+                                           size_t* dropped = nullptr,
+                                           ProgressRange progress = ProgressRange());
 
 // InvalidArgument "<name>: 12 points have NaN or infinite coordinates (...); --drop-invalid
 // leaves them out": the refusal of a cloud whose `count` > 0 points are not finite.

@@ -17,8 +17,8 @@ std::string SamplePoints(const PointCloud& cloud, size_t max_points) {
   return out;
 }
 
-absl::StatusOr<PointCloud> SamplingSource::Read(const CancelToken& cancel) {
-  absl::StatusOr<PointCloud> cloud = inner_.Read(cancel);
+absl::StatusOr<PointCloud> SamplingSource::Read(const CancelToken& cancel, ProgressRange progress) {
+  absl::StatusOr<PointCloud> cloud = inner_.Read(cancel, progress);
   if (cloud.ok()) job_.SetPointSample(SamplePoints(*cloud));
   return cloud;
 }

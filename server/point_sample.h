@@ -24,7 +24,7 @@ class SamplingSource : public CloudSource {
  public:
   // `inner` and `job` (not owned) must outlive the source.
   SamplingSource(CloudSource& inner, Job& job) : inner_(inner), job_(job) {}
-  absl::StatusOr<PointCloud> Read(const CancelToken& cancel) override;
+  absl::StatusOr<PointCloud> Read(const CancelToken& cancel, ProgressRange progress) override;
 
  private:
   CloudSource& inner_;

@@ -21,8 +21,8 @@ class UploadSource : public CloudSource {
   // the server's memory for uploads; the cloud gets `origin`. DecodeInSubprocess's errors as
   // they are: InvalidArgument for an upload the decoder rejects or dies on, ResourceExhausted
   // for one over limits.max_points, Cancelled within 50 ms of `cancel` firing, Internal when
-  // the decoder cannot be started.
-  absl::StatusOr<PointCloud> Read(const CancelToken& cancel) override;
+  // the decoder cannot be started. The decode counts on `progress` (DecodeProgress).
+  absl::StatusOr<PointCloud> Read(const CancelToken& cancel, ProgressRange progress) override;
 
  private:
   Job& job_;

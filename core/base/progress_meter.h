@@ -87,6 +87,9 @@ class ProgressRange {
     Begin(1);
     Add(1);
   }
+  // Whether this range counts on a meter: false for a default range, so that work whose
+  // counting costs something (a read of /proc) can skip it.
+  bool counts() const { return meter_ != nullptr; }
 
  private:
   double At(double t) const { return t >= 1 ? to_ : from_ + (to_ - from_) * t; }

@@ -20,6 +20,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/strings/strip.h"
 #include "core/io/decode_helper.h"
+#include "core/io/decode_progress.h"
 #include "core/io/geometry_checks.h"
 
 namespace membrane {
@@ -152,9 +153,10 @@ bool Drain(int fd, std::string& sink) {
 enum class Exchange { kDone, kTimedOut, kCancelled };
 
 // Feeds `bytes` to the child and collects its output until both output pipes close.
+// Counts the child's progress on `progress` as it goes.
 Exchange Communicate(absl::string_view bytes, const DecodeLimits& limits,
-                     const CancelToken& cancel, ChildPipes& pipes, std::string& out,
-                     std::string& err) {
+                     const CancelToken& cancel, ChildPipes& pipes, DecodeProgress& progress,
+                     std::string& out, std::string& err) {
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration<double>(limits.timeout_seconds);
   size_t written = 0;
@@ -172,6 +174,7 @@ Exchange Communicate(absl::string_view bytes, const DecodeLimits& limits,
     if (err_open && (fds[1].revents & (POLLIN | POLLHUP | POLLERR))) {
       err_open = Drain(pipes.from_stderr, err);
     }
+    progress.Update(out);
     if (count == 3 && (fds[2].revents & (POLLOUT | POLLERR | POLLHUP))) {
       const ssize_t n = write(pipes.to_stdin, bytes.data() + written, bytes.size() - written);
       if (n > 0) written += static_cast<size_t>(n);
@@ -238,7 +241,8 @@ absl::StatusOr<TriangleMesh> ParseMesh(const std::string& out, const std::string
 // Runs the helper on `bytes` with `mode` (an argument after MAX_POINTS, or empty); its standard
 // output when it succeeds.
 absl::StatusOr<std::string> RunHelper(absl::string_view bytes, const DecodeLimits& limits,
-                                      const std::string& mode, const CancelToken& cancel) {
+                                      const std::string& mode, const CancelToken& cancel,
+                                      ProgressRange progress) {
   ChildPipes pipes;
   const pid_t pid = StartHelper(limits, mode, pipes);
   if (pid < 0) {
@@ -246,7 +250,8 @@ absl::StatusOr<std::string> RunHelper(absl::string_view bytes, const DecodeLimit
                                             strerror(errno)));
   }
   std::string out, err;
-  const Exchange exchange = Communicate(bytes, limits, cancel, pipes, out, err);
+  DecodeProgress decode_progress(progress, bytes.size(), pid);
+  const Exchange exchange = Communicate(bytes, limits, cancel, pipes, decode_progress, out, err);
   if (exchange != Exchange::kDone) kill(pid, SIGKILL);
   int wait_status = 0;
   while (waitpid(pid, &wait_status, 0) < 0 && errno == EINTR) {
@@ -281,19 +286,24 @@ absl::StatusOr<std::string> RunHelper(absl::string_view bytes, const DecodeLimit
 }  // namespace
 
 absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const DecodeLimits& limits,
-                                              const CancelToken& cancel) {
+                                              const CancelToken& cancel, ProgressRange progress) {
   absl::StatusOr<std::string> out =
-      RunHelper(bytes, limits, limits.accept_mesh ? kAcceptMeshArgument : "", cancel);
+      RunHelper(bytes, limits, limits.accept_mesh ? kAcceptMeshArgument : "", cancel, progress);
   if (!out.ok()) return out.status();
-  return ParsePoints(*out, limits.subject);
+  absl::StatusOr<PointCloud> cloud = ParsePoints(*out, limits.subject);
+  if (cloud.ok()) progress.Done();
+  return cloud;
 }
 
 absl::StatusOr<TriangleMesh> DecodeMeshInSubprocess(absl::string_view bytes,
                                                     const DecodeLimits& limits,
-                                                    const CancelToken& cancel) {
-  absl::StatusOr<std::string> out = RunHelper(bytes, limits, kMeshArgument, cancel);
+                                                    const CancelToken& cancel,
+                                                    ProgressRange progress) {
+  absl::StatusOr<std::string> out = RunHelper(bytes, limits, kMeshArgument, cancel, progress);
   if (!out.ok()) return out.status();
-  return ParseMesh(*out, limits.subject);
+  absl::StatusOr<TriangleMesh> mesh = ParseMesh(*out, limits.subject);
+  if (mesh.ok()) progress.Done();
+  return mesh;
 }
 
 }  // namespace membrane

@@ -13,6 +13,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
 
@@ -35,9 +36,12 @@ struct DecodeLimits {
 // (not Draco, a mesh, non-finite coordinates, no points) or output that fails those checks; ResourceExhausted for more than max_points;
 // InvalidArgument also for a child that crashes (with the signal), runs out of memory or CPU,
 // or exceeds the timeout; Cancelled when `cancel` fires (the child is killed within 50 ms);
-// Internal when the helper cannot be started or run (exit status 127).
+// Internal when the helper cannot be started or run (exit status 127). `progress` counts the
+// decode as DecodeProgress does (decode_progress.h: the child's CPU time, then its points),
+// and ends at its end when the cloud is returned.
 absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const DecodeLimits& limits,
-                                              const CancelToken& cancel);
+                                              const CancelToken& cancel,
+                                              ProgressRange progress = ProgressRange());
 
 // The triangle mesh in Draco `bytes` (as DecodeDracoMesh gives it), decoded the same way;
 // limits.max_points bounds its vertices and limits.accept_mesh is not used; the output's face
@@ -45,7 +49,8 @@ absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const Dec
 // the rejected inputs.
 absl::StatusOr<TriangleMesh> DecodeMeshInSubprocess(absl::string_view bytes,
                                                     const DecodeLimits& limits,
-                                                    const CancelToken& cancel);
+                                                    const CancelToken& cancel,
+                                                    ProgressRange progress = ProgressRange());
 
 }  // namespace membrane
 

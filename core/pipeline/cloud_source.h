@@ -6,6 +6,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/base/cancel_token.h"
+#include "core/base/progress_meter.h"
 #include "core/geometry/point_cloud.h"
 
 namespace membrane {
@@ -18,8 +19,10 @@ class CloudSource {
   // reconstructing thread, before anything else. A non-OK status ends the run as it is: the
   // source names its input in its messages, the pipeline adds nothing. A source that decodes
   // for long polls `cancel` and returns Cancelled soon after it fires (the decoders: within
-  // milliseconds).
-  virtual absl::StatusOr<PointCloud> Read(const CancelToken& cancel) = 0;
+  // milliseconds). A source that can tell how far it has come counts it on `progress` (the
+  // decode stage's meter; a default range counts nowhere); one that does not leaves the
+  // stage's fraction unset.
+  virtual absl::StatusOr<PointCloud> Read(const CancelToken& cancel, ProgressRange progress) = 0;
 };
 
 }  // namespace membrane

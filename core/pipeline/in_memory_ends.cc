@@ -6,7 +6,8 @@
 
 namespace membrane {
 
-absl::StatusOr<PointCloud> InMemoryCloudSource::Read(const CancelToken& /*cancel*/) {
+absl::StatusOr<PointCloud> InMemoryCloudSource::Read(const CancelToken& /*cancel*/,
+                                                     ProgressRange /*progress*/) {
   if (!cloud_.has_value()) {
     return absl::FailedPreconditionError("the cloud in memory was read already");
   }

@@ -16,7 +16,7 @@ namespace membrane {
 class InMemoryCloudSource : public CloudSource {
  public:
   explicit InMemoryCloudSource(PointCloud cloud) : cloud_(std::move(cloud)) {}
-  absl::StatusOr<PointCloud> Read(const CancelToken& cancel) override;
+  absl::StatusOr<PointCloud> Read(const CancelToken& cancel, ProgressRange progress) override;
 
  private:
   std::optional<PointCloud> cloud_;

@@ -29,7 +29,7 @@ class ReconstructionObserver {
   virtual std::optional<ProgressSchedule> progress_schedule() const { return std::nullopt; }
   // `stage` has run for `seconds` and done `fraction` of its work, in [0, 1] and never less
   // than the fraction told before within the stage; nullopt for a stage that does not count
-  // its work (decode, shrink, whose generations tell, relax, decimate, encode). Called per
+  // its work (encode; decode from a source that does not count, CloudSource::Read). Called per
   // progress_schedule() from a thread of the run's own while the stage runs, and for a stage
   // it was called for, once more as it ends, just before StageFinished (surface and check are
   // then at 1).

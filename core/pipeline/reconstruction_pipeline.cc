@@ -50,10 +50,11 @@ absl::Status CheckOptions(const ReconstructionOptions& options) {
 // The decode stage: the source's cloud, its size and origin in `report`.
 absl::StatusOr<PointCloud> DecodeStage(CloudSource& source, const CancelToken& cancel,
                                        ReconstructionReport& report,
-                                       ReconstructionObserver& observer) {
+                                       ReconstructionObserver& observer,
+                                       ProgressRange progress) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kDecode, report);
-  absl::StatusOr<PointCloud> cloud = source.Read(cancel);
+  absl::StatusOr<PointCloud> cloud = source.Read(cancel, progress);
   if (!cloud.ok()) return cloud.status();
   report.points = static_cast<int64_t>(cloud->points.size());
   report.origin = cloud->origin;
@@ -80,7 +81,8 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   report.surface = SurfaceKindName(options.surface);
   report.threads = options.threads;
 
-  absl::StatusOr<PointCloud> cloud = DecodeStage(adapters.source, cancel, report, observer);
+  absl::StatusOr<PointCloud> cloud =
+      DecodeStage(adapters.source, cancel, report, observer, ticker.progress());
   if (!cloud.ok()) return cloud.status();
   if (absl::Status s = adapters.sink.CheckOrigin(cloud->origin); !s.ok()) return s;
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kDecode); !s.ok()) return s;

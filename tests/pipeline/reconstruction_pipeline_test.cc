@@ -70,7 +70,7 @@ class RecordingGate : public ResourceGate {
 class FailingSource : public CloudSource {
  public:
   explicit FailingSource(absl::Status status) : status_(std::move(status)) {}
-  absl::StatusOr<PointCloud> Read(const CancelToken&) override { return status_; }
+  absl::StatusOr<PointCloud> Read(const CancelToken&, ProgressRange) override { return status_; }
 
  private:
   absl::Status status_;

@@ -1,12 +1,18 @@
 // The progress of long stages: the fraction a stage tells never goes back, and the stages
-// that count their work (voxelize, relax, surface, check) end at 1, for both surfaces;
+// that count their work (voxelize, relax, surface, check) end at 1, for both surfaces; a
+// source that counts its decode has its fractions told;
 // progress is told between a stage's start and its end, never at the same time as another
 // call; and counting changes nothing in the mesh.
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -136,6 +142,79 @@ TEST(StageProgress, ALongRelaxationReportsIncreasingFractions) {
                                 << ", ticks: " << fractions.size();
   for (size_t i = 1; i < inside.size(); ++i) EXPECT_GT(inside[i], inside[i - 1]);
   EXPECT_EQ(fractions.back(), std::optional<double>(1.0));
+}
+
+// A decode in kSteps steps that goes on to the next only once the observer has been told the
+// fraction of the one before: a decode as long as the test wants, on any machine, without a
+// sleep. The observer's side records the decode's fractions and wakes the source.
+class GatedDecode : public CloudSource, public ReconstructionObserver {
+ public:
+  static constexpr int kSteps = 4;
+
+  explicit GatedDecode(PointCloud cloud) : cloud_(std::move(cloud)) {}
+
+  absl::StatusOr<PointCloud> Read(const CancelToken&, ProgressRange progress) override {
+    progress.Begin(kSteps);
+    for (int step = 1; step <= kSteps; ++step) {
+      progress.Add(1);
+      if (step == kSteps) break;  // the last is told as the stage ends
+      std::unique_lock<std::mutex> lock(mutex_);
+      const double reached = static_cast<double>(step) / kSteps;
+      // A bound on the wait, for a run that never tells: the test then fails instead of hanging.
+      if (!told_.wait_for(lock, std::chrono::seconds(60), [&] { return seen_ >= reached; })) {
+        ADD_FAILURE() << "the decode's fraction " << reached << " was never told";
+        break;
+      }
+    }
+    return cloud_;
+  }
+
+  std::optional<ProgressSchedule> progress_schedule() const override {
+    return ProgressSchedule{.first_after_seconds = 0, .every_seconds = 0.001};
+  }
+  void StageProgress(PipelineStage stage, std::optional<double> fraction, double) override {
+    if (stage != PipelineStage::kDecode) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    fractions.push_back(fraction);
+    if (fraction.has_value()) seen_ = std::max(seen_, *fraction);
+    told_.notify_all();
+  }
+  void StageStarted(PipelineStage, const ReconstructionReport&) override {}
+  void GenerationFinished(const GenerationStats&, int) override {}
+  void StageFinished(PipelineStage, double, const ReconstructionReport&) override {}
+
+  std::vector<std::optional<double>> fractions;  // the decode's, as told
+
+ private:
+  const PointCloud cloud_;
+  std::mutex mutex_;
+  std::condition_variable told_;
+  double seen_ = 0;  // the largest decode fraction told
+};
+
+TEST(StageProgress, ALongDecodeReportsIncreasingFractions) {
+  GatedDecode decode(SampledTorus());
+  NoResourceLimit gate;
+  InMemoryMeshSink sink;
+  ReconstructionOptions options;
+  options.surface = SurfaceKind::kCuberille;
+  const absl::StatusOr<ReconstructionReport> report =
+      RunReconstruction(options, {decode, gate, sink, decode}, ErrorContext{},
+                        CancelToken::Never());
+  ASSERT_TRUE(report.ok()) << report.status();
+  std::vector<double> distinct;  // the distinct fractions told, in order
+  for (const std::optional<double>& f : decode.fractions) {
+    // Only a tick before the source begins counting has no fraction.
+    if (!f.has_value()) {
+      EXPECT_TRUE(distinct.empty());
+      continue;
+    }
+    // 0 when a tick falls between the source's Begin and its first Add.
+    if (*f > 0 && (distinct.empty() || *f != distinct.back())) distinct.push_back(*f);
+  }
+  // Each step's fraction, told while the decode ran, then 1 as it ended.
+  const std::vector<double> steps = {0.25, 0.5, 0.75, 1.0};
+  EXPECT_EQ(distinct, steps);
 }
 
 TEST(StageProgress, DecimationCountsItsFacesToTheEnd) {

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -112,8 +113,16 @@ pid_t StartHelper(const DecodeLimits& limits, const std::string& mode, ChildPipe
   std::vector<char*> envp;
   for (std::string& e : env) envp.push_back(e.data());
   envp.push_back(nullptr);
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid == 0) {
+    // The child dies with the thread that started it: a server killed outright (SIGKILL, the
+    // OOM killer) would otherwise leave its decoders running on, under their limits but with
+    // nobody to read them. A parent that died before the prctl is seen in getppid (the child
+    // has been reparented), and the child leaves at once. The thread waits for the child
+    // (RunHelper), so it outlives it in every other case.
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(127);
     dup2(in[0], STDIN_FILENO);
     dup2(out[1], STDOUT_FILENO);
     dup2(err[1], STDERR_FILENO);

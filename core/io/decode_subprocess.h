@@ -2,7 +2,9 @@
 // crashes and allocation blowups on crafted input (fuzzing found 30 bytes that make it allocate
 // 2.8 GB from a count inside the coded data); in a child with RLIMIT_AS, RLIMIT_CPU and a
 // wall-clock timeout, such input costs one refused file instead of the server's memory or the
-// user's machine. The child runs RunDecodeHelper (decode_helper.h).
+// user's machine. The child runs RunDecodeHelper (decode_helper.h), and is killed
+// (PR_SET_PDEATHSIG) when the thread that started it dies, so that a server killed outright
+// leaves no decoder behind.
 #ifndef MEMBRANE_CORE_IO_DECODE_SUBPROCESS_H_
 #define MEMBRANE_CORE_IO_DECODE_SUBPROCESS_H_
 

@@ -1,5 +1,18 @@
 // The Draco decoder child (core/io/decode_subprocess.h) as membraned runs it: a decode counts
-// its progress to the end.
+// its progress to the end, and a decoder dies with the process that started it, so that a
+// membraned killed outright leaves no decoder running on.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <optional>
 #include <string>
 
@@ -8,6 +21,7 @@
 #include "core/base/progress_meter.h"
 #include "core/io/decode_subprocess.h"
 #include "tests/server/draco_upload.h"
+#include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
 namespace {
@@ -33,6 +47,73 @@ TEST(DecodeSubprocess, ARefusedUploadDoesNotEndItsProgress) {
   EXPECT_EQ(cloud.status().code(), absl::StatusCode::kInvalidArgument) << cloud.status();
   ASSERT_TRUE(meter.fraction().has_value());
   EXPECT_LE(*meter.fraction(), 0.9);
+}
+
+// The decoder in the next test: it writes its pid into a FIFO (the open waits for the test to
+// read it), then waits for a line that never comes on a FIFO it holds open itself: a decoder
+// that would run for ever.
+std::string WriteEndlessDecoder(const ScratchDir& dir, const std::string& pid_fifo) {
+  const std::string script = dir.File("endless-decode.sh");
+  const std::string never = dir.File("never.fifo");
+  EXPECT_EQ(mkfifo(never.c_str(), 0600), 0) << std::strerror(errno);
+  std::ofstream out(script);
+  out << "#!/bin/sh\necho $$ > '" << pid_fifo << "'\nexec 3<>'" << never
+      << "'\nread line <&3\n";
+  out.close();
+  EXPECT_EQ(chmod(script.c_str(), 0700), 0) << script;
+  return script;
+}
+
+// The pid the decoder writes into `fifo`, waited for up to 60 s; -1 when none comes. Opened
+// without waiting, the FIFO shows no hangup before a writer has come.
+pid_t ReadPid(const std::string& fifo) {
+  const int fd = open(fifo.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return -1;
+  std::string text;
+  for (;;) {
+    pollfd readable{fd, POLLIN, 0};
+    if (poll(&readable, 1, 60'000) != 1) break;
+    char buffer[32];
+    const ssize_t n = read(fd, buffer, sizeof buffer);
+    if (n <= 0) break;  // the writer is done
+    text.append(buffer, static_cast<size_t>(n));
+  }
+  close(fd);
+  return text.empty() ? -1 : std::atoi(text.c_str());
+}
+
+TEST(DecodeSubprocess, TheDecoderDiesWithTheProcessThatStartedIt) {
+  ScratchDir dir;
+  const std::string pid_fifo = dir.File("decoder.pid");
+  ASSERT_EQ(mkfifo(pid_fifo.c_str(), 0600), 0) << std::strerror(errno);
+  DecodeLimits limits;
+  limits.helper = {WriteEndlessDecoder(dir, pid_fifo)};
+  limits.timeout_seconds = 600;
+  const std::string upload = LosslessDracoCloud("sphere", 2000);
+
+  // The process that stands for membraned: it starts the decoder and waits for it.
+  const pid_t parent = fork();
+  ASSERT_GE(parent, 0) << std::strerror(errno);
+  if (parent == 0) {
+    (void)DecodeInSubprocess(upload, limits, CancelToken::Never());
+    _exit(0);
+  }
+  const pid_t decoder = ReadPid(pid_fifo);
+  ASSERT_GT(decoder, 0);
+  // A pidfd of the decoder, which is not the test's child: readable once the decoder exits.
+  const int pidfd = static_cast<int>(syscall(SYS_pidfd_open, decoder, 0));
+  ASSERT_GE(pidfd, 0) << std::strerror(errno);
+
+  ASSERT_EQ(kill(parent, SIGKILL), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(parent, &status, 0), parent);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+
+  pollfd exited{pidfd, POLLIN, 0};
+  const int ready = poll(&exited, 1, 60'000);
+  EXPECT_EQ(ready, 1) << "the decoder " << decoder << " still runs 60 s after its parent died";
+  if (ready != 1) kill(decoder, SIGKILL);
+  close(pidfd);
 }
 
 }  // namespace

@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <memory>
+#include <iterator>
 #include <vector>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "core/base/parallel_tasks.h"
-#include "core/engine/huge_page_allocator.h"
 #include "core/engine/local_topology.h"
 #include "core/engine/voxel_state_words.h"
 
@@ -17,25 +16,30 @@ namespace membrane {
 namespace {
 
 constexpr int kPollSteps = 1024;
-// The DLC's share of the progress; the two phases share the rest.
-constexpr double kDlcShare = 1.0 / 3;
-constexpr int64_t kVoxelsPerPoll = int64_t{1} << 18;
+// Candidates whose keys one task of the second phase's filter computes.
+constexpr int64_t kCandidatesPerTask = int64_t{1} << 12;
 constexpr int kPadding = VoxelGrid::kPadding;
 
 // What a voxel adds to its neighbours' DLC.
 int Category(VoxelState s) { return IsOutside(s) ? 1 : IsInside(s) ? -1 : 0; }
 bool NonOutside(VoxelState s) { return !IsOutside(s); }
 
-// Grid-sized scratch bytes, uninitialised (see ComputeDlc), in 2 MB pages where the kernel gives
-// them: with 4 KB pages the first touch of the three arrays faulted 3 times per 4 KB of grid,
-// about as long as the relaxation's own work on the shared virtual machine.
-struct FreeBytes {
-  int64_t n = 0;
-  void operator()(int8_t* p) const { HugePageAllocator<int8_t>().deallocate(p, n); }
-};
-using ByteArray = std::unique_ptr<int8_t[], FreeBytes>;
-ByteArray NewByteArray(int64_t n) {
-  return ByteArray(HugePageAllocator<int8_t>().allocate(static_cast<size_t>(n)), FreeBytes{n});
+// DLC of the voxel whose state `s` points at, from its neighbours at `offsets`.
+int SumOfCategories(const VoxelState* s, const std::array<int64_t, 26>& offsets) {
+  int dlc = 0;
+  for (int64_t o : offsets) dlc += Category(s[o]);
+  return dlc;
+}
+
+// True when one of the 32 states from `s` on is a boundary voxel (AnyBoundary8 of four words,
+// one test: a row of a large grid is mostly far from the membrane).
+bool AnyBoundary32(const VoxelState* s) {
+  uint64_t any = 0;
+  for (int k = 0; k < 4; ++k) {
+    const uint64_t w = LoadStates8(s + 8 * k);
+    any |= w & ~(w >> 7);
+  }
+  return (any & kLowBits8) != 0;
 }
 
 class Relaxer {
@@ -49,118 +53,24 @@ class Relaxer {
         progress_(progress),
         offsets_(grid.neighbour_offsets()) {}
 
-  // DLC of every voxel not on the array border, by three 1-D box sums of the categories. Each
-  // pass is cut into chunks of kVoxelsPerPoll voxels, shared by the threads (a chunk writes only
-  // its own voxels and reads arrays no pass of the moment writes, so the values do not depend
-  // on the count); `cancel` is polled between chunks (a 430^3 grid is 80M voxels per pass). The
-  // arrays are left uninitialised until a pass writes them: zero-filling 3 bytes per voxel up
-  // front took over 100 ms without a poll, and the first touch by the pass's threads spreads
-  // the kernel's page clearing over them too.
-  absl::Status ComputeDlc() {
-    const int64_t n = grid_.size(), sy = grid_.dim(0), sz = sy * grid_.dim(1);
-    if (n < 3) return absl::OkStatus();  // Relax() lets no grid this small through
-    ByteArray cat_array = NewByteArray(n), sum_array = NewByteArray(n);
-    dlc_ = NewByteArray(n);
-    // Raw pointers, captured by value and copied into each task: the byte stores could alias
-    // anything reached through a reference, which would keep the loops from vectorizing.
-    int8_t* const cat = cat_array.get();
-    int8_t* const sum = sum_array.get();
-    int8_t* const dlc = dlc_.get();
-    const VoxelState* const s = grid_.states().data();
-    // The five passes share the first third of the progress, a fifth each, chunk by chunk.
-    int passes_done = 0;
-    auto pass = [&](int64_t from, int64_t to, auto fn) -> absl::Status {
-      const ProgressRange part =
-          progress_.Part(kDlcShare * passes_done / 5, kDlcShare * (passes_done + 1) / 5);
-      ++passes_done;
-      // Asked before the pass too: a cancelled pass starts no threads.
-      if (cancel_.cancelled()) return Cancel();
-      if (to <= from) return absl::OkStatus();
-      TaskCancel stop(cancel_, threads_, 1);
-      const int64_t chunks = (to - from + kVoxelsPerPoll - 1) / kVoxelsPerPoll;
-      part.Begin(chunks);
-      RunTasks(threads_, chunks, [&stop, from, to, fn, part](int worker, int64_t task) {
-        if (stop.Poll(worker)) return;
-        const auto body = fn;
-        const int64_t begin = from + task * kVoxelsPerPoll;
-        const int64_t end = std::min(to, begin + kVoxelsPerPoll);
-        for (int64_t i = begin; i < end; ++i) body(i);
-        part.Add(1);
-      });
-      return stop.fired() ? Cancel() : absl::OkStatus();
-    };
-    // Each pass writes every voxel whose neighbours along its axis exist (across row ends
-    // too: the values there are only read for border voxels, which never move), and the
-    // rest are zeroed, so nothing uninitialised is ever read.
-    absl::Status st =
-        pass(0, n, [cat, s](int64_t i) { cat[i] = static_cast<int8_t>(Category(s[i])); });
-    sum[0] = sum[n - 1] = 0;
-    if (st.ok())
-      st = pass(1, n - 1, [sum, cat](int64_t i) {
-        sum[i] = static_cast<int8_t>(cat[i - 1] + cat[i] + cat[i + 1]);
-      });
-    std::fill(dlc, dlc + std::min(sy, n), 0);
-    std::fill(dlc + std::max<int64_t>(n - sy, 0), dlc + n, 0);
-    if (st.ok())
-      st = pass(sy, n - sy, [dlc, sum, sy](int64_t i) {
-        dlc[i] = static_cast<int8_t>(sum[i - sy] + sum[i] + sum[i + sy]);
-      });
-    if (st.ok())
-      st = pass(sz, n - sz, [sum, dlc, sz](int64_t i) {
-        sum[i] = static_cast<int8_t>(dlc[i - sz] + dlc[i] + dlc[i + sz]);
-      });
-    std::fill(dlc, dlc + std::min(sz, n), 0);
-    std::fill(dlc + std::max<int64_t>(n - sz, 0), dlc + n, 0);
-    if (st.ok())
-      st = pass(sz, n - sz,
-                [dlc, sum, cat](int64_t i) { dlc[i] = static_cast<int8_t>(sum[i] - cat[i]); });
-    return st;
-  }
-
   // sign = -1: phase 1 (DLC <= -threshold); +1: phase 2 (DLC >= threshold).
   absl::Status Phase(int sign, RelaxationStats& stats) {
     sign_ = sign;
-    // Each phase has half of what the DLC leaves: its scan, then its steps, half each.
-    const double phase_share = (1 - kDlcShare) / 2;
-    const ProgressRange phase =
-        sign < 0 ? progress_.Part(kDlcShare, kDlcShare + phase_share)
-                 : progress_.Part(kDlcShare + phase_share, 1);
-    const ProgressRange scan = phase.Part(0, 0.5), taken = phase.Part(0.5, 1);
+    // Each phase has half of the progress: its search for the first qualifying voxels, then
+    // its steps, half each.
+    const ProgressRange phase = sign < 0 ? progress_.Part(0, 0.5) : progress_.Part(0.5, 1);
+    const ProgressRange search = phase.Part(0, 0.5), taken = phase.Part(0.5, 1);
     if (cancel_.cancelled()) return Cancel();
     for (auto& b : buckets_) {
       b.items.clear();
       b.next = 0;
     }
-    // The scan: each z plane of the movable region lists its qualifying voxels in index order,
-    // the planes side by side on the threads; the lists then fill the buckets plane after
-    // plane, so the buckets' order is the index order whatever the count.
-    const auto& d = grid_.dims();
-    const int planes = d[2] - 2 * kPadding;
-    std::vector<std::vector<int64_t>> found(planes);
-    TaskCancel stop(cancel_, threads_, 1);
-    scan.Begin(planes);
-    RunTasks(threads_, planes, [&](int worker, int64_t plane) {
-      if (stop.Poll(worker)) return;
-      const int z = kPadding + static_cast<int>(plane);
-      for (int y = kPadding; y < d[1] - kPadding; ++y)
-        for (int x = kPadding; x < d[0] - kPadding;) {
-          const int64_t i = grid_.Index(x, y, z);
-          // Eight voxels at a time where none is a boundary voxel (most of the grid).
-          if (x + 8 <= d[0] - kPadding && !AnyBoundary8(grid_.states().data() + i)) {
-            x += 8;
-            continue;
-          }
-          if (Qualifies(i)) found[plane].push_back(i);
-          ++x;
-        }
-      scan.Add(1);
-    });
-    if (stop.fired()) return Cancel();
-    int64_t first_found = 0;
-    for (const std::vector<int64_t>& list : found) {
-      for (int64_t i : list) buckets_[Key(i)].items.push_back(i);
-      first_found += static_cast<int64_t>(list.size());
-    }
+    absl::StatusOr<std::vector<int64_t>> first =
+        sign < 0 ? ScanGrid(search) : FilterCandidates(search);
+    if (!first.ok()) return first.status();
+    for (int64_t i : *first) buckets_[Key(i)].items.push_back(i);
+    const int64_t first_found = static_cast<int64_t>(first->size());
+    std::vector<int64_t>().swap(*first);
     // Every voxel first found is taken once at least; the ones queued again count beyond.
     taken.Begin(first_found);
     int64_t steps = 0, takes = 0;
@@ -193,7 +103,92 @@ class Relaxer {
 
   static absl::Status Cancel() { return absl::CancelledError("relaxation cancelled"); }
 
-  int Key(int64_t i) const { return sign_ * dlc_[i]; }
+  // DLC(V), summed from the 26 neighbours' states when asked: a grid-sized array kept up to
+  // date would be 1 byte a voxel, and on a 10M-point cloud's 2e9-voxel grid its passes took
+  // longer than all the steps (the membrane is 0.2-1% of the voxels). `i` must not lie on the
+  // array border.
+  int Dlc(int64_t i) const { return SumOfCategories(grid_.states().data() + i, offsets_); }
+
+  int Key(int64_t i) const { return sign_ * Dlc(i); }
+
+  // Phase 1's first qualifying voxels, in index order: each z plane of the movable region
+  // lists its non-hard boundary voxels (candidates_, for phase 2) and those that qualify, the
+  // planes side by side on the threads; the lists are then joined in plane order, so the
+  // result is the same whatever the count.
+  absl::StatusOr<std::vector<int64_t>> ScanGrid(const ProgressRange& progress) {
+    const auto& d = grid_.dims();
+    const int planes = d[2] - 2 * kPadding;
+    std::vector<std::vector<int64_t>> boundary(planes), found(planes);
+    TaskCancel stop(cancel_, threads_, 1);
+    progress.Begin(planes);
+    RunTasks(threads_, planes, [&](int worker, int64_t plane) {
+      if (stop.Poll(worker)) return;
+      const int z = kPadding + static_cast<int>(plane);
+      const VoxelState* const s = grid_.states().data();
+      for (int y = kPadding; y < d[1] - kPadding; ++y)
+        for (int x = kPadding; x < d[0] - kPadding;) {
+          const int64_t i = grid_.Index(x, y, z);
+          // 32 or 8 voxels at a time where none is a boundary voxel (most of the grid).
+          if (x + 32 <= d[0] - kPadding && !AnyBoundary32(s + i)) {
+            x += 32;
+            continue;
+          }
+          if (x + 8 <= d[0] - kPadding && !AnyBoundary8(s + i)) {
+            x += 8;
+            continue;
+          }
+          if (IsBoundary(s[i]) && !IsHard(s[i])) {
+            boundary[plane].push_back(i);
+            if (Key(i) >= threshold_) found[plane].push_back(i);
+          }
+          ++x;
+        }
+      progress.Add(1);
+    });
+    if (stop.fired()) return Cancel();
+    candidates_ = Joined(boundary);
+    return Joined(found);
+  }
+
+  // Phase 2's first qualifying voxels, in index order: the non-hard boundary voxels of the
+  // movable region are those phase 1 started from and those it made boundary (a voxel leaves
+  // or enters the boundary only by a step), so their sorted union, filtered, is what a scan
+  // of the grid would find. Chunks of it are filtered on the threads and joined in order.
+  absl::StatusOr<std::vector<int64_t>> FilterCandidates(const ProgressRange& progress) {
+    std::sort(added_.begin(), added_.end());
+    std::vector<int64_t> all;
+    all.reserve(candidates_.size() + added_.size());
+    std::set_union(candidates_.begin(), candidates_.end(), added_.begin(), added_.end(),
+                   std::back_inserter(all));
+    std::vector<int64_t>().swap(candidates_);
+    std::vector<int64_t>().swap(added_);
+    const int64_t n = static_cast<int64_t>(all.size());
+    const int64_t tasks = (n + kCandidatesPerTask - 1) / kCandidatesPerTask;
+    std::vector<std::vector<int64_t>> found(tasks);
+    TaskCancel stop(cancel_, threads_, 1);
+    progress.Begin(tasks);
+    RunTasks(threads_, tasks, [&](int worker, int64_t task) {
+      if (stop.Poll(worker)) return;
+      const int64_t end = std::min(n, (task + 1) * kCandidatesPerTask);
+      for (int64_t k = task * kCandidatesPerTask; k < end; ++k)
+        if (Qualifies(all[k])) found[task].push_back(all[k]);
+      progress.Add(1);
+    });
+    if (stop.fired()) return Cancel();
+    return Joined(found);
+  }
+
+  static std::vector<int64_t> Joined(std::vector<std::vector<int64_t>>& lists) {
+    size_t total = 0;
+    for (const std::vector<int64_t>& list : lists) total += list.size();
+    std::vector<int64_t> joined;
+    joined.reserve(total);
+    for (std::vector<int64_t>& list : lists) {
+      joined.insert(joined.end(), list.begin(), list.end());
+      std::vector<int64_t>().swap(list);
+    }
+    return joined;
+  }
 
   bool InMovableRegion(int64_t i) const {
     const Coord c = grid_.CoordOf(i);
@@ -214,18 +209,16 @@ class Relaxer {
   }
 
   void Offer(int64_t i) {
-    if (Qualifies(i) && InMovableRegion(i)) buckets_[Key(i)].items.push_back(i);
+    if (InMovableRegion(i) && Qualifies(i)) buckets_[Key(i)].items.push_back(i);
   }
 
-  // Sets a state and keeps the neighbours' DLC right.
+  // Sets a state; when its category changes, the neighbours' DLC did: they are offered again
+  // after the step.
   void Set(int64_t i, VoxelState s) {
     const int delta = Category(s) - Category(grid_.at(i));
     grid_.set(i, s);
     if (delta == 0) return;
-    for (int64_t o : offsets_) {
-      dlc_[i + o] = static_cast<int8_t>(dlc_[i + o] + delta);
-      touched_.push_back(i + o);
-    }
+    for (int64_t o : offsets_) touched_.push_back(i + o);
   }
 
   bool Simple(int64_t i) const { return IsSimple(NeighbourhoodMask(grid_, i, NonOutside)); }
@@ -250,6 +243,7 @@ class Relaxer {
       }
       old[k] = grid_.at(w);
       Set(w, kBoundarySoft);
+      added_.push_back(w);
     }
     Set(v, static_cast<VoxelState>(grid_.at(v) & ~kBoundaryBit));
     ++stats.phase1_moves;
@@ -292,8 +286,10 @@ class Relaxer {
   const CancelToken& cancel_;
   const ProgressRange progress_;
   const std::array<int64_t, 26>& offsets_;
-  ByteArray dlc_;
   std::array<Bucket, 27> buckets_;
+  // The non-hard boundary voxels of the movable region when phase 1 started, in index order,
+  // and the voxels phase 1 made boundary (some made outside again when a step was undone).
+  std::vector<int64_t> candidates_, added_;
   int sign_ = -1;
   std::vector<int64_t> touched_;
 };
@@ -301,10 +297,7 @@ class Relaxer {
 }  // namespace
 
 int DiscreteLocalCurvature(const VoxelGrid& grid, const Coord& c) {
-  const int64_t i = grid.Index(c);
-  int dlc = 0;
-  for (int64_t offset : grid.neighbour_offsets()) dlc += Category(grid.at(i + offset));
-  return dlc;
+  return SumOfCategories(grid.states().data() + grid.Index(c), grid.neighbour_offsets());
 }
 
 absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelToken& cancel,
@@ -316,7 +309,6 @@ absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelToken& ca
   for (int a = 0; a < 3; ++a)
     if (membrane.dim(a) < 2 * kPadding + 1) return stats;  // no movable voxel
   Relaxer relaxer(membrane, options.threshold, options.threads, cancel, progress);
-  if (absl::Status s = relaxer.ComputeDlc(); !s.ok()) return s;
   if (absl::Status s = relaxer.Phase(-1, stats); !s.ok()) return s;
   if (absl::Status s = relaxer.Phase(+1, stats); !s.ok()) return s;
   return stats;

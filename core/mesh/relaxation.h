@@ -7,7 +7,9 @@
 // filling a dent. Phase 2 is the mirror image for DLC >= 13, most positive first: V becomes
 // outside and its inside 26-neighbours become boundary voxels, shaving a bump. After each step
 // the DLC of the voxels around it (the 124-neighbourhood of V) is updated incrementally, and
-// those that now qualify are queued.
+// those that now qualify are queued. The DLC is summed from the states when it is asked for,
+// and only boundary voxels are ever asked: the cost follows the membrane, not the grid (one
+// read of the grid for the first qualifying voxels).
 //
 // Rules beyond the paper:
 //   - Movable means boundary, soft OR FROZEN (decision 10: by Property 3 every soft voxel that
@@ -42,9 +44,10 @@ struct RelaxationOptions {
   // |DLC| at which a voxel moves; the paper found 13 best in 3-D (lower values flatten the
   // membrane into coordinate and 45-degree planes, and let phase 2 undo phase 1).
   int threshold = 13;
-  // Threads (<= 1: the calling thread) of the grid-wide passes: the DLC's box sums and the
-  // scan for the first qualifying voxels. The steps themselves run one after the other in
-  // priority order. The result does not depend on the count.
+  // Threads (<= 1: the calling thread) of the search for each phase's first qualifying voxels
+  // (phase 1: a scan of the grid's planes; phase 2: a filter of the boundary voxels). The steps
+  // themselves run one after the other in priority order. The result does not depend on the
+  // count.
   int threads = 1;
 };
 
@@ -64,12 +67,14 @@ int DiscreteLocalCurvature(const VoxelGrid& grid, const Coord& c);
 // Effect: phase 1, then phase 2, as above, in place. Deterministic: the same grid for any
 // options.threads.
 // Returns the counts of each phase. Errors: InvalidArgument when threshold is outside [1, 26];
-// Cancelled when `cancel` fired (polled every few thousand steps and between the passes
-// of the initial scan, so within milliseconds); the grid is then a valid membrane, relaxed in
-// part (every step is atomic). `progress` counts the DLC's passes (its first third), then each
-// phase (a third each): the scan's planes, then the queued voxels taken, which reach the
-// phase's end once every voxel first found has been taken (voxels queued again count on
-// without moving it further). Counting changes nothing in the result.
+// Cancelled when `cancel` fired (polled every few thousand steps, and by every thread between
+// the planes or chunks of a search, so within milliseconds); the grid is then a valid
+// membrane, relaxed in part (every step is atomic). `progress` counts each phase (a half
+// each): its search's planes or chunks, then the queued voxels taken, which reach the phase's
+// end once every voxel first found has been taken (voxels queued again count on without
+// moving it further). Counting changes nothing in the result.
+// Memory: 8 bytes per non-hard boundary voxel (the list phase 2 starts from) and per queued
+// voxel, beside the grid.
 absl::StatusOr<RelaxationStats> Relax(VoxelGrid& membrane, const CancelToken& cancel,
                                       const RelaxationOptions& options = {},
                                       ProgressRange progress = ProgressRange());

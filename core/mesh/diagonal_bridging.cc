@@ -88,7 +88,12 @@ BridgingResult BridgeDiagonalContacts(VoxelGrid& grid, int max_scans) {
         return;
       }
     });
-    if (contacts == 0 || result.added == before) break;
+    // A scan that bridged nothing left the grid as it found it: its count is what is left,
+    // without a scan more of the whole grid.
+    if (contacts == 0 || result.added == before) {
+      result.remaining = contacts;
+      return result;
+    }
   }
   result.remaining = ForEachCornerContact(grid, [](const std::array<int64_t, 6>&) {});
   return result;

@@ -17,7 +17,11 @@ int64_t RemoveLooseSheets(VoxelGrid& grid, int threads) {
   const std::array<int64_t, 26>& off = grid.neighbour_offsets();
   const VoxelState* s = grid.states().data();
   const auto& d = grid.dims();
-  std::vector<char> kept(static_cast<size_t>(grid.size()), 0);
+  // One bit a voxel: the flood's marks are few (the membrane's voxels), and a byte a voxel
+  // cleared up front was a pass of its own over a grid of 2e9 voxels.
+  std::vector<uint64_t> kept_bits(static_cast<size_t>((grid.size() + 63) / 64), 0);
+  auto kept = [&kept_bits](int64_t i) { return (kept_bits[i >> 6] >> (i & 63)) & 1; };
+  auto keep = [&kept_bits](int64_t i) { kept_bits[i >> 6] |= uint64_t{1} << (i & 63); };
   const int inner_planes = d[2] > 2 ? d[2] - 2 : 0;
   std::vector<std::vector<int64_t>> plane_boundary(inner_planes), plane_seeds(inner_planes);
   RunTasks(threads, inner_planes, [&](int, int64_t task) {
@@ -36,14 +40,14 @@ int64_t RemoveLooseSheets(VoxelGrid& grid, int threads) {
         boundary.push_back(i);
         for (int64_t o : off)
           if (IsInside(s[i + o])) {
-            kept[i] = 1;
-            seeds.push_back(i);
+            seeds.push_back(i);  // marked kept below: planes may share a word of bits
             break;
           }
       }
   });
   std::vector<int64_t> stack;
   for (std::vector<int64_t>& seeds : plane_seeds) {
+    for (int64_t i : seeds) keep(i);
     stack.insert(stack.end(), seeds.begin(), seeds.end());
     std::vector<int64_t>().swap(seeds);
   }
@@ -52,15 +56,15 @@ int64_t RemoveLooseSheets(VoxelGrid& grid, int threads) {
     stack.pop_back();
     for (int64_t o : off) {
       const int64_t j = i + o;
-      if (kept[j] || !IsBoundary(s[j]) || grid.OnArrayBorder(grid.CoordOf(j))) continue;
-      kept[j] = 1;
+      if (kept(j) || !IsBoundary(s[j]) || grid.OnArrayBorder(grid.CoordOf(j))) continue;
+      keep(j);
       stack.push_back(j);
     }
   }
   int64_t removed = 0;
   for (const std::vector<int64_t>& boundary : plane_boundary)
     for (int64_t i : boundary)
-      if (!kept[i]) {
+      if (!kept(i)) {
         grid.set(i, OutsideState(0));
         ++removed;
       }

@@ -41,8 +41,9 @@ constexpr StageCost kVoxelize = {kProcessBytes, 1, kCloudBytes + 36, 0};
 // bytes a voxel at most; and the points indexed by voxel for the thin-part test
 // (HardVoxelPoints: 24 bytes a point at most, 40 while it is built, before any plane).
 constexpr StageCost kShrink = {kProcessBytes, 3.6, kCloudBytes + 24, 0};
-// The relaxation: the grid and three byte arrays, 4.2 bytes a voxel.
-constexpr StageCost kRelax = {kProcessBytes, 4.4, kCloudBytes, 0};
+// The relaxation: the grid, and lists of boundary voxels (8 bytes each, twice while the scan's
+// plane lists are joined; 1.7 MB over the grid and the cloud on a 1M-point torus).
+constexpr StageCost kRelax = {kProcessBytes, 1, kCloudBytes, 32};
 // The surface, while the grid's copy is cleaned up: the grid, the copy and the cave filling's
 // two masks (4 bytes a voxel); then, while the mesh is built and fitted: the grid and its copy
 // (2.3 bytes a voxel in the fit) and the mesh and the fit's structures (580 bytes a boundary
@@ -117,7 +118,7 @@ StageBytes EstimateStageBytes(int64_t voxels, int64_t points, const MembraneCoun
 
 int64_t GridBytesEstimate(int64_t voxels, int64_t points) {
   const StageBytes s = EstimateStageBytes(voxels, points, MembraneCounts{});
-  return std::max({s.decode, s.voxelize, s.shrink, s.relax});
+  return std::max({s.decode, s.voxelize, s.shrink, s.relax, s.surface});
 }
 
 int64_t SurfaceBytesEstimate(const PlannedGrid& grid, const MembraneCounts& membrane) {

@@ -57,8 +57,10 @@ struct StageBytes {
 // `membrane` is only read for the surface and check stages (zero counts: their grid share).
 StageBytes EstimateStageBytes(int64_t voxels, int64_t points, const MembraneCounts& membrane);
 
-// The peak of the stages before the surface (decode, voxelize, shrink, relax): what is
-// admitted before the grid is allocated. Saturates instead of overflowing.
+// The peak of the stages before the surface (decode, voxelize, shrink, relax) and of the
+// surface's share that the grid alone decides (its clean-up: the grid, its copy and two masks,
+// with no membrane counted): what is admitted before the grid is allocated, so that no run is
+// refused at its surface for bytes the grid already told. Saturates instead of overflowing.
 int64_t GridBytesEstimate(int64_t voxels, int64_t points);
 
 // The peak of the stages from the surface on (surface, decimate, check, encode) for the

@@ -26,7 +26,7 @@ std::array<int, 3> DataDims(const Box3d& bounds, double voxel_size) {
 
 std::vector<int64_t> SortedPointVoxels(absl::Span<const Point3f> points, const Box3d& bounds,
                                        double voxel_size, const std::array<int, 3>& dims,
-                                       int threads) {
+                                       int threads, const CancelToken& cancel) {
   const auto n = static_cast<int64_t>(points.size());
   const int64_t plane = int64_t{dims[0]} * dims[1];
   const int slabs = std::clamp(dims[2], 1, kMaxSlabs);
@@ -44,10 +44,13 @@ std::vector<int64_t> SortedPointVoxels(absl::Span<const Point3f> points, const B
   auto block_end = [&](int64_t b) { return std::min(n, (b + 1) * kBlockPoints); };
   // Per block and slab: the block's points in the slab, then where the next of them goes.
   std::vector<int64_t> at(blocks * slabs, 0);
-  RunTasks(threads, blocks, [&](int, int64_t b) {
+  TaskCancel stop(cancel, threads, 1);
+  RunTasks(threads, blocks, [&](int worker, int64_t b) {
+    if (stop.Poll(worker)) return;
     int64_t* count = at.data() + b * slabs;
     for (int64_t i = b * kBlockPoints; i < block_end(b); ++i) ++count[slab_of(voxel_of(points[i]))];
   });
+  if (stop.fired()) return {};
   std::vector<int64_t> slab_start(slabs + 1, 0);
   int64_t placed = 0;
   for (int s = 0; s < slabs; ++s) {
@@ -60,14 +63,16 @@ std::vector<int64_t> SortedPointVoxels(absl::Span<const Point3f> points, const B
   }
   slab_start[slabs] = placed;
   std::vector<int64_t> sorted(n);
-  RunTasks(threads, blocks, [&](int, int64_t b) {
+  RunTasks(threads, blocks, [&](int worker, int64_t b) {
+    if (stop.Poll(worker)) return;
     int64_t* next = at.data() + b * slabs;
     for (int64_t i = b * kBlockPoints; i < block_end(b); ++i) {
       const int64_t voxel = voxel_of(points[i]);
       sorted[next[slab_of(voxel)]++] = voxel;
     }
   });
-  RunTasks(threads, slabs, [&](int, int64_t s) {
+  RunTasks(threads, slabs, [&](int worker, int64_t s) {
+    if (stop.Poll(worker)) return;
     std::sort(sorted.begin() + slab_start[s], sorted.begin() + slab_start[s + 1]);
   });
   return sorted;

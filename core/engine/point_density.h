@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "absl/types/span.h"
+#include "core/base/cancel_token.h"
 #include "core/geometry/point_cloud.h"
 
 namespace membrane {
@@ -23,10 +24,13 @@ std::array<int, 3> DataDims(const Box3d& bounds, double voxel_size);
 // point is floor((p - bounds.min) / voxel_size), clamped into the region. On `threads`
 // threads (RunTasks): the points are dealt into slabs of z planes in fixed blocks and each
 // slab sorted apart; the result is the one sorted list, whatever the count. Memory: the list
-// and a count per block and slab.
+// and a count per block and slab. Each block of points and each slab's sort asks `cancel`
+// first; once it has fired, the rest are skipped and the list is meaningless (the caller, who
+// holds the token, knows it).
 std::vector<int64_t> SortedPointVoxels(absl::Span<const Point3f> points, const Box3d& bounds,
                                        double voxel_size, const std::array<int, 3>& dims,
-                                       int threads = 1);
+                                       int threads = 1,
+                                       const CancelToken& cancel = CancelToken::Never());
 
 struct PointDensity {
   int64_t voxels_with_one_point = 0;

@@ -24,7 +24,8 @@ double EstimateVoxelSize(const Box3d& bounds, int64_t points) {
   return std::sqrt(area2 / static_cast<double>(std::max<int64_t>(points, 1)));
 }
 
-int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads) {
+int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads,
+                           const CancelToken& cancel) {
   // Every part reads every point: beyond a few parts the reads cost more than the inserts
   // they share out.
   constexpr int kMaxParts = 8;
@@ -40,15 +41,19 @@ int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads) {
   RunTasks(threads, parts, [&](int, int64_t part) {
     absl::flat_hash_set<Point3f> seen;
     seen.reserve(points.size() / parts);
-    for (const Point3f& p : points)
-      if (parts == 1 || part_of(p) == part) seen.insert(p);
+    constexpr size_t kPollPoints = size_t{1} << 16;
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (i % kPollPoints == 0 && cancel.cancelled()) break;
+      if (parts == 1 || part_of(points[i]) == part) seen.insert(points[i]);
+    }
     distinct[part] = static_cast<int64_t>(seen.size());
   });
   return std::accumulate(distinct.begin(), distinct.end(), int64_t{0});
 }
 
-double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points, int threads) {
-  return EstimateVoxelSize(bounds, DistinctPointCount(points, threads));
+double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points, int threads,
+                        const CancelToken& cancel) {
+  return EstimateVoxelSize(bounds, DistinctPointCount(points, threads, cancel));
 }
 
 namespace {
@@ -216,7 +221,7 @@ absl::Status CheckGridFitsFloat(const Box3d& bounds, double voxel_size, const do
 // planes, so that there are at most 4096), found by the first entry of each: a voxel's run
 // never spans two, and no two tasks write the same plane.
 PointDensity MarkHardVoxels(absl::Span<const int64_t> sorted, const std::array<int, 3>& data_dims,
-                            int threads, VoxelGrid& grid) {
+                            int threads, const CancelToken& cancel, VoxelGrid& grid) {
   constexpr int64_t kMaxSlabs = 4096;
   const int p = VoxelGrid::kPadding;
   const int64_t nx = data_dims[0], ny = data_dims[1], nz = data_dims[2];
@@ -227,7 +232,9 @@ PointDensity MarkHardVoxels(absl::Span<const int64_t> sorted, const std::array<i
            sorted.begin();
   };
   std::vector<PointDensity> parts(slabs);
-  RunTasks(threads, slabs, [&](int, int64_t s) {
+  TaskCancel stop(cancel, threads, 1);
+  RunTasks(threads, slabs, [&](int worker, int64_t s) {
+    if (stop.Poll(worker)) return;
     const int64_t begin = first_of_slab(s);
     parts[s] = ForEachOccupiedVoxel(
         sorted.subspan(begin, first_of_slab(s + 1) - begin), [&](int64_t voxel, int64_t) {
@@ -248,7 +255,9 @@ PointDensity MarkHardVoxels(absl::Span<const int64_t> sorted, const std::array<i
 }  // namespace
 
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
-                                      const VoxelizeOptions& options, ProgressRange progress) {
+                                      const VoxelizeOptions& options, ProgressRange progress,
+                                      const CancelToken& cancel) {
+  const auto cancelled = [] { return absl::CancelledError("voxelization cancelled"); };
   absl::StatusOr<Box3d> bounds = CheckedBounds(points);
   if (!bounds.ok()) return bounds.status();
   if (options.voxel_budget < 0) {
@@ -256,7 +265,9 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
         "voxel budget %d must be positive, or 0 for none", options.voxel_budget));
   }
   double l = options.voxel_size;
-  if (l == 0.0) l = FormulaVoxelSize(*bounds, points, options.threads);
+  if (l == 0.0) l = FormulaVoxelSize(*bounds, points, options.threads, cancel);
+  // Before the grid is allocated: a cancelled run takes no memory.
+  if (cancel.cancelled()) return cancelled();
   if (!std::isfinite(l) || l <= 0.0) {
     return absl::InvalidArgumentError(
         absl::StrFormat("voxel size %g must be finite and positive", l));
@@ -307,7 +318,9 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
   // the points' count, and either can be the larger.
   const ProgressRange planes = progress.Part(0, 0.5);
   planes.Begin(dims[2] - 2 * p);
-  RunTasks(options.threads, dims[2] - 2 * p, [&](int, int64_t task) {
+  TaskCancel stop(cancel, options.threads, 1);
+  RunTasks(options.threads, dims[2] - 2 * p, [&](int worker, int64_t task) {
+    if (stop.Poll(worker)) return;
     const int z = p + static_cast<int>(task);
     for (int y = p; y < dims[1] - p; ++y) {
       VoxelState* row = states + v.grid.Index(p, y, z);
@@ -318,13 +331,17 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
     }
     planes.Add(1);
   });
+  if (stop.fired()) return cancelled();
 
   // Voxel of each point, sorted, so that runs give the points per voxel without a per-voxel
   // counter array.
   const std::vector<int64_t> sorted =
-      SortedPointVoxels(points, *bounds, l, v.data_dims, options.threads);
+      SortedPointVoxels(points, *bounds, l, v.data_dims, options.threads, cancel);
+  if (cancel.cancelled()) return cancelled();
   progress.Part(0.5, 0.9).Done();
-  const PointDensity density = MarkHardVoxels(sorted, v.data_dims, options.threads, v.grid);
+  const PointDensity density =
+      MarkHardVoxels(sorted, v.data_dims, options.threads, cancel, v.grid);
+  if (cancel.cancelled()) return cancelled();
   v.voxels_with_one_point = density.voxels_with_one_point;
   v.voxels_with_more_points = density.voxels_with_more_points;
   v.hard_voxels = v.voxels_with_one_point + v.voxels_with_more_points;

@@ -7,6 +7,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
+#include "core/base/cancel_token.h"
 #include "core/base/progress_meter.h"
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/point_cloud.h"
@@ -49,12 +50,16 @@ double EstimateVoxelSize(const Box3d& bounds, int64_t points);
 // n, since a point given twice samples the surface once (a file concatenated with itself, a
 // scanner repeating its points). Linear expected time: on `threads` threads (at most 8 parts),
 // each part a hash set of its points (parts by a hash of the coordinates; equal points share
-// a part), and the count is theirs summed.
-int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads = 1);
+// a part), and the count is theirs summed. Each part asks `cancel` every 65536 points and stops
+// once it has fired: the count is then short, and the caller, who holds the token, knows it.
+int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads = 1,
+                           const CancelToken& cancel = CancelToken::Never());
 
 // Formula (1) for `points`, whose box is `bounds` (CheckedBounds'): EstimateVoxelSize over
 // their distinct count (on `threads` threads). What Voxelize uses when no voxel size is given.
-double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points, int threads = 1);
+// Meaningless once `cancel` has fired (DistinctPointCount).
+double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points, int threads = 1,
+                        const CancelToken& cancel = CancelToken::Never());
 
 // Bounding box of `points`. InvalidArgument when there are no points, when some coordinates
 // are NaN or infinite (with their count), when all points are equal, or when they lie on one
@@ -75,9 +80,14 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points);
 // budget check. `progress` counts the initial membrane's planes, then the points' voxels
 // sorted and marked (counting never changes the grid). options.threads share the distinct
 // count, the planes and the points' voxels (SortedPointVoxels), marked in slabs of z planes.
+// Every task (a part of the distinct count's points, a plane, a block of 65536 points, a slab)
+// asks `cancel` first, and every worker stops once it has fired: Cancelled then, the grid
+// freed (a cancel costs at most one task per thread after it; 10M points make tasks of a few
+// milliseconds each).
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
                                       const VoxelizeOptions& options,
-                                      ProgressRange progress = ProgressRange());
+                                      ProgressRange progress = ProgressRange(),
+                                      const CancelToken& cancel = CancelToken::Never());
 
 }  // namespace membrane
 

@@ -19,7 +19,7 @@ absl::StatusOr<Voxelization> VoxelizeStage(const VoxelizeOptions& voxelize,
                                            ProgressRange progress) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kVoxelize, report);
-  absl::StatusOr<Voxelization> v = Voxelize(cloud.points, voxelize, progress.Part(0, 0.9));
+  absl::StatusOr<Voxelization> v = Voxelize(cloud.points, voxelize, progress.Part(0, 0.9), cancel);
   if (!v.ok()) return v.status();
   report.voxel_size = v->grid.voxel_size();
   report.grid = v->grid.dims();

@@ -65,14 +65,20 @@ int64_t Bytes(const StageCost& cost, int64_t voxels, int64_t points, int64_t mem
 
 }  // namespace
 
-absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize) {
+absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize,
+                                     const CancelToken& cancel) {
   absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
   if (!bounds.ok()) return bounds.status();
   PlannedGrid plan;
   plan.bounds = *bounds;
-  plan.voxel_size =
-      voxelize.voxel_size > 0 ? voxelize.voxel_size
-                              : FormulaVoxelSize(*bounds, cloud.points, voxelize.threads);
+  plan.voxel_size = voxelize.voxel_size;
+  if (plan.voxel_size <= 0) {
+    plan.voxel_size = FormulaVoxelSize(*bounds, cloud.points, voxelize.threads, cancel);
+    // The count stopped short: its size means nothing.
+    if (cancel.cancelled()) {
+      return absl::CancelledError("reconstruction cancelled while planning the grid");
+    }
+  }
   double voxels = 1;
   for (const double side : bounds->Extent()) {
     voxels *= std::floor(side / plan.voxel_size) + 1 + 2 * VoxelGrid::kPadding;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/voxelization.h"
 #include "core/geometry/point_cloud.h"
 #include "core/pipeline/membrane_counts.h"
@@ -32,7 +33,9 @@ struct PlannedGrid {
 // Formula (1), when voxelize.voxel_size is 0, counts the points on voxelize.threads threads.
 // InvalidArgument for a degenerate cloud (CheckedBounds' message). Callers that then voxelize
 // pass the planned voxel_size on, so that formula (1) does not count the points again.
-absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize);
+// Cancelled when `cancel` fires during the count (DistinctPointCount asks it).
+absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize,
+                                     const CancelToken& cancel = CancelToken::Never());
 
 // The most a planned grid may need whatever the run's gate admits: ResourceExhausted "voxel size
 // L gives a grid of V voxels: with the P points it needs about B, more than the M of memory

@@ -42,6 +42,17 @@ TEST(PlanGrid, AGridOverAGivenBudgetCountsAtTheBudget) {
   EXPECT_EQ(plan->bytes, GridBytesEstimate(1000, 20000));
 }
 
+TEST(PlanGrid, ACancelDuringFormulaOnesCountIsCancelled) {
+  const absl::StatusOr<PointCloud> cloud = SynthesizeShape(SynthOptions{.shape = "sphere", .points = 5000});
+  ASSERT_TRUE(cloud.ok());
+  CancelToken cancel;
+  cancel.Cancel();
+  EXPECT_EQ(PlanGrid(*cloud, VoxelizeOptions{}, cancel).status().code(),
+            absl::StatusCode::kCancelled);
+  // A given voxel size counts nothing: the plan is made.
+  EXPECT_TRUE(PlanGrid(*cloud, VoxelizeOptions{.voxel_size = 0.1}, cancel).ok());
+}
+
 TEST(PlanGrid, ADegenerateCloudIsInvalidArgument) {
   PointCloud flat;
   for (int i = 0; i < 100; ++i) flat.points.push_back({float(i % 10), float(i / 10), 0});

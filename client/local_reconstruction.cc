@@ -58,7 +58,7 @@ absl::StatusOr<ReconstructionReport> RunLocalReconstruction(const Reconstruction
                                                             const CancelToken& cancel,
                                                             ProgressPrinter& progress) {
   InputFileSource source(params.input, params.input_format, params.invalid_points);
-  MemoryLimitGate gate(params.memory_limit_bytes);
+  MemoryLimitGate gate(params.memory_limit_bytes, params.options.output_quantization_bits);
   MeshFileSink sink(params.output, params.output_format, params.draco.compression_level);
   const std::string input_name = InputName(params.input);
   LocalProgress observer(progress, input_name, source);

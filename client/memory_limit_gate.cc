@@ -11,7 +11,7 @@ namespace {
 // ResourceExhausted when `bytes` are over `limit` (> 0): "<who_needs> about <bytes><purpose>,
 // over the memory limit of <limit> (...)<advice>".
 absl::Status CheckMemoryLimit(int64_t bytes, int64_t limit, const std::string& who_needs,
-                              const char* purpose, const char* advice) {
+                              const std::string& purpose, const char* advice) {
   if (limit <= 0 || bytes <= limit) return absl::OkStatus();
   return absl::ResourceExhaustedError(absl::StrCat(
       who_needs, " about ", BytesText(bytes), purpose, ", over the memory limit of ",
@@ -31,10 +31,15 @@ absl::Status MemoryLimitGate::AdmitGrid(const PlannedGrid& grid, int64_t points,
 
 absl::Status MemoryLimitGate::AdmitSurface(const MembraneCounts& membrane,
                                            const CancelToken& /*cancel*/) {
+  const int64_t tables = DracoTableBytes(output_quantization_bits_);
+  const std::string purpose =
+      tables == 0 ? std::string(" for its surface and the grid")
+                  : absl::StrCat(" for its surface, the grid and the Draco encoder's tables (",
+                                 BytesText(tables), " at ", output_quantization_bits_,
+                                 " bits: fewer --quantization bits take less)");
   return CheckMemoryLimit(
-      SurfaceBytesEstimate(grid_, membrane), limit_,
-      absl::StrFormat("the membrane (%d voxels) needs", membrane.membrane_voxels()),
-      " for its surface and the grid",
+      SurfacePeakBytes(grid_, membrane, output_quantization_bits_), limit_,
+      absl::StrFormat("the membrane (%d voxels) needs", membrane.membrane_voxels()), purpose,
       "; noise makes a foam of a membrane: is this the scan of one object?");
 }
 

@@ -12,8 +12,11 @@ namespace membrane::client {
 
 class MemoryLimitGate : public ResourceGate {
  public:
-  // `limit_bytes` <= 0: no limit.
-  explicit MemoryLimitGate(int64_t limit_bytes) : limit_(limit_bytes) {}
+  // `limit_bytes` <= 0: no limit. `output_quantization_bits`: the run's Draco encoding's
+  // (ReconstructionOptions; 0 for PLY, OBJ, STL or float32 output), whose tables the surface's
+  // check counts as membraned's memory gate does (SurfacePeakBytes).
+  MemoryLimitGate(int64_t limit_bytes, int output_quantization_bits)
+      : limit_(limit_bytes), output_quantization_bits_(output_quantization_bits) {}
 
   // ResourceExhausted "the grid of V voxels and the P points need about B, over the memory
   // limit of L (--memory-limit, ...); use a larger --voxel-size" when the grid's bytes are
@@ -23,12 +26,14 @@ class MemoryLimitGate : public ResourceGate {
 
   // ResourceExhausted "the membrane (N voxels) needs about B for its surface and the grid,
   // over the memory limit ...; noise makes a foam of a membrane: ..." when the stages from the
-  // surface on (SurfaceBytesEstimate: the grid held beside the surface included) are over the
-  // limit. Never waits.
+  // surface on (SurfacePeakBytes: the grid held beside the surface and Draco's tables
+  // included) are over the limit; with the tables, the message names them and fewer
+  // --quantization bits. Never waits.
   absl::Status AdmitSurface(const MembraneCounts& membrane, const CancelToken& cancel) override;
 
  private:
   int64_t limit_;
+  int output_quantization_bits_;
   PlannedGrid grid_;  // admitted by AdmitGrid
 };
 

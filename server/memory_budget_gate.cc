@@ -6,11 +6,6 @@
 
 namespace membrane::server {
 
-int64_t DracoTableBytes(int quantization_bits) {
-  if (quantization_bits <= 0) return 0;
-  return int64_t{4} << std::min(quantization_bits, 30);
-}
-
 absl::Status MemoryBudgetGate::AdmitGrid(const PlannedGrid& grid, int64_t /*points*/,
                                          const CancelToken& cancel) {
   grid_ = grid;
@@ -19,10 +14,9 @@ absl::Status MemoryBudgetGate::AdmitGrid(const PlannedGrid& grid, int64_t /*poin
 
 absl::Status MemoryBudgetGate::AdmitSurface(const MembraneCounts& membrane,
                                             const CancelToken& cancel) {
-  // The share holds the grid's peak already; the surface's estimate counts the grid too.
+  // The share holds the grid's peak already.
   const int64_t more =
-      std::max<int64_t>(SurfaceBytesEstimate(grid_, membrane) - grid_.bytes, 0) +
-      DracoTableBytes(output_quantization_bits_);
+      SurfacePeakBytes(grid_, membrane, output_quantization_bits_) - grid_.bytes;
   absl::Status admission = share_.Add(more, cancel);
   if (!absl::IsResourceExhausted(admission)) return admission;
   return absl::ResourceExhaustedError(absl::StrCat("the surface of a membrane of ",

@@ -9,16 +9,11 @@
 
 namespace membrane::server {
 
-// The bytes Draco's encoder holds in its tables of 2^bits entries, whatever the mesh: 4 an
-// entry (a 1M-point torus's mesh peaked 3.56 GB higher at 30 bits than at 11, 3.3 bytes an
-// entry; tests/bench/2026-12-03-download-memory.txt); 0 for bits 0 (float32 positions).
-int64_t DracoTableBytes(int quantization_bits);
-
 class MemoryBudgetGate : public ResourceGate {
  public:
   // `budget` (not owned) must outlive the gate. The share is held until the gate is
   // destroyed: keep it until the job has ended. `output_quantization_bits` is the job's Draco
-  // encoding's (0: none): the encoder's tables join the surface's share (DracoTableBytes).
+  // encoding's (0: none): the encoder's tables join the surface's share (SurfacePeakBytes).
   MemoryBudgetGate(MemoryBudget& budget, int output_quantization_bits)
       : share_(budget), output_quantization_bits_(output_quantization_bits) {}
 
@@ -27,8 +22,8 @@ class MemoryBudgetGate : public ResourceGate {
   absl::Status AdmitGrid(const PlannedGrid& grid, int64_t points,
                          const CancelToken& cancel) override;
 
-  // Grows the share to the surface's bytes (SurfaceBytesEstimate, which counts the grid held
-  // beside it) when they are above the grid's, plus the Draco encoder's tables; a
+  // Grows the share to SurfacePeakBytes (the surface's bytes, which count the grid held
+  // beside it, when they are above the grid's, plus the Draco encoder's tables); a
   // ResourceExhausted then begins "the surface of a membrane of N voxels (a noisy cloud makes a
   // foam of one): ".
   absl::Status AdmitSurface(const MembraneCounts& membrane, const CancelToken& cancel) override;

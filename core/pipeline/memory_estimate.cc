@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
@@ -142,6 +143,20 @@ std::string BytesText(int64_t bytes) {
   }
   if (unit == 0) return absl::StrFormat("%d bytes", bytes);
   return absl::StrFormat("%.3g %s", value, kUnits[unit]);
+}
+
+int64_t DracoTableBytes(int quantization_bits) {
+  if (quantization_bits <= 0) return 0;
+  return int64_t{4} << std::min(quantization_bits, 30);
+}
+
+int64_t SurfacePeakBytes(const PlannedGrid& grid, const MembraneCounts& membrane,
+                         int output_quantization_bits) {
+  const int64_t peak = std::max(SurfaceBytesEstimate(grid, membrane), grid.bytes);
+  const int64_t tables = DracoTableBytes(output_quantization_bits);
+  return peak > std::numeric_limits<int64_t>::max() - tables
+             ? std::numeric_limits<int64_t>::max()
+             : peak + tables;
 }
 
 }  // namespace membrane

@@ -72,6 +72,19 @@ int64_t GridBytesEstimate(int64_t voxels, int64_t points);
 // takes many times its grid's bytes.
 int64_t SurfaceBytesEstimate(const PlannedGrid& grid, const MembraneCounts& membrane);
 
+// The bytes Draco's encoder holds in its tables of 2^bits entries, whatever the mesh: 4 an
+// entry (a 1M-point torus's mesh peaked 3.56 GB higher at 30 bits than at 11, 3.3 bytes an
+// entry; tests/bench/2026-12-03-download-memory.txt); 0 for bits 0 (float32 positions).
+int64_t DracoTableBytes(int quantization_bits);
+
+// The most a run holds from the surface on, what a gate admits once the membrane is known:
+// the larger of the grid's and the surface's estimates (the surface's counts the grid held
+// beside it), plus Draco's tables when the mesh is encoded at `output_quantization_bits`
+// (ReconstructionOptions::output_quantization_bits; 0: float32 or not Draco). Saturates
+// instead of overflowing.
+int64_t SurfacePeakBytes(const PlannedGrid& grid, const MembraneCounts& membrane,
+                         int output_quantization_bits);
+
 // `bytes` for a person: "512 KB", "38.1 MB", "2.61 GB" (powers of 1000, 3 significant digits).
 std::string BytesText(int64_t bytes);
 

@@ -5,7 +5,9 @@ membraned with tokens. The page is loaded before any job exists and asks for the
 then submits jobs with the membrane client and checks, in the page: the job's row, its progress
 as it runs (the stages and generations tables growing), the mesh drawn in the 3D canvas (a
 screenshot of the canvas: pixels of both shells' colours, not all background), the input points
-overlaid, the .ply download (the file the browser saved is the API's bytes), and cancel.
+overlaid, the .ply download (the file the browser saved is the API's bytes), and cancel (of a
+job held in its decode by a gated decoder, as the C++ server tests hold theirs:
+tests/server/gated_decoder.h).
 
 Usage: web_console_test.py SOURCE_DIR MEMBRANED MEMBRANE [--screenshot PNG]
 Exit 77 (ctest: skipped) with a message when chromedriver or Chromium cannot start.
@@ -37,6 +39,21 @@ def wait_for(what, predicate, seconds, step=0.1):
             return value
         time.sleep(step)
     raise AssertionError(f"timed out after {seconds} s waiting for {what}")
+
+
+def gated_decoder(work, decoder):
+    """A decoder for membraned's --decoder_path that holds each decode until a line is written
+    to its gate, a FIFO: the script opens the gate read-write (so that the open does not wait
+    for a writer), reads one line, then runs `decoder` with its arguments and input. Returns the
+    script's path and the gate, open read-write: a line written waits in the FIFO for the next
+    decode. A held job is running, in its decode stage, for as long as the test wants."""
+    gate = os.path.join(work, "decode.gate")
+    os.mkfifo(gate, 0o600)
+    script = os.path.join(work, "gated-decode.sh")
+    with open(script, "w") as f:
+        f.write(f"#!/bin/sh\nexec 3<>'{gate}'\nread line <&3\nexec 3<&-\nexec '{decoder}' \"$@\"\n")
+    os.chmod(script, 0o700)
+    return script, os.open(gate, os.O_RDWR)
 
 
 def row(driver, job_id):
@@ -77,10 +94,12 @@ def main():
         f.write(TOKEN + "\n")
     processes = []
     driver = None
+    decoder, gate = gated_decoder(work, os.path.join(os.path.dirname(membraned), "membrane-decode"))
     try:
         log = open(os.path.join(work, "membraned.log"), "w+")
         server = subprocess.Popen([membraned, "--listen=127.0.0.1:0", "--http-listen=127.0.0.1:0",
-                                   "--workers=1", "--token-file=" + os.path.join(work, "tokens")],
+                                   "--workers=1", "--token-file=" + os.path.join(work, "tokens"),
+                                   "--decoder_path=" + decoder],
                                   stderr=log)
         processes.append(server)
 
@@ -120,7 +139,8 @@ def main():
         print(f"page loaded and authenticated in {time.monotonic() - started_at:.2f} s")
 
         # A job of two spheres that runs for a few seconds: its row appears, and selected, its
-        # stages and generations arrive while it runs.
+        # stages and generations arrive while it runs. Its decode goes through the gate at once.
+        os.write(gate, b"go\n")
         cloud = os.path.join(work, "two.ply")
         subprocess.run([membrane, "synth", "two-spheres", "--points", "40000", "-o", cloud],
                        check=True, stdout=subprocess.DEVNULL)
@@ -199,22 +219,26 @@ def main():
         assert got == expected, f"the download has {len(got)} bytes, the API {len(expected)}"
         print(f"download {job_id}.ply: {len(got)} bytes, the API's")
 
-        # A slow job cancelled with its row's button.
-        slow = subprocess.Popen([membrane, "reconstruct", cloud, "-o", os.path.join(work, "slow.drc"),
-                                 "--server", f"127.0.0.1:{grpc_port}", "--voxel-size", "0.006",
+        # A job held in its decode (nothing is written to the gate for it), cancelled with its
+        # row's button: membraned kills the held decoder.
+        held = subprocess.Popen([membrane, "reconstruct", cloud, "-o", os.path.join(work, "held.drc"),
+                                 "--server", f"127.0.0.1:{grpc_port}",
                                  "--token-file", os.path.join(work, "token"), "-q"],
                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-        processes.append(slow)
-        slow_id = wait_for("the slow job's row", lambda: (lambda i: i if i != job_id else None)(
+        processes.append(held)
+        held_id = wait_for("the held job's row", lambda: (lambda i: i if i != job_id else None)(
             driver.js("const r = document.querySelector('#jobs tbody tr'); return r && r.dataset.id;")), 30)
-        wait_for("its cancel button", lambda: (row(driver, slow_id) or {}).get("actions") == ["cancel"], 30)
-        driver.js("document.querySelector('#job-' + arguments[0] + ' button.cancel').click()", slow_id)
-        wait_for("the cancelled row", lambda: (row(driver, slow_id) or {}).get("state") == "CANCELLED", 30)
-        assert slow.wait(60) == 5, slow.stderr.read().decode()
-        print(f"job {slow_id} cancelled from the page")
+        wait_for("its cancel button", lambda: (row(driver, held_id) or {}).get("actions") == ["cancel"], 30)
+        driver.js("document.querySelector('#job-' + arguments[0] + ' button.cancel').click()", held_id)
+        wait_for("the cancelled row", lambda: (row(driver, held_id) or {}).get("state") == "CANCELLED", 30)
+        assert held.wait(60) == 5, held.stderr.read().decode()
+        print(f"job {held_id} cancelled from the page")
         print("PASS")
         return 0
     finally:
+        # A decode still at the gate (a failed run's) goes on, to find its input closed.
+        os.write(gate, b"go\n" * 4)
+        os.close(gate)
         if driver is not None:
             driver.quit()
         for p in reversed(processes):

@@ -178,4 +178,12 @@ int FirstBoundaryOfEight(const VoxelState* states) {
   return b == 0 ? 8 : __builtin_ctzll(b) / 8;  // little-endian load: byte k is bits 8k..
 }
 
+bool NoHardOfEight(const VoxelState* states) {
+  return Matches<StatePredicate::kHard>(Load8(states)) == 0;
+}
+
+bool AllOutsideOfEight(const VoxelState* states) {
+  return Matches<StatePredicate::kOutside>(Load8(states)) == kHigh;
+}
+
 }  // namespace membrane

@@ -48,6 +48,12 @@ StateCounts CountStates(absl::Span<const VoxelState> states);
 // (IsBoundary), or 8 when none is: lets a scan for boundary voxels skip eight at a time.
 int FirstBoundaryOfEight(const VoxelState* states);
 
+// True when none of the eight states at `states` is hard (IsHard), resp. when all eight are
+// outside: lets a scan of the grid for hard voxels, or for outside voxels beside the solid,
+// step over eight voxels at a time.
+bool NoHardOfEight(const VoxelState* states);
+bool AllOutsideOfEight(const VoxelState* states);
+
 }  // namespace membrane
 
 #endif  // MEMBRANE_CORE_ENGINE_STATE_PLANES_H_

@@ -152,12 +152,16 @@ Vec3d VertexNormal(const TriangleMesh& mesh, const Rows& star, int32_t v) {
   return n;
 }
 
+// How a cap starts its thin plate: from the spline, or from the harmonic map where the rim is
+// no height field, in its plane or wrapped around a swallowed part (HoleCapOptions::wrap_rms).
+enum class CapStart { kSpline, kHarmonic, kWrapped };
+
 // The cap of one region: the thin-plate spline over the rim's plane through the samples, at
-// the harmonic positions `x` of its vertices (in voxels); written into `x`. False when the
-// region is to be left (see CapHoles).
-bool ShapeCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
-              const std::vector<int32_t>& region, const std::vector<char>& free, double l,
-              const HoleCapOptions& options, std::vector<Vec3d>& x) {
+// the harmonic positions `x` of its vertices (in voxels); written into `x`. Another start
+// when the spline cannot shape it (x then unchanged; see CapHoles).
+CapStart ShapeCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
+                  const std::vector<int32_t>& region, const std::vector<char>& free, double l,
+                  const HoleCapOptions& options, std::vector<Vec3d>& x) {
   // Samples: the fixed vertices within sample_rings rings of the region, breadth first.
   std::vector<int32_t> samples;
   {
@@ -174,7 +178,7 @@ bool ShapeCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
     }
     std::sort(samples.begin(), samples.end());
   }
-  if (samples.size() < 3) return false;
+  if (samples.size() < 3) return CapStart::kHarmonic;
   const size_t stride = (samples.size() + options.max_samples - 1) / options.max_samples;
   // In voxels, relative to the first sample: small, well-conditioned numbers.
   const Vec3d origin = ToVec3d(mesh.vertices[samples[0]]);
@@ -186,26 +190,33 @@ bool ShapeCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
     outward = outward + Normalized(VertexNormal(mesh, star, samples[i]));
   }
   const auto plane = acc.Fit();
-  if (!plane) return false;
+  if (!plane) return CapStart::kHarmonic;
   const Vec3d n = Dot(plane->normal, outward) < 0 ? -1.0 * plane->normal : plane->normal;
   const Vec3d t1 = Normalized(std::abs(n[0]) < 0.9 ? Cross(n, Vec3d{1, 0, 0})
                                                    : Cross(n, Vec3d{0, 1, 0}));
   const Vec3d t2 = Cross(n, t1);
   std::vector<Vec3d> heights;
+  bool height_field = true;
+  double squares = 0;  // of the heights: the samples' spread off their plane
   for (size_t i = 0; i < samples.size(); i += stride) {
     const Vec3d normal = Normalized(VertexNormal(mesh, star, samples[i]));
-    if (!(Dot(normal, n) > options.min_rim_cosine)) return false;
+    height_field = height_field && Dot(normal, n) > options.min_rim_cosine;
     const Vec3d p = local(ToVec3d(mesh.vertices[samples[i]])) - plane->centroid;
     heights.push_back({Dot(p, t1), Dot(p, t2), Dot(p, n)});
+    squares += heights.back()[2] * heights.back()[2];
   }
+  if (!height_field)
+    return std::sqrt(squares / static_cast<double>(heights.size())) > options.wrap_rms
+               ? CapStart::kWrapped
+               : CapStart::kHarmonic;
   const auto spline = ThinPlateSpline::Fit(heights, options.smoothing);
-  if (!spline) return false;
+  if (!spline) return CapStart::kHarmonic;
   for (int32_t v : region) {
     const Vec3d p = local(x[v]) - plane->centroid;
     const double u = Dot(p, t1), w = Dot(p, t2);
     x[v] = origin + l * (plane->centroid + u * t1 + w * t2 + (*spline)(u, w) * n);
   }
-  return true;
+  return CapStart::kSpline;
 }
 
 absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
@@ -214,6 +225,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
   if (!(o.gap_radius > 0) || o.min_gap_vertices < 1 || o.rim_rings < 0 ||
       o.harmonic_iterations < 0 || !(o.tolerance > 0) || o.sample_rings < 1 ||
       o.max_samples < 3 || !(o.smoothing >= 0) || !(o.min_rim_cosine >= -1) ||
+      !(o.wrap_rms >= 0) || o.wrapped_iterations < 0 ||
       o.back_off_halvings < 0 || !(o.max_shell_share > 0 && o.max_shell_share <= 1) ||
       o.min_median_points < 1 || o.min_median_points > 1000)
     return absl::InvalidArgumentError(absl::StrCat(
@@ -221,7 +233,8 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",
         o.harmonic_iterations, ", tolerance ", o.tolerance, ", sample_rings ", o.sample_rings,
         ", max_samples ", o.max_samples, ", smoothing ", o.smoothing, ", min_rim_cosine ",
-        o.min_rim_cosine, ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ",
+        o.min_rim_cosine, ", wrap_rms ", o.wrap_rms, ", wrapped_iterations ",
+        o.wrapped_iterations, ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ",
         o.max_shell_share, ", min_median_points ", o.min_median_points));
   return absl::OkStatus();
 }
@@ -346,15 +359,23 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
                        options.tolerance * l, cancel);
   if (it < 0) return absl::CancelledError("hole caps cancelled");
   st.iterations = it;
+  // The caps' vertices by their thin plate's iterations: those of wrapped rims apart.
+  std::vector<int32_t> blended, wrapped;
   for (const auto& region : regions) {
     // Where the spline cannot shape it, the thin plate starts from the harmonic map.
-    if (!ShapeCap(mesh, nb, star, region, free, l, options, x)) ++st.harmonic_starts;
+    const CapStart start = ShapeCap(mesh, nb, star, region, free, l, options, x);
+    if (start != CapStart::kSpline) ++st.harmonic_starts;
+    if (start == CapStart::kWrapped) ++st.wrapped;
+    auto& list = start == CapStart::kWrapped ? wrapped : blended;
+    list.insert(list.end(), region.begin(), region.end());
     ++st.regions;
   }
   st.vertices = static_cast<int64_t>(free_list.size());
-  if (options.thin_plate_iterations > 0 && !free_list.empty()) {
-    const int bi = Solve(true, nb, free_list, x, options.thin_plate_iterations,
-                         options.tolerance * l, cancel);
+  for (auto [list, iterations] : {std::pair{&blended, options.thin_plate_iterations},
+                                  std::pair{&wrapped, options.wrapped_iterations}}) {
+    if (iterations == 0 || list->empty()) continue;
+    std::sort(list->begin(), list->end());
+    const int bi = Solve(true, nb, *list, x, iterations, options.tolerance * l, cancel);
     if (bi < 0) return absl::CancelledError("hole caps cancelled");
     st.iterations += bi;
   }

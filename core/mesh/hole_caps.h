@@ -57,6 +57,16 @@ struct HoleCapOptions {
   // graph bi-Laplacian zero at each cap vertex): they mend what the height field cannot
   // follow (a rim not in one plane, a saddle) and join the cap to the rim smoothly.
   int thin_plate_iterations = 60;
+  // A rim that is no height field and leaves its plane (the samples' RMS distance from it
+  // above wrap_rms voxels) wraps around a part the hole swallowed, the end of a post or the
+  // edge of a thin part: the harmonic map cuts straight through that part, and the thin plate
+  // is solved to convergence (at most wrapped_iterations, stopping by `tolerance`), which
+  // carries the walls of the rim across the hole. A rim in its plane (an open flat base, whose
+  // band of sample_rings rings runs down the side walls within about that many voxels of the
+  // plane) keeps the harmonic map's flat span with thin_plate_iterations: the converged thin
+  // plate would carry the walls' slope past the base and bulge.
+  double wrap_rms = 3.0;
+  int wrapped_iterations = 1000;
   // A cap vertex of a face that crosses another goes back toward its place before the cap:
   // halfway this many times, then all the way.
   int back_off_halvings = 4;
@@ -69,7 +79,8 @@ struct HoleCapStats {
   // their shell, or all of them on data too sparse (min_median_points).
   int64_t uncapped_regions = 0;
   int64_t harmonic_starts = 0;   // caps with no height field: the thin plate from the harmonic map
-  int64_t iterations = 0;       // conjugate-gradient iterations, both solves
+  int64_t wrapped = 0;           // of those, rims around a swallowed part: thin plate converged
+  int64_t iterations = 0;       // conjugate-gradient iterations, every solve
   int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
   double max_lift = 0;          // largest move of a vertex by its cap, in voxels
 };
@@ -85,7 +96,8 @@ struct HoleCapStats {
 // there are too few samples, the rim is no height field (min_rim_cosine) or the spline is
 // singular, the harmonic map stays); then thin_plate_iterations conjugate-gradient iterations
 // toward the discrete thin plate of the region (the minimum of the sum over vertices of
-// |umbrella Laplacian|^2 / degree). Regions with no fixed neighbour are left. Then it searches the faces around moved vertices for crossings
+// |umbrella Laplacian|^2 / degree), or up to wrapped_iterations where the rim is no height
+// field and leaves its plane by more than wrap_rms. Regions with no fixed neighbour are left. Then it searches the faces around moved vertices for crossings
 // and sends the moved vertices of each crossing pair back toward where they were (halfway
 // back_off_halvings times, then all the way) until no crossing involves a moved vertex: where
 // a cap would cross the mesh, that part of it is not built.

@@ -82,6 +82,7 @@ std::string MeshJson(const MeshReport& m) {
 std::string HoleCapsJson(const HoleCapStats& h) {
   return absl::StrCat("{\"regions\": ", h.regions, ", \"vertices\": ", h.vertices,
                       ", \"harmonic_starts\": ", h.harmonic_starts,
+                      ", \"wrapped_caps\": ", h.wrapped,
                       ", \"uncapped_regions\": ", h.uncapped_regions,
                       ", \"backed_off_vertices\": ", h.backed_off,
                       ", \"max_lift_voxels\": ", JsonNumber(h.max_lift), "}");

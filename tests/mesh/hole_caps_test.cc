@@ -152,6 +152,9 @@ TEST(HoleCaps, RefusesOptionsOutOfRange) {
   options = {};
   options.min_median_points = 0;
   EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument);
+  options = {};
+  options.wrap_rms = -1;
+  EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument);
   EXPECT_EQ(CapHoles(mesh, -1.0, {}, HoleCapOptions{}).code(),
             absl::StatusCode::kInvalidArgument);
 }

@@ -56,39 +56,94 @@ HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f
   starts_.push_back(static_cast<uint32_t>(order.size()));
 }
 
-double HardVoxelPoints::PlaneSpread(const VoxelGrid& grid, const Coord& lo, const Coord& hi,
-                                    int min_points) const {
-  Coord a, b;
-  for (int d = 0; d < 3; ++d) {
-    a[d] = std::max(lo[d], 0);
-    b[d] = std::min(hi[d], grid.dim(d) - 1);
-    if (a[d] > b[d]) return -1;
-  }
-  // Sums relative to the box's centre, so that they stay small.
-  const double cx = 0.5 * (a.x + b.x + 1), cy = 0.5 * (a.y + b.y + 1), cz = 0.5 * (a.z + b.z + 1);
-  double n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+template <typename F>
+void HardVoxelPoints::ForEachPoint(const VoxelGrid& grid, const Coord& a, const Coord& b,
+                                   F f) const {
   for (int z = a.z; z <= b.z; ++z)
     for (int y = a.y; y <= b.y; ++y) {
       // The box's voxels of one x-row are consecutive indices.
       const int64_t first = grid.Index(a.x, y, z), last = grid.Index(b.x, y, z);
       for (size_t k = std::lower_bound(voxels_.begin(), voxels_.end(), first) - voxels_.begin();
            k < voxels_.size() && voxels_[k] <= last; ++k) {
-        for (uint32_t i = starts_[k]; i < starts_[k + 1]; ++i) {
-          const double x = positions_[i][0] - cx, yy = positions_[i][1] - cy,
-                       zz = positions_[i][2] - cz;
-          n += 1;
-          sx += x, sy += yy, sz += zz;
-          sxx += x * x, sxy += x * yy, sxz += x * zz;
-          syy += yy * yy, syz += yy * zz, szz += zz * zz;
-        }
+        for (uint32_t i = starts_[k]; i < starts_[k + 1]; ++i) f(positions_[i]);
       }
     }
-  if (n < min_points) return -1;
+}
+
+bool HardVoxelPoints::BoxMoments(const VoxelGrid& grid, const Coord& lo, const Coord& hi,
+                                 Moments& m) const {
+  Coord a, b;
+  for (int d = 0; d < 3; ++d) {
+    a[d] = std::max(lo[d], 0);
+    b[d] = std::min(hi[d], grid.dim(d) - 1);
+    if (a[d] > b[d]) return false;
+  }
+  // Sums relative to the box's centre, so that they stay small.
+  const double cx = 0.5 * (a.x + b.x + 1), cy = 0.5 * (a.y + b.y + 1), cz = 0.5 * (a.z + b.z + 1);
+  double n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+  ForEachPoint(grid, a, b, [&](const std::array<float, 3>& p) {
+    const double x = p[0] - cx, y = p[1] - cy, z = p[2] - cz;
+    n += 1;
+    sx += x, sy += y, sz += z;
+    sxx += x * x, sxy += x * y, sxz += x * z;
+    syy += y * y, syz += y * z, szz += z * z;
+  });
+  m.n = n;
+  if (n == 0) return true;
   const double mx = sx / n, my = sy / n, mz = sz / n;
-  const double smallest =
-      SmallestEigenvalue(sxx / n - mx * mx, sxy / n - mx * my, sxz / n - mx * mz,
-                         syy / n - my * my, syz / n - my * mz, szz / n - mz * mz);
+  m.cov = {sxx / n - mx * mx, sxy / n - mx * my, sxz / n - mx * mz,
+           syy / n - my * my, syz / n - my * mz, szz / n - mz * mz};
+  return true;
+}
+
+double HardVoxelPoints::PlaneSpread(const VoxelGrid& grid, const Coord& lo, const Coord& hi,
+                                    int min_points) const {
+  Moments m;
+  if (!BoxMoments(grid, lo, hi, m) || m.n < min_points) return -1;
+  const auto& c = m.cov;
+  const double smallest = SmallestEigenvalue(c[0], c[1], c[2], c[3], c[4], c[5]);
   return std::sqrt(std::max(0.0, smallest));
+}
+
+bool HardVoxelPoints::PlaneNormal(const VoxelGrid& grid, const Coord& lo, const Coord& hi,
+                                  std::array<double, 3>& normal, int min_points) const {
+  Moments m;
+  if (!BoxMoments(grid, lo, hi, m) || m.n < min_points) return false;
+  const auto& c = m.cov;
+  const double lambda = SmallestEigenvalue(c[0], c[1], c[2], c[3], c[4], c[5]);
+  // The eigenvector spans the null space of C - lambda I: the largest cross product of two of
+  // its rows (any two independent rows give it; the largest is the best conditioned).
+  const std::array<std::array<double, 3>, 3> r = {{{c[0] - lambda, c[1], c[2]},
+                                                    {c[1], c[3] - lambda, c[4]},
+                                                    {c[2], c[4], c[5] - lambda}}};
+  double best = 0;
+  for (int i = 0; i < 3; ++i) {
+    const auto& u = r[i];
+    const auto& v = r[(i + 1) % 3];
+    const std::array<double, 3> x = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                     u[0] * v[1] - u[1] * v[0]};
+    const double len2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+    if (len2 > best) {
+      best = len2;
+      const double inv = 1 / std::sqrt(len2);
+      normal = {x[0] * inv, x[1] * inv, x[2] * inv};
+    }
+  }
+  return best > 0;
+}
+
+double HardVoxelPoints::NearestDistance(const VoxelGrid& grid, const Coord& c, int radius) const {
+  Coord a, b;
+  for (int d = 0; d < 3; ++d) {
+    a[d] = std::max(c[d] - radius, 0);
+    b[d] = std::min(c[d] + radius, grid.dim(d) - 1);
+  }
+  double best2 = static_cast<double>(radius + 1) * (radius + 1);
+  ForEachPoint(grid, a, b, [&](const std::array<float, 3>& p) {
+    const double x = p[0] - (c.x + 0.5), y = p[1] - (c.y + 0.5), z = p[2] - (c.z + 0.5);
+    best2 = std::min(best2, x * x + y * y + z * z);
+  });
+  return std::sqrt(best2);
 }
 
 }  // namespace membrane

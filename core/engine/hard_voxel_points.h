@@ -32,9 +32,31 @@ class HardVoxelPoints {
   double PlaneSpread(const VoxelGrid& grid, const Coord& lo, const Coord& hi,
                      int min_points = 4) const;
 
+  // The unit normal of the points' best-fitting plane in the box [lo, hi] (as PlaneSpread):
+  // the eigenvector of the smallest eigenvalue of their covariance, its sign arbitrary. False
+  // when the box holds fewer than `min_points` points.
+  bool PlaneNormal(const VoxelGrid& grid, const Coord& lo, const Coord& hi,
+                   std::array<double, 3>& normal, int min_points = 4) const;
+
+  // The distance, in voxels, from the centre of voxel `c` to the nearest point of the voxels
+  // within Chebyshev distance `radius` of it; radius + 1 when they hold none (every point
+  // farther than `radius` voxels from the centre lies outside them).
+  double NearestDistance(const VoxelGrid& grid, const Coord& c, int radius) const;
+
   int64_t points() const { return static_cast<int64_t>(positions_.size()); }
 
  private:
+  // The count and covariance (xx, xy, xz, yy, yz, zz; voxels squared) of the points in the box
+  // [lo, hi] (clipped to the grid); false when the box is empty after clipping.
+  struct Moments {
+    double n = 0;
+    std::array<double, 6> cov{};
+  };
+  bool BoxMoments(const VoxelGrid& grid, const Coord& lo, const Coord& hi, Moments& m) const;
+  // Calls f(position) for every point of the voxels of the box [a, b] (already clipped).
+  template <typename F>
+  void ForEachPoint(const VoxelGrid& grid, const Coord& a, const Coord& b, F f) const;
+
   std::vector<int64_t> voxels_;                 // grid indices holding points, ascending
   std::vector<uint32_t> starts_;                // voxel k's points: [starts_[k], starts_[k+1])
   std::vector<std::array<float, 3>> positions_; // in voxels from the grid's origin

@@ -83,6 +83,10 @@ bool ThinPartData(const VoxelGrid& grid, int64_t index, int d, int lo, int hi,
 
 }  // namespace
 
+bool OutsideJoinedInCube(const VoxelGrid& grid, int64_t centre, int64_t a, int64_t b, int r) {
+  return JoinedInCube(grid, centre, a, b, r);
+}
+
 bool PaperIncursion(const VoxelGrid& grid, int64_t index) {
   const auto st = grid.strides();
   const VoxelState* s = grid.states().data() + index;

@@ -15,6 +15,11 @@ namespace membrane {
 // `index` must lie at least one voxel from the array border.
 bool PaperIncursion(const VoxelGrid& grid, int64_t index);
 
+// Whether the outside voxels a and b are joined by a 6-path of outside voxels inside the cube
+// of Chebyshev radius r around `centre` (clipped to the array): false when a or b lies outside
+// the cube. A breadth-first search over at most (2r + 1)^3 voxels.
+bool OutsideJoinedInCube(const VoxelGrid& grid, int64_t centre, int64_t a, int64_t b, int r);
+
 // When a thick-wall run is taken for a thin part rather than a wall with a dig behind it
 // (ChainRules::thick_wall_detour and thin_part_min_spread).
 struct ThinPartRule {

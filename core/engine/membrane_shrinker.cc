@@ -10,6 +10,7 @@
 #include "absl/types/span.h"
 #include "core/engine/closed_form_generation.h"
 #include "core/engine/gap_refill.h"
+#include "core/engine/hole_opening.h"
 #include "core/engine/handle_retry.h"
 #include "core/engine/plate_schedule.h"
 #include "core/engine/silhouette.h"
@@ -59,9 +60,10 @@ MembraneShrinker::MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options
       planes_(grid),
       finder_(grid, planes_),
       runner_(grid) {
-  // Only the thin-part exception reads the points.
-  if (options.chain.thick_wall_run > 1 && options.chain.thick_wall_detour > 0 &&
-      options.chain.thin_part_min_spread > 0 && !points.empty()) {
+  // Only the thin-part exception and the hole opening read the points.
+  const bool thin_parts = options.chain.thick_wall_run > 1 && options.chain.thick_wall_detour > 0 &&
+                          options.chain.thin_part_min_spread > 0;
+  if ((thin_parts || options.holes.enabled) && !points.empty()) {
     points_.emplace(grid, points);
   }
 }
@@ -93,6 +95,12 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
         !s.ok()) {
       return s;
     }
+  }
+  {
+    absl::StatusOr<HoleOpeningStats> holes =
+        OpenPluggedHoles(grid_, options_.holes, points_ ? &*points_ : nullptr, cancel_);
+    if (!holes.ok()) return holes.status();
+    result.holes = *holes;
   }
   {
     absl::StatusOr<GapRefillStats> refill = RefillGapChannels(grid_, options_.refill, cancel_);

@@ -73,6 +73,7 @@ struct ShrinkResult {
   int64_t preshrink_outside_voxels = 0;
   PostProcessStats post_process;
   HandleRetry handle_retry;
+  HoleOpeningStats holes;
   GapRefillStats refill;
   double seconds = 0.0;
 };
@@ -82,8 +83,9 @@ using GenerationCallback = std::function<void(const GenerationStats&)>;
 
 // Shrinks the initial membrane of `grid` (as built by Voxelize from `points`) into the final
 // DMS. The points are read by the thin-part exception of the thick-wall incursion test
-// (ChainRules::thin_part_min_spread, incursion_test.h); they are indexed once (12 bytes a
-// point and 12 a hard voxel, held during the shrink) when that exception is on.
+// (ChainRules::thin_part_min_spread, incursion_test.h) and by the opening of plugged holes
+// (ShrinkOptions::holes, hole_opening.h); they are indexed once (12 bytes a point and 12 a
+// hard voxel, held during the shrink) when either is on.
 // `generations` holds the rows of the generations kept: after a kept handle retry, the retry's
 // rows (handle_retry set) replace the first run's from HandleRetry::from_generation on.
 // `on_generation` sees every first-run row as it finishes, then, when a retry is kept, the
@@ -97,7 +99,8 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, absl::Span<const Po
                                             const CancelToken& cancel);
 
 // The same without the points: the thin-part exception finds no data on both sides of a run
-// and never applies (the thick-wall test fires as with thick_wall_detour 0).
+// and never applies (the thick-wall test fires as with thick_wall_detour 0), and no plugged
+// hole is opened.
 absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions& options,
                                             const GenerationCallback& on_generation,
                                             const CancelToken& cancel);
@@ -121,7 +124,7 @@ class MembraneShrinker {
   // Keeps references to `grid` (as built by Voxelize from `points`), `options` (valid by
   // ValidateShrinkOptions) and `cancel`, which must outlive the shrinker. Takes the plate sizes
   // and labels of the grid's data box (Algorithm 1); allocates no planes yet. Indexes the
-  // points when the thin-part exception reads them (ShrinkMembrane).
+  // points when the thin-part exception or the hole opening reads them (ShrinkMembrane).
   MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options, const CancelToken& cancel,
                    absl::Span<const Point3f> points = {});
 
@@ -173,7 +176,7 @@ class MembraneShrinker {
   WorkPlanes planes_;  // allocated at the first snapshot or closed form
   PlaceFinder finder_;
   ChainRunner runner_;
-  std::optional<HardVoxelPoints> points_;  // when the thin-part exception reads them
+  std::optional<HardVoxelPoints> points_;  // when the thin-part exception or holes read them
 };
 
 }  // namespace membrane

@@ -32,8 +32,9 @@ bool HasOutsideFaceNeighbour(const VoxelState* s, int64_t i, const std::array<in
   return false;
 }
 
-// Makes voxel i outside and restores the invariants around it.
-void Carve(VoxelGrid& grid, int64_t i) {
+}  // namespace
+
+void CarveToOutside(VoxelGrid& grid, int64_t i) {
   const std::array<int64_t, 27>& offsets = grid.block_offsets();
   VoxelState* s = grid.mutable_states().data();
   s[i] = OutsideState(0);
@@ -43,8 +44,6 @@ void Carve(VoxelGrid& grid, int64_t i) {
     if (IsFaceStep(k) && n == kBoundarySoft) n = kBoundaryFrozen;
   }
 }
-
-}  // namespace
 
 absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
                                                          const CancelToken& cancel,
@@ -157,7 +156,7 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
     for (int64_t i = exit; i != target; i = parent[i]) {
       const uint32_t object = NeighbourhoodMask(grid, i, [](VoxelState v) { return !IsOutside(v); });
       if (!IsSimple(object)) break;
-      Carve(grid, i);
+      CarveToOutside(grid, i);
       ++stats.carved_voxels;
     }
   }

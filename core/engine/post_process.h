@@ -18,6 +18,12 @@ struct PostProcessStats {
   int64_t bridge_voxels = 0;  // voxels added by BridgeMembraneContacts
 };
 
+// Makes the non-outside voxel `index` (not on the array border) outside with generation label 0
+// and restores the membrane invariants around it: inside voxels 26-adjacent to it become
+// BOUNDARY, soft boundary ones 6-adjacent to it FROZEN (Property 3). Reads and writes only its
+// 3x3x3 block.
+void CarveToOutside(VoxelGrid& grid, int64_t index);
+
 // For every INSIDE hard voxel, finds the shortest 6-path of soft non-outside voxels from it to
 // a voxel with an outside face neighbour (within `max_path` steps) and carves the path from the
 // outside end inwards, each voxel only if it is (26,6)-simple, so shells and genus never change

@@ -64,6 +64,18 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
         "thin_part_min_spread %g is out of range [0, 8] voxels (0 = not read)",
         o.chain.thin_part_min_spread));
   }
+  const HoleOpeningOptions& h = o.holes;
+  if (h.max_plug < 1 || h.max_plug > 32 || h.ring_radius < 2 || h.ring_radius > 16 ||
+      h.join_radius < 1 || h.join_radius > 64 || h.min_data_rays < 1 || h.min_sectors < 0 ||
+      h.min_sectors > 8 || h.max_openings < 0 || !(h.max_facing_cos > 0 && h.max_facing_cos <= 1) ||
+      !(h.min_clearance >= 0 && h.min_clearance <= 4)) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "hole opening options out of range: max_plug %d [1, 32], ring_radius %d [2, 16], "
+        "join_radius %d [1, 64], min_data_rays %d [>= 1], min_sectors %d [0, 8], "
+        "max_openings %d [>= 0], max_facing_cos %g (0, 1], min_clearance %g [0, 4]",
+        h.max_plug, h.ring_radius, h.join_radius, h.min_data_rays, h.min_sectors,
+        h.max_openings, h.max_facing_cos, h.min_clearance));
+  }
   return absl::OkStatus();
 }
 

@@ -2,7 +2,8 @@
 // 1x, 1.25x, 1.5x and 2x its formula-(1) voxel size, and the synthetic shapes of
 // tests/engine/shrink_topology_test.cc, each shrunk once (ShrinkMembrane, default options): the
 // shells and genus against the expected ones, the shrink's wall seconds, and for every miss
-// where its handles and merges are, and what the handle retry did. See README.md.
+// where its handles and merges are, what the handle retry did and how many plugged holes were
+// opened. See README.md.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -35,7 +36,7 @@ constexpr char kUsage[] =
     "usage: bench_topology [--factors 1,1.25,1.5,2] [--models NAME,...] [--no-synthetic]\n"
     "                      [--no-real] [--locate] [--retry T,S,W] [--thick-wall-run K]\n"
     "                      [--thick-wall-detour R] [--thin-part-spread S] [--depth-bound D]\n"
-    "                      [--rerun-thin K]\n"
+    "                      [--rerun-thin K] [--no-hole-opening]\n"
     "                      [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
@@ -52,6 +53,7 @@ constexpr char kUsage[] =
     "  --rerun-thin K   when a result has handles, shrink the grid again with a thick-wall run\n"
     "                   of K and keep that result if it has fewer handles and no fewer shells\n"
     "                   (a candidate rule measured here; its time is added to the row's)\n"
+    "  --no-hole-opening  leave plugged holes closed (ShrinkOptions::holes.enabled false)\n"
     "  --shared DIR     the shared folder holding data/clouds (default: $MEMBRANE_SHARED_DIR,\n"
     "                   else <repo>/../shared)\n";
 
@@ -100,6 +102,8 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.depth_bound)) return false;
     } else if (arg == "--rerun-thin" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.rerun_thin)) return false;
+    } else if (arg == "--no-hole-opening") {
+      o.shrink.holes.enabled = false;
     } else if (arg == "--no-synthetic") {
       o.synthetic = false;
     } else if (arg == "--no-real") {
@@ -123,6 +127,7 @@ bool Selected(const Options& o, const std::string& name) {
 struct Tally {
   int right = 0, runs = 0;
   double seconds = 0;
+  double hole_seconds = 0;  // of which the opening of plugged holes
 };
 
 // What the handle retry did, when it ran.
@@ -185,6 +190,7 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
     }
   }
   tally.seconds += seconds;
+  tally.hole_seconds += result->holes.seconds;
   InvariantOptions io;
   io.expected_hard_voxels = vox->hard_voxels;
   const absl::Status inv = CheckMembraneInvariants(vox->grid, io);
@@ -194,7 +200,9 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
                      (!genus_asserted || genus == expected.genus);
   tally.right += right;
   const auto& d = vox->grid.dims();
-  std::printf("%s%12s %7.3f  %-16s %-16s %s%s%s%s\n", row.c_str(),
+  const std::string holes_note =
+      result->holes.opened > 0 ? absl::StrCat("  holes opened: ", result->holes.opened) : "";
+  std::printf("%s%12s %7.3f  %-16s %-16s %s%s%s%s%s\n", row.c_str(),
               absl::StrCat(d[0], "x", d[1], "x", d[2]).c_str(), seconds,
               absl::StrCat(topo.shells, " / [", absl::StrJoin(genus, ","), "]").c_str(),
               genus_asserted ? absl::StrCat(expected.shells, " / [",
@@ -202,7 +210,7 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
                                    .c_str()
                              : absl::StrCat(expected.shells, " / -").c_str(),
               right ? "ok" : "MISS", inv.ok() ? "" : absl::StrCat(" ", inv.ToString()).c_str(),
-              RetryNote(result->handle_retry).c_str(), rerun_note.c_str());
+              RetryNote(result->handle_retry).c_str(), holes_note.c_str(), rerun_note.c_str());
   if (!right && o.locate) {
     std::printf("%s", testing::LocateHandlesAndContacts(vox->grid).c_str());
   }
@@ -282,10 +290,10 @@ int Main(int argc, char** argv) {
   Tally real, synthetic;
   if (o.real) RunReal(o, real);
   if (o.synthetic) RunSynthetic(o, synthetic);
-  std::printf("right: real %d of %d (shrink %.2f s), synthetic %d of %d (shrink %.2f s); load "
-              "average %s\n",
-              real.right, real.runs, real.seconds, synthetic.right, synthetic.runs,
-              synthetic.seconds, LoadAverage().c_str());
+  std::printf("right: real %d of %d (shrink %.2f s, hole opening %.3f s), synthetic %d of %d "
+              "(shrink %.2f s, hole opening %.3f s); load average %s\n",
+              real.right, real.runs, real.seconds, real.hole_seconds, synthetic.right,
+              synthetic.runs, synthetic.seconds, synthetic.hole_seconds, LoadAverage().c_str());
   return 0;
 }
 

@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <functional>
 
-#include "core/engine/local_topology.h"
 #include "core/engine/membrane_invariants.h"
 #include "core/engine/voxel_topology.h"
+#include "tests/engine/final_membrane_states.h"
 
 namespace membrane {
 namespace {
@@ -38,14 +38,7 @@ VoxelGrid Box(const BoxPredicate& gap, const BoxPredicate& carved) {
           grid.set(v, skin && !gap(x, y, z) ? kInsideHard : kInsideSoft);
         }
       }
-  for (int64_t v = 0; v < grid.size(); ++v) {
-    if (IsOutside(grid.at(v)) || grid.OnArrayBorder(grid.CoordOf(v))) continue;
-    const uint32_t outside = OutsideMask(grid, v);
-    if ((outside & ~kCentreBit) == 0) continue;
-    VoxelState s = grid.at(v) | kBoundaryBit;
-    if (s == kBoundarySoft && (outside & FaceNeighboursMask()) != 0) s = kBoundaryFrozen;
-    grid.set(v, s);
-  }
+  SetFinalMembraneStates(grid);
   return grid;
 }
 

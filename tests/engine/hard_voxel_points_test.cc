@@ -1,5 +1,7 @@
 #include "core/engine/hard_voxel_points.h"
 
+#include <array>
+#include <cmath>
 #include <vector>
 
 #include "gtest/gtest.h"
@@ -47,6 +49,31 @@ TEST(HardVoxelPointsTest, TooFewPointsAreNoEvidence) {
   EXPECT_NEAR(index.PlaneSpread(g, Coord{3, 3, 3}, Coord{5, 5, 5}, 3), 0.0, 1e-3);
   // A box past the array holds nothing.
   EXPECT_EQ(index.PlaneSpread(g, Coord{12, 0, 0}, Coord{14, 2, 2}, 1), -1);
+}
+
+// The plane's normal, whichever way it points; none without enough points.
+TEST(HardVoxelPointsTest, PlaneNormalIsAcrossThePlane) {
+  std::vector<Point3f> points;
+  AddPlane(4.5f, points);
+  const VoxelGrid g = UnitGrid();
+  const HardVoxelPoints index(g, points);
+  std::array<double, 3> n{};
+  ASSERT_TRUE(index.PlaneNormal(g, Coord{3, 3, 3}, Coord{5, 5, 5}, n));
+  EXPECT_NEAR(std::abs(n[0]), 1.0, 1e-6);
+  EXPECT_NEAR(n[1], 0.0, 1e-6);
+  EXPECT_NEAR(n[2], 0.0, 1e-6);
+  EXPECT_FALSE(index.PlaneNormal(g, Coord{7, 7, 7}, Coord{9, 9, 9}, n));
+}
+
+TEST(HardVoxelPointsTest, NearestDistanceFromAVoxelCentre) {
+  const std::vector<Point3f> points = {{4.5f, 4.5f, 6.0f}};
+  const VoxelGrid g = UnitGrid();
+  const HardVoxelPoints index(g, points);
+  // Voxel (4, 4, 4)'s centre is (4.5, 4.5, 4.5): 1.5 from the point, which lies in voxel z 6.
+  EXPECT_NEAR(index.NearestDistance(g, Coord{4, 4, 4}, 2), 1.5, 1e-6);
+  // Outside the searched voxels: radius + 1.
+  EXPECT_EQ(index.NearestDistance(g, Coord{4, 4, 4}, 1), 2.0);
+  EXPECT_EQ(index.NearestDistance(g, Coord{0, 0, 0}, 1), 2.0);
 }
 
 }  // namespace

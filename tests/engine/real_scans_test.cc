@@ -43,9 +43,7 @@ struct KnownMiss {
 constexpr KnownMiss kKnownMisses[] = {
     {"spot-scan", 1.25},          {"cow-spot-belt-scan", 1.0},
     {"cow-spot-belt-scan", 1.25}, {"cow-spot-belt-scan", 1.5},
-    {"cow-spot-belt-scan", 2.0},  {"pierced-disk-scan", 1.0},
-    {"pierced-disk-scan", 1.25},  {"pierced-disk-scan", 1.5},
-    {"pierced-disk-scan", 2.0},
+    {"cow-spot-belt-scan", 2.0},  {"pierced-disk-scan", 2.0},
 };
 
 bool IsKnownMiss(const ScanRun& run) {

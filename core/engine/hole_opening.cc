@@ -1,0 +1,219 @@
+#include "core/engine/hole_opening.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "core/engine/incursion_test.h"
+#include "core/engine/post_process.h"
+#include "core/engine/voxel_topology.h"
+
+namespace membrane {
+namespace {
+
+// The 26 lattice directions (each of the 13 lines in both senses).
+constexpr std::array<Coord, 26> kDirections = [] {
+  std::array<Coord, 26> dirs{};
+  int n = 0;
+  for (int z = -1; z <= 1; ++z)
+    for (int y = -1; y <= 1; ++y)
+      for (int x = -1; x <= 1; ++x)
+        if (x != 0 || y != 0 || z != 0) dirs[n++] = {x, y, z};
+  return dirs;
+}();
+
+int Dot(const Coord& a, const Coord& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+int TotalGenus(const VoxelTopology& t) { return std::accumulate(t.genus.begin(), t.genus.end(), 0); }
+
+// One plug: the non-hard voxels of a 6-step staircase from `path[0]` along `dir`, with the
+// outside voxels `before` (behind path[0]) and `after` (past the last) at its two ends.
+struct Plug {
+  Coord dir;
+  std::vector<int64_t> path;
+  int64_t before = 0, after = 0;
+};
+
+class PlugFinder {
+ public:
+  PlugFinder(const VoxelGrid& grid, const HoleOpeningOptions& o, const HardVoxelPoints& points)
+      : grid_(grid), o_(o), points_(points), s_(grid.states().data()), st_(grid.strides()) {}
+
+  // The staircase from boundary voxel i along dir, when the voxel behind it is outside and it
+  // reaches the outside through at most max_plug non-hard voxels.
+  bool Walk(int64_t i, const Coord& dir, Plug& plug) const {
+    int axes[3], m = 0;
+    for (int a = 0; a < 3; ++a)
+      if (dir[a] != 0) axes[m++] = a;
+    auto step = [&](int j) { return dir[axes[j % m]] * st_[axes[j % m]]; };
+    plug.dir = dir;
+    plug.before = i - step(m - 1);
+    if (!IsOutside(s_[plug.before])) return false;
+    plug.path.assign(1, i);
+    Coord c = grid_.CoordOf(i);
+    int64_t w = i;
+    for (int j = 0;; ++j) {
+      w += step(j);
+      c[axes[j % m]] += dir[axes[j % m]];
+      if (grid_.OnArrayBorder(c) || IsHard(s_[w])) return false;
+      if (IsOutside(s_[w])) break;
+      if (static_cast<int>(plug.path.size()) >= o_.max_plug) return false;
+      plug.path.push_back(w);
+    }
+    plug.after = w;
+    return true;
+  }
+
+  // The tests of HoleOpeningOptions but the join and the topology, cheapest first.
+  bool Surrounded(const Plug& plug) const {
+    const int64_t mid = plug.path[(plug.path.size() - 1) / 2];
+    return RaysMeetFacingData(plug.dir, mid) && DataAllAround(plug.dir, mid) && Clear(plug);
+  }
+
+ private:
+  // Rays across the plug: none reaches the outside, enough meet data, all data met faces the
+  // plug (the hole's walls, not a wall with a data hole, whose points face along the plug).
+  // The rays are walked first: the plane fits are read only where they decide.
+  bool RaysMeetFacingData(const Coord& dir, int64_t mid) const {
+    std::array<Coord, 8> hits;
+    int data = 0;
+    for (const Coord& e : kDirections) {
+      if (Dot(e, dir) != 0) continue;
+      const int64_t rs = e.x * st_[0] + e.y * st_[1] + e.z * st_[2];
+      Coord c = grid_.CoordOf(mid);
+      int64_t q = mid;
+      for (int t = 1; t <= o_.ring_radius; ++t) {
+        q += rs;
+        c = {c.x + e.x, c.y + e.y, c.z + e.z};
+        if (grid_.OnArrayBorder(c) || IsOutside(s_[q])) return false;
+        if (IsHard(s_[q])) {
+          hits[data++] = c;
+          break;
+        }
+        // Into the solid's interior: enclosed, not open.
+        if (IsInside(s_[q])) break;
+      }
+    }
+    if (data < o_.min_data_rays) return false;
+    const double len = std::sqrt(static_cast<double>(Dot(dir, dir)));
+    for (int k = 0; k < data; ++k) {
+      const Coord& c = hits[k];
+      std::array<double, 3> n;
+      if (!points_.PlaneNormal(grid_, {c.x - 1, c.y - 1, c.z - 1}, {c.x + 1, c.y + 1, c.z + 1},
+                               n) ||
+          std::abs(n[0] * dir.x + n[1] * dir.y + n[2] * dir.z) / len >= o_.max_facing_cos) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // The hard voxels near the middle voxel cover min_sectors of 8 angular sectors around the
+  // staircase's line.
+  bool DataAllAround(const Coord& dir, int64_t mid) const {
+    const double len = std::sqrt(static_cast<double>(Dot(dir, dir)));
+    const std::array<double, 3> d = {dir.x / len, dir.y / len, dir.z / len};
+    // An orthonormal pair (u, v) across d.
+    std::array<double, 3> u = std::abs(d[0]) > 0.6 ? std::array<double, 3>{0, 1, 0}
+                                                   : std::array<double, 3>{1, 0, 0};
+    const double ud = u[0] * d[0] + u[1] * d[1] + u[2] * d[2];
+    for (int k = 0; k < 3; ++k) u[k] -= ud * d[k];
+    const double ul = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (double& x : u) x /= ul;
+    const std::array<double, 3> v = {d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2],
+                                     d[0] * u[1] - d[1] * u[0]};
+    const int r = o_.ring_radius - 1;
+    const Coord c = grid_.CoordOf(mid);
+    unsigned sectors = 0;
+    for (int z = -r; z <= r; ++z)
+      for (int y = -r; y <= r; ++y)
+        for (int x = -r; x <= r; ++x) {
+          const Coord q{c.x + x, c.y + y, c.z + z};
+          if (!grid_.Contains(q) || !IsHard(s_[grid_.Index(q)])) continue;
+          if (std::abs(x * d[0] + y * d[1] + z * d[2]) > 3) continue;
+          const double pu = x * u[0] + y * u[1] + z * u[2], pv = x * v[0] + y * v[1] + z * v[2];
+          const double radial = std::hypot(pu, pv);
+          if (radial < 0.5 || radial > r) continue;
+          const double turn = (std::atan2(pv, pu) + std::numbers::pi) / (2 * std::numbers::pi);
+          sectors |= 1u << (static_cast<int>(turn * 8) & 7);
+        }
+    return std::popcount(sectors) >= o_.min_sectors;
+  }
+
+  // Every plug voxel at least min_clearance from the points.
+  bool Clear(const Plug& plug) const {
+    const int radius = static_cast<int>(std::ceil(o_.min_clearance));
+    return std::all_of(plug.path.begin(), plug.path.end(), [&](int64_t p) {
+      return points_.NearestDistance(grid_, grid_.CoordOf(p), radius) >= o_.min_clearance;
+    });
+  }
+
+  const VoxelGrid& grid_;
+  const HoleOpeningOptions& o_;
+  const HardVoxelPoints& points_;
+  const VoxelState* s_;
+  const std::array<int64_t, 3> st_;
+};
+
+}  // namespace
+
+absl::StatusOr<HoleOpeningStats> OpenPluggedHoles(VoxelGrid& grid,
+                                                  const HoleOpeningOptions& options,
+                                                  const HardVoxelPoints* points,
+                                                  const CancelToken& cancel) {
+  HoleOpeningStats stats;
+  if (!options.enabled || points == nullptr) return stats;
+  const auto start = std::chrono::steady_clock::now();
+  auto done = [&] {
+    stats.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return stats;
+  };
+  const PlugFinder finder(grid, options, *points);
+  VoxelState* s = grid.mutable_states().data();
+  std::optional<VoxelTopology> topology;  // counted at the first plug that passes every test
+  std::vector<std::pair<int64_t, VoxelState>> undo;
+  Plug plug;
+  for (int z = 1; z + 1 < grid.dim(2); ++z) {
+    if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled");
+    for (int y = 1; y + 1 < grid.dim(1); ++y) {
+      const int64_t row = grid.Index(0, y, z);
+      for (int x = 1; x + 1 < grid.dim(0); ++x) {
+        const int64_t i = row + x;
+        if (!IsBoundary(s[i]) || IsHard(s[i])) continue;
+        for (const Coord& dir : kDirections) {
+          if (stats.opened + stats.refused >= options.max_openings) return done();
+          if (!finder.Walk(i, dir, plug) || !finder.Surrounded(plug)) continue;
+          const int64_t mid = plug.path[(plug.path.size() - 1) / 2];
+          if (OutsideJoinedInCube(grid, mid, plug.before, plug.after, options.join_radius))
+            continue;
+          if (!topology) topology = ComputeVoxelTopology(grid);
+          undo.clear();
+          for (int64_t p : plug.path)
+            for (int64_t offset : grid.block_offsets()) undo.emplace_back(p + offset, s[p + offset]);
+          for (int64_t p : plug.path) CarveToOutside(grid, p);
+          VoxelTopology after = ComputeVoxelTopology(grid);
+          if (after.shells == topology->shells && after.cavities == topology->cavities &&
+              TotalGenus(after) == TotalGenus(*topology) + 1) {
+            ++stats.opened;
+            stats.carved_voxels += static_cast<int64_t>(plug.path.size());
+            topology = std::move(after);
+          } else {
+            ++stats.refused;
+            for (auto it = undo.rbegin(); it != undo.rend(); ++it) s[it->first] = it->second;
+          }
+          if (!IsBoundary(s[i]) || IsHard(s[i])) break;
+        }
+      }
+    }
+  }
+  return done();
+}
+
+}  // namespace membrane

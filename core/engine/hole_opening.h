@@ -1,0 +1,71 @@
+// Opening real holes that the shrink left plugged (issue 18; docs/engine-decisions.md "Plugged
+// holes opened from the data").
+//
+// A hole through the data narrower than the guard's tunnel plates (a disk pierced by a hole 4.8
+// voxels wide) stays closed: plates reach it from both faces, but the incursion test and the
+// topology guard cannot tell its rim from a wall with a dig behind it, so a plug of soft and
+// frozen voxels is left at its waist. After the shrink the whole membrane is known, and the
+// data tell the two apart: a real hole's plug is surrounded by data facing it (the hole's own
+// walls), its two faces are far apart through the outside, and the data leave a passage at
+// least a voxel clear; a plug over a data hole in a wall has the wall's data around it, facing
+// along the passage, and a web between thin parts has open air or more web beside it.
+#ifndef MEMBRANE_CORE_ENGINE_HOLE_OPENING_H_
+#define MEMBRANE_CORE_ENGINE_HOLE_OPENING_H_
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "core/base/cancel_token.h"
+#include "core/engine/hard_voxel_points.h"
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+struct HoleOpeningOptions {
+  bool enabled = true;
+  // Longest plug crossed: non-hard voxels on a straight 6-step staircase along one of the 13
+  // lattice directions, outside at both ends.
+  int max_plug = 8;
+  // Rays across the plug from its middle voxel, along the lattice directions perpendicular to
+  // the staircase: none may reach the outside within ring_radius voxels, at least
+  // min_data_rays meet a hard voxel, and each hard voxel met must face the plug: the normal of
+  // its points (3x3x3 voxels) makes a cosine below max_facing_cos with the staircase.
+  int ring_radius = 5;
+  int min_data_rays = 3;
+  double max_facing_cos = 0.5;
+  // The hard voxels within ring_radius - 1 of the middle voxel (and 3 voxels along the
+  // staircase) lie in at least this many of 8 angular sectors around it: data all around.
+  int min_sectors = 6;
+  // Every plug voxel's centre lies at least this far (voxels) from every point: the passage
+  // stays open in a tube of one voxel around the data.
+  double min_clearance = 1.0;
+  // The two ends are not joined through the outside inside the cube of this radius around the
+  // middle voxel: the plug closes a hole, not a notch.
+  int join_radius = 16;
+  // Plugs carved at most (each costs a topology count): bounds hostile clouds.
+  int max_openings = 32;
+};
+
+struct HoleOpeningStats {
+  int64_t opened = 0;         // plugs carved, each one more handle
+  int64_t refused = 0;        // plugs whose carving would not add exactly one handle (undone)
+  int64_t carved_voxels = 0;  // voxels turned outside
+  double seconds = 0.0;       // the search and the topology counts
+};
+
+// Input: a shrunk grid (the membrane invariants hold) and its input points (`points`; null:
+// nothing is opened, there is no evidence to read).
+// Effect: each plug that passes every test of HoleOpeningOptions, in voxel index order, is
+// carved (its staircase turned outside, generation label 0; the inside voxels beside it become
+// boundary and the soft ones on a face frozen, as the post-process's dents) when that adds
+// exactly one handle and changes no shell or cavity count (counted, ComputeVoxelTopology);
+// otherwise it is restored. The invariants still hold after it. Cancelled when `cancel` fires
+// (checked between slices; the grid is then valid with the plugs opened so far).
+absl::StatusOr<HoleOpeningStats> OpenPluggedHoles(VoxelGrid& grid,
+                                                  const HoleOpeningOptions& options,
+                                                  const HardVoxelPoints* points,
+                                                  const CancelToken& cancel);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_HOLE_OPENING_H_

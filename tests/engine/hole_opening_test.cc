@@ -1,0 +1,146 @@
+// Opening plugged holes: a slab pierced by a hole whose waist a plug closes gets its hole back
+// (one handle more); a wall whose scanner missed a disc (data around it, facing along the
+// passage) keeps its plug; without the points nothing is opened.
+#include "core/engine/hole_opening.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numeric>
+#include <vector>
+
+#include "core/engine/hard_voxel_points.h"
+#include "core/engine/membrane_invariants.h"
+#include "core/engine/voxel_topology.h"
+#include "tests/engine/final_membrane_states.h"
+
+namespace membrane {
+namespace {
+
+constexpr int kDim = 40;
+constexpr double kCx = 20.0, kCy = 20.0;  // the hole's axis (along z)
+constexpr double kRadius = 3.0;           // the hole's radius, voxels
+
+double FromAxis(double x, double y) { return std::hypot(x - kCx, y - kCy); }
+
+// A membrane as the shrink leaves it: `solid(x, y, z)` (voxel coordinates) non-outside, the rest
+// outside; voxels holding points hard; a non-outside voxel beside the outside BOUNDARY, a soft
+// one with an outside face neighbour FROZEN.
+VoxelGrid Membrane(const std::function<bool(int, int, int)>& solid,
+                   const std::vector<Point3f>& points) {
+  VoxelGrid grid({kDim, kDim, kDim}, {0, 0, 0}, 1.0, OutsideState(1));
+  for (int z = 1; z + 1 < kDim; ++z)
+    for (int y = 1; y + 1 < kDim; ++y)
+      for (int x = 1; x + 1 < kDim; ++x)
+        if (solid(x, y, z)) grid.set(grid.Index(x, y, z), kInsideSoft);
+  for (const Point3f& p : points) {
+    const Coord c{static_cast<int>(p[0]), static_cast<int>(p[1]), static_cast<int>(p[2])};
+    grid.set(c, kInsideHard);
+  }
+  SetFinalMembraneStates(grid);
+  return grid;
+}
+
+// Points every 0.25 voxel on the slab x, y in [2, 38), z in [z0, z1): its two faces (the upper
+// one only when `both_faces`), and the wall of the hole of kRadius around the axis (when
+// `hole_wall`); the faces stop at the hole.
+std::vector<Point3f> SlabPoints(double z0, double z1, bool hole_wall, bool both_faces = true) {
+  std::vector<Point3f> points;
+  for (double x = 2.125; x < 38; x += 0.25)
+    for (double y = 2.125; y < 38; y += 0.25) {
+      if (FromAxis(x, y) < kRadius) continue;
+      points.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(z0)});
+      if (both_faces)
+        points.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(z1)});
+    }
+  if (hole_wall) {
+    for (double z = z0 + 0.125; z < z1; z += 0.25)
+      for (int k = 0; k < 128; ++k) {
+        const double a = 2 * M_PI * k / 128;
+        points.push_back({static_cast<float>(kCx + kRadius * std::cos(a)),
+                          static_cast<float>(kCy + kRadius * std::sin(a)), static_cast<float>(z)});
+      }
+  }
+  return points;
+}
+
+// The slab x, y in [2, 38), z in [10, 30), pierced along the axis except at its waist, z in
+// [18, 22): the plug.
+bool PluggedSlab(int x, int y, int z) {
+  const bool slab = x >= 2 && x < 38 && y >= 2 && y < 38 && z >= 10 && z < 30;
+  const bool hole = FromAxis(x + 0.5, y + 0.5) < kRadius && (z < 18 || z >= 22);
+  return slab && !hole;
+}
+
+int Genus(const VoxelGrid& grid) {
+  const VoxelTopology t = ComputeVoxelTopology(grid);
+  return std::accumulate(t.genus.begin(), t.genus.end(), 0);
+}
+
+// A slab 20 voxels thick pierced by a hole 6 voxels wide, closed at its waist by a plug 4 voxels
+// thick (soft: no data inside the hole): the hole's wall is data all around, facing the plug.
+TEST(HoleOpeningTest, OpensAPlugRimmedByTheHolesWall) {
+  const std::vector<Point3f> points = SlabPoints(10, 30, /*hole_wall=*/true);
+  VoxelGrid grid = Membrane(PluggedSlab, points);
+  const HardVoxelPoints index(grid, points);
+  ASSERT_EQ(Genus(grid), 0);
+  absl::StatusOr<HoleOpeningStats> stats =
+      OpenPluggedHoles(grid, HoleOpeningOptions(), &index, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->opened, 1);
+  EXPECT_EQ(stats->carved_voxels, 4);
+  const VoxelTopology t = ComputeVoxelTopology(grid);
+  EXPECT_EQ(t.shells, 1);
+  EXPECT_EQ(t.cavities, 0);
+  EXPECT_EQ(Genus(grid), 1);
+  InvariantOptions io;
+  io.require_property3 = true;
+  EXPECT_TRUE(CheckMembraneInvariants(grid, io).ok()) << CheckMembraneInvariants(grid, io);
+
+  // Options off, or no points: nothing opens.
+  VoxelGrid again = Membrane(PluggedSlab, points);
+  HoleOpeningOptions off;
+  off.enabled = false;
+  EXPECT_EQ(OpenPluggedHoles(again, off, &index, CancelToken::Never())->opened, 0);
+  EXPECT_EQ(OpenPluggedHoles(again, HoleOpeningOptions(), nullptr, CancelToken::Never())->opened,
+            0);
+  EXPECT_EQ(Genus(again), 0);
+}
+
+// A wall 2 voxels thick, outside on both sides (a dig behind a scanned wall), scanned on one
+// face, where the scanner missed a disc 6 voxels wide: the data around the gap are the wall's
+// face, facing along the passage, so the gap is a data hole of one surface, not a hole through
+// the object.
+TEST(HoleOpeningTest, KeepsAWallsDataHoleClosed) {
+  const std::vector<Point3f> points =
+      SlabPoints(18, 19.99, /*hole_wall=*/false, /*both_faces=*/false);
+  VoxelGrid grid = Membrane(
+      [](int x, int y, int z) { return x >= 2 && x < 38 && y >= 2 && y < 38 && z >= 18 && z < 20; },
+      points);
+  const std::vector<VoxelState> before = grid.states();
+  const HardVoxelPoints index(grid, points);
+  absl::StatusOr<HoleOpeningStats> stats =
+      OpenPluggedHoles(grid, HoleOpeningOptions(), &index, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->opened, 0);
+  EXPECT_EQ(grid.states(), before);
+  // The facing of the data is what keeps it: without that test the plug is opened.
+  HoleOpeningOptions any_facing;
+  any_facing.max_facing_cos = 2;
+  EXPECT_EQ(OpenPluggedHoles(grid, any_facing, &index, CancelToken::Never())->opened, 1);
+  EXPECT_EQ(Genus(grid), 1);
+}
+
+TEST(HoleOpeningTest, Cancels) {
+  const std::vector<Point3f> points = SlabPoints(10, 30, /*hole_wall=*/true);
+  VoxelGrid grid = Membrane([](int, int y, int) { return y >= 2; }, points);
+  const HardVoxelPoints index(grid, points);
+  CancelToken cancelled;
+  cancelled.Cancel();
+  EXPECT_EQ(OpenPluggedHoles(grid, HoleOpeningOptions(), &index, cancelled).status().code(),
+            absl::StatusCode::kCancelled);
+}
+
+}  // namespace
+}  // namespace membrane

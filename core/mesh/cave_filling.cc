@@ -8,6 +8,7 @@
 #include "core/engine/huge_page_allocator.h"
 #include "core/engine/local_topology.h"
 #include "core/engine/voxel_state_words.h"
+#include "core/mesh/border_flood.h"
 
 namespace membrane {
 namespace {
@@ -73,90 +74,6 @@ void BoxFilter(const VoxelGrid& grid, Mask& mask, Mask& tmp, char beyond, int th
   }
 }
 
-// For the voxels from..to (one row segment): each run of open voxels (deep, not reached) gets
-// its first voxel marked reached and pushed on `stack`. Eight voxels at a time where they are
-// all closed, or all open inside a run already seeded: the flood scans every filled run's four
-// neighbour rows, and most of those bytes are one or the other.
-void SeedRuns(const char* deep, char* reached, int64_t from, int64_t to,
-              std::vector<int64_t>& stack) {
-  constexpr uint64_t kAllOpen = 0x0101010101010101ull;
-  bool in_run = false;
-  for (int64_t i = from; i <= to;) {
-    if (to - i >= 7) {
-      uint64_t d, r;
-      std::memcpy(&d, deep + i, 8);
-      std::memcpy(&r, reached + i, 8);
-      const uint64_t open = d & ~r;  // bytes are 0 or 1
-      if (open == 0) {
-        in_run = false;
-        i += 8;
-        continue;
-      }
-      if (open == kAllOpen && in_run) {
-        i += 8;
-        continue;
-      }
-    }
-    const bool open = deep[i] && !reached[i];
-    if (open && !in_run) {
-      reached[i] = 1;
-      stack.push_back(i);
-    }
-    in_run = open;
-    ++i;
-  }
-}
-
-// reached := the voxels of `deep` 6-connected to a deep voxel on the array border.
-Mask FloodFromBorder(const VoxelGrid& grid, const Mask& deep) {
-  const int n[3] = {grid.dim(0), grid.dim(1), grid.dim(2)};
-  const int64_t step[3] = {1, n[0], int64_t{n[0]} * n[1]};
-  Mask reached(deep.size(), 0);
-  std::vector<int64_t> stack;
-  // The border voxels are marked but never expanded (their neighbours may not exist). Every
-  // voxel one layer in is interior; those touching a deep border voxel seed the flood, and
-  // every voxel the flood reaches from them is interior or already marked.
-  for (int z = 0; z < n[2]; ++z)
-    for (int y = 0; y < n[1]; ++y)
-      for (int x = 0; x < n[0]; ++x) {
-        const int c[3] = {x, y, z};
-        int on_border = 0, on_layer1 = 0;
-        for (int a = 0; a < 3; ++a) {
-          on_border |= c[a] == 0 || c[a] == n[a] - 1;
-          on_layer1 |= c[a] == 1 || c[a] == n[a] - 2;
-        }
-        if (!on_border && !on_layer1) {
-          x = n[0] - 3;  // jump to the far layer-1 voxel of this row
-          continue;
-        }
-        const int64_t i = grid.Index(x, y, z);
-        if (on_border) {
-          if (deep[i]) reached[i] = 1;
-          continue;
-        }
-        if (!deep[i]) continue;
-        for (int a = 0; a < 3; ++a)
-          if ((c[a] == 1 && deep[i - step[a]]) || (c[a] == n[a] - 2 && deep[i + step[a]])) {
-            reached[i] = 1;
-            stack.push_back(i);
-            break;
-          }
-      }
-  // Scanline flood: each popped seed is extended into its whole run along x, and each run
-  // seeds the rows next to it; memory is read row by row instead of voxel by voxel.
-  while (!stack.empty()) {
-    const int64_t seed = stack.back();
-    stack.pop_back();
-    int64_t lo = seed, hi = seed;
-    while (deep[lo - 1] && !reached[lo - 1]) reached[--lo] = 1;
-    while (deep[hi + 1] && !reached[hi + 1]) reached[++hi] = 1;
-    for (int a = 1; a < 3; ++a)
-      for (int64_t offset : {-step[a], step[a]})
-        SeedRuns(deep.data(), reached.data(), lo + offset, hi + offset, stack);
-  }
-  return reached;
-}
-
 // True when one of the 8 voxels at `states` is outside while its `near` byte is 0.
 bool AnyCave(const VoxelState* states, const char* near) {
   uint64_t n;
@@ -181,16 +98,22 @@ int64_t FillCaves(VoxelGrid& grid, int threads) {
   RunTasks(threads, d[2], [deep_bytes, s, plane](int, int64_t z) {
     for (int64_t i = z * plane; i < (z + 1) * plane; ++i) deep_bytes[i] = IsOutside(s[i]) ? 1 : 0;
   });
-  // Two grid-sized masks at a time, not three: the erosion's scratch goes before the flood
-  // makes its mask, and `deep`, read by the flood alone, is the dilation's scratch (the filter
-  // writes every byte of its scratch before reading it). On a 10M-point cloud's grid of 2e9
-  // voxels a mask is 2 GB.
+  // Two grid-sized masks at a time, not three: the erosion's scratch goes before the
+  // dilation makes its mask, and the flood holds two bit masks (a quarter byte a voxel) beside
+  // `deep`. On a 10M-point cloud's grid of 2e9 voxels a mask is 2 GB.
   {
     Mask scratch(n);
     BoxFilter</*kErode=*/true>(grid, deep, scratch, /*beyond=*/1, threads);
   }
-  Mask near_exterior = FloodFromBorder(grid, deep);
-  BoxFilter</*kErode=*/false>(grid, near_exterior, deep, /*beyond=*/0, threads);
+  // The flood runs on bits (64 voxels a word): it reads the rows next to every run of the
+  // exterior, most of the grid. Its result goes back into `deep`'s bytes for the dilation.
+  {
+    const VoxelBits reached = FloodFromBorder(d, PackVoxelBits(deep.data(), n, threads));
+    UnpackVoxelBits(reached, n, deep.data(), threads);
+  }
+  Mask near_exterior(n);
+  BoxFilter</*kErode=*/false>(grid, deep, near_exterior, /*beyond=*/0, threads);
+  near_exterior.swap(deep);
   Mask().swap(deep);
 
   // Each inner plane lists its caves in index order; the lists joined in plane order are the

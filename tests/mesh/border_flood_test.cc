@@ -1,0 +1,119 @@
+#include "core/mesh/border_flood.h"
+
+#include <array>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "gtest/gtest.h"
+
+namespace membrane {
+namespace {
+
+// Plain breadth-first flood, one voxel at a time, from every open border voxel.
+std::vector<char> ReferenceFlood(const std::array<int, 3>& n, const std::vector<char>& open) {
+  const int64_t sy = n[0], sz = int64_t{n[0]} * n[1];
+  std::vector<char> reached(open.size(), 0);
+  std::vector<int64_t> queue;
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x) {
+        const bool border = x == 0 || y == 0 || z == 0 || x == n[0] - 1 || y == n[1] - 1 ||
+                            z == n[2] - 1;
+        const int64_t i = x + y * sy + z * sz;
+        if (border && open[i]) {
+          reached[i] = 1;
+          queue.push_back(i);
+        }
+      }
+  for (size_t head = 0; head < queue.size(); ++head) {
+    const int64_t i = queue[head];
+    const int c[3] = {static_cast<int>(i % sy), static_cast<int>(i / sy % n[1]),
+                      static_cast<int>(i / sz)};
+    const int64_t step[3] = {1, sy, sz};
+    for (int a = 0; a < 3; ++a)
+      for (int dir : {-1, 1}) {
+        const int to = c[a] + dir;
+        if (to < 0 || to >= n[a]) continue;
+        const int64_t j = i + dir * step[a];
+        if (open[j] && !reached[j]) {
+          reached[j] = 1;
+          queue.push_back(j);
+        }
+      }
+  }
+  return reached;
+}
+
+// A random grid: open voxels with probability `fill`, then closed-walled boxes whose insides
+// are open (caves unless a random gap in a wall lets the flood in).
+std::vector<char> RandomGridWithCaves(const std::array<int, 3>& n, double fill, std::mt19937& rng) {
+  std::vector<char> open(int64_t{n[0]} * n[1] * n[2]);
+  std::bernoulli_distribution is_open(fill);
+  for (char& v : open) v = is_open(rng) ? 1 : 0;
+  const int64_t sy = n[0], sz = int64_t{n[0]} * n[1];
+  for (int box = 0; box < 4; ++box) {
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      std::uniform_int_distribution<int> start(0, n[a] - 3);
+      lo[a] = start(rng);
+      std::uniform_int_distribution<int> end(lo[a] + 2, n[a] - 1);
+      hi[a] = end(rng);
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          const bool wall = x == lo[0] || x == hi[0] || y == lo[1] || y == hi[1] ||
+                            z == lo[2] || z == hi[2];
+          open[x + y * sy + z * sz] = wall ? 0 : 1;
+        }
+    if (box % 2 == 1) open[(lo[0] + hi[0]) / 2 + (lo[1] + hi[1]) / 2 * sy + lo[2] * sz] = 1;
+  }
+  return open;
+}
+
+TEST(BorderFlood, EqualsAPlainFloodOnRandomGridsWithCaves) {
+  std::mt19937 rng(21);
+  int64_t caves = 0, reached_total = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::uniform_int_distribution<int> side(3, trial < 250 ? 24 : 90);
+    const std::array<int, 3> n = {side(rng), side(rng), side(rng)};
+    const double fill = std::uniform_real_distribution<double>(0.2, 0.95)(rng);
+    const std::vector<char> open = RandomGridWithCaves(n, fill, rng);
+    const int64_t count = static_cast<int64_t>(open.size());
+    const VoxelBits bits = PackVoxelBits(open.data(), count, /*threads=*/trial % 3);
+    const VoxelBits reached = FloodFromBorder(n, bits);
+    std::vector<char> got(open.size(), 7);
+    UnpackVoxelBits(reached, count, got.data(), /*threads=*/2);
+    const std::vector<char> want = ReferenceFlood(n, open);
+    ASSERT_EQ(got, want) << "trial " << trial << " dims " << n[0] << "x" << n[1] << "x" << n[2];
+    for (int64_t i = 0; i < count; ++i) {
+      caves += open[i] && !want[i];
+      reached_total += want[i];
+    }
+    // No bit past the last voxel.
+    if (count % 64 != 0) {
+      EXPECT_EQ(reached.back() >> (count % 64), 0u);
+    }
+  }
+  // The grids hold both: open voxels the flood reaches and open voxels it cannot.
+  EXPECT_GT(caves, 1000);
+  EXPECT_GT(reached_total, 1000);
+}
+
+TEST(BorderFlood, PackAndUnpackRoundTrip) {
+  std::mt19937 rng(5);
+  for (int64_t count : {1, 63, 64, 65, 1000, 70000}) {
+    std::vector<char> bytes(count);
+    for (char& b : bytes) b = static_cast<char>(rng() & 1);
+    const VoxelBits bits = PackVoxelBits(bytes.data(), count, 2);
+    ASSERT_EQ(bits.size(), static_cast<size_t>((count + 63) / 64));
+    for (int64_t i = 0; i < count; ++i) ASSERT_EQ((bits[i >> 6] >> (i & 63)) & 1, uint64_t(bytes[i]));
+    std::vector<char> back(count, 5);
+    UnpackVoxelBits(bits, count, back.data(), 1);
+    EXPECT_EQ(back, bytes);
+  }
+}
+
+}  // namespace
+}  // namespace membrane

@@ -13,6 +13,7 @@
 #include "core/engine/incursion_test.h"
 #include "core/engine/post_process.h"
 #include "core/engine/voxel_topology.h"
+#include "core/geometry/vec3.h"
 
 namespace membrane {
 namespace {
@@ -28,7 +29,10 @@ constexpr std::array<Coord, 26> kDirections = [] {
   return dirs;
 }();
 
-int Dot(const Coord& a, const Coord& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+// Zero when two lattice directions are perpendicular.
+int CoordDot(const Coord& a, const Coord& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+Vec3d ToVec3d(const Coord& c) { return {double(c.x), double(c.y), double(c.z)}; }
 
 int TotalGenus(const VoxelTopology& t) { return std::accumulate(t.genus.begin(), t.genus.end(), 0); }
 
@@ -84,7 +88,7 @@ class PlugFinder {
     std::array<Coord, 8> hits;
     int data = 0;
     for (const Coord& e : kDirections) {
-      if (Dot(e, dir) != 0) continue;
+      if (CoordDot(e, dir) != 0) continue;
       const int64_t rs = e.x * st_[0] + e.y * st_[1] + e.z * st_[2];
       Coord c = grid_.CoordOf(mid);
       int64_t q = mid;
@@ -101,13 +105,14 @@ class PlugFinder {
       }
     }
     if (data < o_.min_data_rays) return false;
-    const double len = std::sqrt(static_cast<double>(Dot(dir, dir)));
+    const Vec3d along = ToVec3d(dir);
+    const double len = Norm(along);
     for (int k = 0; k < data; ++k) {
       const Coord& c = hits[k];
-      std::array<double, 3> n;
+      Vec3d n;
       if (!points_.PlaneNormal(grid_, {c.x - 1, c.y - 1, c.z - 1}, {c.x + 1, c.y + 1, c.z + 1},
                                n) ||
-          std::abs(n[0] * dir.x + n[1] * dir.y + n[2] * dir.z) / len >= o_.max_facing_cos) {
+          std::abs(Dot(n, along)) / len >= o_.max_facing_cos) {
         return false;
       }
     }
@@ -117,17 +122,15 @@ class PlugFinder {
   // The hard voxels near the middle voxel cover min_sectors of 8 angular sectors around the
   // staircase's line.
   bool DataAllAround(const Coord& dir, int64_t mid) const {
-    const double len = std::sqrt(static_cast<double>(Dot(dir, dir)));
-    const std::array<double, 3> d = {dir.x / len, dir.y / len, dir.z / len};
+    const Vec3d along = ToVec3d(dir);
+    const double len = Norm(along);
+    const Vec3d d = {along[0] / len, along[1] / len, along[2] / len};
     // An orthonormal pair (u, v) across d.
-    std::array<double, 3> u = std::abs(d[0]) > 0.6 ? std::array<double, 3>{0, 1, 0}
-                                                   : std::array<double, 3>{1, 0, 0};
-    const double ud = u[0] * d[0] + u[1] * d[1] + u[2] * d[2];
-    for (int k = 0; k < 3; ++k) u[k] -= ud * d[k];
-    const double ul = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    for (double& x : u) x /= ul;
-    const std::array<double, 3> v = {d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2],
-                                     d[0] * u[1] - d[1] * u[0]};
+    Vec3d u = std::abs(d[0]) > 0.6 ? Vec3d{0, 1, 0} : Vec3d{1, 0, 0};
+    u = u - Dot(u, d) * d;
+    const double ul = Norm(u);
+    u = {u[0] / ul, u[1] / ul, u[2] / ul};
+    const Vec3d v = Cross(d, u);
     const int r = o_.ring_radius - 1;
     const Coord c = grid_.CoordOf(mid);
     unsigned sectors = 0;
@@ -136,8 +139,9 @@ class PlugFinder {
         for (int x = -r; x <= r; ++x) {
           const Coord q{c.x + x, c.y + y, c.z + z};
           if (!grid_.Contains(q) || !IsHard(s_[grid_.Index(q)])) continue;
-          if (std::abs(x * d[0] + y * d[1] + z * d[2]) > 3) continue;
-          const double pu = x * u[0] + y * u[1] + z * u[2], pv = x * v[0] + y * v[1] + z * v[2];
+          const Vec3d p = {double(x), double(y), double(z)};
+          if (std::abs(Dot(p, d)) > 3) continue;
+          const double pu = Dot(p, u), pv = Dot(p, v);
           const double radial = std::hypot(pu, pv);
           if (radial < 0.5 || radial > r) continue;
           const double turn = (std::atan2(pv, pu) + std::numbers::pi) / (2 * std::numbers::pi);

@@ -15,17 +15,14 @@ namespace {
 constexpr int64_t kChunkWords = int64_t{1} << 14;
 constexpr uint64_t kAll = ~uint64_t{0};
 
-bool Test(const VoxelBits& bits, int64_t i) { return (bits[i >> 6] >> (i & 63)) & 1; }
-void Set(VoxelBits& bits, int64_t i) { bits[i >> 6] |= uint64_t{1} << (i & 63); }
-
 // Free voxels are open and not yet reached.
-uint64_t Free(const VoxelBits& open, const VoxelBits& reached, int64_t word) {
-  return open[word] & ~reached[word];
+uint64_t Free(const FlatBitset& open, const FlatBitset& reached, int64_t word) {
+  return open.words()[word] & ~reached.words()[word];
 }
 
 // The first index >= from whose voxel is not free. One exists below the array's end when a
 // voxel at or after `from` is not free (the caller's last voxel is on the border).
-int64_t FirstNotFree(const VoxelBits& open, const VoxelBits& reached, int64_t from) {
+int64_t FirstNotFree(const FlatBitset& open, const FlatBitset& reached, int64_t from) {
   int64_t word = from >> 6;
   uint64_t stop = ~Free(open, reached, word) & (kAll << (from & 63));
   while (stop == 0) stop = ~Free(open, reached, ++word);
@@ -33,7 +30,7 @@ int64_t FirstNotFree(const VoxelBits& open, const VoxelBits& reached, int64_t fr
 }
 
 // The last index <= from whose voxel is not free (likewise one exists from voxel 0 on).
-int64_t LastNotFree(const VoxelBits& open, const VoxelBits& reached, int64_t from) {
+int64_t LastNotFree(const FlatBitset& open, const FlatBitset& reached, int64_t from) {
   int64_t word = from >> 6;
   uint64_t stop = ~Free(open, reached, word) & (kAll >> (63 - (from & 63)));
   while (stop == 0) stop = ~Free(open, reached, --word);
@@ -41,7 +38,8 @@ int64_t LastNotFree(const VoxelBits& open, const VoxelBits& reached, int64_t fro
 }
 
 // Sets bits lo..hi.
-void SetRange(VoxelBits& bits, int64_t lo, int64_t hi) {
+void SetRange(FlatBitset& set, int64_t lo, int64_t hi) {
+  uint64_t* const bits = set.words();
   const int64_t first = lo >> 6, last = hi >> 6;
   const uint64_t head = kAll << (lo & 63), tail = kAll >> (63 - (hi & 63));
   if (first == last) {
@@ -55,7 +53,7 @@ void SetRange(VoxelBits& bits, int64_t lo, int64_t hi) {
 
 // For the voxels from..to (one row segment): each run of free voxels gets its first voxel
 // marked reached and pushed on `stack`, a word of 64 voxels at a time.
-void SeedRuns(const VoxelBits& open, VoxelBits& reached, int64_t from, int64_t to,
+void SeedRuns(const FlatBitset& open, FlatBitset& reached, int64_t from, int64_t to,
               std::vector<int64_t>& stack) {
   const int64_t first = from >> 6, last = to >> 6;
   uint64_t carry = 0;  // 1 when the voxel before this word is free and in the segment
@@ -66,17 +64,17 @@ void SeedRuns(const VoxelBits& open, VoxelBits& reached, int64_t from, int64_t t
     const uint64_t free = Free(open, reached, w) & in;
     uint64_t starts = free & ~((free << 1) | carry);
     carry = free >> 63;
-    reached[w] |= starts;
+    reached.words()[w] |= starts;
     for (; starts != 0; starts &= starts - 1) stack.push_back(w * 64 + std::countr_zero(starts));
   }
 }
 
 }  // namespace
 
-VoxelBits PackVoxelBits(const char* bytes, int64_t count, int threads) {
+FlatBitset PackVoxelBits(const char* bytes, int64_t count, int threads) {
   const int64_t words = (count + 63) / 64;
-  VoxelBits bits(words);
-  uint64_t* const out = bits.data();
+  FlatBitset bits(count);
+  uint64_t* const out = bits.words();
   RunTasks(threads, (words + kChunkWords - 1) / kChunkWords, [=](int, int64_t task) {
     const int64_t end = std::min(words, (task + 1) * kChunkWords);
     for (int64_t w = task * kChunkWords; w < end; ++w) {
@@ -97,9 +95,9 @@ VoxelBits PackVoxelBits(const char* bytes, int64_t count, int threads) {
   return bits;
 }
 
-void UnpackVoxelBits(const VoxelBits& bits, int64_t count, char* bytes, int threads) {
-  const int64_t words = (count + 63) / 64;
-  const uint64_t* const in = bits.data();
+void UnpackVoxelBits(const FlatBitset& bits, char* bytes, int threads) {
+  const int64_t count = bits.bits(), words = (count + 63) / 64;
+  const uint64_t* const in = bits.words();
   RunTasks(threads, (words + kChunkWords - 1) / kChunkWords, [=](int, int64_t task) {
     const int64_t end = std::min(words, (task + 1) * kChunkWords);
     for (int64_t w = task * kChunkWords; w < end; ++w) {
@@ -119,10 +117,10 @@ void UnpackVoxelBits(const VoxelBits& bits, int64_t count, char* bytes, int thre
   });
 }
 
-VoxelBits FloodFromBorder(const std::array<int, 3>& dims, const VoxelBits& open) {
+FlatBitset FloodFromBorder(const std::array<int, 3>& dims, const FlatBitset& open) {
   const int n[3] = {dims[0], dims[1], dims[2]};
   const int64_t step[3] = {1, n[0], int64_t{n[0]} * n[1]};
-  VoxelBits reached(open.size(), 0);
+  FlatBitset reached(open.bits());
   std::vector<int64_t> stack;
   // The border voxels are marked but never expanded (their neighbours may not exist). Every
   // voxel one layer in is interior; those touching an open border voxel seed the flood, and
@@ -143,14 +141,14 @@ VoxelBits FloodFromBorder(const std::array<int, 3>& dims, const VoxelBits& open)
         }
         const int64_t i = x + y * step[1] + z * step[2];
         if (on_border) {
-          if (Test(open, i)) Set(reached, i);
+          if (open.test(i)) reached.set(i);
           continue;
         }
-        if (!Test(open, i)) continue;
+        if (!open.test(i)) continue;
         for (int a = 0; a < 3; ++a)
-          if ((c[a] == 1 && Test(open, i - step[a])) ||
-              (c[a] == n[a] - 2 && Test(open, i + step[a]))) {
-            Set(reached, i);
+          if ((c[a] == 1 && open.test(i - step[a])) ||
+              (c[a] == n[a] - 2 && open.test(i + step[a]))) {
+            reached.set(i);
             stack.push_back(i);
             break;
           }

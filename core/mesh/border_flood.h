@@ -7,28 +7,25 @@
 
 #include <array>
 #include <cstdint>
-#include <vector>
 
-#include "core/engine/huge_page_allocator.h"
+#include "core/engine/flat_bitset.h"
 
 namespace membrane {
 
-// One bit a voxel of a grid in index order: voxel i is bit (i & 63) of word i >> 6. Bits past
-// the last voxel are 0.
-using VoxelBits = std::vector<uint64_t, HugePageAllocator<uint64_t>>;
+// Returns the bits (voxel i is bit i, in index order; bits past the last voxel 0) of a byte
+// mask of `count` voxels (bytes 0 or 1). `threads` (<= 1: the calling thread) share the
+// words; the result is the same for any count.
+FlatBitset PackVoxelBits(const char* bytes, int64_t count, int threads);
 
-// Returns the bits of a byte mask of `count` voxels (bytes 0 or 1). `threads` (<= 1: the
-// calling thread) share the words; the result is the same for any count.
-VoxelBits PackVoxelBits(const char* bytes, int64_t count, int threads);
-
-// Writes bits[0..count) as bytes 0 or 1 to `bytes`. `threads` as for PackVoxelBits.
-void UnpackVoxelBits(const VoxelBits& bits, int64_t count, char* bytes, int threads);
+// Writes the bits of `bits` as bytes 0 or 1 to bytes[0..bits.bits()). `threads` as for
+// PackVoxelBits.
+void UnpackVoxelBits(const FlatBitset& bits, char* bytes, int threads);
 
 // Input: the array's dimensions (x fastest) and `open`, the bits of its open voxels.
 // Returns the bits of the open voxels 6-connected, through open voxels, to an open voxel on the
 // array border (any voxel with a coordinate 0 or dims[a] - 1). Cost: O(voxels / 64) words read
 // per row of the array plus O(1) per run of open voxels along x; one calling thread.
-VoxelBits FloodFromBorder(const std::array<int, 3>& dims, const VoxelBits& open);
+FlatBitset FloodFromBorder(const std::array<int, 3>& dims, const FlatBitset& open);
 
 }  // namespace membrane
 

@@ -108,8 +108,8 @@ int64_t FillCaves(VoxelGrid& grid, int threads) {
   // The flood runs on bits (64 voxels a word): it reads the rows next to every run of the
   // exterior, most of the grid. Its result goes back into `deep`'s bytes for the dilation.
   {
-    const VoxelBits reached = FloodFromBorder(d, PackVoxelBits(deep.data(), n, threads));
-    UnpackVoxelBits(reached, n, deep.data(), threads);
+    const FlatBitset reached = FloodFromBorder(d, PackVoxelBits(deep.data(), n, threads));
+    UnpackVoxelBits(reached, deep.data(), threads);
   }
   Mask near_exterior(n);
   BoxFilter</*kErode=*/false>(grid, deep, near_exterior, /*beyond=*/0, threads);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/base/parallel_tasks.h"
+#include "core/engine/flat_bitset.h"
 #include "core/engine/voxel_state_words.h"
 
 namespace membrane {
@@ -19,9 +20,7 @@ int64_t RemoveLooseSheets(VoxelGrid& grid, int threads) {
   const auto& d = grid.dims();
   // One bit a voxel: the flood's marks are few (the membrane's voxels), and a byte a voxel
   // cleared up front was a pass of its own over a grid of 2e9 voxels.
-  std::vector<uint64_t> kept_bits(static_cast<size_t>((grid.size() + 63) / 64), 0);
-  auto kept = [&kept_bits](int64_t i) { return (kept_bits[i >> 6] >> (i & 63)) & 1; };
-  auto keep = [&kept_bits](int64_t i) { kept_bits[i >> 6] |= uint64_t{1} << (i & 63); };
+  FlatBitset kept(grid.size());
   const int inner_planes = d[2] > 2 ? d[2] - 2 : 0;
   std::vector<std::vector<int64_t>> plane_boundary(inner_planes), plane_seeds(inner_planes);
   RunTasks(threads, inner_planes, [&](int, int64_t task) {
@@ -47,7 +46,7 @@ int64_t RemoveLooseSheets(VoxelGrid& grid, int threads) {
   });
   std::vector<int64_t> stack;
   for (std::vector<int64_t>& seeds : plane_seeds) {
-    for (int64_t i : seeds) keep(i);
+    for (int64_t i : seeds) kept.set(i);
     stack.insert(stack.end(), seeds.begin(), seeds.end());
     std::vector<int64_t>().swap(seeds);
   }
@@ -56,15 +55,15 @@ int64_t RemoveLooseSheets(VoxelGrid& grid, int threads) {
     stack.pop_back();
     for (int64_t o : off) {
       const int64_t j = i + o;
-      if (kept(j) || !IsBoundary(s[j]) || grid.OnArrayBorder(grid.CoordOf(j))) continue;
-      keep(j);
+      if (kept.test(j) || !IsBoundary(s[j]) || grid.OnArrayBorder(grid.CoordOf(j))) continue;
+      kept.set(j);
       stack.push_back(j);
     }
   }
   int64_t removed = 0;
   for (const std::vector<int64_t>& boundary : plane_boundary)
     for (int64_t i : boundary)
-      if (!kept(i)) {
+      if (!kept.test(i)) {
         grid.set(i, OutsideState(0));
         ++removed;
       }

@@ -12,6 +12,7 @@
 #include "core/mesh/relaxation.h"
 #include "core/mesh/smooth_surface.h"
 #include "gtest/gtest.h"
+#include "tests/mesh/cloud_surface.h"
 #include "tests/support/shrink_fixture.h"
 
 namespace membrane {
@@ -32,17 +33,14 @@ struct CapResult {
 CapResult Reconstruct(const PointCloud& cloud, double wrap_rms,
                       const std::function<bool(const Vec3d&)>& in_hole,
                       const std::function<double(const Vec3d&)>& error) {
-  auto run = testing::ShrinkCloud(cloud, 1.0, {}, kVoxel);
-  EXPECT_TRUE(run.ok()) << run.status();
-  VoxelGrid& grid = run->voxels.grid;
-  EXPECT_TRUE(Relax(grid, CancelToken::Never()).ok());
   SmoothSurfaceOptions options;
   options.hole_caps.wrap_rms = wrap_rms;
-  SmoothSurfaceStats stats;
-  absl::StatusOr<TriangleMesh> mesh = SmoothSurface(grid, cloud.points, options, &stats);
-  EXPECT_TRUE(mesh.ok()) << mesh.status();
+  absl::StatusOr<testing::CloudSurface> surface =
+      testing::SmoothSurfaceOfCloud(cloud, options, kVoxel);
   CapResult result;
-  for (const Point3f& p : mesh->vertices) {
+  EXPECT_TRUE(surface.ok()) << surface.status();
+  if (!surface.ok()) return result;
+  for (const Point3f& p : surface->mesh.vertices) {
     const Vec3d v = ToVec3d(p);
     if (!in_hole(v)) continue;
     const double e = error(v) / kVoxel;
@@ -51,8 +49,8 @@ CapResult Reconstruct(const PointCloud& cloud, double wrap_rms,
     ++result.vertices;
   }
   if (result.vertices > 0) result.mean_error /= result.vertices;
-  result.caps = stats.caps;
-  result.check = CheckMesh(*mesh);
+  result.caps = surface->stats.caps;
+  result.check = CheckMesh(surface->mesh);
   return result;
 }
 

@@ -10,6 +10,7 @@
 #include "core/mesh/smooth_surface.h"
 #include "core/mesh/thin_plate_spline.h"
 #include "gtest/gtest.h"
+#include "tests/mesh/cloud_surface.h"
 #include "tests/support/shrink_fixture.h"
 
 namespace membrane {
@@ -37,17 +38,14 @@ struct HoleResult {
 
 HoleResult ReconstructSphereWithHole(bool caps) {
   const PointCloud cloud = SphereWithHole(60000, 0.5);
-  auto run = testing::ShrinkCloud(cloud, 1.0);
-  EXPECT_TRUE(run.ok()) << run.status();
-  VoxelGrid& grid = run->voxels.grid;
-  EXPECT_TRUE(Relax(grid, CancelToken::Never()).ok());
   SmoothSurfaceOptions options;
   options.hole_caps.enabled = caps;
-  SmoothSurfaceStats stats;
-  absl::StatusOr<TriangleMesh> mesh = SmoothSurface(grid, cloud.points, options, &stats);
-  EXPECT_TRUE(mesh.ok()) << mesh.status();
+  absl::StatusOr<testing::CloudSurface> surface = testing::SmoothSurfaceOfCloud(cloud, options);
   HoleResult result;
-  const double l = grid.voxel_size();
+  EXPECT_TRUE(surface.ok()) << surface.status();
+  if (!surface.ok()) return result;
+  const TriangleMesh* mesh = &surface->mesh;
+  const double l = surface->voxel_size;
   // Seen from the centre, the hole's rim is 0.5 from the pole: the vertices seen within 0.4
   // of it are all cap (or crater).
   for (const Point3f& v : mesh->vertices)
@@ -55,7 +53,7 @@ HoleResult ReconstructSphereWithHole(bool caps) {
       result.max_error_in_hole =
           std::max(result.max_error_in_hole, std::abs(Norm(ToVec3d(v)) - 1.0) / l);
   result.check = CheckMesh(*mesh);
-  result.caps = stats.caps;
+  result.caps = surface->stats.caps;
   return result;
 }
 

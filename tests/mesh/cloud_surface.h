@@ -1,0 +1,28 @@
+// The smooth surface of a test cloud as the pipeline builds it, for the tests that measure the
+// surface over a shape they generate (hole caps).
+#ifndef MEMBRANE_TESTS_MESH_CLOUD_SURFACE_H_
+#define MEMBRANE_TESTS_MESH_CLOUD_SURFACE_H_
+
+#include "absl/status/statusor.h"
+#include "core/geometry/point_cloud.h"
+#include "core/geometry/triangle_mesh.h"
+#include "core/mesh/smooth_surface.h"
+
+namespace membrane::testing {
+
+struct CloudSurface {
+  TriangleMesh mesh;
+  SmoothSurfaceStats stats;
+  double voxel_size = 0;  // the grid's
+};
+
+// Shrinks `cloud` at the formula-(1) voxel size (or exactly `voxel_size` when it is > 0),
+// relaxes the membrane and builds SmoothSurface with `options` from the cloud's points.
+// Fails with the first stage's status.
+absl::StatusOr<CloudSurface> SmoothSurfaceOfCloud(const PointCloud& cloud,
+                                                  const SmoothSurfaceOptions& options,
+                                                  double voxel_size = 0);
+
+}  // namespace membrane::testing
+
+#endif  // MEMBRANE_TESTS_MESH_CLOUD_SURFACE_H_

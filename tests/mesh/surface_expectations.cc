@@ -1,14 +1,18 @@
 #include "tests/mesh/surface_expectations.h"
 
 #include <algorithm>
+#include <string>
+#include <utility>
 
-#include "core/mesh/mesh_check.h"
 #include "gtest/gtest.h"
 
 namespace membrane::testing {
 
 void ExpectValidSurface(const TriangleMesh& mesh, int shells, std::vector<int> genus) {
-  const MeshReport r = CheckMesh(mesh);
+  ExpectValidReport(CheckMesh(mesh), shells, std::move(genus));
+}
+
+void ExpectValidReport(const MeshReport& r, int shells, std::vector<int> genus) {
   const std::string json = MeshReportToJson(r);
   EXPECT_TRUE(r.closed) << json;
   EXPECT_TRUE(r.manifold) << json;

@@ -5,12 +5,17 @@
 #include <vector>
 
 #include "core/geometry/triangle_mesh.h"
+#include "core/mesh/mesh_check.h"
 
 namespace membrane::testing {
 
 // Closed, manifold, oriented, positive volume, no self-intersection, no degenerate face, and
 // `shells` shells whose genus, sorted, is `genus` sorted. Reports failures with EXPECT_*.
 void ExpectValidSurface(const TriangleMesh& mesh, int shells, std::vector<int> genus);
+
+// The same promises read from a report CheckMesh already made (tests that keep the report
+// beside other figures of the run).
+void ExpectValidReport(const MeshReport& report, int shells, std::vector<int> genus);
 
 }  // namespace membrane::testing
 

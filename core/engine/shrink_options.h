@@ -24,7 +24,7 @@ struct HandleRetryOptions {
   bool enabled = true;
   int tunnel_min_plate = 7;
   int short_loop_min_plate = 4;
-  int wall_notch_min_plate = 3;
+  int wall_notch_min_plate = 4;
   double max_hard_rim = 0.75;
 };
 

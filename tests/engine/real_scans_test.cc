@@ -41,9 +41,8 @@ struct KnownMiss {
   double factor;
 };
 constexpr KnownMiss kKnownMisses[] = {
-    {"spot-scan", 1.25},          {"cow-spot-belt-scan", 1.0},
-    {"cow-spot-belt-scan", 1.25}, {"cow-spot-belt-scan", 1.5},
-    {"cow-spot-belt-scan", 2.0},  {"pierced-disk-scan", 2.0},
+    {"cow-spot-belt-scan", 1.0}, {"cow-spot-belt-scan", 1.25}, {"cow-spot-belt-scan", 1.5},
+    {"cow-spot-belt-scan", 2.0}, {"pierced-disk-scan", 2.0},
 };
 
 bool IsKnownMiss(const ScanRun& run) {

@@ -42,7 +42,8 @@ struct HoleOpeningOptions {
   // The two ends are not joined through the outside inside the cube of this radius around the
   // middle voxel: the plug closes a hole, not a notch.
   int join_radius = 16;
-  // Plugs carved at most (each costs a topology count): bounds hostile clouds.
+  // Plugs carved at most: bounds hostile clouds (each plug's topology change is counted in the
+  // cube of join_radius around it, or over the grid when that cannot tell).
   int max_openings = 32;
 };
 
@@ -50,6 +51,8 @@ struct HoleOpeningStats {
   int64_t opened = 0;         // plugs carved, each one more handle
   int64_t refused = 0;        // plugs whose carving would not add exactly one handle (undone)
   int64_t carved_voxels = 0;  // voxels turned outside
+  int64_t whole_grid_counts = 0;  // plugs whose topology change was counted over the grid,
+                                  // not around the plug (CountCarveLocally undecided)
   double seconds = 0.0;       // the search and the topology counts
 };
 
@@ -58,7 +61,9 @@ struct HoleOpeningStats {
 // Effect: each plug that passes every test of HoleOpeningOptions, in voxel index order, is
 // carved (its staircase turned outside, generation label 0; the inside voxels beside it become
 // boundary and the soft ones on a face frozen, as the post-process's dents) when that adds
-// exactly one handle and changes no shell or cavity count (counted, ComputeVoxelTopology);
+// exactly one handle and changes no shell or cavity count (the grid counted once by
+// ComputeVoxelTopology, each carve around its plug by CountCarveLocally, or over the grid again
+// where that cannot tell);
 // otherwise it is restored. The invariants still hold after it. Cancelled when `cancel` fires
 // (checked between slices; the grid is then valid with the plugs opened so far).
 absl::StatusOr<HoleOpeningStats> OpenPluggedHoles(VoxelGrid& grid,

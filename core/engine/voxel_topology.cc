@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "core/engine/voxel_runs.h"
 
@@ -177,6 +179,91 @@ std::optional<VoxelTopology> ComputeVoxelTopology(const VoxelGrid& grid,
   for (int64_t c : chi8) topo.genus.push_back(static_cast<int>(1 - c / 8));
   topo.cavities = CountCavities(shells);
   return topo;
+}
+
+CarveTopologyChange CountCarveLocally(const VoxelGrid& grid, absl::Span<const int64_t> carved,
+                                      int margin) {
+  CarveTopologyChange change;
+  const VoxelState* s = grid.states().data();
+  std::vector<int64_t> sorted(carved.begin(), carved.end());
+  std::sort(sorted.begin(), sorted.end());
+  auto is_carved = [&](int64_t i) { return std::binary_search(sorted.begin(), sorted.end(), i); };
+  auto solid_after = [&](int64_t i) { return !IsOutside(s[i]) && !is_carved(i); };
+
+  // Euler characteristic: only the corners of the carved voxels see another configuration.
+  // Vertex v's configuration holds voxel v - 1 + d at bit d.x + 2 d.y + 4 d.z.
+  const auto st = grid.strides();
+  std::vector<int64_t> corners;  // the voxel index of each vertex's voxel (v - 1) + (1, 1, 1)
+  for (int64_t c : sorted)
+    for (int k = 0; k < 8; ++k) corners.push_back(c + (k & 1) * st[0] + (k >> 1 & 1) * st[1] + (k >> 2) * st[2]);
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  int64_t chi8 = 0;
+  for (int64_t v : corners) {
+    int before = 0, after = 0;
+    for (int b = 0; b < 8; ++b) {
+      const int64_t i = v - (1 - (b & 1)) * st[0] - (1 - (b >> 1 & 1)) * st[1] - (1 - (b >> 2)) * st[2];
+      if (!IsOutside(s[i])) before |= 1 << b;
+      if (solid_after(i)) after |= 1 << b;
+    }
+    chi8 += kEulerTable[static_cast<size_t>(after)] - kEulerTable[static_cast<size_t>(before)];
+  }
+  change.euler_change = chi8 / 8;
+
+  // The solid voxels beside the carved ones, and the carved voxels' outside face neighbours.
+  const std::array<int64_t, 27>& block = grid.block_offsets();
+  std::vector<int64_t> rim;
+  Coord lo = grid.CoordOf(sorted.front()), hi = lo;
+  for (int64_t c : sorted) {
+    const Coord q = grid.CoordOf(c);
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], q[a]);
+      hi[a] = std::max(hi[a], q[a]);
+    }
+    for (int k = 0; k < 27; ++k) {
+      const int64_t n = c + block[static_cast<size_t>(k)];
+      if (IsFaceStep(k) && IsOutside(s[n])) change.touches_outside = true;
+      if (solid_after(n)) rim.push_back(n);
+    }
+  }
+  if (rim.empty()) {
+    change.shells = CarveTopologyChange::Shells::kRemoved;
+    return change;
+  }
+  std::sort(rim.begin(), rim.end());
+  rim.erase(std::unique(rim.begin(), rim.end()), rim.end());
+
+  // A 26-flood of the solid left, inside the box (the rim and `margin` voxels beyond it), from
+  // one rim voxel: the shell stays one when it reaches every rim voxel (each voxel of the shell
+  // reaches the carved ones through a rim voxel), and may split otherwise.
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::max(lo[a] - 1 - margin, 0);
+    hi[a] = std::min(hi[a] + 1 + margin, grid.dim(a) - 1);
+  }
+  const int bx = hi.x - lo.x + 1, by = hi.y - lo.y + 1, bz = hi.z - lo.z + 1;
+  auto box_index = [&](const Coord& q) {
+    return (static_cast<int64_t>(q.z - lo.z) * by + (q.y - lo.y)) * bx + (q.x - lo.x);
+  };
+  std::vector<uint8_t> reached(static_cast<size_t>(bx) * by * bz, 0);
+  std::vector<Coord> stack = {grid.CoordOf(rim.front())};
+  reached[static_cast<size_t>(box_index(stack.front()))] = 1;
+  size_t rim_reached = 0;
+  while (!stack.empty()) {
+    const Coord q = stack.back();
+    stack.pop_back();
+    if (std::binary_search(rim.begin(), rim.end(), grid.Index(q))) ++rim_reached;
+    for (const Coord& d : kBlockSteps) {
+      const Coord n{q.x + d.x, q.y + d.y, q.z + d.z};
+      if (n.x < lo.x || n.y < lo.y || n.z < lo.z || n.x > hi.x || n.y > hi.y || n.z > hi.z) continue;
+      uint8_t& r = reached[static_cast<size_t>(box_index(n))];
+      if (r != 0 || !solid_after(grid.Index(n))) continue;
+      r = 1;
+      stack.push_back(n);
+    }
+  }
+  change.shells = rim_reached == rim.size() ? CarveTopologyChange::Shells::kKept
+                                             : CarveTopologyChange::Shells::kUnknown;
+  return change;
 }
 
 }  // namespace membrane

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "absl/types/span.h"
 #include "core/base/cancel_token.h"
 #include "core/engine/voxel_grid.h"
 
@@ -35,6 +36,31 @@ std::optional<VoxelTopology> ComputeVoxelTopology(const VoxelGrid& grid,
 // lowest voxel index) or -1 for outside voxels. Returns the number of components. Costs one
 // int32 per voxel, which ComputeVoxelTopology avoids: meant for checks, not the pipeline.
 int LabelShells(const VoxelGrid& grid, std::vector<int32_t>& label);
+
+// What turning a few non-outside voxels outside does to the solid, counted around them.
+struct CarveTopologyChange {
+  enum class Shells {
+    kKept,     // the carved voxels' shell stays one shell (its remaining voxels beside the
+               // carved ones are joined inside the box)
+    kRemoved,  // the carved voxels were a whole shell: one shell fewer
+    kUnknown,  // not joined inside the box: the whole grid must be counted to know
+  };
+  Shells shells = Shells::kUnknown;
+  // Euler characteristic of the whole solid after the carve minus before: exact, whatever
+  // `shells` says (chi changes only at the lattice vertices of the carved voxels).
+  int64_t euler_change = 0;
+  // Some carved voxel has an outside face neighbour: on a grid without cavities, the carved
+  // voxels then join the outside and the cavity count stays 0; otherwise they become a cavity.
+  bool touches_outside = false;
+};
+
+// The topology change of turning `carved` outside, counted in the carved voxels' bounding box
+// grown by 1 + `margin` voxels (clipped to the array) instead of over the grid:
+// with shells kKept the shell count is unchanged and the summed genus changes by
+// -euler_change, the same answer as ComputeVoxelTopology before and after. `carved`: distinct
+// non-outside voxels off the array border, 26-connected. Reads the grid; changes nothing.
+CarveTopologyChange CountCarveLocally(const VoxelGrid& grid, absl::Span<const int64_t> carved,
+                                      int margin);
 
 }  // namespace membrane
 

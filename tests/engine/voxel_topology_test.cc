@@ -1,5 +1,6 @@
 #include "core/engine/voxel_topology.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -256,6 +257,82 @@ TEST(VoxelTopology, MatchesBruteForceOnRandomGrids) {
   EXPECT_GT(with_cavities, 100);
   EXPECT_GT(with_several_shells, 100);
   EXPECT_GT(with_genus, 100);
+}
+
+int64_t EulerOf(const VoxelTopology& t) {
+  int64_t chi = 0;
+  for (int genus : t.genus) chi += 1 - genus;
+  return chi;
+}
+
+// A carve counted around the carved voxels gives the whole grid's answer: the Euler change
+// always, the shell count when it says kept or removed, no cavity when it touches the outside of
+// a grid without any. Carves: random face paths of 1 to 8 non-outside voxels off the border.
+TEST(VoxelTopology, CarveCountedLocallyMatchesTheWholeGrid) {
+  std::mt19937 rng(20261203);
+  int kept = 0, removed = 0, unknown = 0, handles = 0, splits = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    VoxelGrid g = RandomSolid(rng);
+    std::vector<int64_t> solid;
+    for (int64_t i = 0; i < g.size(); ++i)
+      if (!IsOutside(g.at(i))) solid.push_back(i);
+    if (solid.empty()) continue;
+    std::vector<int64_t> carved = {solid[std::uniform_int_distribution<size_t>(0, solid.size() - 1)(rng)]};
+    const int length = std::uniform_int_distribution<int>(1, 8)(rng);
+    for (int step = 1; step < length; ++step) {
+      const Coord c = g.CoordOf(carved.back());
+      Coord n = c;
+      n[std::uniform_int_distribution<int>(0, 2)(rng)] += std::uniform_int_distribution<int>(0, 1)(rng) * 2 - 1;
+      if (g.OnArrayBorder(n) || !g.Contains(n) || IsOutside(g.at(n))) break;
+      if (std::find(carved.begin(), carved.end(), g.Index(n)) != carved.end()) break;
+      carved.push_back(g.Index(n));
+    }
+    const int margin = std::uniform_int_distribution<int>(0, 4)(rng);
+    const CarveTopologyChange change = CountCarveLocally(g, carved, margin);
+    const VoxelTopology before = ComputeVoxelTopology(g);
+    for (int64_t i : carved) g.set(i, OutsideState(0));
+    const VoxelTopology after = ComputeVoxelTopology(g);
+    ASSERT_EQ(change.euler_change, EulerOf(after) - EulerOf(before)) << "trial " << trial;
+    if (change.shells == CarveTopologyChange::Shells::kKept) {
+      ASSERT_EQ(after.shells, before.shells) << "trial " << trial;
+      ++kept;
+      handles += change.euler_change < 0;
+    } else if (change.shells == CarveTopologyChange::Shells::kRemoved) {
+      ASSERT_EQ(after.shells, before.shells - 1) << "trial " << trial;
+      ++removed;
+    } else {
+      ++unknown;
+      splits += after.shells > before.shells;
+    }
+    if (before.cavities == 0 && change.touches_outside) {
+      ASSERT_EQ(after.cavities, 0) << "trial " << trial;
+    }
+  }
+  // Every answer occurs, and carves that add a handle or split a shell are among them.
+  EXPECT_GT(kept, 300);
+  EXPECT_GT(removed, 10);
+  EXPECT_GT(unknown, 30);
+  EXPECT_GT(handles, 30);
+  EXPECT_GT(splits, 10);
+}
+
+// A thin ring cut once: its two ends are joined only around the ring, so a cube smaller than
+// the ring cannot tell a cut from a split, and one holding the ring can.
+TEST(VoxelTopology, RingCutIsKnownKeptOnlyInACubeHoldingTheRing) {
+  VoxelGrid g = Solid(32, [](double x, double y, double z) {
+    return std::abs(std::hypot(x - 16, y - 16) - 10) < 0.8 && std::abs(z - 16.5) < 0.6;
+  });
+  ASSERT_EQ(ComputeVoxelTopology(g).genus, std::vector<int>{1});
+  // The ring is two voxels wide where it crosses y = 16 on the +x side.
+  const std::vector<int64_t> carved = {g.Index(25, 16, 16), g.Index(26, 16, 16)};
+  for (int64_t i : carved) ASSERT_FALSE(IsOutside(g.at(i)));
+  ASSERT_TRUE(IsOutside(g.at(g.Index(24, 16, 16))));
+  ASSERT_TRUE(IsOutside(g.at(g.Index(27, 16, 16))));
+  EXPECT_EQ(CountCarveLocally(g, carved, 3).shells, CarveTopologyChange::Shells::kUnknown);
+  const CarveTopologyChange whole = CountCarveLocally(g, carved, 24);
+  EXPECT_EQ(whole.shells, CarveTopologyChange::Shells::kKept);
+  EXPECT_EQ(whole.euler_change, 1);  // genus 1 -> 0: an arc
+  EXPECT_TRUE(whole.touches_outside);
 }
 
 }  // namespace

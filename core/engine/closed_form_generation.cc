@@ -1,8 +1,10 @@
 #include "core/engine/closed_form_generation.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "absl/status/status.h"
+#include "core/engine/closed_form_sweeps.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/incursion_test.h"
 #include "core/engine/plate.h"
@@ -16,14 +18,15 @@ namespace membrane {
 struct ClosedFormPlanes {
   explicit ClosedFormPlanes(WorkPlanes& p)
       : interior(p.interior()), out0(p.plane(0)), free_cells(p.plane(1)), out(p.plane(2)),
-        back(p.plane(3)), reach(p.plane(4)), tmp(p.plane(5)), fresh(p.plane(6)),
+        back(p.plane(3)), reach(p.plane(4)), fresh(p.plane(6)),
         scratch_a(p.plane(7)), scratch_b(p.plane(8)),
         squares{&p.plane(9), &p.plane(10), &p.plane(5)},
         was_boundary_soft(p.plane(3)), adjacent(p.plane(4)), converted(p.plane(1)),
         near_hard(p.plane(9)) {}
   const FlatBitset& interior;
-  FlatBitset &out0, &free_cells, &out, &back, &reach, &tmp, &fresh, &scratch_a, &scratch_b;
-  FlatBitset* squares[3];  // per plate axis; the third reuses `tmp` once it is free
+  FlatBitset &out0, &free_cells, &out, &back, &reach, &fresh, &scratch_a, &scratch_b;
+  // Per plate axis; the third also holds the erosion along z the first two are made from.
+  FlatBitset* squares[3];
   FlatBitset &was_boundary_soft, &adjacent, &converted, &near_hard;  // the apply step's
 };
 
@@ -52,61 +55,16 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
 
   FlatBitset& out = ws.out;
   out = out0;
-  // Anchors of all-free n x n squares per plate axis (both signs share them): the erosion
-  // along z serves the x and y axes, so four runs make the three planes. The *From runs fold
-  // a plane copy into their first pass.
-  FlatBitset* const* squares = ws.squares;
-  FlatBitset& eroded_z = ws.tmp;
-  FlatBitset& scratch = ws.scratch_a;  // for the runs; SpreadAlong's only when it runs
-  eroded_z.ErodeRunFrom(free_cells, n, st[2], scratch);
-  squares[0]->ErodeRunFrom(eroded_z, n, st[1], scratch);  // x: in-plane y, z
-  squares[1]->ErodeRunFrom(eroded_z, n, st[0], scratch);  // y: in-plane z, x
-  squares[2]->ErodeRunFrom(free_cells, n, st[0], scratch);  // overwrites eroded_z
-  squares[2]->ErodeRun(n, st[1], scratch);                  // z: in-plane x, y
-  bool square_fits[3];
-  for (int a = 0; a < 3; ++a) square_fits[a] = squares[a]->any();
+  // Anchors of all-free n x n squares per plate axis (both signs share them), then the
+  // sweeps' rounds until `out` is the fixed point.
+  const PlaneBox box = MakePlaneBox(grid.dims());
+  FreeSquares(free_cells, n, box, ws.squares, ws.scratch_a);
   if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
-
-  FlatBitset& back = ws.back;
-  FlatBitset& reach = ws.reach;
-  FlatBitset& reach_back = ws.fresh;  // free until the apply step
-  // An axis whose last sweep added nothing, with `out` unchanged since, would add nothing
-  // again: it is skipped. `out_version` counts the sweeps that changed `out`; `stable_at[a]`
-  // is the version at which axis a last added nothing (-1: not yet).
-  int64_t out_version = 0;
-  int64_t stable_at[3] = {-1, -1, -1};
-  for (bool changed = true; changed && outcome.rounds < 64;) {
-    changed = false;
-    ++outcome.rounds;
-    for (int a = 0; a < 3; ++a) {
-      if (!square_fits[a] || stable_at[a] == out_version) continue;
-      if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
-      const int64_t sa = st[a], su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
-      // Plates whose back square (one layer behind, against the front) is all outside. Both
-      // fronts of the axis use the same eroded plane: a step of the least fixed point only
-      // needs its plates valid for the current `out`, so updating `out` after both (rather
-      // than between them) reaches the same fixed point.
-      back.ErodeRunFrom(out, n, su, scratch);
-      back.ErodeRun(n, sv, scratch);
-      if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
-      // Dig straight on: a plate whose back plate was contracted fits if its square is free.
-      reach.AssignAndShifted(*squares[a], back, sa);
-      reach.SpreadAlong(*squares[a], sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
-      reach_back.AssignAndShifted(*squares[a], back, -sa);
-      reach_back.SpreadAlong(*squares[a], -sa, grid.dim(a), ws.scratch_a, ws.scratch_b);
-      reach.Or(reach_back);
-      if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
-      // Cells covered by the plates reached (dilation distributes over the union).
-      reach.DilateRun(n, sv, scratch);
-      reach.DilateRun(n, su, scratch);
-      if (out.OrChanged(reach)) {
-        changed = true;
-        ++out_version;
-      } else {
-        stable_at[a] = out_version;
-      }
-    }
-  }
+  const SweepPlanes sweep{{ws.squares[0], ws.squares[1], ws.squares[2]}, &ws.back, &ws.reach,
+                          &ws.fresh, &ws.scratch_a, &ws.scratch_b};  // fresh: free until the apply
+  const std::optional<int> rounds = SweepToFixedPoint(out, n, box, sweep, cancel);
+  if (!rounds) return absl::CancelledError("cancelled in a closed-form generation");
+  outcome.rounds = *rounds;
 
   if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
   // Apply: new outside voxels, and their inside 26-neighbours become boundary.

@@ -2,15 +2,20 @@
 #ifndef MEMBRANE_CORE_ENGINE_INTERIOR_PLANE_H_
 #define MEMBRANE_CORE_ENGINE_INTERIOR_PLANE_H_
 
+#include <array>
+
 #include "core/engine/flat_bitset.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {
 
-// A bitset over `grid`'s voxels, set for every voxel not on the outermost array layer. Plates
-// and plate-sized runs must stay off that layer, so a run of set bits never wraps around a
-// row or a plane of the flat index.
-FlatBitset InteriorPlane(const VoxelGrid& grid);
+// A bitset over the voxels of a box of `dims` (flat index x + nx * (y + ny * z)), set for
+// every voxel not on the outermost layer. Plates and plate-sized runs must stay off that
+// layer, so a run of set bits never wraps around a row or a plane of the flat index.
+FlatBitset InteriorPlane(const std::array<int, 3>& dims);
+
+// The same over `grid`'s voxels.
+inline FlatBitset InteriorPlane(const VoxelGrid& grid) { return InteriorPlane(grid.dims()); }
 
 }  // namespace membrane
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "core/geometry/vec3.h"
+#include "core/mesh/algebraic_sphere.h"
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_row_grid.h"
 #include "core/mesh/self_intersection.h"
@@ -152,6 +154,26 @@ Vec3d VertexNormal(const TriangleMesh& mesh, const Rows& star, int32_t v) {
   return n;
 }
 
+// The fixed vertices within `rings` rings of the region, breadth first, sorted: the band of
+// the surface around the cap.
+std::vector<int32_t> Band(const Rows& nb, const std::vector<int32_t>& region,
+                          const std::vector<char>& free, int rings) {
+  std::vector<int32_t> band;
+  absl::flat_hash_set<int32_t> visited;
+  std::vector<int32_t> frontier = region;
+  for (int32_t v : region) visited.insert(v);
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<int32_t> next;
+    for (int32_t v : frontier)
+      for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u)
+        if (!free[*u] && visited.insert(*u).second) next.push_back(*u);
+    band.insert(band.end(), next.begin(), next.end());
+    frontier = std::move(next);
+  }
+  std::sort(band.begin(), band.end());
+  return band;
+}
+
 // How a cap starts its thin plate: from the spline, or from the harmonic map where the rim is
 // no height field, in its plane or wrapped around a swallowed part (HoleCapOptions::wrap_rms).
 enum class CapStart { kSpline, kHarmonic, kWrapped };
@@ -162,22 +184,7 @@ enum class CapStart { kSpline, kHarmonic, kWrapped };
 CapStart ShapeCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
                   const std::vector<int32_t>& region, const std::vector<char>& free, double l,
                   const HoleCapOptions& options, std::vector<Vec3d>& x) {
-  // Samples: the fixed vertices within sample_rings rings of the region, breadth first.
-  std::vector<int32_t> samples;
-  {
-    absl::flat_hash_set<int32_t> visited;
-    std::vector<int32_t> frontier = region;
-    for (int32_t v : region) visited.insert(v);
-    for (int ring = 0; ring < options.sample_rings; ++ring) {
-      std::vector<int32_t> next;
-      for (int32_t v : frontier)
-        for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u)
-          if (!free[*u] && visited.insert(*u).second) next.push_back(*u);
-      samples.insert(samples.end(), next.begin(), next.end());
-      frontier = std::move(next);
-    }
-    std::sort(samples.begin(), samples.end());
-  }
+  const std::vector<int32_t> samples = Band(nb, region, free, options.sample_rings);
   if (samples.size() < 3) return CapStart::kHarmonic;
   const size_t stride = (samples.size() + options.max_samples - 1) / options.max_samples;
   // In voxels, relative to the first sample: small, well-conditioned numbers.
@@ -219,13 +226,36 @@ CapStart ShapeCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
   return CapStart::kSpline;
 }
 
+// The algebraic sphere of the band around a region (the fixed vertices within sample_rings
+// rings, with their normals), in voxels, where it describes the band: the band's vertices lie
+// within options.sphere_band_fit voxels of it on average. nullopt elsewhere.
+std::optional<AlgebraicSphere> BandSphere(const TriangleMesh& mesh, const Rows& nb,
+                                          const Rows& star, const std::vector<int32_t>& region,
+                                          const std::vector<char>& free, double l,
+                                          const HoleCapOptions& options) {
+  const std::vector<int32_t> band = Band(nb, region, free, options.sample_rings);
+  std::vector<Vec3d> positions, normals;
+  for (int32_t v : band) {
+    positions.push_back((1.0 / l) * ToVec3d(mesh.vertices[v]));
+    normals.push_back(Normalized(VertexNormal(mesh, star, v)));
+  }
+  const auto sphere = AlgebraicSphere::Fit(positions, normals);
+  if (!sphere) return std::nullopt;
+  double sum = 0;
+  for (const Vec3d& p : positions) sum += sphere->Distance(p);
+  if (!(sum <= options.sphere_band_fit * static_cast<double>(positions.size())))
+    return std::nullopt;
+  return sphere;
+}
+
 absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
   if (!(voxel_size > 0) || !std::isfinite(voxel_size))
     return absl::InvalidArgumentError(absl::StrCat("voxel size ", voxel_size, " is not positive"));
   if (!(o.gap_radius > 0) || o.min_gap_vertices < 1 || o.rim_rings < 0 ||
       o.harmonic_iterations < 0 || !(o.tolerance > 0) || o.sample_rings < 1 ||
       o.max_samples < 3 || !(o.smoothing >= 0) || !(o.min_rim_cosine >= -1) ||
-      !(o.wrap_rms >= 0) || o.wrapped_iterations < 0 ||
+      !(o.wrap_rms >= 0) || o.wrapped_iterations < 0 || !(o.sphere_band_fit >= 0) ||
+      !(o.sphere_margin >= 0) || !(o.converged_tolerance > 0) ||
       o.back_off_halvings < 0 || !(o.max_shell_share > 0 && o.max_shell_share <= 1) ||
       o.min_median_points < 1 || o.min_median_points > 1000)
     return absl::InvalidArgumentError(absl::StrCat(
@@ -234,8 +264,10 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         o.harmonic_iterations, ", tolerance ", o.tolerance, ", sample_rings ", o.sample_rings,
         ", max_samples ", o.max_samples, ", smoothing ", o.smoothing, ", min_rim_cosine ",
         o.min_rim_cosine, ", wrap_rms ", o.wrap_rms, ", wrapped_iterations ",
-        o.wrapped_iterations, ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ",
-        o.max_shell_share, ", min_median_points ", o.min_median_points));
+        o.wrapped_iterations, ", sphere_band_fit ", o.sphere_band_fit, ", sphere_margin ",
+        o.sphere_margin, ", converged_tolerance ", o.converged_tolerance,
+        ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ", o.max_shell_share,
+        ", min_median_points ", o.min_median_points));
   return absl::OkStatus();
 }
 
@@ -361,7 +393,11 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   st.iterations = it;
   // The caps' vertices by their thin plate's iterations: those of wrapped rims apart.
   std::vector<int32_t> blended, wrapped;
-  for (const auto& region : regions) {
+  // Spline caps whose band has a sphere: their converged plate is solved apart, to be compared.
+  std::vector<std::optional<AlgebraicSphere>> spheres(regions.size());
+  std::vector<int32_t> candidates;
+  for (size_t r = 0; r < regions.size(); ++r) {
+    const auto& region = regions[r];
     // Where the spline cannot shape it, the thin plate starts from the harmonic map.
     const CapStart start = ShapeCap(mesh, nb, star, region, free, l, options, x);
     if (start != CapStart::kSpline) ++st.harmonic_starts;
@@ -369,15 +405,44 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     auto& list = start == CapStart::kWrapped ? wrapped : blended;
     list.insert(list.end(), region.begin(), region.end());
     ++st.regions;
+    if (start == CapStart::kSpline && options.thin_plate_iterations < options.wrapped_iterations)
+      spheres[r] = BandSphere(mesh, nb, star, region, free, l, options);
+    if (spheres[r]) candidates.insert(candidates.end(), region.begin(), region.end());
   }
   st.vertices = static_cast<int64_t>(free_list.size());
+  std::vector<Vec3d> converged;
+  if (!candidates.empty()) {
+    std::sort(candidates.begin(), candidates.end());
+    converged = x;
+    const int ci = Solve(true, nb, candidates, converged, options.wrapped_iterations,
+                         options.converged_tolerance * l, cancel);
+    if (ci < 0) return absl::CancelledError("hole caps cancelled");
+    st.iterations += ci;
+  }
   for (auto [list, iterations] : {std::pair{&blended, options.thin_plate_iterations},
                                   std::pair{&wrapped, options.wrapped_iterations}}) {
     if (iterations == 0 || list->empty()) continue;
     std::sort(list->begin(), list->end());
-    const int bi = Solve(true, nb, *list, x, iterations, options.tolerance * l, cancel);
+    const double tolerance = list == &wrapped ? options.converged_tolerance : options.tolerance;
+    const int bi = Solve(true, nb, *list, x, iterations, tolerance * l, cancel);
     if (bi < 0) return absl::CancelledError("hole caps cancelled");
     st.iterations += bi;
+  }
+  // The band's sphere picks between the two plates: the mean distance of the cap's gap
+  // vertices from it (the rim's rings, near the data, are the fit's to settle).
+  for (size_t r = 0; r < regions.size(); ++r) {
+    if (!spheres[r]) continue;
+    double kept = 0, solved = 0;
+    int count = 0;
+    for (int32_t v : regions[r]) {
+      if (!gap[v]) continue;
+      kept += spheres[r]->Distance((1.0 / l) * x[v]);
+      solved += spheres[r]->Distance((1.0 / l) * converged[v]);
+      ++count;
+    }
+    if (count == 0 || !(solved < kept - options.sphere_margin * count)) continue;
+    for (int32_t v : regions[r]) x[v] = converged[v];
+    ++st.sphere_converged;
   }
 
   // Write the caps, then take back the parts that cross the mesh.

@@ -60,13 +60,28 @@ struct HoleCapOptions {
   // A rim that is no height field and leaves its plane (the samples' RMS distance from it
   // above wrap_rms voxels) wraps around a part the hole swallowed, the end of a post or the
   // edge of a thin part: the harmonic map cuts straight through that part, and the thin plate
-  // is solved to convergence (at most wrapped_iterations, stopping by `tolerance`), which
+  // is solved to convergence (at most wrapped_iterations, see converged_tolerance), which
   // carries the walls of the rim across the hole. A rim in its plane (an open flat base, whose
   // band of sample_rings rings runs down the side walls within about that many voxels of the
   // plane) keeps the harmonic map's flat span with thin_plate_iterations: the converged thin
   // plate would carry the walls' slope past the base and bulge.
   double wrap_rms = 3.0;
   int wrapped_iterations = 1000;
+  // The solves to convergence stop once no step moves a vertex by more than this: the
+  // bi-Laplacian's steps fall below `tolerance` hundreds of iterations before the plate
+  // settles (a cap of 1,588 vertices: 144 iterations at 0.01 voxel, 398 at 0.001, 589 at
+  // 0.0001, the last two the same cap within the scorer's resolution).
+  double converged_tolerance = 0.001;
+  // A cap shaped by the spline (its rim a height field) is also solved to convergence when the
+  // band's own extrapolation says the converged plate is the better cap: the algebraic sphere
+  // of the band (algebraic_sphere.h: the fixed vertices within sample_rings rings and their
+  // normals) lies within sphere_band_fit voxels of the band on average, and the converged
+  // plate's gap vertices (no point within gap_radius) lie closer to that sphere, on average,
+  // than those of the thin_plate_iterations cap by more than sphere_margin voxels. Where the
+  // sphere does not describe the band (a saddle, an open base, a band over several parts), the
+  // thin_plate_iterations cap stays.
+  double sphere_band_fit = 2.0;
+  double sphere_margin = 0.05;
   // A cap vertex of a face that crosses another goes back toward its place before the cap:
   // halfway this many times, then all the way.
   int back_off_halvings = 4;
@@ -80,6 +95,7 @@ struct HoleCapStats {
   int64_t uncapped_regions = 0;
   int64_t harmonic_starts = 0;   // caps with no height field: the thin plate from the harmonic map
   int64_t wrapped = 0;           // of those, rims around a swallowed part: thin plate converged
+  int64_t sphere_converged = 0;  // spline caps converged because the band's sphere says so
   int64_t iterations = 0;       // conjugate-gradient iterations, every solve
   int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
   double max_lift = 0;          // largest move of a vertex by its cap, in voxels
@@ -97,7 +113,8 @@ struct HoleCapStats {
 // singular, the harmonic map stays); then thin_plate_iterations conjugate-gradient iterations
 // toward the discrete thin plate of the region (the minimum of the sum over vertices of
 // |umbrella Laplacian|^2 / degree), or up to wrapped_iterations where the rim is no height
-// field and leaves its plane by more than wrap_rms. Regions with no fixed neighbour are left. Then it searches the faces around moved vertices for crossings
+// field and leaves its plane by more than wrap_rms, or where the rim is a height field and the
+// band's algebraic sphere prefers the converged plate (sphere_band_fit, sphere_margin). Regions with no fixed neighbour are left. Then it searches the faces around moved vertices for crossings
 // and sends the moved vertices of each crossing pair back toward where they were (halfway
 // back_off_halvings times, then all the way) until no crossing involves a moved vertex: where
 // a cap would cross the mesh, that part of it is not built.

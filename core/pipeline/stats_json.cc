@@ -83,6 +83,7 @@ std::string HoleCapsJson(const HoleCapStats& h) {
   return absl::StrCat("{\"regions\": ", h.regions, ", \"vertices\": ", h.vertices,
                       ", \"harmonic_starts\": ", h.harmonic_starts,
                       ", \"wrapped_caps\": ", h.wrapped,
+                      ", \"sphere_converged_caps\": ", h.sphere_converged,
                       ", \"uncapped_regions\": ", h.uncapped_regions,
                       ", \"backed_off_vertices\": ", h.backed_off,
                       ", \"max_lift_voxels\": ", JsonNumber(h.max_lift), "}");

@@ -1,9 +1,11 @@
 #include "tests/mesh/cloud_surface.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "core/base/cancel_token.h"
 #include "core/mesh/relaxation.h"
+#include "gtest/gtest.h"
 #include "tests/support/shrink_fixture.h"
 
 namespace membrane::testing {
@@ -21,6 +23,27 @@ absl::StatusOr<CloudSurface> SmoothSurfaceOfCloud(const PointCloud& cloud,
   surface.mesh = *std::move(mesh);
   surface.voxel_size = grid.voxel_size();
   return surface;
+}
+
+CapMeasure MeasureCap(const PointCloud& cloud, const SmoothSurfaceOptions& options,
+                      double voxel_size, const std::function<bool(const Vec3d&)>& in_hole,
+                      const std::function<double(const Vec3d&)>& error) {
+  absl::StatusOr<CloudSurface> surface = SmoothSurfaceOfCloud(cloud, options, voxel_size);
+  CapMeasure result;
+  EXPECT_TRUE(surface.ok()) << surface.status();
+  if (!surface.ok()) return result;
+  for (const Point3f& p : surface->mesh.vertices) {
+    const Vec3d v = ToVec3d(p);
+    if (!in_hole(v)) continue;
+    const double e = error(v) / surface->voxel_size;
+    result.max_error = std::max(result.max_error, e);
+    result.mean_error += e;
+    ++result.vertices;
+  }
+  if (result.vertices > 0) result.mean_error /= result.vertices;
+  result.caps = surface->stats.caps;
+  result.check = CheckMesh(surface->mesh);
+  return result;
 }
 
 }  // namespace membrane::testing

@@ -3,9 +3,13 @@
 #ifndef MEMBRANE_TESTS_MESH_CLOUD_SURFACE_H_
 #define MEMBRANE_TESTS_MESH_CLOUD_SURFACE_H_
 
+#include <functional>
+
 #include "absl/status/statusor.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/geometry/vec3.h"
+#include "core/mesh/mesh_check.h"
 #include "core/mesh/smooth_surface.h"
 
 namespace membrane::testing {
@@ -22,6 +26,22 @@ struct CloudSurface {
 absl::StatusOr<CloudSurface> SmoothSurfaceOfCloud(const PointCloud& cloud,
                                                   const SmoothSurfaceOptions& options,
                                                   double voxel_size = 0);
+
+// What the cap tests measure of one surface: over the vertices `in_hole` picks, the largest and
+// the mean of `error` (model units) in voxels, the caps' statistics and the mesh's check.
+struct CapMeasure {
+  double max_error = 0;
+  double mean_error = 0;
+  int vertices = 0;
+  HoleCapStats caps;
+  MeshReport check;
+};
+
+// SmoothSurfaceOfCloud(cloud, options, voxel_size), measured. A failed stage fails the calling
+// test (EXPECT) and gives an empty measure.
+CapMeasure MeasureCap(const PointCloud& cloud, const SmoothSurfaceOptions& options,
+                      double voxel_size, const std::function<bool(const Vec3d&)>& in_hole,
+                      const std::function<double(const Vec3d&)>& error);
 
 }  // namespace membrane::testing
 

@@ -257,7 +257,8 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       !(o.wrap_rms >= 0) || o.wrapped_iterations < 0 || !(o.sphere_band_fit >= 0) ||
       !(o.sphere_margin >= 0) || !(o.converged_tolerance > 0) ||
       o.back_off_halvings < 0 || !(o.max_shell_share > 0 && o.max_shell_share <= 1) ||
-      o.min_median_points < 1 || o.min_median_points > 1000)
+      o.min_median_points < 1 || o.min_median_points > 1000 ||
+      !(o.anchor_radius > 0 && o.anchor_radius <= 64))
     return absl::InvalidArgumentError(absl::StrCat(
         "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
         o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",
@@ -267,7 +268,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         o.wrapped_iterations, ", sphere_band_fit ", o.sphere_band_fit, ", sphere_margin ",
         o.sphere_margin, ", converged_tolerance ", o.converged_tolerance,
         ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ", o.max_shell_share,
-        ", min_median_points ", o.min_median_points));
+        ", min_median_points ", o.min_median_points, ", anchor_radius ", o.anchor_radius));
   return absl::OkStatus();
 }
 
@@ -308,17 +309,32 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   // within gap_radius, in a histogram (the last bin holds every larger count), for their median.
   std::vector<char> gap(nv, 0);
   bool sparse = false;
+  // The points with no vertex within gap_radius: buried in the solid or left outside it.
+  std::vector<Point3f> remote;
   {
     const double radius = options.gap_radius * l;
+    const double r2 = radius * radius;
     const PointRowGrid grid(points, radius);
+    std::vector<char> covered(grid.num_points(), 0);
+    const float* px = grid.xs();
+    const float* py = grid.ys();
+    const float* pz = grid.zs();
     int64_t count = 0;
     std::vector<int64_t> histogram(options.min_median_points + 1, 0);
     for (int32_t v = 0; v < nv; ++v) {
       if (v % kCancelPollVertices == 0 && cancel.cancelled())
         return absl::CancelledError("hole caps cancelled");
       int near = 0;
-      grid.ForEachWithin(ToVec3d(mesh.vertices[v]), radius,
-                         [&](const Point3f&, double) { ++near; });
+      const Vec3d c = ToVec3d(mesh.vertices[v]);
+      grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t end) {
+        for (uint32_t i = begin; i < end; ++i) {
+          const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
+          if (dx * dx + dy * dy + dz * dz <= r2) {
+            ++near;
+            covered[i] = 1;
+          }
+        }
+      });
       gap[v] = near == 0;
       count += gap[v];
       if (near > 0) ++histogram[std::min(near, options.min_median_points)];
@@ -328,6 +344,9 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     int64_t fewer = 0;
     for (int k = 0; k < options.min_median_points; ++k) fewer += histogram[k];
     sparse = 2 * fewer > nv - count;
+    if (options.anchor_remote_points)
+      for (size_t i = 0; i < grid.num_points(); ++i)
+        if (!covered[i]) remote.push_back(Point3f{px[i], py[i], pz[i]});
   }
   if (cancel.cancelled()) return absl::CancelledError("hole caps cancelled");
   Rows nb, star;
@@ -387,7 +406,51 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
 
   std::vector<Vec3d> x(nv);
   for (int32_t v = 0; v < nv; ++v) x[v] = ToVec3d(mesh.vertices[v]);
-  const int it = Solve(false, nb, free_list, x, options.harmonic_iterations,
+  // Anchors: a remote point whose nearest vertex (within anchor_radius) is a cap vertex holds
+  // that vertex at the mean of such points; the cap is solved around it. Every vertex is a
+  // candidate: a point nearest to the data around a gap is no cap's.
+  std::vector<char> pinned(nv, 0);
+  if (!remote.empty()) {
+    const double reach = options.anchor_radius * l;
+    const PointRowGrid grid(remote, reach);
+    std::vector<double> best(grid.num_points(), reach * reach);
+    std::vector<int32_t> owner(grid.num_points(), -1);
+    const float* px = grid.xs();
+    const float* py = grid.ys();
+    const float* pz = grid.zs();
+    for (int32_t v = 0; v < nv; ++v) {
+      if (v % kCancelPollVertices == 0 && cancel.cancelled())
+        return absl::CancelledError("hole caps cancelled");
+      const Vec3d c = x[v];
+      grid.ForEachRun(c, reach, [&](uint32_t begin, uint32_t end) {
+        for (uint32_t i = begin; i < end; ++i) {
+          const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
+          const double d2 = dx * dx + dy * dy + dz * dz;
+          if (d2 < best[i]) {
+            best[i] = d2;
+            owner[i] = v;
+          }
+        }
+      });
+    }
+    std::vector<Vec3d> sum(nv, Vec3d{0, 0, 0});
+    std::vector<int32_t> held(nv, 0);
+    for (size_t i = 0; i < grid.num_points(); ++i)
+      if (owner[i] >= 0 && free[owner[i]]) {
+        sum[owner[i]] = sum[owner[i]] + Vec3d{px[i], py[i], pz[i]};
+        ++held[owner[i]];
+      }
+    for (int32_t v : free_list)
+      if (held[v] > 0) {
+        pinned[v] = 1;
+        x[v] = (1.0 / held[v]) * sum[v];
+        ++st.anchors;
+      }
+  }
+  std::vector<int32_t> solve_list;
+  for (int32_t v : free_list)
+    if (!pinned[v]) solve_list.push_back(v);
+  const int it = Solve(false, nb, solve_list, x, options.harmonic_iterations,
                        options.tolerance * l, cancel);
   if (it < 0) return absl::CancelledError("hole caps cancelled");
   st.iterations = it;
@@ -397,7 +460,10 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   std::vector<std::optional<AlgebraicSphere>> spheres(regions.size());
   std::vector<int32_t> candidates;
   for (size_t r = 0; r < regions.size(); ++r) {
-    const auto& region = regions[r];
+    // The region's vertices but the held ones.
+    std::vector<int32_t> region;
+    for (int32_t v : regions[r])
+      if (!pinned[v]) region.push_back(v);
     // Where the spline cannot shape it, the thin plate starts from the harmonic map.
     const CapStart start = ShapeCap(mesh, nb, star, region, free, l, options, x);
     if (start != CapStart::kSpline) ++st.harmonic_starts;

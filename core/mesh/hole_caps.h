@@ -38,6 +38,12 @@ struct HoleCapOptions {
   // a gap lie on the membrane's wall down into the hole, not on the data, and a cap held by
   // them would keep the wall's slope.
   int rim_rings = 3;
+  // Points with no vertex within gap_radius (seen through the gap, with the membrane's floor
+  // under them: a cap from the rim alone would bury them) hold the cap: the nearest vertex
+  // within anchor_radius, when it is a cap's, is held at the mean of its such points. Farther
+  // points are not a cap's to reach.
+  bool anchor_remote_points = true;
+  double anchor_radius = 8.0;
   // The cap's vertices are spread by the harmonic (minimal membrane) map of the region with
   // every other vertex fixed, by conjugate gradients: at most this many iterations, stopping
   // once no step moves a vertex by more than `tolerance`.
@@ -97,6 +103,7 @@ struct HoleCapStats {
   int64_t wrapped = 0;           // of those, rims around a swallowed part: thin plate converged
   int64_t sphere_converged = 0;  // spline caps converged because the band's sphere says so
   int64_t iterations = 0;       // conjugate-gradient iterations, every solve
+  int64_t anchors = 0;           // cap vertices held at remote points
   int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
   double max_lift = 0;          // largest move of a vertex by its cap, in voxels
 };
@@ -106,7 +113,9 @@ struct HoleCapStats {
 // Effect: finds the gap regions (connected sets of vertices with no point within gap_radius,
 // each of at least min_gap_vertices, grown by rim_rings rings, each at most max_shell_share of
 // its shell; none when the data are sparse, see min_median_points) and spans each with a
-// cap: its vertices are spread by the harmonic map of the region (every other vertex fixed),
+// cap. Points seen inside a gap hold it: a cap vertex nearest (within anchor_radius) to points
+// with no vertex within gap_radius is held at their mean (anchor_remote_points). The other
+// cap vertices are spread by the harmonic map of the region (every other vertex fixed),
 // projected on the least-squares plane of the rim samples (the fixed vertices within sample_rings rings)
 // and lifted to the thin-plate spline through the samples' heights over that plane (where
 // there are too few samples, the rim is no height field (min_rim_cosine) or the spline is

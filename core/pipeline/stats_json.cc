@@ -85,6 +85,7 @@ std::string HoleCapsJson(const HoleCapStats& h) {
                       ", \"wrapped_caps\": ", h.wrapped,
                       ", \"sphere_converged_caps\": ", h.sphere_converged,
                       ", \"uncapped_regions\": ", h.uncapped_regions,
+                      ", \"anchored_vertices\": ", h.anchors,
                       ", \"backed_off_vertices\": ", h.backed_off,
                       ", \"max_lift_voxels\": ", JsonNumber(h.max_lift), "}");
 }

@@ -9,12 +9,11 @@
 
 #include "core/mesh/hole_caps.h"
 #include "core/mesh/mesh_check.h"
-#include "core/mesh/relaxation.h"
 #include "core/mesh/smooth_surface.h"
 #include "gtest/gtest.h"
+#include "tests/mesh/box_cloud.h"
 #include "tests/mesh/cloud_surface.h"
 #include "tests/mesh/surface_expectations.h"
-#include "tests/support/shrink_fixture.h"
 
 namespace membrane {
 namespace {
@@ -40,31 +39,11 @@ constexpr double kSlabHoleRadius = 1.25;
 
 PointCloud SlabWithHole(int per_unit_area) {
   std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(0, 1);
-  PointCloud cloud;
-  // Faces: (fixed axis, its value, the other two axes' ranges).
-  struct Face {
-    int axis;
-    double at, lo1, hi1, lo2, hi2;
-  };
-  const Face faces[] = {{1, kHalfThick, -2, 2, -2, 1},  {1, -kHalfThick, -2, 2, -2, 1},
-                        {0, 2, -kHalfThick, kHalfThick, -2, 1},
-                        {0, -2, -kHalfThick, kHalfThick, -2, 1},
-                        {2, 1, -2, 2, -kHalfThick, kHalfThick},
-                        {2, -2, -2, 2, -kHalfThick, kHalfThick}};
-  for (const Face& f : faces) {
-    const int n = static_cast<int>(per_unit_area * (f.hi1 - f.lo1) * (f.hi2 - f.lo2));
-    const int a1 = f.axis == 0 ? 1 : 0, a2 = f.axis == 2 ? 1 : 2;
-    for (int i = 0; i < n; ++i) {
-      Vec3d p;
-      p[f.axis] = f.at;
-      p[a1] = f.lo1 + (f.hi1 - f.lo1) * u(rng);
-      p[a2] = f.lo2 + (f.hi2 - f.lo2) * u(rng);
-      if (SquaredNorm(p - kSlabHole) < kSlabHoleRadius * kSlabHoleRadius) continue;
-      cloud.points.push_back(ToPoint3f(p));
-    }
-  }
-  return cloud;
+  return testing::BoxFacePoints(
+      Vec3d{-2, -kHalfThick, -2}, Vec3d{2, kHalfThick, 1}, per_unit_area, rng,
+      [](const Vec3d& p) {
+        return SquaredNorm(p - kSlabHole) >= kSlabHoleRadius * kSlabHoleRadius;
+      });
 }
 
 // Distance to the slab's surface (the box's boundary).
@@ -140,13 +119,12 @@ PointCloud Frustum(int per_unit_area, bool base) {
 // no cap to shape): the caps are given the surface nets of the closed frustum and the cloud
 // without its base, whose vertices then lie in a gap under a rim that is no height field.
 TEST(HoleCapRims, OpenFlatBaseStaysFlat) {
-  auto run = testing::ShrinkCloud(Frustum(3000, true), 1.0, {}, kVoxel);
-  ASSERT_TRUE(run.ok()) << run.status();
-  ASSERT_TRUE(Relax(run->voxels.grid, CancelToken::Never()).ok());
   SmoothSurfaceOptions surface;
-  surface.fit = false;
-  absl::StatusOr<TriangleMesh> nets = SmoothSurface(run->voxels.grid, {}, surface);
-  ASSERT_TRUE(nets.ok()) << nets.status();
+  surface.fit = false;  // the surface nets, uncapped
+  absl::StatusOr<testing::CloudSurface> closed =
+      testing::SmoothSurfaceOfCloud(Frustum(3000, true), surface, kVoxel);
+  ASSERT_TRUE(closed.ok()) << closed.status();
+  const TriangleMesh* nets = &closed->mesh;
   const PointCloud open = Frustum(3000, false);
   struct Base {
     double max_error = 0, mean_error = 0;

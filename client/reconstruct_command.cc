@@ -104,7 +104,8 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   app.add_option("--quantization", f.quantization,
                  "Draco position bits of the cloud sent to --server and of .drc output, [0, 30]; "
                  "0 = lossless; when not given, the cloud sent gets more bits where its voxel "
-                 "needs them (a step of at most 1/8 voxel)")
+                 "needs them (a step of at most 1/8 voxel), and so does the mesh on grids over "
+                 "about 800 voxels wide (a step of at most 0.4 voxel)")
       ->capture_default_str()
       ->each([&f](const std::string&) { f.quantization_given = true; });
   app.add_option("--compression-level", f.compression_level,
@@ -223,6 +224,7 @@ absl::StatusOr<ReconstructionParams> ParamsFromFlags(const ReconstructFlags& f) 
   // Only .drc quantizes; the surface is then built and checked on the file's grid.
   if (p.output_format == FileFormat::kDrc) {
     p.options.output_quantization_bits = static_cast<int>(f.quantization);
+    p.options.output_bits_follow_voxel = !f.quantization_given;
   }
   return p;
 }
@@ -257,7 +259,12 @@ RemoteParams RemoteParamsFromFlags(const ReconstructFlags& f, FileFormat output_
   p.set_no_relax(f.no_relax);
   if (f.target_faces > 0) p.set_target_faces(f.target_faces);
   const bool drc_output = output_format == FileFormat::kDrc;
-  p.set_quantization(drc_output ? static_cast<int32_t>(f.quantization) : 0);
+  // Unset leaves the mesh's bits to the server, which chooses them as --local does.
+  if (!drc_output) {
+    p.set_quantization(0);
+  } else if (f.quantization_given) {
+    p.set_quantization(static_cast<int32_t>(f.quantization));
+  }
   p.set_compression_level(static_cast<int32_t>(f.compression_level));
   // 0 asks for the server's own; the server caps a budget with its own.
   p.set_voxel_budget(f.voxel_budget);

@@ -82,6 +82,7 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
   if (p.has_quantization()) settings.mesh_encoding.position_quantization_bits = p.quantization();
   if (p.has_compression_level()) settings.mesh_encoding.compression_level = p.compression_level();
   r.output_quantization_bits = settings.mesh_encoding.position_quantization_bits;
+  r.output_bits_follow_voxel = !p.has_quantization();
   switch (p.mesh_format()) {
     case v1::MESH_FORMAT_UNSPECIFIED:
     case v1::MESH_FORMAT_DRACO:

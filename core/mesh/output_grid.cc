@@ -13,4 +13,11 @@ PositionGrid OutputGrid(const VoxelGrid& membrane, int bits) {
   return GridOverBox(bits, low, {low[0] + side, low[1] + side, low[2] + side}, 1e-6);
 }
 
+int OutputBitsForVoxel(const VoxelGrid& membrane, int bits) {
+  if (bits <= 0) return bits;
+  const double largest_step = kMaxOutputStepVoxels * membrane.voxel_size();
+  while (bits < 30 && OutputGrid(membrane, bits).step() > largest_step) ++bits;
+  return bits;
+}
+
 }  // namespace membrane

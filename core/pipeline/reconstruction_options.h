@@ -21,6 +21,9 @@ struct ReconstructionOptions {
   // they are). The surface is built on that grid and checked there, so the report describes
   // the positions delivered, not positions the encoding then moves.
   int output_quantization_bits = 0;
+  // The caller left the bits to the reconstruction: output_quantization_bits is raised where
+  // the grid is so wide that its step would exceed kMaxOutputStepVoxels (OutputBitsForVoxel).
+  bool output_bits_follow_voxel = false;
   // Threads of the stages that split their work by the geometry (the voxelization, the
   // relaxation's passes, the smooth surface, the mesh check, the decimation's error measure;
   // docs/design.md, "Threads"), 1..kMaxReconstructionThreads. The mesh is the same for any value.

@@ -125,7 +125,10 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   if (absl::Status s = StopIfCancelled(cancel, last); !s.ok()) return s;
 
   report.quantization.requested_bits = options.output_quantization_bits;
-  PositionGrid output_grid = OutputGrid(grid, options.output_quantization_bits);
+  PositionGrid output_grid =
+      OutputGrid(grid, options.output_bits_follow_voxel
+                           ? OutputBitsForVoxel(grid, options.output_quantization_bits)
+                           : options.output_quantization_bits);
   for (;;) {
     absl::StatusOr<BuiltSurface> surface =
         SurfaceStage(options, cancel, grid, *cloud, output_grid, report, observer,

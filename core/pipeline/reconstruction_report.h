@@ -36,8 +36,10 @@ struct StageSeconds {
 // The grid the delivered positions lie on (ReconstructionOptions::output_quantization_bits).
 struct QuantizationReport {
   int requested_bits = 0;  // 0: float32 asked for
-  // The grid the mesh was built, checked and delivered on: the requested one, or 0 (float32)
-  // when on it the check found crossing or flattened faces.
+  // The grid the mesh was built, checked and delivered on: the requested one (with more bits
+  // where the voxel needs them and the caller left the bits to the reconstruction:
+  // ReconstructionOptions::output_bits_follow_voxel), or 0 (float32) when on it the check
+  // found crossing or flattened faces.
   int bits = 0;
   double step = 0;  // model units between grid positions along an axis; 0 for float32
   // How far the grid can move a coordinate from where float32 would put it: half the step (0

@@ -11,6 +11,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "core/mesh/output_grid.h"
 #include "core/pipeline/in_memory_ends.h"
 #include "core/pipeline/reconstruction_pipeline.h"
 #include "core/synth/synthesize.h"
@@ -360,6 +361,41 @@ TEST(ReconstructionPipeline, AGridThatCrossesFacesIsLeftForFloat32) {
   EXPECT_EQ(std::count(run.log.events.begin(), run.log.events.end(), "finished surface"), 2);
   EXPECT_EQ(std::count(run.log.events.begin(), run.log.events.end(), "finished check"), 1);
   EXPECT_EQ(std::count(run.log.events.begin(), run.log.events.end(), "finished encode"), 1);
+}
+
+// Bits left to the reconstruction follow the voxel: 4 bits over a sphere's grid would step
+// several voxels at a time, so the surface is built on the fewest bits whose step is within
+// kMaxOutputStepVoxels; asked for as they are, the 4 bits stand (or give float32).
+TEST(ReconstructionPipeline, OutputBitsLeftToItFollowTheVoxel) {
+  ReconstructionOptions options;
+  options.output_quantization_bits = 4;
+  options.output_bits_follow_voxel = true;
+  {
+    InMemoryCloudSource source(SampledSphere());
+    NoResourceLimit gate;
+    InMemoryMeshSink sink;
+    const Outcome run = RunWith(source, gate, sink, options);
+    ASSERT_TRUE(run.report.ok()) << run.report.status();
+    const QuantizationReport& q = run.report->quantization;
+    EXPECT_EQ(q.requested_bits, 4);
+    EXPECT_GT(q.bits, 4);
+    EXPECT_EQ(sink.grid().bits, q.bits);
+    EXPECT_LE(q.step, kMaxOutputStepVoxels * run.report->voxel_size);
+    EXPECT_LE(q.max_position_error, 0.5 * kMaxOutputStepVoxels * run.report->voxel_size);
+    EXPECT_TRUE(run.report->mesh.closed);
+    EXPECT_EQ(run.report->mesh.self_intersections, 0);
+  }
+  {
+    options.output_bits_follow_voxel = false;
+    InMemoryCloudSource source(SampledSphere());
+    NoResourceLimit gate;
+    InMemoryMeshSink sink;
+    const Outcome run = RunWith(source, gate, sink, options);
+    ASSERT_TRUE(run.report.ok()) << run.report.status();
+    EXPECT_EQ(run.report->quantization.requested_bits, 4);
+    EXPECT_TRUE(run.report->quantization.bits == 4 || run.report->quantization.bits == 0)
+        << run.report->quantization.bits;
+  }
 }
 
 }  // namespace

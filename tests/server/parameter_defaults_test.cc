@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "server/parameter_checks.h"
 #include "tests/server/service_fixture.h"
 
 namespace membrane::testing {
@@ -40,6 +41,28 @@ TEST_F(ServiceTest, UnsetQuantizationAndLevelGetTheDefaultsAndZeroMeansZero) {
   EXPECT_NE(StatisticsOf(zero).find("\"requested_bits\": 0"), std::string::npos)
       << StatisticsOf(zero);
   EXPECT_GT(zero.Mesh().size(), 2 * unset.Mesh().size()) << "0 bits must be lossless float32";
+}
+
+// Unset bits are the server's to choose: 11, raised on grids too wide for them (as `membrane
+// reconstruct` does when --quantization is not given); bits a client sets stand as set.
+TEST(ParameterChecks, UnsetQuantizationFollowsTheVoxelAndSetQuantizationStands) {
+  absl::StatusOr<server::JobSettings> unset = server::CheckParameters(v1::Parameters(), 0);
+  ASSERT_TRUE(unset.ok()) << unset.status();
+  EXPECT_EQ(unset->reconstruction.output_quantization_bits, 11);
+  EXPECT_TRUE(unset->reconstruction.output_bits_follow_voxel);
+
+  v1::Parameters eleven;
+  eleven.set_quantization(11);
+  absl::StatusOr<server::JobSettings> given = server::CheckParameters(eleven, 0);
+  ASSERT_TRUE(given.ok()) << given.status();
+  EXPECT_EQ(given->reconstruction.output_quantization_bits, 11);
+  EXPECT_FALSE(given->reconstruction.output_bits_follow_voxel);
+
+  v1::Parameters ply;
+  ply.set_mesh_format(v1::MESH_FORMAT_PLY);
+  absl::StatusOr<server::JobSettings> lossless = server::CheckParameters(ply, 0);
+  ASSERT_TRUE(lossless.ok()) << lossless.status();
+  EXPECT_EQ(lossless->reconstruction.output_quantization_bits, 0);
 }
 
 }  // namespace

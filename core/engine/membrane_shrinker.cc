@@ -97,6 +97,12 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
     }
   }
   {
+    absl::StatusOr<PieceSeparationStats> separation =
+        SeparateDataPieces(grid_, options_.separation, cancel_);
+    if (!separation.ok()) return separation.status();
+    result.separation = *separation;
+  }
+  {
     absl::StatusOr<HoleOpeningStats> holes =
         OpenPluggedHoles(grid_, options_.holes, points_ ? &*points_ : nullptr, cancel_);
     if (!holes.ok()) return holes.status();

@@ -73,6 +73,7 @@ struct ShrinkResult {
   int64_t preshrink_outside_voxels = 0;
   PostProcessStats post_process;
   HandleRetry handle_retry;
+  PieceSeparationStats separation;
   HoleOpeningStats holes;
   GapRefillStats refill;
   double seconds = 0.0;

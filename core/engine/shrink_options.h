@@ -7,6 +7,7 @@
 #include "absl/status/status.h"
 #include "core/engine/contraction.h"
 #include "core/engine/gap_refill.h"
+#include "core/engine/piece_separation.h"
 #include "core/engine/hole_opening.h"
 #include "core/engine/plate_schedule.h"
 #include "core/engine/topology_guard.h"
@@ -38,6 +39,7 @@ struct ShrinkOptions {
   bool connect_inside_hard = true;  // section 7 post-process
   HandleRetryOptions retry;
   GapRefillOptions refill;          // channels carved through data gaps (gap_refill.h)
+  PieceSeparationOptions separation;  // pieces of data joined by the shrink (piece_separation.h)
   HoleOpeningOptions holes;         // plugged holes opened from the data (hole_opening.h)
 };
 

@@ -102,6 +102,10 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.depth_bound)) return false;
     } else if (arg == "--rerun-thin" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.rerun_thin)) return false;
+    } else if (arg == "--far-steps" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.separation.far_steps)) return false;
+    } else if (arg == "--no-separation") {
+      o.shrink.separation.enabled = false;
     } else if (arg == "--no-hole-opening") {
       o.shrink.holes.enabled = false;
     } else if (arg == "--no-synthetic") {
@@ -200,8 +204,21 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
                      (!genus_asserted || genus == expected.genus);
   tally.right += right;
   const auto& d = vox->grid.dims();
-  const std::string holes_note =
+  std::string holes_note =
       result->holes.opened > 0 ? absl::StrCat("  holes opened: ", result->holes.opened) : "";
+  const PieceSeparationStats& sep = result->separation;
+  if (sep.pieces > 1) {
+    absl::StrAppend(&holes_note, absl::StrFormat("  pieces %d, %s", sep.pieces,
+                                                 sep.separated
+                                                     ? absl::StrFormat("cut %d + web %d voxels",
+                                                                       sep.cut_voxels, sep.web_voxels)
+                                                     : "not cut"));
+    if (sep.shells_after > 0)
+      absl::StrAppend(&holes_note,
+                      absl::StrFormat(" (%d/%d -> %d/%d, cavities %d, %.3f s)", sep.shells_before,
+                                      sep.genus_before, sep.shells_after, sep.genus_after,
+                                      sep.cavities_after, sep.seconds));
+  }
   std::printf("%s%12s %7.3f  %-16s %-16s %s%s%s%s%s\n", row.c_str(),
               absl::StrCat(d[0], "x", d[1], "x", d[2]).c_str(), seconds,
               absl::StrCat(topo.shells, " / [", absl::StrJoin(genus, ","), "]").c_str(),

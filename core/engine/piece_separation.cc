@@ -1,0 +1,307 @@
+#include "core/engine/piece_separation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <deque>
+#include <numeric>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "core/engine/flat_bitset.h"
+#include "core/engine/local_topology.h"
+#include "core/engine/post_process.h"
+#include "core/engine/voxel_topology.h"
+
+namespace membrane {
+namespace {
+
+constexpr int64_t kCancelPoll = 1 << 16;
+// Waves are labelled by their piece in one byte.
+constexpr uint8_t kNoWave = 255;
+constexpr size_t kMaxPieces = 254;
+
+int TotalGenusOf(const VoxelTopology& t) { return std::accumulate(t.genus.begin(), t.genus.end(), 0); }
+
+// The 26-components of the hard voxels holding at least `min_fraction` of them, as lists of
+// voxel indices (one pass over the grid).
+std::vector<std::vector<int64_t>> BigHardComponents(const VoxelGrid& grid, double min_fraction,
+                                                    const CancelToken& cancel) {
+  std::vector<std::vector<int64_t>> components;
+  FlatBitset seen(grid.size());
+  const VoxelState* s = grid.states().data();
+  int64_t hard = 0;
+  for (int64_t i = 0; i < grid.size(); ++i) {
+    if (!IsHard(s[i]) || seen.test(i)) continue;
+    if (cancel.cancelled()) return {};
+    std::vector<int64_t>& component = components.emplace_back(1, i);
+    seen.set(i);
+    for (size_t k = 0; k < component.size(); ++k)
+      for (int64_t off : grid.neighbour_offsets()) {
+        const int64_t n = component[k] + off;
+        if (IsHard(s[n]) && !seen.test(n)) {
+          seen.set(n);
+          component.push_back(n);
+        }
+      }
+    hard += static_cast<int64_t>(component.size());
+  }
+  const double min_voxels = std::max(1.0, min_fraction * static_cast<double>(hard));
+  std::erase_if(components, [&](const std::vector<int64_t>& c) {
+    return static_cast<double>(c.size()) < min_voxels;
+  });
+  return components;
+}
+
+// One cut tried on the grid and undone: only outside-ness matters to the topology count, and
+// a kept cut is applied again with the membrane's states settled around it.
+class CutTrial {
+ public:
+  struct Outcome {
+    VoxelTopology topology;       // of the solid with the cut
+    std::vector<int64_t> carved;  // voxels the cut leaves outside, in index order
+    int64_t web_voxels = 0;       // of which in shells without data
+  };
+
+  // `scratch`: one byte a voxel, reused to hold the states of the voxels a trial changes.
+  CutTrial(VoxelGrid& grid, std::vector<VoxelState> scratch)
+      : grid_(grid), s_(grid.mutable_states().data()), original_(std::move(scratch)),
+        in_cut_(grid.size()), seen_(grid.size()) {}
+
+  // Turns `cut` (non-hard solid voxels, nearest the data first) outside, returns the enclosed
+  // parts of it, removes the shells left without a hard voxel, returns every cut voxel whose
+  // return is simple, counts the topology and restores the grid.
+  absl::StatusOr<Outcome> Run(const std::vector<int64_t>& cut, const CancelToken& cancel) {
+    changed_.clear();
+    in_cut_.clear_all();
+    for (int64_t v : cut) {
+      if (in_cut_.test(v)) continue;
+      in_cut_.set(v);
+      MakeOutside(v);
+    }
+    Outcome out;
+    ReturnEnclosed(cut);
+    if (!RemoveWebs(cut, out.web_voxels, cancel) || !Refill(cut, cancel)) {
+      Restore();
+      return absl::CancelledError("reconstruction cancelled");
+    }
+    out.topology = ComputeVoxelTopology(grid_);
+    for (int64_t v : changed_)
+      if (IsOutside(s_[v])) out.carved.push_back(v);
+    std::sort(out.carved.begin(), out.carved.end());
+    Restore();
+    return out;
+  }
+
+ private:
+  void MakeOutside(int64_t v) {
+    original_[v] = s_[v];
+    changed_.push_back(v);
+    s_[v] = OutsideState(0);
+  }
+  void Restore() {
+    for (int64_t v : changed_) s_[v] = original_[v];
+  }
+
+  // Cut voxels enclosed by the solid (the interior of an object far from its data) are no
+  // separation: each 6-component of them with no face neighbour outside before returns.
+  void ReturnEnclosed(const std::vector<int64_t>& cut) {
+    seen_.clear_all();
+    std::vector<int64_t> part;
+    const auto st = grid_.strides();
+    for (int64_t v : cut) {
+      if (seen_.test(v)) continue;
+      part.assign(1, v);
+      seen_.set(v);
+      bool open = false;
+      for (size_t k = 0; k < part.size(); ++k)
+        for (int d = 0; d < 3; ++d)
+          for (int64_t n : {part[k] - st[d], part[k] + st[d]}) {
+            if (!IsOutside(s_[n])) continue;
+            if (!in_cut_.test(n)) {
+              open = true;
+            } else if (!seen_.test(n)) {
+              seen_.set(n);
+              part.push_back(n);
+            }
+          }
+      if (!open)
+        for (int64_t n : part) s_[n] = original_[n];
+    }
+  }
+
+  // Shells left without data beside the cut are webs: removed whole. A flood stops at the
+  // first hard voxel, or at a voxel an earlier flood saw (that flood met data: a flood that
+  // meets none sees its whole shell).
+  bool RemoveWebs(const std::vector<int64_t>& cut, int64_t& web_voxels, const CancelToken& cancel) {
+    seen_.clear_all();
+    std::vector<int64_t> shell;
+    for (int64_t v : cut) {
+      if (!IsOutside(s_[v])) continue;
+      if (cancel.cancelled()) return false;
+      for (int64_t off : grid_.neighbour_offsets()) {
+        const int64_t n = v + off;
+        if (IsOutside(s_[n]) || seen_.test(n)) continue;
+        shell.assign(1, n);
+        seen_.set(n);
+        bool has_data = IsHard(s_[n]);
+        for (size_t k = 0; k < shell.size() && !has_data; ++k)
+          for (int64_t o : grid_.neighbour_offsets()) {
+            const int64_t m = shell[k] + o;
+            if (IsOutside(s_[m])) continue;
+            if (seen_.test(m) || IsHard(s_[m])) {
+              has_data = true;
+              break;
+            }
+            seen_.set(m);
+            shell.push_back(m);
+          }
+        if (!has_data) {
+          for (int64_t m : shell) MakeOutside(m);
+          web_voxels += static_cast<int64_t>(shell.size());
+        }
+      }
+    }
+    return true;
+  }
+
+  // Cut voxels return to the solid, nearest the data first, while their return is simple and
+  // keeps the membrane face-connected (a face neighbour in the solid): what stays outside is
+  // what the separation needs.
+  bool Refill(const std::vector<int64_t>& cut, const CancelToken& cancel) {
+    std::deque<int64_t> refill(cut.begin(), cut.end());
+    int64_t polls = 0;
+    auto is_solid = [](VoxelState x) { return !IsOutside(x); };
+    while (!refill.empty()) {
+      if (++polls % kCancelPoll == 0 && cancel.cancelled()) return false;
+      const int64_t v = refill.front();
+      refill.pop_front();
+      if (!IsOutside(s_[v])) continue;
+      const uint32_t solid = NeighbourhoodMask(grid_, v, is_solid);
+      if ((solid & FaceNeighboursMask()) == 0 || !IsSimple(solid)) continue;
+      s_[v] = original_[v];
+      for (int64_t off : grid_.neighbour_offsets())
+        if (in_cut_.test(v + off) && IsOutside(s_[v + off])) refill.push_back(v + off);
+    }
+    return true;
+  }
+
+  VoxelGrid& grid_;
+  VoxelState* s_;
+  std::vector<VoxelState> original_;
+  std::vector<int64_t> changed_;
+  FlatBitset in_cut_;
+  FlatBitset seen_;
+};
+
+}  // namespace
+
+absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
+                                                        const PieceSeparationOptions& options,
+                                                        const CancelToken& cancel) {
+  if (options.min_piece_fraction <= 0 || options.min_piece_fraction > 0.5 ||
+      options.far_steps < 1) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("piece separation options out of range: min_piece_fraction ",
+                     options.min_piece_fraction, " (0..0.5], far_steps ", options.far_steps,
+                     " (1 or more)"));
+  }
+  PieceSeparationStats stats;
+  if (!options.enabled) return stats;
+  const auto start = std::chrono::steady_clock::now();
+  auto done = [&] {
+    stats.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return stats;
+  };
+  auto cancelled = [] { return absl::CancelledError("reconstruction cancelled"); };
+  VoxelState* s = grid.mutable_states().data();
+  std::vector<std::vector<int64_t>> pieces =
+      BigHardComponents(grid, options.min_piece_fraction, cancel);
+  if (cancel.cancelled()) return cancelled();
+  stats.pieces = static_cast<int>(pieces.size());
+  if (pieces.size() < 2) return done();
+
+  // Waves from every piece at once through the solid, one 26-step a layer (one byte a voxel
+  // while this runs, only when the data has two or more pieces). The cut: the non-hard solid
+  // voxels where two pieces' waves meet, and the non-hard boundary voxels farther than
+  // far_steps from every piece (webs in open space, or across a piece's own loops); in the
+  // waves' order, nearest the data first.
+  if (pieces.size() > kMaxPieces) return done();
+  std::vector<uint8_t> wave(static_cast<size_t>(grid.size()), kNoWave);
+  std::vector<int64_t> frontier, next;
+  for (size_t p = 0; p < pieces.size(); ++p)
+    for (int64_t v : pieces[p]) {
+      wave[v] = static_cast<uint8_t>(p);
+      frontier.push_back(v);
+    }
+  std::vector<std::vector<int64_t>>().swap(pieces);
+  FlatBitset in_cut(grid.size());
+  std::vector<int64_t> cut, far;
+  auto add_to_cut = [&](int64_t v) {
+    if (IsHard(s[v]) || in_cut.test(v)) return;
+    in_cut.set(v);
+    cut.push_back(v);
+  };
+  bool meet = false;
+  int64_t polls = 0;
+  for (int layer = 0; !frontier.empty(); ++layer) {
+    for (const int64_t v : frontier) {
+      if (++polls % kCancelPoll == 0 && cancel.cancelled()) return cancelled();
+      if (layer > options.far_steps && !IsHard(s[v])) far.push_back(v);
+      for (int64_t off : grid.neighbour_offsets()) {
+        const int64_t n = v + off;
+        if (IsOutside(s[n])) continue;
+        if (wave[n] == kNoWave) {
+          wave[n] = wave[v];
+          next.push_back(n);
+        } else if (wave[n] != wave[v]) {
+          meet = true;
+          add_to_cut(v);
+          add_to_cut(n);
+        }
+      }
+    }
+    frontier.swap(next);
+    next.clear();
+  }
+  if (!meet) return done();
+  std::erase_if(far, [&](int64_t v) { return in_cut.test(v); });
+
+  const VoxelTopology before = ComputeVoxelTopology(grid);
+  // The waves' bytes now hold the states of the voxels a trial changes.
+  CutTrial trial(grid, std::move(wave));
+  absl::StatusOr<CutTrial::Outcome> between = trial.Run(cut, cancel);
+  if (!between.ok()) return between.status();
+  auto better = [&](const VoxelTopology& after) {
+    return after.shells > before.shells && TotalGenusOf(after) <= TotalGenusOf(before) &&
+           after.cavities <= before.cavities;
+  };
+  stats.shells_before = before.shells;
+  stats.genus_before = TotalGenusOf(before);
+  const CutTrial::Outcome* kept = nullptr;
+  absl::StatusOr<CutTrial::Outcome> with_far = between;
+  // The far voxels are tried only when the cut between the pieces alone separates without new
+  // handles: otherwise the pieces touch where the data do not show it (a lid on its pot).
+  if (better(between->topology)) {
+    kept = &*between;
+    if (!far.empty()) {
+      cut.insert(cut.end(), far.begin(), far.end());
+      with_far = trial.Run(cut, cancel);
+      if (!with_far.ok()) return with_far.status();
+      if (better(with_far->topology)) kept = &*with_far;
+    }
+  }
+  const VoxelTopology& shown = kept != nullptr ? kept->topology : between->topology;
+  stats.shells_after = shown.shells;
+  stats.genus_after = TotalGenusOf(shown);
+  stats.cavities_after = shown.cavities;
+  if (kept == nullptr) return done();
+  for (int64_t v : kept->carved) CarveToOutside(grid, v);
+  stats.separated = true;
+  stats.web_voxels = kept->web_voxels;
+  stats.cut_voxels = static_cast<int64_t>(kept->carved.size()) - kept->web_voxels;
+  return done();
+}
+
+}  // namespace membrane

@@ -1,0 +1,63 @@
+// Separating pieces of data that the shrink joined into one shell (issue 18; docs/
+// engine-decisions.md "Pieces of data separated after the shrink").
+//
+// Objects a few voxels apart (cow-spot-belt: 5.0 and 5.5 voxels at 1x) come out of the shrink
+// as one shell: incursion freezes cascade on frozen voxels and leave plugs in the gaps and
+// frozen sheets in open space between the objects, which no local rule tells from a wall over
+// a data gap. After the shrink the data tell it: the points fill separate pieces (26-components
+// of hard voxels, more than 2 voxels apart, so a tube of one voxel around the data keeps them
+// apart too), and every solid path from one piece to another crosses the place where waves
+// from the pieces, spread through the solid, meet.
+#ifndef MEMBRANE_CORE_ENGINE_PIECE_SEPARATION_H_
+#define MEMBRANE_CORE_ENGINE_PIECE_SEPARATION_H_
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "core/base/cancel_token.h"
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+struct PieceSeparationOptions {
+  bool enabled = true;
+  // A piece of data is a 26-component of hard voxels holding at least this fraction of them;
+  // smaller ones (stray points) belong to whichever piece reaches them first.
+  double min_piece_fraction = 0.01;
+  // Boundary voxels farther than this (26-steps through the solid) from every piece are cut
+  // too: webs in open space, between the pieces or across a piece's own loops.
+  int far_steps = 12;
+};
+
+struct PieceSeparationStats {
+  int pieces = 0;              // pieces of data (after joining close ones)
+  bool separated = false;      // the cut was kept
+  int64_t cut_voxels = 0;      // voxels turned outside and kept outside
+  int64_t web_voxels = 0;      // voxels of shells without data removed with the cut
+  // Topology before and with the cut (whether kept or not), when a cut was tried.
+  int shells_before = 0, shells_after = 0;
+  int genus_before = 0, genus_after = 0;
+  int cavities_after = 0;
+  double seconds = 0.0;
+};
+
+// Input: a shrunk grid (the membrane invariants hold).
+// Effect: when two pieces of data lie in one shell, waves from every piece spread through the
+// solid (26-steps, breadth first). A cut is tried on the grid and undone: its non-hard voxels
+// are turned outside, the enclosed parts of it return, shells left without a hard voxel are
+// removed, and every cut voxel whose return to the solid is (26,6)-simple and face-connected
+// returns, nearest the data first (so what stays outside is what the topology change needs).
+// First the cut between the pieces (the non-hard voxels where two pieces' waves meet); when it
+// gives more shells, no more summed genus and no more cavities (topology counts), the same cut
+// with every non-hard voxel farther than far_steps from the pieces is tried too, and the better
+// of the two passing ones (the second when it passes) is applied: its voxels turned outside with
+// the membrane's states settled around them (CarveToOutside). Otherwise the grid is unchanged.
+// Costs one byte a voxel and two bitsets while it runs, only when the data has two or more
+// pieces that meet. Cancelled when `cancel` fires (the grid is then unchanged).
+absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
+                                                        const PieceSeparationOptions& options,
+                                                        const CancelToken& cancel);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_PIECE_SEPARATION_H_

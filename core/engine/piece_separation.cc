@@ -23,6 +23,34 @@ constexpr size_t kMaxPieces = 254;
 
 int TotalGenusOf(const VoxelTopology& t) { return std::accumulate(t.genus.begin(), t.genus.end(), 0); }
 
+// A cut voxel and the pair of pieces whose waves met there (smaller label * 256 + larger).
+struct CutVoxel {
+  int64_t voxel;
+  int pair;
+};
+
+// The largest ratio, over the pairs of pieces, of the voxels of the cut between them that a
+// trial leaves outside (`carved`, sorted) to the smaller piece's hard voxels. Voxels carved
+// that are not in `cut` (webs removed whole) belong to no pair.
+double CutFraction(std::vector<CutVoxel> cut, const std::vector<int64_t>& carved,
+                   const std::vector<int64_t>& piece_voxels) {
+  std::sort(cut.begin(), cut.end(),
+            [](const CutVoxel& a, const CutVoxel& b) { return a.voxel < b.voxel; });
+  std::vector<int64_t> per_pair(256 * 256, 0);
+  size_t k = 0;
+  for (int64_t v : carved) {
+    while (k < cut.size() && cut[k].voxel < v) ++k;
+    if (k < cut.size() && cut[k].voxel == v) ++per_pair[cut[k].pair];
+  }
+  double largest = 0.0;
+  for (int pair = 0; pair < static_cast<int>(per_pair.size()); ++pair) {
+    if (per_pair[pair] == 0) continue;
+    const int64_t smaller = std::min(piece_voxels[pair / 256], piece_voxels[pair % 256]);
+    largest = std::max(largest, static_cast<double>(per_pair[pair]) / static_cast<double>(smaller));
+  }
+  return largest;
+}
+
 // The 26-components of the hard voxels holding at least `min_fraction` of them, as lists of
 // voxel indices (one pass over the grid).
 std::vector<std::vector<int64_t>> BigHardComponents(const VoxelGrid& grid, double min_fraction,
@@ -200,11 +228,12 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
                                                         const PieceSeparationOptions& options,
                                                         const CancelToken& cancel) {
   if (options.min_piece_fraction <= 0 || options.min_piece_fraction > 0.5 ||
-      options.far_steps < 1) {
+      options.far_steps < 1 || !(options.max_cut_fraction > 0)) {
     return absl::InvalidArgumentError(
         absl::StrCat("piece separation options out of range: min_piece_fraction ",
                      options.min_piece_fraction, " (0..0.5], far_steps ", options.far_steps,
-                     " (1 or more)"));
+                     " (1 or more), max_cut_fraction ", options.max_cut_fraction,
+                     " (above 0)"));
   }
   PieceSeparationStats stats;
   if (!options.enabled) return stats;
@@ -235,13 +264,18 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
       wave[v] = static_cast<uint8_t>(p);
       frontier.push_back(v);
     }
+  std::vector<int64_t> piece_voxels;
+  for (const std::vector<int64_t>& piece : pieces)
+    piece_voxels.push_back(static_cast<int64_t>(piece.size()));
   std::vector<std::vector<int64_t>>().swap(pieces);
   FlatBitset in_cut(grid.size());
   std::vector<int64_t> cut, far;
-  auto add_to_cut = [&](int64_t v) {
+  std::vector<CutVoxel> cut_pairs;
+  auto add_to_cut = [&](int64_t v, int pair) {
     if (IsHard(s[v]) || in_cut.test(v)) return;
     in_cut.set(v);
     cut.push_back(v);
+    cut_pairs.push_back({v, pair});
   };
   bool meet = false;
   int64_t polls = 0;
@@ -257,8 +291,9 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
           next.push_back(n);
         } else if (wave[n] != wave[v]) {
           meet = true;
-          add_to_cut(v);
-          add_to_cut(n);
+          const int pair = std::min(wave[n], wave[v]) * 256 + std::max(wave[n], wave[v]);
+          add_to_cut(v, pair);
+          add_to_cut(n, pair);
         }
       }
     }
@@ -273,6 +308,7 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   CutTrial trial(grid, std::move(wave));
   absl::StatusOr<CutTrial::Outcome> between = trial.Run(cut, cancel);
   if (!between.ok()) return between.status();
+  stats.cut_fraction = CutFraction(std::move(cut_pairs), between->carved, piece_voxels);
   auto better = [&](const VoxelTopology& after) {
     return after.shells > before.shells && TotalGenusOf(after) <= TotalGenusOf(before) &&
            after.cavities <= before.cavities;
@@ -283,7 +319,9 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   absl::StatusOr<CutTrial::Outcome> with_far = between;
   // The far voxels are tried only when the cut between the pieces alone separates without new
   // handles: otherwise the pieces touch where the data do not show it (a lid on its pot).
-  if (better(between->topology)) {
+  // A cut between two pieces as large as a piece's data spans a solid's whole cross-section:
+  // the two caps of a closed surface whose data miss a band around it, not two objects.
+  if (better(between->topology) && stats.cut_fraction <= options.max_cut_fraction) {
     kept = &*between;
     if (!far.empty()) {
       cut.insert(cut.end(), far.begin(), far.end());

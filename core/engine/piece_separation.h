@@ -27,6 +27,10 @@ struct PieceSeparationOptions {
   // Boundary voxels farther than this (26-steps through the solid) from every piece are cut
   // too: webs in open space, between the pieces or across a piece's own loops.
   int far_steps = 12;
+  // A cut between two pieces that stays outside with more voxels than this fraction of the
+  // smaller piece's hard voxels spans a solid's whole cross-section (a closed surface whose data
+  // miss a band around it), not a plug or a sheet between objects: the trial is refused.
+  double max_cut_fraction = 0.33;
 };
 
 struct PieceSeparationStats {
@@ -38,6 +42,9 @@ struct PieceSeparationStats {
   int shells_before = 0, shells_after = 0;
   int genus_before = 0, genus_after = 0;
   int cavities_after = 0;
+  // The largest ratio, over the pairs of pieces whose waves meet, of the voxels the cut between
+  // them leaves outside to the smaller piece's hard voxels (0 when no cut was tried).
+  double cut_fraction = 0.0;
   double seconds = 0.0;
 };
 
@@ -48,10 +55,12 @@ struct PieceSeparationStats {
 // removed, and every cut voxel whose return to the solid is (26,6)-simple and face-connected
 // returns, nearest the data first (so what stays outside is what the topology change needs).
 // First the cut between the pieces (the non-hard voxels where two pieces' waves meet); when it
-// gives more shells, no more summed genus and no more cavities (topology counts), the same cut
-// with every non-hard voxel farther than far_steps from the pieces is tried too, and the better
-// of the two passing ones (the second when it passes) is applied: its voxels turned outside with
-// the membrane's states settled around them (CarveToOutside). Otherwise the grid is unchanged.
+// leaves outside no more than max_cut_fraction of the smaller piece's hard voxels for every
+// pair of pieces whose waves meet (stats.cut_fraction) and gives more shells, no more summed
+// genus and no more cavities (topology counts), the same cut with every non-hard voxel farther
+// than far_steps from the pieces is tried too, and the better of the two passing ones (the
+// second when it passes) is applied: its voxels turned outside with the membrane's states
+// settled around them (CarveToOutside). Otherwise the grid is unchanged.
 // Costs one byte a voxel and two bitsets while it runs, only when the data has two or more
 // pieces that meet. Cancelled when `cancel` fires (the grid is then unchanged).
 absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,

@@ -104,6 +104,8 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       if (!absl::SimpleAtoi(argv[++i], &o.rerun_thin)) return false;
     } else if (arg == "--far-steps" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.separation.far_steps)) return false;
+    } else if (arg == "--max-cut-fraction" && has_value) {
+      if (!absl::SimpleAtod(argv[++i], &o.shrink.separation.max_cut_fraction)) return false;
     } else if (arg == "--no-separation") {
       o.shrink.separation.enabled = false;
     } else if (arg == "--no-hole-opening") {
@@ -215,9 +217,10 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
                                                      : "not cut"));
     if (sep.shells_after > 0)
       absl::StrAppend(&holes_note,
-                      absl::StrFormat(" (%d/%d -> %d/%d, cavities %d, %.3f s)", sep.shells_before,
-                                      sep.genus_before, sep.shells_after, sep.genus_after,
-                                      sep.cavities_after, sep.seconds));
+                      absl::StrFormat(" (%d/%d -> %d/%d, cavities %d, cut/piece %.3f, %.3f s)",
+                                      sep.shells_before, sep.genus_before, sep.shells_after,
+                                      sep.genus_after, sep.cavities_after, sep.cut_fraction,
+                                      sep.seconds));
   }
   std::printf("%s%12s %7.3f  %-16s %-16s %s%s%s%s%s\n", row.c_str(),
               absl::StrCat(d[0], "x", d[1], "x", d[2]).c_str(), seconds,

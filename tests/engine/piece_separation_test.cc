@@ -1,11 +1,15 @@
 // Separating pieces of data joined by the shrink: two scanned boxes 5 voxels apart joined by a
 // soft plug, and by an arch far from the data, come apart into two shells with a cut of one
-// layer, and a handle of web far from the data is cut with them; their interiors, far from the data too, stay solid; a single piece is left alone.
+// layer, and a handle of web far from the data is cut with them; their interiors, far from the
+// data too, stay solid; a single piece is left alone, and so is a ball whose data miss a band
+// around it (the cut would span its whole cross-section).
 #include "core/engine/piece_separation.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <functional>
 
 #include "core/engine/membrane_invariants.h"
@@ -156,6 +160,39 @@ TEST(SeparateDataPieces, APieceWithAWebIsLeftAlone) {
 
 TEST(SeparateDataPieces, TwoShellsAlreadyApartAreLeftAlone) {
   ExpectLeftAlone(TwoBoxes([](int, int, int) { return false; }), 2);
+}
+
+// A ball of radius 15 whose data (a hard skin) miss a band 7 voxels wide around its equator,
+// as a sphere seen by two depth cameras front and back: the band is a membrane frozen over a
+// data gap. The two caps are two pieces a few voxels apart, as two objects are; the cut between
+// them spans the ball's whole cross-section, comparable to a cap's data, while the plug
+// between two boxes is a small fraction of a box's data.
+TEST(SeparateDataPieces, ACutAcrossAWholeSolidIsRefused) {
+  constexpr int kN = 40, kC = 20, kR = 15, kBand = 3;
+  VoxelGrid grid({kN, kN, kN}, {0, 0, 0}, 1.0, OutsideState(1));
+  for (int z = 1; z + 1 < kN; ++z)
+    for (int y = 1; y + 1 < kN; ++y)
+      for (int x = 1; x + 1 < kN; ++x) {
+        const double r = std::sqrt(double((x - kC) * (x - kC) + (y - kC) * (y - kC) +
+                                          (z - kC) * (z - kC)));
+        if (r > kR) continue;
+        const bool skin = r > kR - 1.5 && std::abs(z - kC) > kBand;
+        grid.set(grid.Index(x, y, z), skin ? kInsideHard : kInsideSoft);
+      }
+  SetFinalMembraneStates(grid);
+  ASSERT_EQ(ComputeVoxelTopology(grid).shells, 1);
+  const std::vector<VoxelState> before = grid.states();
+  const Outcome out = Separate(grid);
+  EXPECT_EQ(out.stats.pieces, 2);
+  EXPECT_FALSE(out.stats.separated);
+  EXPECT_EQ(out.stats.shells_after, 2);  // the cut alone would pass the topology test
+  EXPECT_GT(out.stats.cut_fraction, PieceSeparationOptions{}.max_cut_fraction);
+  EXPECT_EQ(grid.states(), before);
+
+  VoxelGrid boxes = TwoBoxes(Plug);
+  const Outcome plug = Separate(boxes);
+  EXPECT_TRUE(plug.stats.separated);
+  EXPECT_LT(plug.stats.cut_fraction, PieceSeparationOptions{}.max_cut_fraction / 10);
 }
 
 TEST(SeparateDataPieces, OptionsOutOfRangeAreRefused) {

@@ -367,35 +367,34 @@ TEST(ReconstructionPipeline, AGridThatCrossesFacesIsLeftForFloat32) {
 // several voxels at a time, so the surface is built on the fewest bits whose step is within
 // kMaxOutputStepVoxels; asked for as they are, the 4 bits stand (or give float32).
 TEST(ReconstructionPipeline, OutputBitsLeftToItFollowTheVoxel) {
-  ReconstructionOptions options;
-  options.output_quantization_bits = 4;
-  options.output_bits_follow_voxel = true;
-  {
+  // The quantization report of a 4-bit run of the sphere, and the bits its sink was given.
+  const auto run_at_four_bits = [](bool follow_voxel, int* sink_bits) {
+    ReconstructionOptions options;
+    options.output_quantization_bits = 4;
+    options.output_bits_follow_voxel = follow_voxel;
     InMemoryCloudSource source(SampledSphere());
     NoResourceLimit gate;
     InMemoryMeshSink sink;
     const Outcome run = RunWith(source, gate, sink, options);
-    ASSERT_TRUE(run.report.ok()) << run.report.status();
-    const QuantizationReport& q = run.report->quantization;
-    EXPECT_EQ(q.requested_bits, 4);
-    EXPECT_GT(q.bits, 4);
-    EXPECT_EQ(sink.grid().bits, q.bits);
-    EXPECT_LE(q.step, kMaxOutputStepVoxels * run.report->voxel_size);
-    EXPECT_LE(q.max_position_error, 0.5 * kMaxOutputStepVoxels * run.report->voxel_size);
-    EXPECT_TRUE(run.report->mesh.closed);
-    EXPECT_EQ(run.report->mesh.self_intersections, 0);
-  }
-  {
-    options.output_bits_follow_voxel = false;
-    InMemoryCloudSource source(SampledSphere());
-    NoResourceLimit gate;
-    InMemoryMeshSink sink;
-    const Outcome run = RunWith(source, gate, sink, options);
-    ASSERT_TRUE(run.report.ok()) << run.report.status();
-    EXPECT_EQ(run.report->quantization.requested_bits, 4);
-    EXPECT_TRUE(run.report->quantization.bits == 4 || run.report->quantization.bits == 0)
-        << run.report->quantization.bits;
-  }
+    EXPECT_TRUE(run.report.ok()) << run.report.status();
+    *sink_bits = sink.grid().bits;
+    return run.report.ok() ? *run.report : ReconstructionReport{};
+  };
+  int sink_bits = -1;
+  const ReconstructionReport followed = run_at_four_bits(true, &sink_bits);
+  const QuantizationReport& q = followed.quantization;
+  EXPECT_EQ(q.requested_bits, 4);
+  EXPECT_GT(q.bits, 4);
+  EXPECT_EQ(sink_bits, q.bits);
+  EXPECT_LE(q.step, kMaxOutputStepVoxels * followed.voxel_size);
+  EXPECT_LE(q.max_position_error, 0.5 * kMaxOutputStepVoxels * followed.voxel_size);
+  EXPECT_TRUE(followed.mesh.closed);
+  EXPECT_EQ(followed.mesh.self_intersections, 0);
+
+  const ReconstructionReport as_asked = run_at_four_bits(false, &sink_bits);
+  EXPECT_EQ(as_asked.quantization.requested_bits, 4);
+  EXPECT_TRUE(as_asked.quantization.bits == 4 || as_asked.quantization.bits == 0)
+      << as_asked.quantization.bits;
 }
 
 }  // namespace

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <numeric>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -21,10 +20,6 @@ absl::StatusOr<VoxelTopology> Topology(const VoxelGrid& grid, const CancelToken&
   std::optional<VoxelTopology> topology = ComputeVoxelTopology(grid, cancel);
   if (!topology) return HandleRetryCancelled();
   return *std::move(topology);
-}
-
-int TotalGenus(const VoxelTopology& t) {
-  return std::accumulate(t.genus.begin(), t.genus.end(), 0);
 }
 
 // What the retry closed: the voxels outside in `first` that are solid in `grid` (the web), and

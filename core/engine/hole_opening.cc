@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
-#include <numeric>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -41,7 +40,7 @@ struct TopologyCounts {
 };
 
 TopologyCounts Counts(const VoxelTopology& t) {
-  return {t.shells, t.cavities, std::accumulate(t.genus.begin(), t.genus.end(), 0)};
+  return {t.shells, t.cavities, TotalGenus(t)};
 }
 
 // One plug: the non-hard voxels of a 6-step staircase from `path[0]` along `dir`, with the

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
-#include <numeric>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -20,8 +19,6 @@ constexpr int64_t kCancelPoll = 1 << 16;
 // Waves are labelled by their piece in one byte.
 constexpr uint8_t kNoWave = 255;
 constexpr size_t kMaxPieces = 254;
-
-int TotalGenusOf(const VoxelTopology& t) { return std::accumulate(t.genus.begin(), t.genus.end(), 0); }
 
 // A cut voxel and the pair of pieces whose waves met there (smaller label * 256 + larger).
 struct CutVoxel {
@@ -310,13 +307,13 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   if (!between.ok()) return between.status();
   stats.cut_fraction = CutFraction(std::move(cut_pairs), between->carved, piece_voxels);
   auto better = [&](const VoxelTopology& after) {
-    return after.shells > before.shells && TotalGenusOf(after) <= TotalGenusOf(before) &&
+    return after.shells > before.shells && TotalGenus(after) <= TotalGenus(before) &&
            after.cavities <= before.cavities;
   };
   stats.shells_before = before.shells;
-  stats.genus_before = TotalGenusOf(before);
+  stats.genus_before = TotalGenus(before);
   const CutTrial::Outcome* kept = nullptr;
-  absl::StatusOr<CutTrial::Outcome> with_far = between;
+  absl::StatusOr<CutTrial::Outcome> with_far;
   // The far voxels are tried only when the cut between the pieces alone separates without new
   // handles: otherwise the pieces touch where the data do not show it (a lid on its pot).
   // A cut between two pieces as large as a piece's data spans a solid's whole cross-section:
@@ -332,7 +329,7 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   }
   const VoxelTopology& shown = kept != nullptr ? kept->topology : between->topology;
   stats.shells_after = shown.shells;
-  stats.genus_after = TotalGenusOf(shown);
+  stats.genus_after = TotalGenus(shown);
   stats.cavities_after = shown.cavities;
   if (kept == nullptr) return done();
   for (int64_t v : kept->carved) CarveToOutside(grid, v);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -264,6 +265,10 @@ CarveTopologyChange CountCarveLocally(const VoxelGrid& grid, absl::Span<const in
   change.shells = rim_reached == rim.size() ? CarveTopologyChange::Shells::kKept
                                              : CarveTopologyChange::Shells::kUnknown;
   return change;
+}
+
+int TotalGenus(const VoxelTopology& t) {
+  return std::accumulate(t.genus.begin(), t.genus.end(), 0);
 }
 
 }  // namespace membrane

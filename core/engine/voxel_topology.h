@@ -27,6 +27,10 @@ struct VoxelTopology {
 // equal generation). The array border layer must be outside.
 VoxelTopology ComputeVoxelTopology(const VoxelGrid& grid);
 
+// The genus summed over the shells of `t`: the handles a step adds or removes, whichever
+// shell they are on.
+int TotalGenus(const VoxelTopology& t);
+
 // The same, polling `cancel` between its four passes (each under 0.1 s on a 70 M voxel grid):
 // nullopt once it fired.
 std::optional<VoxelTopology> ComputeVoxelTopology(const VoxelGrid& grid,

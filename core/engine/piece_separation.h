@@ -31,6 +31,10 @@ struct PieceSeparationOptions {
   // smaller piece's hard voxels spans a solid's whole cross-section (a closed surface whose data
   // miss a band around it), not a plug or a sheet between objects: the trial is refused.
   double max_cut_fraction = 0.33;
+  // A cut voxel whose return to the solid closes a loop of the outside (no shells joined, no
+  // cavity made) returns after the simple returns: the loop runs through the cut, a handle
+  // the cut opened, not one the data show.
+  bool close_cut_loops = true;
 };
 
 struct PieceSeparationStats {
@@ -38,6 +42,7 @@ struct PieceSeparationStats {
   bool separated = false;      // the cut was kept
   int64_t cut_voxels = 0;      // voxels turned outside and kept outside
   int64_t web_voxels = 0;      // voxels of shells without data removed with the cut
+  int64_t loops_closed = 0;    // cut voxels returned to close a loop the cut opened
   // Topology before and with the cut (whether kept or not), when a cut was tried.
   int shells_before = 0, shells_after = 0;
   int genus_before = 0, genus_after = 0;
@@ -53,14 +58,17 @@ struct PieceSeparationStats {
 // solid (26-steps, breadth first). A cut is tried on the grid and undone: its non-hard voxels
 // are turned outside, the enclosed parts of it return, shells left without a hard voxel are
 // removed, and every cut voxel whose return to the solid is (26,6)-simple and face-connected
-// returns, nearest the data first (so what stays outside is what the topology change needs).
-// First the cut between the pieces (the non-hard voxels where two pieces' waves meet); when it
+// returns, nearest the data first (so what stays outside is what the topology change needs);
+// then (close_cut_loops) every cut voxel whose return closes a loop of the outside without
+// joining shells or making a cavity returns, and the simple returns go on around it.
+// A trial passes when it gives more shells that can hold a piece (no fewer voxels than the
+// smallest piece's hard voxels), no more summed genus and no more cavities (topology counts).
+// First the cut between the pieces (the non-hard voxels where two pieces' waves meet). When it
 // leaves outside no more than max_cut_fraction of the smaller piece's hard voxels for every
-// pair of pieces whose waves meet (stats.cut_fraction) and gives more shells, no more summed
-// genus and no more cavities (topology counts), the same cut with every non-hard voxel farther
-// than far_steps from the pieces is tried too, and the better of the two passing ones (the
-// second when it passes) is applied: its voxels turned outside with the membrane's states
-// settled around them (CarveToOutside). Otherwise the grid is unchanged.
+// pair of pieces whose waves meet (stats.cut_fraction), the same cut with every non-hard voxel
+// farther than far_steps from the pieces is tried too, and the second trial when it passes,
+// else the first when it passes, is applied: its voxels turned outside with the membrane's
+// states settled around them (CarveToOutside). Otherwise the grid is unchanged.
 // Costs one byte a voxel and two bitsets while it runs, only when the data has two or more
 // pieces that meet. Cancelled when `cancel` fires (the grid is then unchanged).
 absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,

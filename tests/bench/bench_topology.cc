@@ -36,7 +36,8 @@ constexpr char kUsage[] =
     "usage: bench_topology [--factors 1,1.25,1.5,2] [--models NAME,...] [--no-synthetic]\n"
     "                      [--no-real] [--locate] [--retry T,S,W] [--thick-wall-run K]\n"
     "                      [--thick-wall-detour R] [--thin-part-spread S] [--depth-bound D]\n"
-    "                      [--rerun-thin K] [--no-hole-opening]\n"
+    "                      [--rerun-thin K] [--no-retry] [--strict-only] [--no-close-cut-loops]\n"
+    "                      [--no-hole-opening]\n"
     "                      [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
@@ -54,6 +55,10 @@ constexpr char kUsage[] =
     "                   of K and keep that result if it has fewer handles and no fewer shells\n"
     "                   (a candidate rule measured here; its time is added to the row's)\n"
     "  --no-hole-opening  leave plugged holes closed (ShrinkOptions::holes.enabled false)\n"
+    "  --no-retry       no handle retry (ShrinkOptions::retry.enabled false)\n"
+    "  --strict-only    every generation under the handle retry's strict guard sizes, no retry\n"
+    "  --no-close-cut-loops  the piece separation returns only simple cut voxels\n"
+    "                   (PieceSeparationOptions::close_cut_loops false)\n"
     "  --shared DIR     the shared folder holding data/clouds (default: $MEMBRANE_SHARED_DIR,\n"
     "                   else <repo>/../shared)\n";
 
@@ -106,6 +111,13 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.separation.far_steps)) return false;
     } else if (arg == "--max-cut-fraction" && has_value) {
       if (!absl::SimpleAtod(argv[++i], &o.shrink.separation.max_cut_fraction)) return false;
+    } else if (arg == "--strict-only") {
+      o.shrink.guard = StrictGuardSizes(o.shrink);
+      o.shrink.retry.enabled = false;
+    } else if (arg == "--no-close-cut-loops") {
+      o.shrink.separation.close_cut_loops = false;
+    } else if (arg == "--no-retry") {
+      o.shrink.retry.enabled = false;
     } else if (arg == "--no-separation") {
       o.shrink.separation.enabled = false;
     } else if (arg == "--no-hole-opening") {
@@ -210,11 +222,11 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
       result->holes.opened > 0 ? absl::StrCat("  holes opened: ", result->holes.opened) : "";
   const PieceSeparationStats& sep = result->separation;
   if (sep.pieces > 1) {
+    const std::string cut =
+        absl::StrFormat("cut %d + web %d voxels, %d loops closed", sep.cut_voxels,
+                        sep.web_voxels, sep.loops_closed);
     absl::StrAppend(&holes_note, absl::StrFormat("  pieces %d, %s", sep.pieces,
-                                                 sep.separated
-                                                     ? absl::StrFormat("cut %d + web %d voxels",
-                                                                       sep.cut_voxels, sep.web_voxels)
-                                                     : "not cut"));
+                                                 sep.separated ? cut : "not cut"));
     if (sep.shells_after > 0)
       absl::StrAppend(&holes_note,
                       absl::StrFormat(" (%d/%d -> %d/%d, cavities %d, cut/piece %.3f, %.3f s)",

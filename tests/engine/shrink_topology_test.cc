@@ -63,6 +63,25 @@ TEST_P(CubePinholesTest, LinedUpPinholesOpenNoHandle) {
   EXPECT_EQ(run->topology.genus, std::vector<int>{0}) << run->Describe();
 }
 
+// The cube with 30000 points (seed 1) at the formula-(1) voxel breaks into 7 pieces of data;
+// the cut between them splits off only slivers of 2 voxels (stray points) and no piece: the
+// separation must not keep it as a separation, and the membrane stays one shell.
+TEST(CubePinholesSeparation, SliversCutLooseAreNoSeparation) {
+  SynthOptions o;
+  o.shape = "cube-pinholes";
+  o.points = 30000;
+  o.seed = 1;
+  auto cloud = SynthesizeCubePinholes(o);
+  ASSERT_TRUE(cloud.ok()) << cloud.status();
+  auto run = ShrinkCloud(*cloud, 1.0);
+  ASSERT_TRUE(run.ok()) << run.status();
+  const PieceSeparationStats& sep = run->result.separation;
+  EXPECT_GE(sep.pieces, 2) << run->Describe();
+  EXPECT_FALSE(sep.separated) << run->Describe() << ", shells with the cut " << sep.shells_after;
+  EXPECT_EQ(run->topology.shells, 1) << run->Describe();
+  EXPECT_EQ(run->topology.genus, std::vector<int>{0}) << run->Describe();
+}
+
 INSTANTIATE_TEST_SUITE_P(VoxelSizes, CubePinholesTest, ::testing::Values(1.0, 1.25, 1.5, 2.0),
                          [](const auto& info) {
                            return absl::StrReplaceAll(absl::StrCat("x", info.param), {{".", "p"}});

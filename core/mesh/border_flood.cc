@@ -1,18 +1,12 @@
 #include "core/mesh/border_flood.h"
 
-#include <algorithm>
 #include <bit>
 #include <cstdint>
-#include <cstring>
 #include <vector>
-
-#include "core/base/parallel_tasks.h"
 
 namespace membrane {
 namespace {
 
-// Words per task of the packing: large enough that the tasks' overhead vanishes.
-constexpr int64_t kChunkWords = int64_t{1} << 14;
 constexpr uint64_t kAll = ~uint64_t{0};
 
 // Free voxels are open and not yet reached.
@@ -70,52 +64,6 @@ void SeedRuns(const FlatBitset& open, FlatBitset& reached, int64_t from, int64_t
 }
 
 }  // namespace
-
-FlatBitset PackVoxelBits(const char* bytes, int64_t count, int threads) {
-  const int64_t words = (count + 63) / 64;
-  FlatBitset bits(count);
-  uint64_t* const out = bits.words();
-  RunTasks(threads, (words + kChunkWords - 1) / kChunkWords, [=](int, int64_t task) {
-    const int64_t end = std::min(words, (task + 1) * kChunkWords);
-    for (int64_t w = task * kChunkWords; w < end; ++w) {
-      const int64_t base = w * 64;
-      uint64_t word = 0;
-      if (base + 64 <= count) {
-        for (int k = 0; k < 8; ++k) {
-          uint64_t eight;  // bytes 0 or 1; the product gathers their low bits in the top byte
-          std::memcpy(&eight, bytes + base + 8 * k, 8);
-          word |= ((eight * 0x0102040810204080ull) >> 56) << (8 * k);
-        }
-      } else {
-        for (int64_t i = base; i < count; ++i) word |= uint64_t(bytes[i] != 0) << (i - base);
-      }
-      out[w] = word;
-    }
-  });
-  return bits;
-}
-
-void UnpackVoxelBits(const FlatBitset& bits, char* bytes, int threads) {
-  const int64_t count = bits.bits(), words = (count + 63) / 64;
-  const uint64_t* const in = bits.words();
-  RunTasks(threads, (words + kChunkWords - 1) / kChunkWords, [=](int, int64_t task) {
-    const int64_t end = std::min(words, (task + 1) * kChunkWords);
-    for (int64_t w = task * kChunkWords; w < end; ++w) {
-      const int64_t base = w * 64;
-      if (base + 64 <= count) {
-        for (int k = 0; k < 8; ++k) {
-          uint64_t x = (in[w] >> (8 * k)) & 0xff;  // spread 8 bits to the low bits of 8 bytes
-          x = (x | (x << 28)) & 0x0000000F0000000Full;
-          x = (x | (x << 14)) & 0x0003000300030003ull;
-          x = (x | (x << 7)) & 0x0101010101010101ull;
-          std::memcpy(bytes + base + 8 * k, &x, 8);
-        }
-      } else {
-        for (int64_t i = base; i < count; ++i) bytes[i] = static_cast<char>((in[w] >> (i - base)) & 1);
-      }
-    }
-  });
-}
 
 FlatBitset FloodFromBorder(const std::array<int, 3>& dims, const FlatBitset& open) {
   const int n[3] = {dims[0], dims[1], dims[2]};

@@ -12,15 +12,6 @@
 
 namespace membrane {
 
-// Returns the bits (voxel i is bit i, in index order; bits past the last voxel 0) of a byte
-// mask of `count` voxels (bytes 0 or 1). `threads` (<= 1: the calling thread) share the
-// words; the result is the same for any count.
-FlatBitset PackVoxelBits(const char* bytes, int64_t count, int threads);
-
-// Writes the bits of `bits` as bytes 0 or 1 to bytes[0..bits.bits()). `threads` as for
-// PackVoxelBits.
-void UnpackVoxelBits(const FlatBitset& bits, char* bytes, int threads);
-
 // Input: the array's dimensions (x fastest) and `open`, the bits of its open voxels.
 // Returns the bits of the open voxels 6-connected, through open voxels, to an open voxel on the
 // array border (any voxel with a coordinate 0 or dims[a] - 1). Cost: O(voxels / 64) words read

@@ -61,6 +61,9 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
   // The fit's first pass searches the whole mesh for crossings anyway: it also does the
   // surface nets' repair (toward the same fallback).
   UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(grid);
+  // The cleaned copy has given its mesh: the caps and the fit read the mesh and the points,
+  // and a byte a voxel is most of what the surface holds on a large grid (2.2 GB at 10M points).
+  grid = VoxelGrid();
   s.surface_nets_seconds = SecondsSince(start);
   progress.Part(kPrepareShare, kNetsEnd).Done();
 

@@ -45,13 +45,17 @@ constexpr StageCost kShrink = {kProcessBytes, 3.6, kCloudBytes + 24, 0};
 // The relaxation: the grid, and lists of boundary voxels (8 bytes each, twice while the scan's
 // plane lists are joined; 1.7 MB over the grid and the cloud on a 1M-point torus).
 constexpr StageCost kRelax = {kProcessBytes, 1, kCloudBytes, 32};
-// The surface, while the grid's copy is cleaned up: the grid, the copy and the cave filling's
-// two masks (4 bytes a voxel); then, while the mesh is built and fitted: the grid and its copy
-// (2.3 bytes a voxel in the fit) and the mesh and the fit's structures (580 bytes a boundary
-// voxel on the torus, 600 on 100k points of uniform noise, whose foam of a membrane has 2.2
-// faces a boundary voxel).
-constexpr StageCost kSurfaceCleanUp = {kProcessBytes, 4.1, kCloudBytes, 0};
-constexpr StageCost kSurfaceFit = {kProcessBytes, 2.4, kCloudBytes, 800};
+// The surface holds the membrane's grid throughout, in three steps one after the other. The
+// clean-up: the grid, its copy and the cave filling's two bit masks (2.25 bytes a voxel; the
+// loose sheets' one bit mask before them). The surface nets: the grid and the cleaned copy,
+// the voxel boundary's quads and fan vertices (64 bytes a boundary voxel, up to three times
+// that while their arrays grow) and the mesh with its fallback positions (48 more). The fit,
+// the copy freed: the grid (1.4 bytes a voxel measured with the fit's point index) and the
+// mesh and the fit's structures (580 bytes a boundary voxel on the torus, 600 on 100k points
+// of uniform noise, whose foam of a membrane has 2.2 faces a boundary voxel).
+constexpr StageCost kSurfaceCleanUp = {kProcessBytes, 2.3, kCloudBytes, 0};
+constexpr StageCost kSurfaceNets = {kProcessBytes, 2.1, kCloudBytes, 250};
+constexpr StageCost kSurfaceFit = {kProcessBytes, 1.4, kCloudBytes, 800};
 // The check and the encoding beside it: the grid, the mesh, the check's and the encoder's
 // structures (340-390 bytes a boundary voxel on the torus, 380 on noise).
 constexpr StageCost kCheck = {kProcessBytes, 1, kCloudBytes, 500};
@@ -117,8 +121,9 @@ StageBytes EstimateStageBytes(int64_t voxels, int64_t points, const MembraneCoun
   s.voxelize = Bytes(kVoxelize, voxels, points, m);
   s.shrink = Bytes(kShrink, voxels, points, m);
   s.relax = Bytes(kRelax, voxels, points, m);
-  s.surface = std::max(Bytes(kSurfaceCleanUp, voxels, points, m),
-                       Bytes(kSurfaceFit, voxels, points, m));
+  s.surface = std::max({Bytes(kSurfaceCleanUp, voxels, points, m),
+                        Bytes(kSurfaceNets, voxels, points, m),
+                        Bytes(kSurfaceFit, voxels, points, m)});
   s.check = Bytes(kCheck, voxels, points, m);
   return s;
 }

@@ -54,16 +54,17 @@ struct StageBytes {
   int64_t voxelize = 0;  // the grid, the points' sorted voxels, formula (1)'s distinct points
   int64_t shrink = 0;    // the grid and the shrink's bit planes
   int64_t relax = 0;     // the grid and the relaxation's three byte arrays
-  int64_t surface = 0;   // the grid, its copy cleaned up for the surface, the mesh and fit
+  int64_t surface = 0;   // the grid, and its copy cleaned up for the surface, then the mesh and fit
   int64_t check = 0;     // the grid, the mesh, the check's and the encoder's structures
 };
 // `membrane` is only read for the surface and check stages (zero counts: their grid share).
 StageBytes EstimateStageBytes(int64_t voxels, int64_t points, const MembraneCounts& membrane);
 
 // The peak of the stages before the surface (decode, voxelize, shrink, relax) and of the
-// surface's share that the grid alone decides (its clean-up: the grid, its copy and two masks,
-// with no membrane counted): what is admitted before the grid is allocated, so that no run is
-// refused at its surface for bytes the grid already told. Saturates instead of overflowing.
+// surface's share that the grid alone decides (its clean-up: the grid, its copy and two bit
+// masks, with no membrane counted): what is admitted before the grid is allocated, so that no
+// run is refused at its surface for bytes the grid already told. Saturates instead of
+// overflowing.
 int64_t GridBytesEstimate(int64_t voxels, int64_t points);
 
 // The peak of the stages from the surface on (surface, decimate, check, encode) for the

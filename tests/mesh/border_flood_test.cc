@@ -81,10 +81,12 @@ TEST(BorderFlood, EqualsAPlainFloodOnRandomGridsWithCaves) {
     const double fill = std::uniform_real_distribution<double>(0.2, 0.95)(rng);
     const std::vector<char> open = RandomGridWithCaves(n, fill, rng);
     const int64_t count = static_cast<int64_t>(open.size());
-    const FlatBitset bits = PackVoxelBits(open.data(), count, /*threads=*/trial % 3);
+    FlatBitset bits(count);
+    for (int64_t i = 0; i < count; ++i)
+      if (open[i]) bits.set(i);
     const FlatBitset reached = FloodFromBorder(n, bits);
-    std::vector<char> got(open.size(), 7);
-    UnpackVoxelBits(reached, got.data(), /*threads=*/2);
+    std::vector<char> got(open.size());
+    for (int64_t i = 0; i < count; ++i) got[i] = reached.test(i) ? 1 : 0;
     const std::vector<char> want = ReferenceFlood(n, open);
     ASSERT_EQ(got, want) << "trial " << trial << " dims " << n[0] << "x" << n[1] << "x" << n[2];
     for (int64_t i = 0; i < count; ++i) {
@@ -99,24 +101,6 @@ TEST(BorderFlood, EqualsAPlainFloodOnRandomGridsWithCaves) {
   // The grids hold both: open voxels the flood reaches and open voxels it cannot.
   EXPECT_GT(caves, 1000);
   EXPECT_GT(reached_total, 1000);
-}
-
-TEST(BorderFlood, PackAndUnpackRoundTrip) {
-  std::mt19937 rng(5);
-  for (int64_t count : {1, 63, 64, 65, 1000, 70000}) {
-    std::vector<char> bytes(count);
-    for (char& b : bytes) b = static_cast<char>(rng() & 1);
-    const FlatBitset bits = PackVoxelBits(bytes.data(), count, 2);
-    ASSERT_EQ(bits.word_count(), static_cast<size_t>((count + 63) / 64));
-    for (int64_t i = 0; i < count; ++i) ASSERT_EQ(bits.test(i), bytes[i] != 0);
-    // Bits past the last voxel are 0 (the flood reads whole words).
-    if (count % 64 != 0) {
-      ASSERT_EQ(bits.words()[count >> 6] >> (count & 63), uint64_t{0});
-    }
-    std::vector<char> back(count, 5);
-    UnpackVoxelBits(bits, back.data(), 1);
-    EXPECT_EQ(back, bytes);
-  }
 }
 
 }  // namespace

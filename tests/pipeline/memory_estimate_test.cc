@@ -95,6 +95,37 @@ TEST(SurfaceBytesEstimate, IsTheLargestStageFromTheSurfaceOnAndGrowsWithTheMembr
   EXPECT_GT(SurfaceBytesEstimate(grid, foam), SurfaceBytesEstimate(grid, counts));
 }
 
+// Peaks measured by bench_memory on the torus (one thread, 11 bits; whole-process bytes,
+// tests/bench/2026-12-03-surface-memory.txt): each stage's estimate is at or above its peak, so
+// that a gate admitting the estimate admits what the run holds. The surface holds the grid
+// and a copy cleaned up on bit masks, then the mesh and the fit with the copy freed.
+TEST(EstimateStageBytes, CoversThePeaksMeasuredOnTheTorus) {
+  struct Measured {
+    int64_t voxels, points, membrane_voxels;
+    double shrink_mb, relax_mb, surface_mb, check_mb;
+  };
+  for (const Measured& m : {Measured{70'444'997, 1'000'000, 774'697, 256.4, 102.8, 533.3, 377.6},
+                            Measured{197'000'000, 2'000'000, 1'550'309, 661.6, 257.4, 1161.0,
+                                     789.2}}) {
+    MembraneCounts counts;
+    counts.soft_voxels = m.membrane_voxels;
+    const StageBytes s = EstimateStageBytes(m.voxels, m.points, counts);
+    EXPECT_GE(s.shrink, m.shrink_mb * 1e6) << m.points;
+    EXPECT_GE(s.relax, m.relax_mb * 1e6) << m.points;
+    EXPECT_GE(s.surface, m.surface_mb * 1e6) << m.points;
+    EXPECT_GE(s.check, m.check_mb * 1e6) << m.points;
+  }
+}
+
+// On a 10M-point cloud's grid (2.17e9 voxels, 7.76M boundary voxels) the grid's bytes outweigh
+// the membrane's: the surface's share that the grid alone decides (2.3 bytes a voxel) is
+// below the shrink's, which decides what is admitted before the grid.
+TEST(GridBytesEstimate, TheShrinkDecidesALargeGridNotTheSurface) {
+  const StageBytes s = EstimateStageBytes(2'171'747'375, 10'000'000, MembraneCounts{});
+  EXPECT_LT(s.surface, s.shrink);
+  EXPECT_EQ(GridBytesEstimate(2'171'747'375, 10'000'000), s.shrink);
+}
+
 // A plan as PlanGrid makes it, for a grid too large to make a cloud for in a unit test.
 PlannedGrid Plan(double voxel_size, int64_t voxels, int64_t points) {
   PlannedGrid plan;

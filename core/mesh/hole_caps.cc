@@ -248,6 +248,75 @@ std::optional<AlgebraicSphere> BandSphere(const TriangleMesh& mesh, const Rows& 
   return sphere;
 }
 
+// Which caps held by points seen inside their gap (`pinned` vertices, at their points in `x`)
+// are solved to convergence (HoleCapOptions::converge_held): each such cap is made twice
+// without its holds, from the harmonic map and the spline as any cap, once with
+// thin_plate_iterations and once converged, and it converges unless that converged plate
+// passes farther from the held points, on average, than the other by more than held_margin
+// voxels. Caps that wrap converge anyway and are not judged. One entry per region (1:
+// converge); the trial's iterations are added to `iterations`. Cancelled when `cancel` fired.
+absl::StatusOr<std::vector<char>> HeldCapsToConverge(
+    const TriangleMesh& mesh, const Rows& nb, const Rows& star,
+    const std::vector<std::vector<int32_t>>& regions, const std::vector<char>& free,
+    const std::vector<char>& pinned, const std::vector<Vec3d>& x, double l,
+    const HoleCapOptions& options, int64_t& iterations, const CancelToken& cancel) {
+  std::vector<char> converges(regions.size(), 0);
+  if (!options.converge_held) return converges;
+  std::vector<size_t> held;
+  std::vector<int32_t> trial;  // the held regions' vertices, holds included
+  for (size_t r = 0; r < regions.size(); ++r) {
+    if (std::none_of(regions[r].begin(), regions[r].end(),
+                     [&](int32_t v) { return pinned[v] != 0; }))
+      continue;
+    held.push_back(r);
+    trial.insert(trial.end(), regions[r].begin(), regions[r].end());
+  }
+  if (held.empty()) return converges;
+  std::sort(trial.begin(), trial.end());
+  // The caps from their rims alone: surface-nets positions, the harmonic map, the spline.
+  std::vector<Vec3d> kept(mesh.vertices.size());
+  for (size_t v = 0; v < kept.size(); ++v) kept[v] = ToVec3d(mesh.vertices[v]);
+  const int harmonic_iterations = Solve(false, nb, trial, kept, options.harmonic_iterations,
+                                        options.tolerance * l, cancel);
+  if (harmonic_iterations < 0) return absl::CancelledError("hole caps cancelled");
+  iterations += harmonic_iterations;
+  std::vector<size_t> judged;
+  std::vector<int32_t> judged_vertices;
+  for (size_t r : held) {
+    if (ShapeCap(mesh, nb, star, regions[r], free, l, options, kept) == CapStart::kWrapped) {
+      converges[r] = 1;
+      continue;
+    }
+    judged.push_back(r);
+    judged_vertices.insert(judged_vertices.end(), regions[r].begin(), regions[r].end());
+  }
+  if (judged.empty()) return converges;
+  std::sort(judged_vertices.begin(), judged_vertices.end());
+  // The converged plate to `tolerance` only: a bulge stands voxels off, and the solves to
+  // converged_tolerance cost hundreds of iterations more.
+  std::vector<Vec3d> converged = kept;
+  const int kept_iterations = Solve(true, nb, judged_vertices, kept,
+                                    options.thin_plate_iterations, options.tolerance * l, cancel);
+  const int converged_iterations =
+      kept_iterations < 0 ? -1
+                          : Solve(true, nb, judged_vertices, converged,
+                                  options.wrapped_iterations, options.tolerance * l, cancel);
+  if (converged_iterations < 0) return absl::CancelledError("hole caps cancelled");
+  iterations += kept_iterations + converged_iterations;
+  for (size_t r : judged) {
+    double kept_sum = 0, converged_sum = 0;
+    int count = 0;
+    for (int32_t v : regions[r]) {
+      if (!pinned[v]) continue;
+      kept_sum += Norm(kept[v] - x[v]) / l;
+      converged_sum += Norm(converged[v] - x[v]) / l;
+      ++count;
+    }
+    converges[r] = converged_sum <= kept_sum + options.held_margin * count;
+  }
+  return converges;
+}
+
 absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
   if (!(voxel_size > 0) || !std::isfinite(voxel_size))
     return absl::InvalidArgumentError(absl::StrCat("voxel size ", voxel_size, " is not positive"));
@@ -258,7 +327,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       !(o.sphere_margin >= 0) || !(o.converged_tolerance > 0) ||
       o.back_off_halvings < 0 || !(o.max_shell_share > 0 && o.max_shell_share <= 1) ||
       o.min_median_points < 1 || o.min_median_points > 1000 ||
-      !(o.anchor_radius > 0 && o.anchor_radius <= 64))
+      !(o.anchor_radius > 0 && o.anchor_radius <= 64) || !(o.held_margin >= 0))
     return absl::InvalidArgumentError(absl::StrCat(
         "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
         o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",
@@ -268,7 +337,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         o.wrapped_iterations, ", sphere_band_fit ", o.sphere_band_fit, ", sphere_margin ",
         o.sphere_margin, ", converged_tolerance ", o.converged_tolerance,
         ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ", o.max_shell_share,
-        ", min_median_points ", o.min_median_points, ", anchor_radius ", o.anchor_radius));
+        ", min_median_points ", o.min_median_points, ", anchor_radius ", o.anchor_radius, ", held_margin ", o.held_margin));
   return absl::OkStatus();
 }
 
@@ -447,13 +516,22 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
         ++st.anchors;
       }
   }
+  std::vector<char> held_converges;
+  int64_t trial_iterations = 0;
+  if (absl::StatusOr<std::vector<char>> judged =
+          HeldCapsToConverge(mesh, nb, star, regions, free, pinned, x, l, options,
+                             trial_iterations, cancel);
+      judged.ok())
+    held_converges = *std::move(judged);
+  else
+    return judged.status();
   std::vector<int32_t> solve_list;
   for (int32_t v : free_list)
     if (!pinned[v]) solve_list.push_back(v);
   const int it = Solve(false, nb, solve_list, x, options.harmonic_iterations,
                        options.tolerance * l, cancel);
   if (it < 0) return absl::CancelledError("hole caps cancelled");
-  st.iterations = it;
+  st.iterations = it + trial_iterations;
   // The caps' vertices by their thin plate's iterations: those of wrapped rims apart.
   std::vector<int32_t> blended, wrapped;
   // Spline caps whose band has a sphere: their converged plate is solved apart, to be compared.
@@ -468,10 +546,14 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     const CapStart start = ShapeCap(mesh, nb, star, region, free, l, options, x);
     if (start != CapStart::kSpline) ++st.harmonic_starts;
     if (start == CapStart::kWrapped) ++st.wrapped;
-    auto& list = start == CapStart::kWrapped ? wrapped : blended;
+    // A held cap converges (HeldCapsToConverge), whatever its start.
+    const bool converges = start == CapStart::kWrapped || held_converges[r];
+    if (held_converges[r] && start != CapStart::kWrapped) ++st.held_converged;
+    auto& list = converges ? wrapped : blended;
     list.insert(list.end(), region.begin(), region.end());
     ++st.regions;
-    if (start == CapStart::kSpline && options.thin_plate_iterations < options.wrapped_iterations)
+    if (!converges && start == CapStart::kSpline &&
+        options.thin_plate_iterations < options.wrapped_iterations)
       spheres[r] = BandSphere(mesh, nb, star, region, free, l, options);
     if (spheres[r]) candidates.insert(candidates.end(), region.begin(), region.end());
   }

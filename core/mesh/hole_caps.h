@@ -44,6 +44,16 @@ struct HoleCapOptions {
   // points are not a cap's to reach.
   bool anchor_remote_points = true;
   double anchor_radius = 8.0;
+  // A cap held by such points is solved to convergence, holds included (at most
+  // wrapped_iterations, see converged_tolerance): thin_plate_iterations from a start that
+  // ignores the holds (the harmonic map or the spline) leave a tent around each held vertex,
+  // where the converged plate carries the points seen inside the gap across it. Unless the
+  // cap from its rim alone says the converged plate leaves the surface: made without the
+  // holds, the converged plate passes farther from the held points, on average, than the
+  // thin_plate_iterations plate by more than held_margin voxels (the walls' slope carried
+  // past an open flat base into a bulge); then the thin_plate_iterations cap stays.
+  bool converge_held = true;
+  double held_margin = 0.5;
   // The cap's vertices are spread by the harmonic (minimal membrane) map of the region with
   // every other vertex fixed, by conjugate gradients: at most this many iterations, stopping
   // once no step moves a vertex by more than `tolerance`.
@@ -102,6 +112,7 @@ struct HoleCapStats {
   int64_t harmonic_starts = 0;   // caps with no height field: the thin plate from the harmonic map
   int64_t wrapped = 0;           // of those, rims around a swallowed part: thin plate converged
   int64_t sphere_converged = 0;  // spline caps converged because the band's sphere says so
+  int64_t held_converged = 0;    // caps converged because points seen inside the gap hold them
   int64_t iterations = 0;       // conjugate-gradient iterations, every solve
   int64_t anchors = 0;           // cap vertices held at remote points
   int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
@@ -123,7 +134,10 @@ struct HoleCapStats {
 // toward the discrete thin plate of the region (the minimum of the sum over vertices of
 // |umbrella Laplacian|^2 / degree), or up to wrapped_iterations where the rim is no height
 // field and leaves its plane by more than wrap_rms, or where the rim is a height field and the
-// band's algebraic sphere prefers the converged plate (sphere_band_fit, sphere_margin). Regions with no fixed neighbour are left. Then it searches the faces around moved vertices for crossings
+// band's algebraic sphere prefers the converged plate (sphere_band_fit, sphere_margin), or
+// where the cap has held vertices and its rim alone does not make the converged plate bulge
+// away from them (converge_held, held_margin). Regions with no fixed neighbour are left.
+// Then it searches the faces around moved vertices for crossings
 // and sends the moved vertices of each crossing pair back toward where they were (halfway
 // back_off_halvings times, then all the way) until no crossing involves a moved vertex: where
 // a cap would cross the mesh, that part of it is not built.

@@ -84,6 +84,7 @@ std::string HoleCapsJson(const HoleCapStats& h) {
                       ", \"harmonic_starts\": ", h.harmonic_starts,
                       ", \"wrapped_caps\": ", h.wrapped,
                       ", \"sphere_converged_caps\": ", h.sphere_converged,
+                      ", \"held_converged_caps\": ", h.held_converged,
                       ", \"uncapped_regions\": ", h.uncapped_regions,
                       ", \"anchored_vertices\": ", h.anchors,
                       ", \"backed_off_vertices\": ", h.backed_off,

@@ -1,6 +1,7 @@
 // The caps' thin plate read from the rim (core/mesh/hole_caps.h, wrap_rms): a hole that
 // swallows the edge of a thin slab is spanned along the slab's faces, and the unscanned flat
-// base of a frustum, whose rim is no height field either, stays flat.
+// base of a frustum, whose rim is no height field either, stays flat, also where a point seen
+// inside it holds the cap.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -166,6 +167,60 @@ TEST(HoleCapRims, OpenFlatBaseStaysFlat) {
   EXPECT_LT(planar.max_error, 2.0);
   EXPECT_GT(forced.mean_error, 4.0);
   testing::ExpectValidReport(planar.check, 1, {0});
+  testing::ExpectValidReport(forced.check, 1, {0});
+}
+
+// A cap held by a point seen inside its gap (HoleCapOptions::converge_held) keeps the iterated
+// plate where its rim alone makes the converged plate bulge away from that point: the
+// frustum's open base, with a small patch seen 3 voxels inside the solid above its centre.
+TEST(HoleCapRims, HeldOpenFlatBaseKeepsItsIteratedPlate) {
+  SmoothSurfaceOptions surface;
+  surface.fit = false;  // the surface nets, uncapped
+  absl::StatusOr<testing::CloudSurface> closed =
+      testing::SmoothSurfaceOfCloud(Frustum(3000, true), surface, kVoxel);
+  ASSERT_TRUE(closed.ok()) << closed.status();
+  PointCloud open = Frustum(3000, false);
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 40; ++i) {
+    const double r = 0.05 * std::sqrt(u(rng)), a = 2 * M_PI * u(rng);
+    open.points.push_back(ToPoint3f(Vec3d{r * std::cos(a), 3 * kVoxel, r * std::sin(a)}));
+  }
+  struct Base {
+    double mean_error = 0;  // voxels from the base's plane, within 0.8 of its radius
+    HoleCapStats caps;
+    MeshReport check;
+  };
+  auto cap = [&](double held_margin) {
+    TriangleMesh mesh = closed->mesh;
+    HoleCapOptions options;
+    options.held_margin = held_margin;
+    Base base;
+    EXPECT_TRUE(CapHoles(mesh, kVoxel, open.points, options, &base.caps).ok());
+    int count = 0;
+    for (const Point3f& p : mesh.vertices) {
+      if (p[1] > 0.5 || p[0] * p[0] + p[2] * p[2] > 0.64 * kBottom * kBottom) continue;
+      base.mean_error += std::abs(p[1]) / kVoxel;
+      ++count;
+    }
+    if (count > 0) base.mean_error /= count;
+    base.check = CheckMesh(mesh);
+    return base;
+  };
+  const Base judged = cap(HoleCapOptions{}.held_margin);
+  const Base forced = cap(1e9);  // every held cap converges
+  EXPECT_GT(judged.caps.anchors, 0);
+  EXPECT_EQ(judged.caps.held_converged, 0);
+  EXPECT_EQ(forced.caps.held_converged, 1);
+  std::printf("frustum base held at a seen patch: mean distance to the base's plane, voxels: "
+              "judged %.2f, converged %.2f\n",
+              judged.mean_error, forced.mean_error);
+  // Measured: 1.28 voxels judged, 1.82 converged (the held vertices at the centre keep the
+  // bulge from the walls' slope down to a ring around them; without the patch: 7.01); the
+  // judge's trial without the holds: 2.25 voxels from the patch iterated, 11.32 converged.
+  EXPECT_LT(judged.mean_error, 1.5);
+  EXPECT_GT(forced.mean_error, judged.mean_error + 0.4);
+  testing::ExpectValidReport(judged.check, 1, {0});
   testing::ExpectValidReport(forced.check, 1, {0});
 }
 

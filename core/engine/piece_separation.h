@@ -26,7 +26,7 @@ struct PieceSeparationOptions {
   double min_piece_fraction = 0.01;
   // Boundary voxels farther than this (26-steps through the solid) from every piece are cut
   // too: webs in open space, between the pieces or across a piece's own loops.
-  int far_steps = 12;
+  int far_steps = 5;
   // A cut between two pieces that stays outside with more voxels than this fraction of the
   // smaller piece's hard voxels spans a solid's whole cross-section (a closed surface whose data
   // miss a band around it), not a plug or a sheet between objects: the trial is refused.

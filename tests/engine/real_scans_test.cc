@@ -43,8 +43,9 @@ struct KnownMiss {
   double factor;
 };
 constexpr KnownMiss kKnownMisses[] = {
-    {"cow-spot-belt-scan", 1.0}, {"cow-spot-belt-scan", 1.5},
-    {"cow-spot-belt-scan", 2.0}, {"pierced-disk-scan", 2.0},
+    {"cow-spot-belt-scan", 1.5},
+    {"cow-spot-belt-scan", 2.0},
+    {"pierced-disk-scan", 2.0},
 };
 
 bool IsKnownMiss(const ScanRun& run) {

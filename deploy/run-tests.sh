@@ -40,13 +40,14 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
   ctest --test-dir build-asan --output-on-failure -j "$JOBS" --timeout 1800
 phase_done "ASan/UBSan build and suites"
 
-echo "== ThreadSanitizer: the threaded surface fit and crossing search"
-# Only the mesh suite's thread tests: the fit's slabs and the search's cells run side by side,
-# and their independence is what keeps the mesh the same for any thread count.
+echo "== ThreadSanitizer: the threaded word passes, surface fit and crossing search"
+# Only the engine's and the mesh suite's thread tests: the shrink's word blocks and segments,
+# the fit's slabs and the search's cells run side by side, and their independence is what
+# keeps the mesh the same for any thread count.
 cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DMEMBRANE_TSAN=ON -DMEMBRANE_BENCH=OFF \
-  -DMEMBRANE_TEST_DIRS="mesh"
-cmake --build build-tsan -j "$JOBS" --target test_mesh
+  -DMEMBRANE_TEST_DIRS="engine;mesh"
+cmake --build build-tsan -j "$JOBS" --target test_engine test_mesh
 TSAN_OPTIONS=halt_on_error=1 ctest --test-dir build-tsan --output-on-failure -j "$JOBS" \
   -R 'ParallelTasks|AnyThreadCount|CancelledMidwayOnSeveralThreads'
 phase_done "ThreadSanitizer build and thread tests"

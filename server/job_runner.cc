@@ -93,7 +93,8 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   // Held until the job ends.
   MemoryBudgetGate memory_gate(memory_, settings->reconstruction.output_quantization_bits);
   TimeLimitGate gate(memory_gate, options_.max_job_seconds,
-                     settings->reconstruction.output_quantization_bits);
+                     settings->reconstruction.output_quantization_bits,
+                     settings->reconstruction.threads);
   DracoMeshSink draco_sink(settings->mesh_encoding.compression_level);
   PlyMeshSink ply_sink;
   // The web console's job list shows a preview of each mesh.

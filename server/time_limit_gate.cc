@@ -18,7 +18,7 @@ absl::Status CheckEncodeTime(const v1::Parameters& parameters, double max_job_se
 
 absl::Status TimeLimitGate::AdmitGrid(const PlannedGrid& grid, int64_t points,
                                       const CancelToken& cancel) {
-  const double floor = GridSecondsFloor(grid.voxels) + EncodeSecondsFloor(quantization_bits_);
+  const double floor = GridSecondsFloor(grid.voxels, threads_) + EncodeSecondsFloor(quantization_bits_);
   if (max_seconds_ > 0 && floor > max_seconds_) {
     const std::string encoding =
         quantization_bits_ > 0 ? absl::StrFormat(", encoded at %d bits", quantization_bits_) : "";

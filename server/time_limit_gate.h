@@ -18,9 +18,12 @@ absl::Status CheckEncodeTime(const v1::Parameters& parameters, double max_job_se
 
 class TimeLimitGate : public ResourceGate {
  public:
-  // `inner` (not owned) must outlive the gate. `max_job_seconds` <= 0: no limit.
-  TimeLimitGate(ResourceGate& inner, double max_job_seconds, int quantization_bits)
-      : inner_(inner), max_seconds_(max_job_seconds), quantization_bits_(quantization_bits) {}
+  // `inner` (not owned) must outlive the gate. `max_job_seconds` <= 0: no limit. `threads`:
+  // the job's (ReconstructionOptions::threads).
+  TimeLimitGate(ResourceGate& inner, double max_job_seconds, int quantization_bits,
+                int threads = 1)
+      : inner_(inner), max_seconds_(max_job_seconds), quantization_bits_(quantization_bits),
+        threads_(threads) {}
 
   // ResourceExhausted naming the estimate when GridSecondsFloor of the grid plus the
   // encoding's floor is over the limit; else `inner`'s answer.
@@ -35,6 +38,7 @@ class TimeLimitGate : public ResourceGate {
   ResourceGate& inner_;
   const double max_seconds_;
   const int quantization_bits_;
+  const int threads_;
 };
 
 }  // namespace membrane::server

@@ -1,6 +1,10 @@
 // A bitset over the flat voxel index, with the run operations of fast-shrink.md section 1:
 // a move by one voxel along an axis is a shift of the whole bitset by that axis' stride, so
 // 2-D and 3-D erosions and dilations become word operations whatever the axis.
+//
+// A bitset's word passes run on threads() threads (set_threads), split in fixed blocks of words
+// (word_blocks.h) or, for the passes that carry bits from word to word, in fixed segments
+// joined in order: every operation gives the same bits for any thread count.
 #ifndef MEMBRANE_CORE_ENGINE_FLAT_BITSET_H_
 #define MEMBRANE_CORE_ENGINE_FLAT_BITSET_H_
 
@@ -21,11 +25,25 @@ class FlatBitset {
       : bits_(bits),
         words_(static_cast<size_t>((bits + 63) / 64), 0, HugePageAllocator<uint64_t>(arena)) {}
 
+  FlatBitset(const FlatBitset& other)
+      : bits_(other.bits_), threads_(other.threads_), words_(other.words_) {}
+  FlatBitset(FlatBitset&&) = default;
+  FlatBitset& operator=(FlatBitset&&) = default;
+  // A copy of `other`'s bits (threads() is this bitset's own when the sizes match, other's
+  // otherwise); the words are copied on threads() threads when the sizes match.
+  FlatBitset& operator=(const FlatBitset& other);
+
   int64_t bits() const { return bits_; }
-  // Makes this a zeroed bitset of `bits` bits unless it already has that size.
+  // Makes this a zeroed bitset of `bits` bits unless it already has that size; threads() stays.
   void EnsureSize(int64_t bits) {
-    if (bits_ != bits) *this = FlatBitset(bits);
+    if (bits_ == bits) return;
+    const int threads = threads_;
+    *this = FlatBitset(bits);
+    threads_ = threads;
   }
+  // Threads the word passes that write this bitset run on (>= 1; default 1).
+  int threads() const { return threads_; }
+  void set_threads(int threads) { threads_ = threads < 1 ? 1 : threads; }
   size_t word_count() const { return words_.size(); }
   uint64_t* words() { return words_.data(); }
   const uint64_t* words() const { return words_.data(); }
@@ -111,7 +129,11 @@ class FlatBitset {
   uint64_t WordAt(int64_t pos) const;
 
   int64_t bits_ = 0;
+  int threads_ = 1;
   std::vector<uint64_t, HugePageAllocator<uint64_t>> words_;
+  // The words the in-place shifted passes on threads save before they write (at most a
+  // sixteenth of the bitset; empty on one thread).
+  std::vector<uint64_t> halo_;
 };
 
 }  // namespace membrane

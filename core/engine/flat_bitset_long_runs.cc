@@ -9,9 +9,11 @@
 // the runs where they are faster (kLongAlongX, LongRun).
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "core/engine/flat_bitset.h"
 #include "core/engine/ivdep.h"
+#include "core/engine/word_blocks.h"
 
 namespace membrane {
 namespace {
@@ -35,11 +37,12 @@ uint64_t ErodeDownInWord(uint64_t x, int n) {
   return x;
 }
 
-// dst[i] = AND_{j<n} src[i + j], descending: `ones_above` counts the set bits from bit 0 of
-// the word above upwards (capped at n), so a word's top run of ones knows how far it goes.
-void ErodeAlongX(const uint64_t* src, uint64_t* dst, int64_t words, int n) {
-  int64_t ones_above = 0;  // past the end: zeros
-  for (int64_t w = words - 1; w >= 0; --w) {
+// dst[i] = AND_{j<n} src[i + j] for the words [begin, end), descending: `ones_above` counts the
+// set bits from bit 0 of the word above upwards (capped at n), so a word's top run of ones
+// knows how far it goes; it starts as OnesFrom(src, words, end, n).
+void ErodeAlongX(const uint64_t* src, uint64_t* dst, int64_t begin, int64_t end, int n,
+                 int64_t ones_above) {
+  for (int64_t w = end - 1; w >= begin; --w) {
     const uint64_t x = src[w];
     const uint64_t zeros = ~x;
     uint64_t r = n <= 64 ? ErodeUpInWord(x, n) : 0;
@@ -52,11 +55,22 @@ void ErodeAlongX(const uint64_t* src, uint64_t* dst, int64_t words, int n) {
   }
 }
 
-// dst[i] = OR_{j<n} src[i - j], ascending: the complement of the erosion, downwards, of the
-// zeros; `zeros_below` counts the zeros from bit 63 of the word below downwards (capped at n).
-void DilateAlongX(const uint64_t* src, uint64_t* dst, int64_t words, int n) {
-  int64_t zeros_below = n;  // before the start: zeros
-  for (int64_t w = 0; w < words; ++w) {
+// The set bits of src from bit 0 of word w upwards, capped at n (past the end: zeros).
+int64_t OnesFrom(const uint64_t* src, int64_t words, int64_t w, int n) {
+  int64_t ones = 0;
+  for (; w < words && ones < n; ++w) {
+    if (~src[w] != 0) return std::min<int64_t>(ones + __builtin_ctzll(~src[w]), n);
+    ones += 64;
+  }
+  return std::min<int64_t>(ones, n);
+}
+
+// dst[i] = OR_{j<n} src[i - j] for the words [begin, end), ascending: the complement of the
+// erosion, downwards, of the zeros; `zeros_below` counts the zeros from bit 63 of the word
+// below downwards (capped at n); it starts as ZerosBelow(src, begin, n).
+void DilateAlongX(const uint64_t* src, uint64_t* dst, int64_t begin, int64_t end, int n,
+                  int64_t zeros_below) {
+  for (int64_t w = begin; w < end; ++w) {
     const uint64_t x = src[w];
     uint64_t no_one = n <= 64 ? ErodeDownInWord(~x, n) : 0;
     // The bottom run of zeros, bits 0..b0-1: bit i's run is i + 1 + zeros_below long.
@@ -66,6 +80,35 @@ void DilateAlongX(const uint64_t* src, uint64_t* dst, int64_t words, int n) {
     zeros_below = x == 0 ? std::min<int64_t>(64 + zeros_below, n) : __builtin_clzll(x);
     dst[w] = ~no_one;
   }
+}
+
+// The zeros of src from bit 63 of word w - 1 downwards, capped at n (before the start: zeros).
+int64_t ZerosBelow(const uint64_t* src, int64_t w, int n) {
+  int64_t zeros = 0;
+  for (--w; w >= 0 && zeros < n; --w) {
+    if (src[w] != 0) return std::min<int64_t>(zeros + __builtin_clzll(src[w]), n);
+    zeros += 64;
+  }
+  return n;
+}
+
+// The runs along x on `threads`: blocks of words, each starting from its count of the bits
+// beyond it, all counted before any block is written (src may be dst).
+template <bool kErode>
+void RunAlongX(int threads, const uint64_t* src, uint64_t* dst, int64_t words, int n) {
+  const int64_t blocks = WordBlockCount(threads, words);
+  std::vector<int64_t> start(static_cast<size_t>(blocks));
+  for (int64_t b = 0; b < blocks; ++b) {
+    const int64_t begin = b * kWordBlock, end = std::min(words, begin + kWordBlock);
+    start[static_cast<size_t>(b)] = kErode ? OnesFrom(src, words, end, n) : ZerosBelow(src, begin, n);
+  }
+  ForWordBlocks(threads, words, [&](int64_t b, int64_t begin, int64_t end) {
+    if constexpr (kErode) {
+      ErodeAlongX(src, dst, begin, end, n, start[static_cast<size_t>(b)]);
+    } else {
+      DilateAlongX(src, dst, begin, end, n, start[static_cast<size_t>(b)]);
+    }
+  });
 }
 
 // The 64 bits of `a` (of `words` words) from bit position 64 * w + k, zeros outside.
@@ -190,11 +233,7 @@ template <bool kErode>
 bool LongRun(const uint64_t* src, FlatBitset& dst, int n, int64_t stride, FlatBitset& scratch) {
   const int64_t words = static_cast<int64_t>(dst.word_count());
   if (stride == 1 && n >= kLongAlongX) {
-    if constexpr (kErode) {
-      ErodeAlongX(src, dst.words(), words, n);
-    } else {
-      DilateAlongX(src, dst.words(), words, n);
-    }
+    RunAlongX<kErode>(dst.threads(), src, dst.words(), words, n);
     return true;
   }
   if (stride < 129 || n <= 16) return false;

@@ -57,7 +57,8 @@ MembraneShrinker::MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options
       sizes_(PlateSizesOf(grid, options)),
       labels_(GenerationLabels(static_cast<int>(sizes_.size()))),
       retry_from_(RetryFrom(sizes_, options, strict_)),
-      planes_(grid),
+      word_threads_(grid.size() >= options.threads_min_voxels ? options.threads : 1),
+      planes_(grid, word_threads_),
       finder_(grid, planes_),
       runner_(grid) {
   // Only the thin-part exception and the hole opening read the points.
@@ -72,7 +73,7 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
   const Clock::time_point start = Clock::now();
   ShrinkResult result;
   if (options_.silhouette_preshrink) result.preshrink_outside_voxels = SilhouettePreshrink(grid_);
-  counts_ = CountStates(grid_.states());
+  counts_ = CountStates(grid_.states(), word_threads_);
   // The strict rules decide as the default ones do until the first removal they would refuse
   // (a loose tunnel): the handle retry starts at the generation that made it, from the grid
   // as it was before that generation.
@@ -160,7 +161,7 @@ absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
   if (!done) {
     if (absl::Status s = RunChains(chain, stats); !s.ok()) return s;
   }
-  const StateCounts after = CountStates(grid_.states());
+  const StateCounts after = CountStates(grid_.states(), word_threads_);
   stats.new_outside = after.outside - counts_.outside;
   counts_ = after;
   stats.seconds = SecondsSince(t0);

@@ -171,6 +171,9 @@ class MembraneShrinker {
   // strict sizes differ from the default ones, and the handle retry runs again. sizes_.size()
   // when the retry is off or no plate is that small.
   const size_t retry_from_;
+  // Threads of the word passes and state counts: options.threads on grids of at least
+  // options.threads_min_voxels voxels, else 1.
+  const int word_threads_;
   // The counts after the last generation, before the next: one pass over the states per
   // generation (on a 70 M voxel grid each pass costs as much as a small generation).
   StateCounts counts_;

@@ -15,6 +15,14 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "depth_bound %d is out of range [0, 1000000] (0 = unbounded)", o.chain.depth_bound));
   }
+  if (o.threads < 1 || o.threads > 256) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("shrink threads %d is out of range [1, 256]", o.threads));
+  }
+  if (o.threads_min_voxels < 0) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("threads_min_voxels %d must be >= 0", o.threads_min_voxels));
+  }
   if (o.closed_form_min_plate < 0) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "closed_form_min_plate %d must be >= 0 (0 = never)", o.closed_form_min_plate));

@@ -4,6 +4,8 @@
 #ifndef MEMBRANE_CORE_ENGINE_SHRINK_OPTIONS_H_
 #define MEMBRANE_CORE_ENGINE_SHRINK_OPTIONS_H_
 
+#include <cstdint>
+
 #include "absl/status/status.h"
 #include "core/engine/contraction.h"
 #include "core/engine/gap_refill.h"
@@ -41,6 +43,14 @@ struct ShrinkOptions {
   GapRefillOptions refill;          // channels carved through data gaps (gap_refill.h)
   PieceSeparationOptions separation;  // pieces of data joined by the shrink (piece_separation.h)
   HoleOpeningOptions holes;         // plugged holes opened from the data (hole_opening.h)
+  // Threads of the word passes of the closed form and the place finder and of the state
+  // counts (1..256; ReconstructionOptions::threads): split by the grid, the same DMS for any
+  // count. Grids under threads_min_voxels keep them on the calling thread: their passes take
+  // a few ms, where starting and joining threads on a loaded machine cost more than they gain
+  // (tests/bench/2026-12-03-shrink-threads.txt). 2^27: a 2M-point torus's grid is above it,
+  // a 1M-point one's below.
+  int threads = 1;
+  int64_t threads_min_voxels = int64_t{1} << 27;
 };
 
 // Validates options: InvalidArgument naming the field and its allowed range.

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cstring>
+#include <vector>
+
+#include "core/base/parallel_tasks.h"
+#include "core/engine/word_blocks.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -130,10 +134,18 @@ void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicat
   }
 }
 
-StateCounts CountStates(absl::Span<const VoxelState> states) {
+void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicate,
+                    FlatBitset& plane) {
+  ForWordBlocks(plane.threads(), static_cast<int64_t>(plane.word_count()),
+                [&](int64_t, int64_t begin, int64_t end) {
+                  FillStatePlane(states, predicate, plane, begin, end);
+                });
+}
+
+namespace {
+
+StateCounts CountStateRange(const VoxelState* s, int64_t nv) {
   StateCounts c;
-  const VoxelState* s = states.data();
-  const int64_t nv = static_cast<int64_t>(states.size());
   int64_t i = 0;
 #if defined(__SSE2__)
   // Byte counters (a match is -1, subtracted), summed into 64-bit lanes before they overflow.
@@ -169,6 +181,28 @@ StateCounts CountStates(absl::Span<const VoxelState> states) {
     c.outside += IsOutside(s[i]);
     c.boundary += IsBoundary(s[i]);
     c.boundary_soft += IsBoundarySoft(s[i]);
+  }
+  return c;
+}
+
+}  // namespace
+
+StateCounts CountStates(absl::Span<const VoxelState> states, int threads) {
+  // Blocks of the voxels of kWordBlock words of a plane.
+  constexpr int64_t kBlock = kWordBlock * 64;
+  const int64_t nv = static_cast<int64_t>(states.size());
+  const int64_t blocks = WordBlockCount(threads, (nv + 63) / 64);
+  if (blocks == 1) return CountStateRange(states.data(), nv);
+  std::vector<StateCounts> parts(static_cast<size_t>(blocks));
+  RunTasks(threads, blocks, [&](int, int64_t b) {
+    const int64_t begin = b * kBlock;
+    parts[static_cast<size_t>(b)] = CountStateRange(states.data() + begin, std::min(nv, begin + kBlock) - begin);
+  });
+  StateCounts c;
+  for (const StateCounts& p : parts) {
+    c.outside += p.outside;
+    c.boundary += p.boundary;
+    c.boundary_soft += p.boundary_soft;
   }
   return c;
 }

@@ -29,11 +29,9 @@ enum class StatePredicate {
 void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicate,
                     FlatBitset& plane, int64_t word_begin, int64_t word_end);
 
-// The same over the whole plane.
-inline void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicate,
-                           FlatBitset& plane) {
-  FillStatePlane(states, predicate, plane, 0, static_cast<int64_t>(plane.word_count()));
-}
+// The same over the whole plane, in blocks of words on plane.threads() threads.
+void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicate,
+                    FlatBitset& plane);
 
 struct StateCounts {
   int64_t outside = 0;
@@ -41,8 +39,9 @@ struct StateCounts {
   int64_t boundary_soft = 0;  // boundary, soft, not frozen
 };
 
-// Counts the outside, boundary and boundary soft voxels of `states` in one pass.
-StateCounts CountStates(absl::Span<const VoxelState> states);
+// Counts the outside, boundary and boundary soft voxels of `states` in one pass, in fixed
+// blocks of voxels on `threads` threads (the counts do not depend on it).
+StateCounts CountStates(absl::Span<const VoxelState> states, int threads = 1);
 
 // Index (0..7) of the first of the eight states at `states` that is a boundary voxel
 // (IsBoundary), or 8 when none is: lets a scan for boundary voxels skip eight at a time.

@@ -19,6 +19,7 @@ bool WorkPlanes::Ensure(int count, const CancelToken& cancel) {
     // cancel may wait.
     if (cancel.cancelled()) return false;
     planes_.push_back(std::make_unique<FlatBitset>(nv, arena_.get()));
+    planes_.back()->set_threads(threads_);
   }
   return true;
 }

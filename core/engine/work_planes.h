@@ -20,8 +20,9 @@ namespace membrane {
 
 class WorkPlanes {
  public:
-  // Keeps a reference to `grid`, which must outlive the planes. Allocates nothing yet.
-  explicit WorkPlanes(const VoxelGrid& grid) : grid_(grid) {}
+  // Keeps a reference to `grid`, which must outlive the planes. Allocates nothing yet. The
+  // planes' word passes run on `threads` threads (FlatBitset::set_threads).
+  explicit WorkPlanes(const VoxelGrid& grid, int threads = 1) : grid_(grid), threads_(threads) {}
 
   // Makes planes 0 .. count-1 and the interior plane available, one bit per voxel of the
   // grid, allocating the missing ones (zeroed) and polling `cancel` between
@@ -39,6 +40,7 @@ class WorkPlanes {
 
  private:
   const VoxelGrid& grid_;
+  const int threads_;
   FlatBitset interior_;
   // Declared before the planes, so destroyed after them.
   std::unique_ptr<PlaneArena> arena_;

@@ -50,8 +50,11 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
   const GenerationCallback on_generation = [&observer, planned](const GenerationStats& g) {
     observer.GenerationFinished(g, planned);
   };
+  // The shrink's word passes share the run's threads (docs/design.md, "Threads").
+  ShrinkOptions shrink = options.shrink;
+  shrink.threads = options.threads;
   absl::StatusOr<ShrinkResult> result =
-      ShrinkMembrane(grid, cloud.points, options.shrink, on_generation, cancel);
+      ShrinkMembrane(grid, cloud.points, shrink, on_generation, cancel);
   if (!result.ok()) return result.status();
   report.generations = std::move(result->generations);
   report.post_process = result->post_process;

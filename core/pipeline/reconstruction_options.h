@@ -25,8 +25,9 @@ struct ReconstructionOptions {
   // the grid is so wide that its step would exceed kMaxOutputStepVoxels (OutputBitsForVoxel).
   bool output_bits_follow_voxel = false;
   // Threads of the stages that split their work by the geometry (the voxelization, the
-  // relaxation's passes, the smooth surface, the mesh check, the decimation's error measure;
-  // docs/design.md, "Threads"), 1..kMaxReconstructionThreads. The mesh is the same for any value.
+  // shrink's word passes, the relaxation's passes, the smooth surface, the mesh check, the
+  // decimation's error measure; docs/design.md, "Threads"), 1..kMaxReconstructionThreads.
+  // The mesh is the same for any value.
   int threads = 1;
   // At most this many faces in the mesh delivered (>= kMinTargetFaces), or as few as keeping
   // it closed, manifold, outward, uncrossed and of the same topology allows: the decimate

@@ -10,9 +10,11 @@
 namespace membrane {
 
 // Seconds, at least, of the stages up to the surface for a grid of `voxels` (padding
-// included): 20 ns a voxel, the fastest one-core shrink on the bench clouds (21-70 ns a voxel,
-// tests/bench/2026-11-28-shrink.txt); voxelizing, relaxing and the surface come on top.
-double GridSecondsFloor(int64_t voxels);
+// included) on `threads` threads: 20 ns a voxel, the fastest one-core shrink on the bench
+// clouds (21-70 ns a voxel, tests/bench/2026-11-28-shrink.txt), divided by the threads (the
+// shrink's word passes share them, and no run is more than `threads` times faster than on
+// one); voxelizing, relaxing and the surface come on top.
+double GridSecondsFloor(int64_t voxels, int threads = 1);
 
 // Seconds, at least, of encoding a mesh's positions with Draco at `quantization_bits` (0:
 // float32, no quantization): Draco's encoder works through tables of 2^bits entries whatever

@@ -1,6 +1,7 @@
 // bench_shrink: time of the membrane shrink (ShrinkMembrane only) at the formula-(1) voxel
-// size, one core, per model, with per-generation rows like the paper's Tables 1 to 4, peak RSS,
-// topology, and Open3D Poisson on the same real clouds side by side. See README.md.
+// size, on --threads threads (default one), per model, with per-generation rows like the
+// paper's Tables 1 to 4, peak RSS, topology, and Open3D Poisson on the same real clouds side
+// by side. See README.md.
 //
 // Each model runs in a forked child so that its peak RSS (getrusage) is its own and a crash
 // or an error in one model does not hide the others.
@@ -61,7 +62,7 @@ struct BenchOptions {
 constexpr char kUsage[] =
     "usage: bench_shrink [--quick] [--models a,b,c,d|NAME,...] [--repeat R] [--shared DIR]\n"
     "                    [--python PATH] [--open3d-threads N] [--open3d-timeout S]\n"
-    "                    [--no-open3d] [--retry T,S,W]\n"
+    "                    [--no-open3d] [--retry T,S,W] [--threads N]\n"
     "  --quick           small sizes only, R=1, no open3d (the ctest smoke)\n"
     "  --models LIST     a|real, b|scaling, c|million, d|tall, e|small, or any part of a\n"
     "                    model name\n"
@@ -73,7 +74,9 @@ constexpr char kUsage[] =
     "  --open3d-timeout  stop Open3D after S seconds per cloud (default 0: never)\n"
     "  --no-open3d       skip the Open3D Poisson peer\n"
     "  --retry T,S,W     the handle retry's tunnel, short-loop and wall-notch plate sizes\n"
-    "                    (ShrinkOptions::retry; 0 = none of that kind)\n";
+    "                    (ShrinkOptions::retry; 0 = none of that kind)\n"
+    "  --threads N       the shrink's threads, 1..256 (ShrinkOptions::threads; default 1;\n"
+    "                    CPU seconds are the whole process's)\n";
 
 std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
   BenchOptions o;
@@ -105,6 +108,12 @@ std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
       if (f.size() != 3 || !absl::SimpleAtoi(f[0], &o.shrink.retry.tunnel_min_plate) ||
           !absl::SimpleAtoi(f[1], &o.shrink.retry.short_loop_min_plate) ||
           !absl::SimpleAtoi(f[2], &o.shrink.retry.wall_notch_min_plate)) {
+        return std::nullopt;
+      }
+    } else if (arg == "--threads") {
+      auto v = value();
+      if (!v || !absl::SimpleAtoi(*v, &o.shrink.threads) || o.shrink.threads < 1 ||
+          o.shrink.threads > 256) {
         return std::nullopt;
       }
     } else if (arg == "--shared") {
@@ -582,8 +591,9 @@ const Summary* Find(const std::vector<Summary>& all, const std::string& name) {
 
 const char* Verdict(bool met) { return met ? "MET" : "NOT MET"; }
 
-void PrintSummary(const std::vector<Summary>& all, bool quick) {
-  std::printf("\n== summary: shrink only, median of R, one core (ns/voxel over the padded grid)\n");
+void PrintSummary(const std::vector<Summary>& all, bool quick, int threads) {
+  std::printf("\n== summary: shrink only, median of R, %d thread(s) (ns/voxel over the padded grid)\n",
+              threads);
   std::printf("(shells/g: shells / genus per shell, \"!\" = not the expected topology)\n");
   std::printf("%-23s %13s %6s %9s %7s %7s %6s %6s %6s %-11s %8s %6s\n", "model", "grid",
               "Mvox", "points", "wall s", "CPU s", "ns/v w", "ns/v c", "RSS MB", "shells/g",
@@ -707,7 +717,7 @@ int Main(int argc, char** argv) {
     if (!Selected(o, m)) continue;
     all.push_back(RunModelInChild(o, m, open3d_available, open3d_version));
   }
-  PrintSummary(all, o.quick);
+  PrintSummary(all, o.quick, o.shrink.threads);
   std::printf("load average at the end: %s\n", LoadAverage().c_str());
   bool ok = true;
   for (const Summary& s : all) ok = ok && s.ok;

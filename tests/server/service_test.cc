@@ -430,6 +430,7 @@ TEST_F(ServiceTest, JobRunningPastMaxJobSecondsFailsDeadlineExceeded) {
 // Draco's 30-bit encoding at the upload's header, a fine grid before it is allocated.
 TEST_F(ServiceTest, JobsOverMaxJobSecondsByTheEstimatesAreRefusedBeforeTheyRun) {
   options_.max_job_seconds = 5;
+  options_.job_threads = 1;  // the grid's floor is divided by the job's threads
   StartServer();
   v1::Parameters fine_bits;
   fine_bits.set_quantization(30);
@@ -440,7 +441,7 @@ TEST_F(ServiceTest, JobsOverMaxJobSecondsByTheEstimatesAreRefusedBeforeTheyRun) 
             std::string::npos)
       << bits.status.error_message();
   v1::Parameters fine_grid;
-  fine_grid.set_voxel_size(0.003);  // about 300M voxels: at least 6 s
+  fine_grid.set_voxel_size(0.003);  // about 300M voxels: at least 6 s on one thread
   const CallResult grid = Reconstruct(DracoCloud("sphere", 3000), fine_grid);
   EXPECT_EQ(grid.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_EQ(grid.FinalState(), v1::FAILED);

@@ -17,6 +17,26 @@
 #include "core/geometry/vec3.h"
 
 namespace membrane {
+namespace {
+
+// Points between two asks of the cancel token in the passes over the points: a few ms of work.
+constexpr size_t kPollPoints = size_t{1} << 16;
+
+// Calls visit(point) for each of `points` in order, asking `cancel` every kPollPoints points.
+// False when it fired (the visits then stop short).
+template <typename Visit>
+bool VisitPoints(absl::Span<const Point3f> points, const CancelToken& cancel, Visit visit) {
+  for (size_t start = 0; start < points.size(); start += kPollPoints) {
+    if (cancel.cancelled()) return false;
+    const size_t end = std::min(points.size(), start + kPollPoints);
+    for (size_t i = start; i < end; ++i) visit(i, points[i]);
+  }
+  return true;
+}
+
+absl::Status CheckCancelled() { return absl::CancelledError("point check cancelled"); }
+
+}  // namespace
 
 double EstimateVoxelSize(const Box3d& bounds, int64_t points) {
   const auto e = bounds.Extent();
@@ -41,11 +61,9 @@ int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads,
   RunTasks(threads, parts, [&](int, int64_t part) {
     absl::flat_hash_set<Point3f> seen;
     seen.reserve(points.size() / parts);
-    constexpr size_t kPollPoints = size_t{1} << 16;
-    for (size_t i = 0; i < points.size(); ++i) {
-      if (i % kPollPoints == 0 && cancel.cancelled()) break;
-      if (parts == 1 || part_of(points[i]) == part) seen.insert(points[i]);
-    }
+    VisitPoints(points, cancel, [&](size_t, const Point3f& p) {
+      if (parts == 1 || part_of(p) == part) seen.insert(p);
+    });
     distinct[part] = static_cast<int64_t>(seen.size());
   });
   return std::accumulate(distinct.begin(), distinct.end(), int64_t{0});
@@ -61,11 +79,15 @@ namespace {
 // a - b, in double.
 Vec3d Sub(const Point3f& a, const Point3f& b) { return ToVec3d(a) - ToVec3d(b); }
 
-// The spacing of float32 values at the magnitude of `p`'s largest coordinate.
+// The spacing of float32 values at the magnitude of `p`'s largest coordinate (finite): the
+// next float up is the one whose bits are one more, which is what nextafter computes, at a
+// fraction of a library call's cost (this runs for every point, twice).
 double FloatStep(const Point3f& p) {
   const float m = std::max({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])});
-  return static_cast<double>(std::nextafter(m, HUGE_VALF)) - m;
+  const float next = std::bit_cast<float>(std::bit_cast<uint32_t>(m) + 1u);
+  return static_cast<double>(next) - m;
 }
+
 
 // InvalidArgument when `points` (not all equal, finite) lie on one line or in one plane,
 // which bound no solid. Geometric, in the manner of quickhull's first simplex: a, then b the
@@ -77,30 +99,35 @@ double FloatStep(const Point3f& p) {
 // voxelizer, which then finds no solid in it; too much would call a small solid far from
 // the origin flat. No spread statistic can say this: a round blob
 // with one point far away has a covariance as thin as a plane's, and is no plane.
-absl::Status CheckSpansASolid(absl::Span<const Point3f> points) {
+absl::Status CheckSpansASolid(absl::Span<const Point3f> points, const CancelToken& cancel) {
   const Point3f& a = points.front();
   size_t b_index = 0;
   double b_distance = -1;
-  for (size_t i = 0; i < points.size(); ++i) {
-    const Vec3d ap = Sub(points[i], a);
-    if (const double d = Dot(ap, ap); d > b_distance) b_distance = d, b_index = i;
+  if (!VisitPoints(points, cancel, [&](size_t i, const Point3f& p) {
+        const Vec3d ap = Sub(p, a);
+        if (const double d = Dot(ap, ap); d > b_distance) b_distance = d, b_index = i;
+      })) {
+    return CheckCancelled();
   }
   const Point3f& b = points[b_index];
   const Vec3d ab = Sub(b, a);
   const double ab_length = std::sqrt(b_distance);
-  // The rounding allowance at `p` of a line or plane through a, b and `third`.
+  const double a_step = FloatStep(a), b_step = FloatStep(b);
+  // The rounding allowance at `p` of a line or plane through a, b and a third point whose
+  // float step is `third_step`.
   auto allowance = [&](const Point3f& p, double third_step) {
     const Vec3d ap = Sub(p, a);
-    return 2 * (FloatStep(p) + FloatStep(a) + third_step +
-                FloatStep(b) * std::sqrt(Dot(ap, ap)) / ab_length);
+    return 2 * (FloatStep(p) + a_step + third_step + b_step * std::sqrt(Dot(ap, ap)) / ab_length);
   };
   size_t c_index = 0;
   double c_distance = -1, line_excess = -1;
-  for (size_t i = 0; i < points.size(); ++i) {
-    const Vec3d n = Cross(Sub(points[i], a), ab);
-    const double d = std::sqrt(Dot(n, n)) / ab_length;
-    if (d > c_distance) c_distance = d, c_index = i;
-    line_excess = std::max(line_excess, d - allowance(points[i], 0));
+  if (!VisitPoints(points, cancel, [&](size_t i, const Point3f& p) {
+        const Vec3d n = Cross(Sub(p, a), ab);
+        const double d = std::sqrt(Dot(n, n)) / ab_length;
+        if (d > c_distance) c_distance = d, c_index = i;
+        line_excess = std::max(line_excess, d - allowance(p, 0));
+      })) {
+    return CheckCancelled();
   }
   if (line_excess <= 0) {
     return absl::InvalidArgumentError(absl::StrFormat(
@@ -112,11 +139,14 @@ absl::Status CheckSpansASolid(absl::Span<const Point3f> points) {
   Vec3d normal = Cross(ab, Sub(c, a));
   const double normal_length = std::sqrt(Dot(normal, normal));
   for (double& v : normal) v /= normal_length;
+  const double c_step = FloatStep(c);
   double d_distance = 0, plane_excess = -1;
-  for (const Point3f& p : points) {
-    const double d = std::fabs(Dot(Sub(p, a), normal));
-    d_distance = std::max(d_distance, d);
-    plane_excess = std::max(plane_excess, d - allowance(p, FloatStep(c)));
+  if (!VisitPoints(points, cancel, [&](size_t, const Point3f& p) {
+        const double d = std::fabs(Dot(Sub(p, a), normal));
+        d_distance = std::max(d_distance, d);
+        plane_excess = std::max(plane_excess, d - allowance(p, c_step));
+      })) {
+    return CheckCancelled();
   }
   if (plane_excess <= 0) {
     return absl::InvalidArgumentError(absl::StrFormat(
@@ -129,21 +159,24 @@ absl::Status CheckSpansASolid(absl::Span<const Point3f> points) {
 
 }  // namespace
 
-absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points) {
+absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points,
+                                    const CancelToken& cancel) {
   if (points.empty()) return absl::InvalidArgumentError("the point cloud has no points");
   int64_t non_finite = 0;
   Box3d box;
   bool first = true;
-  for (const Point3f& p : points) {
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
-      ++non_finite;
-      continue;
-    }
-    for (int d = 0; d < 3; ++d) {
-      if (first || p[d] < box.min[d]) box.min[d] = p[d];
-      if (first || p[d] > box.max[d]) box.max[d] = p[d];
-    }
-    first = false;
+  if (!VisitPoints(points, cancel, [&](size_t, const Point3f& p) {
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+          ++non_finite;
+          return;
+        }
+        for (int d = 0; d < 3; ++d) {
+          if (first || p[d] < box.min[d]) box.min[d] = p[d];
+          if (first || p[d] > box.max[d]) box.max[d] = p[d];
+        }
+        first = false;
+      })) {
+    return CheckCancelled();
   }
   if (non_finite > 0) {
     return absl::InvalidArgumentError(absl::StrFormat(
@@ -164,7 +197,7 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points) {
     far_corner[d] = static_cast<float>(std::max(std::fabs(box.min[d]), std::fabs(box.max[d])));
   }
   if (16 * FloatStep(far_corner) < widest) {
-    if (absl::Status s = CheckSpansASolid(points); !s.ok()) return s;
+    if (absl::Status s = CheckSpansASolid(points, cancel); !s.ok()) return s;
   }
   return box;
 }
@@ -258,7 +291,8 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
                                       const VoxelizeOptions& options, ProgressRange progress,
                                       const CancelToken& cancel) {
   const auto cancelled = [] { return absl::CancelledError("voxelization cancelled"); };
-  absl::StatusOr<Box3d> bounds = CheckedBounds(points);
+  absl::StatusOr<Box3d> bounds = CheckedBounds(points, cancel);
+  if (cancel.cancelled()) return cancelled();
   if (!bounds.ok()) return bounds.status();
   if (options.voxel_budget < 0) {
     return absl::InvalidArgumentError(absl::StrFormat(

@@ -64,8 +64,10 @@ double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points, i
 // Bounding box of `points`. InvalidArgument when there are no points, when some coordinates
 // are NaN or infinite (with their count), when all points are equal, or when they lie on one
 // line or in one plane (up to float32 rounding): neither bounds a solid (a solid with a few
-// points far from it is no plane).
-absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points);
+// points far from it is no plane). Four passes over the points, each asking `cancel` every
+// 65536 points: Cancelled once it has fired.
+absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points,
+                                    const CancelToken& cancel = CancelToken::Never());
 
 // Builds the voxel grid and the initial membrane for `points`. Each axis gets
 // n_d = floor(L_d / l) + 1 voxels (so the largest coordinate falls inside the grid) plus

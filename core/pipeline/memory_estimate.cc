@@ -72,7 +72,10 @@ int64_t Bytes(const StageCost& cost, int64_t voxels, int64_t points, int64_t mem
 
 absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize,
                                      const CancelToken& cancel) {
-  absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
+  absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points, cancel);
+  if (cancel.cancelled()) {
+    return absl::CancelledError("reconstruction cancelled while planning the grid");
+  }
   if (!bounds.ok()) return bounds.status();
   PlannedGrid plan;
   plan.bounds = *bounds;

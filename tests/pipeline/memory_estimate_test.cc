@@ -49,8 +49,10 @@ TEST(PlanGrid, ACancelDuringFormulaOnesCountIsCancelled) {
   cancel.Cancel();
   EXPECT_EQ(PlanGrid(*cloud, VoxelizeOptions{}, cancel).status().code(),
             absl::StatusCode::kCancelled);
-  // A given voxel size counts nothing: the plan is made.
-  EXPECT_TRUE(PlanGrid(*cloud, VoxelizeOptions{.voxel_size = 0.1}, cancel).ok());
+  // A given voxel size counts nothing, but the point check before it asks the token too.
+  EXPECT_EQ(PlanGrid(*cloud, VoxelizeOptions{.voxel_size = 0.1}, cancel).status().code(),
+            absl::StatusCode::kCancelled);
+  EXPECT_TRUE(PlanGrid(*cloud, VoxelizeOptions{.voxel_size = 0.1}).ok());
 }
 
 TEST(PlanGrid, ADegenerateCloudIsInvalidArgument) {

@@ -150,6 +150,37 @@ MEMBRANE_IVDEP
   }
 }
 
+// Runs range(begin, end, halo) over all n words of `w`, in segments on `threads` threads when
+// there are several: each segment's range reads the q + 1 words beside it, after it
+// (`halo_after`) or before it, as they were before any segment wrote them, so those are saved
+// into `store` first (range's `halo`: null when the whole runs as one).
+template <typename Range>
+void RunInHaloSegments(int threads, std::vector<uint64_t>& store, uint64_t* w, int64_t n,
+                       int64_t q, bool halo_after, const Range& range) {
+  const int64_t seg = HaloSegmentWords(q);
+  const int64_t segments = (n + seg - 1) / seg;
+  if (threads <= 1 || segments < 2) {
+    range(0, n, nullptr);
+    return;
+  }
+  const int64_t h = q + 1;
+  std::vector<uint64_t>& halo = HaloOf(store, segments * h);
+  // Task t saves the words between segments t and t + 1: the head of t + 1 for segment t, or
+  // the tail of t for segment t + 1 (placed at the end of its h words when t is short).
+  RunTasks(threads, segments - 1, [&](int, int64_t t) {
+    const int64_t seam = (t + 1) * seg;
+    if (halo_after) {
+      std::copy(w + seam, w + std::min(n, seam + h), halo.data() + t * h);
+    } else {
+      const int64_t from = std::max<int64_t>(0, seam - h);
+      std::copy(w + from, w + seam, halo.data() + (t + 1) * h + (from - (seam - h)));
+    }
+  });
+  RunTasks(threads, segments, [&](int, int64_t j) {
+    range(j * seg, std::min(n, (j + 1) * seg), halo.data() + j * h);
+  });
+}
+
 }  // namespace
 
 void FlatBitset::AndShiftedDown(int64_t k) {
@@ -157,22 +188,10 @@ void FlatBitset::AndShiftedDown(int64_t k) {
   const int64_t q = k >> 6;
   const int r = static_cast<int>(k & 63);
   uint64_t* w = words_.data();
-  const int64_t seg = HaloSegmentWords(q);
-  const int64_t segments = (n + seg - 1) / seg;
-  if (threads_ <= 1 || segments < 2) {
-    AndShiftedDownRange(w, n, q, r, 0, n, nullptr);
-    return;
-  }
-  // Segment j reads the first q + 1 words of segment j + 1 as they were: saved first.
-  const int64_t h = q + 1;
-  std::vector<uint64_t>& halo = HaloOf(halo_, segments * h);
-  RunTasks(threads_, segments - 1, [&](int, int64_t j) {
-    const int64_t from = (j + 1) * seg, to = std::min(n, from + h);
-    std::copy(w + from, w + to, halo.data() + j * h);
-  });
-  RunTasks(threads_, segments, [&](int, int64_t j) {
-    AndShiftedDownRange(w, n, q, r, j * seg, std::min(n, (j + 1) * seg), halo.data() + j * h);
-  });
+  RunInHaloSegments(threads_, halo_, w, n, q, /*halo_after=*/true,
+                    [&](int64_t begin, int64_t end, const uint64_t* halo) {
+                      AndShiftedDownRange(w, n, q, r, begin, end, halo);
+                    });
 }
 
 void FlatBitset::OrShiftedUp(int64_t k) {
@@ -180,23 +199,10 @@ void FlatBitset::OrShiftedUp(int64_t k) {
   const int64_t q = k >> 6;
   const int r = static_cast<int>(k & 63);
   uint64_t* w = words_.data();
-  const int64_t seg = HaloSegmentWords(q);
-  const int64_t segments = (n + seg - 1) / seg;
-  if (threads_ <= 1 || segments < 2) {
-    OrShiftedUpRange(w, q, r, 0, n, nullptr);
-    return;
-  }
-  // Segment j reads the last q + 1 words before it as they were: saved first.
-  const int64_t h = q + 1;
-  std::vector<uint64_t>& halo = HaloOf(halo_, segments * h);
-  RunTasks(threads_, segments - 1, [&](int, int64_t t) {
-    const int64_t j = t + 1, begin = j * seg;
-    for (int64_t m = std::max<int64_t>(0, begin - h); m < begin; ++m)
-      halo[static_cast<size_t>(j * h + m - (begin - h))] = w[m];
-  });
-  RunTasks(threads_, segments, [&](int, int64_t j) {
-    OrShiftedUpRange(w, q, r, j * seg, std::min(n, (j + 1) * seg), halo.data() + j * h);
-  });
+  RunInHaloSegments(threads_, halo_, w, n, q, /*halo_after=*/false,
+                    [&](int64_t begin, int64_t end, const uint64_t* halo) {
+                      OrShiftedUpRange(w, q, r, begin, end, halo);
+                    });
 }
 
 namespace {

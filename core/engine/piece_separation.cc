@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <deque>
 #include <vector>
 
@@ -292,11 +293,13 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
                                                         const PieceSeparationOptions& options,
                                                         const CancelToken& cancel) {
   if (options.min_piece_fraction <= 0 || options.min_piece_fraction > 0.5 ||
-      options.far_steps < 1 || !(options.max_cut_fraction > 0)) {
+      options.far_steps < 1 || options.near_far_steps < 0 ||
+      options.near_far_steps >= options.far_steps || !(options.max_cut_fraction > 0)) {
     return absl::InvalidArgumentError(
         absl::StrCat("piece separation options out of range: min_piece_fraction ",
                      options.min_piece_fraction, " (0..0.5], far_steps ", options.far_steps,
-                     " (1 or more), max_cut_fraction ", options.max_cut_fraction,
+                     " (1 or more), near_far_steps ", options.near_far_steps,
+                     " (0..far_steps - 1), max_cut_fraction ", options.max_cut_fraction,
                      " (above 0)"));
   }
   PieceSeparationStats stats;
@@ -318,8 +321,8 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   // Waves from every piece at once through the solid, one 26-step a layer (one byte a voxel
   // while this runs, only when the data has two or more pieces). The cut: the non-hard solid
   // voxels where two pieces' waves meet, and the non-hard boundary voxels farther than
-  // far_steps from every piece (webs in open space, or across a piece's own loops); in the
-  // waves' order, nearest the data first.
+  // far_steps (and near_far_steps, for the third trial) from every piece (webs in open space,
+  // or across a piece's own loops); in the waves' order, nearest the data first.
   if (pieces.size() > kMaxPieces) return done();
   std::vector<uint8_t> wave(static_cast<size_t>(grid.size()), kNoWave);
   std::vector<int64_t> frontier, next;
@@ -333,7 +336,12 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
     piece_voxels.push_back(static_cast<int64_t>(piece.size()));
   std::vector<std::vector<int64_t>>().swap(pieces);
   FlatBitset in_cut(grid.size());
+  // `far` holds the voxels past near_far_steps (past far_steps when that is 0) in the waves'
+  // order: those past far_steps are its tail, from far_split on.
   std::vector<int64_t> cut, far;
+  size_t far_split = 0;
+  const int first_far_layer =
+      options.near_far_steps > 0 ? options.near_far_steps : options.far_steps;
   std::vector<CutVoxel> cut_pairs;
   auto add_to_cut = [&](int64_t v, int pair) {
     if (IsHard(s[v]) || in_cut.test(v)) return;
@@ -346,7 +354,7 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   for (int layer = 0; !frontier.empty(); ++layer) {
     for (const int64_t v : frontier) {
       if (++polls % kCancelPoll == 0 && cancel.cancelled()) return cancelled();
-      if (layer > options.far_steps && !IsHard(s[v])) far.push_back(v);
+      if (layer > first_far_layer && !IsHard(s[v])) far.push_back(v);
       for (int64_t off : grid.neighbour_offsets()) {
         const int64_t n = v + off;
         if (IsOutside(s[n])) continue;
@@ -361,11 +369,20 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
         }
       }
     }
+    if (layer <= options.far_steps) far_split = far.size();
     frontier.swap(next);
     next.clear();
   }
   if (!meet) return done();
-  std::erase_if(far, [&](int64_t v) { return in_cut.test(v); });
+  // The cut's own voxels leave the far lists, which keep their order.
+  size_t far_kept = 0, split_kept = 0;
+  for (size_t k = 0; k < far.size(); ++k) {
+    if (k == far_split) split_kept = far_kept;
+    if (!in_cut.test(far[k])) far[far_kept++] = far[k];
+  }
+  if (far_split >= far.size()) split_kept = far_kept;
+  far.resize(far_kept);
+  far_split = split_kept;
 
   const VoxelTopology before = ComputeVoxelTopology(grid);
   // The waves' bytes now hold the states of the voxels a trial changes.
@@ -388,7 +405,8 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   stats.shells_before = before.shells;
   stats.genus_before = TotalGenus(before);
   const CutTrial::Outcome* kept = nullptr;
-  absl::StatusOr<CutTrial::Outcome> with_far;
+  absl::StatusOr<CutTrial::Outcome> with_far, with_near_far;
+  int kept_far_steps = 0;  // the kept trial's far webs (0: the cut between the pieces)
   // A cut between two pieces as large as a piece's data spans a solid's whole cross-section:
   // the two caps of a closed surface whose data miss a band around it, or a lid on its pot,
   // not two objects: nothing is tried further. Otherwise the far voxels are tried too, also
@@ -396,11 +414,31 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   // beside the cut can hold them (cow-spot-belt 1.5x: 3 shells, genus 5 without them, 4 with).
   if (stats.cut_fraction <= options.max_cut_fraction) {
     if (better(between->topology)) kept = &*between;
-    if (!far.empty()) {
-      cut.insert(cut.end(), far.begin(), far.end());
+    const size_t between_size = cut.size();
+    if (far_split < far.size()) {
+      cut.insert(cut.end(), far.begin() + static_cast<std::ptrdiff_t>(far_split), far.end());
       with_far = trial.Run(cut, cancel);
       if (!with_far.ok()) return with_far.status();
-      if (better(with_far->topology)) kept = &*with_far;
+      if (better(with_far->topology)) {
+        kept = &*with_far;
+        kept_far_steps = options.far_steps;
+      }
+    }
+    // Webs that stand nearer the data: taken only for fewer handles on the same shells as a
+    // separation the trials above made, never as a separation of its own (a cut this close
+    // to the data can slice one object's solid into many shells: the pinhole cube's faces),
+    // and a separation they already make as clean keeps its smaller cut.
+    if (kept != nullptr && far_split > 0) {
+      cut.resize(between_size);
+      cut.insert(cut.end(), far.begin(), far.end());
+      with_near_far = trial.Run(cut, cancel);
+      if (!with_near_far.ok()) return with_near_far.status();
+      if (better(with_near_far->topology) &&
+          with_near_far->topology.shells == kept->topology.shells &&
+          TotalGenus(with_near_far->topology) < TotalGenus(kept->topology)) {
+        kept = &*with_near_far;
+        kept_far_steps = options.near_far_steps;
+      }
     }
   }
   const VoxelTopology& shown = kept != nullptr ? kept->topology : between->topology;
@@ -412,6 +450,7 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   stats.separated = true;
   stats.web_voxels = kept->web_voxels;
   stats.loops_closed = kept->loops_closed;
+  stats.far_steps_cut = kept_far_steps;
   stats.cut_voxels = static_cast<int64_t>(kept->carved.size()) - kept->web_voxels;
   return done();
 }

@@ -37,7 +37,8 @@ constexpr char kUsage[] =
     "                      [--no-real] [--locate] [--retry T,S,W] [--thick-wall-run K]\n"
     "                      [--thick-wall-detour R] [--thin-part-spread S] [--depth-bound D]\n"
     "                      [--rerun-thin K] [--no-retry] [--strict-only] [--no-close-cut-loops]\n"
-    "                      [--no-hole-opening]\n"
+    "                      [--no-hole-opening] [--far-steps F] [--near-far-steps N]\n"
+    "                      [--max-cut-fraction C]\n"
     "                      [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
@@ -54,6 +55,9 @@ constexpr char kUsage[] =
     "  --rerun-thin K   when a result has handles, shrink the grid again with a thick-wall run\n"
     "                   of K and keep that result if it has fewer handles and no fewer shells\n"
     "                   (a candidate rule measured here; its time is added to the row's)\n"
+    "  --far-steps F, --near-far-steps N  the piece separation's far webs: non-hard voxels\n"
+    "                   more than F steps from the data, then N (0 = no third trial)\n"
+    "  --max-cut-fraction C  the piece separation's size test (PieceSeparationOptions)\n"
     "  --no-hole-opening  leave plugged holes closed (ShrinkOptions::holes.enabled false)\n"
     "  --no-retry       no handle retry (ShrinkOptions::retry.enabled false)\n"
     "  --strict-only    every generation under the handle retry's strict guard sizes, no retry\n"
@@ -109,6 +113,8 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       if (!absl::SimpleAtoi(argv[++i], &o.rerun_thin)) return false;
     } else if (arg == "--far-steps" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.separation.far_steps)) return false;
+    } else if (arg == "--near-far-steps" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.separation.near_far_steps)) return false;
     } else if (arg == "--max-cut-fraction" && has_value) {
       if (!absl::SimpleAtod(argv[++i], &o.shrink.separation.max_cut_fraction)) return false;
     } else if (arg == "--strict-only") {
@@ -223,8 +229,8 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
   const PieceSeparationStats& sep = result->separation;
   if (sep.pieces > 1) {
     const std::string cut =
-        absl::StrFormat("cut %d + web %d voxels, %d loops closed", sep.cut_voxels,
-                        sep.web_voxels, sep.loops_closed);
+        absl::StrFormat("cut %d + web %d voxels (far webs from %d steps), %d loops closed",
+                        sep.cut_voxels, sep.web_voxels, sep.far_steps_cut, sep.loops_closed);
     absl::StrAppend(&holes_note, absl::StrFormat("  pieces %d, %s", sep.pieces,
                                                  sep.separated ? cut : "not cut"));
     if (sep.shells_after > 0)

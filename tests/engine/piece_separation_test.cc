@@ -83,6 +83,15 @@ bool Handle(int x, int y, int z) {
   return leg1 || leg2 || beam;
 }
 
+// A small arch on the first box: legs 2 voxels tall, a beam 2 thick over a gap 4 wide, every
+// voxel within 4 steps of the box's data through the solid (a web between thin parts that
+// come close, left where the voxel is large).
+bool LowHandle(int x, int y, int z) {
+  const int top = kAt + kSide, a = kAt + 8;
+  if (y < 16 || y >= 18 || z < top || z >= top + 4 || x < a || x >= a + 8) return false;
+  return z >= top + 2 || x < a + 2 || x >= a + 6;
+}
+
 struct Outcome {
   VoxelTopology topology;
   PieceSeparationStats stats;
@@ -90,10 +99,10 @@ struct Outcome {
   int64_t interior_lost = 0;   // box interior voxels turned outside
 };
 
-Outcome Separate(VoxelGrid& grid) {
+Outcome Separate(VoxelGrid& grid, const PieceSeparationOptions& options = {}) {
   const VoxelGrid before = grid;
   absl::StatusOr<PieceSeparationStats> stats =
-      SeparateDataPieces(grid, PieceSeparationOptions{}, CancelToken::Never());
+      SeparateDataPieces(grid, options, CancelToken::Never());
   EXPECT_TRUE(stats.ok()) << stats.status();
   Outcome out;
   if (stats.ok()) out.stats = *stats;
@@ -143,6 +152,40 @@ TEST(SeparateDataPieces, AnArchFarFromTheDataIsCutWithThePlug) { ExpectTwoBallsW
 // Without the cut far from the data, the first box would keep the web's handle (genus [0, 1]).
 TEST(SeparateDataPieces, AHandleOfWebFarFromTheDataIsCutWithThePlug) {
   ExpectTwoBallsWithPlugAnd(Handle);
+}
+
+// A web whose voxels all lie within far_steps of the data keeps its handle through the first
+// two trials; the third cuts from near_far_steps and is kept for its fewer handles.
+TEST(SeparateDataPieces, AHandleOfWebNearTheDataIsCutFromTheNearerSteps) {
+  const auto plug_and_handle = [](int x, int y, int z) {
+    return Plug(x, y, z) || LowHandle(x, y, z);
+  };
+  VoxelGrid grid = TwoBoxes(plug_and_handle);
+  ASSERT_EQ(ComputeVoxelTopology(grid).genus, std::vector<int>{1});
+  const Outcome out = Separate(grid);
+  EXPECT_TRUE(out.stats.separated);
+  EXPECT_EQ(out.topology.genus, (std::vector<int>{0, 0}));
+  EXPECT_EQ(out.hard_lost, 0);
+  EXPECT_EQ(out.interior_lost, 0);
+
+  VoxelGrid without = TwoBoxes(plug_and_handle);
+  PieceSeparationOptions two_trials;
+  two_trials.near_far_steps = 0;
+  const Outcome two = Separate(without, two_trials);
+  EXPECT_TRUE(two.stats.separated);
+  EXPECT_EQ(two.topology.genus, (std::vector<int>{1, 0}));
+}
+
+// Where the first two trials already leave no handle the third trial's larger cut is not
+// taken: the grid comes out as it does without it.
+TEST(SeparateDataPieces, TheNearerStepsAreNotTakenForNoFewerHandles) {
+  VoxelGrid grid = TwoBoxes(Plug);
+  Separate(grid);
+  VoxelGrid without = TwoBoxes(Plug);
+  PieceSeparationOptions two_trials;
+  two_trials.near_far_steps = 0;
+  Separate(without, two_trials);
+  EXPECT_EQ(grid.states(), without.states());
 }
 
 // `grid` comes out unchanged, its data counted as `pieces` pieces.
@@ -201,6 +244,10 @@ TEST(SeparateDataPieces, OptionsOutOfRangeAreRefused) {
   options.far_steps = 0;
   absl::StatusOr<PieceSeparationStats> stats =
       SeparateDataPieces(grid, options, CancelToken::Never());
+  EXPECT_EQ(stats.status().code(), absl::StatusCode::kInvalidArgument);
+  options = {};
+  options.near_far_steps = options.far_steps;  // must lie below far_steps
+  stats = SeparateDataPieces(grid, options, CancelToken::Never());
   EXPECT_EQ(stats.status().code(), absl::StatusCode::kInvalidArgument);
 }
 

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
@@ -248,6 +249,109 @@ std::optional<AlgebraicSphere> BandSphere(const TriangleMesh& mesh, const Rows& 
   return sphere;
 }
 
+// The radius of a wrapped rim around a post or the edge of a thin part whose end the hole
+// swallowed (HoleCapOptions::tube_flatness, tube_lead): the band's mean distance (voxels) from
+// the axis through its centroid toward the middle of the cap (the cap's vertices in the gap,
+// `gap`, at their positions in `x`). nullopt where the band's normals are not square to that
+// axis (no post), or the cap lies too little ahead of the band along it.
+std::optional<double> TubeRadius(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
+                                 const std::vector<int32_t>& region,
+                                 const std::vector<char>& free, const std::vector<char>& gap,
+                                 const std::vector<Vec3d>& x, double l,
+                                 const HoleCapOptions& options) {
+  const std::vector<int32_t> band = Band(nb, region, free, options.sample_rings);
+  if (band.size() < 3 || region.empty()) return std::nullopt;
+  const Vec3d origin = ToVec3d(mesh.vertices[band[0]]);
+  std::vector<Vec3d> positions;
+  Vec3d centroid{0, 0, 0};
+  for (int32_t v : band) {
+    positions.push_back((1.0 / l) * (ToVec3d(mesh.vertices[v]) - origin));
+    centroid = centroid + positions.back();
+  }
+  const double count = static_cast<double>(band.size());
+  centroid = (1.0 / count) * centroid;
+  // The cap's middle: its vertices in the gap (the rim's rings lie along the band).
+  Vec3d cap{0, 0, 0};
+  int inside = 0;
+  for (int32_t v : region)
+    if (gap[v]) {
+      cap = cap + (1.0 / l) * (x[v] - origin);
+      ++inside;
+    }
+  if (inside == 0) return std::nullopt;
+  const Vec3d ahead = (1.0 / inside) * cap - centroid;
+  const double lead = Norm(ahead);
+  if (!(lead > 0)) return std::nullopt;
+  const Vec3d axis = (1.0 / lead) * ahead;
+  double off_square = 0, radius = 0;
+  for (size_t i = 0; i < band.size(); ++i) {
+    const Vec3d n = Normalized(VertexNormal(mesh, star, band[i]));
+    off_square += Dot(n, axis) * Dot(n, axis);
+    const Vec3d d = positions[i] - centroid;
+    radius += Norm(d - Dot(d, axis) * axis);
+  }
+  radius /= count;
+  if (!(off_square <= options.tube_flatness * count) || !(lead >= options.tube_lead * radius))
+    return std::nullopt;
+  return radius;
+}
+
+// Sweeps a cap on past its rim by `length` (model units): each vertex of the first fixed ring
+// around the region points into the hole along its tangent plane (toward the middle of the
+// cap, the normal part taken off: down a post's walls, along a thin part's faces); the
+// harmonic map of those directions over the region carries them to the cap's vertices, and
+// the vertices k rings from the fixed ones move by min(k / rim_rings, 1) of `length` along
+// theirs: the first rim_rings rings stretch along the walls, the rest of the cap moves whole
+// (where the directions disagree, their harmonic mean is shorter). False when `cancel` fired
+// (x then unchanged).
+bool SweepCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
+              const std::vector<int32_t>& region, const std::vector<char>& free,
+              const std::vector<char>& gap, double length, const HoleCapOptions& options,
+              std::vector<Vec3d>& x, const CancelToken& cancel) {
+  Vec3d middle{0, 0, 0};
+  int inside = 0;
+  for (int32_t v : region)
+    if (gap[v]) {
+      middle = middle + x[v];
+      ++inside;
+    }
+  middle = (1.0 / std::max(inside, 1)) * middle;
+  std::vector<Vec3d> field(x.size(), Vec3d{0, 0, 0});
+  absl::flat_hash_map<int32_t, int> rings;
+  std::vector<int32_t> frontier;
+  for (int32_t v : region)
+    for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u)
+      if (!free[*u]) {
+        if (!rings.contains(v)) frontier.push_back(v);
+        rings[v] = 1;
+        const Vec3d n = Normalized(VertexNormal(mesh, star, *u));
+        const Vec3d to = middle - ToVec3d(mesh.vertices[*u]);
+        field[*u] = Normalized(to - Dot(to, n) * n);
+      }
+  for (int ring = 2; !frontier.empty(); ++ring) {
+    std::vector<int32_t> next;
+    for (int32_t v : frontier)
+      for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u)
+        if (free[*u] && !rings.contains(*u)) {
+          rings[*u] = ring;
+          next.push_back(*u);
+        }
+    frontier = std::move(next);
+  }
+  std::vector<int32_t> sorted = region;
+  std::sort(sorted.begin(), sorted.end());
+  // Unit directions: `tolerance` read as a share of one.
+  if (Solve(false, nb, sorted, field, options.harmonic_iterations, options.tolerance, cancel) < 0)
+    return false;
+  const double ramp = std::max(1, options.rim_rings);
+  for (int32_t v : region) {
+    const auto it = rings.find(v);
+    if (it == rings.end()) continue;
+    x[v] = x[v] + (length * std::min(1.0, it->second / ramp)) * field[v];
+  }
+  return true;
+}
+
 // Which caps held by points seen inside their gap (`pinned` vertices, at their points in `x`)
 // are solved to convergence (HoleCapOptions::converge_held): each such cap is made twice
 // without its holds, from the harmonic map and the spline as any cap, once with
@@ -323,7 +427,9 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
   if (!(o.gap_radius > 0) || o.min_gap_vertices < 1 || o.rim_rings < 0 ||
       o.harmonic_iterations < 0 || !(o.tolerance > 0) || o.sample_rings < 1 ||
       o.max_samples < 3 || !(o.smoothing >= 0) || !(o.min_rim_cosine >= -1) ||
-      !(o.wrap_rms >= 0) || o.wrapped_iterations < 0 || !(o.sphere_band_fit >= 0) ||
+      !(o.wrap_rms >= 0) || o.wrapped_iterations < 0 || !(o.tube_flatness >= 0) ||
+      !(o.tube_lead >= 0) || !(o.swept_length >= 0 && o.swept_length <= 16) ||
+      !(o.sphere_band_fit >= 0) ||
       !(o.sphere_margin >= 0) || !(o.converged_tolerance > 0) ||
       o.back_off_halvings < 0 || !(o.max_shell_share > 0 && o.max_shell_share <= 1) ||
       o.min_median_points < 1 || o.min_median_points > 1000 ||
@@ -334,8 +440,9 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         o.harmonic_iterations, ", tolerance ", o.tolerance, ", sample_rings ", o.sample_rings,
         ", max_samples ", o.max_samples, ", smoothing ", o.smoothing, ", min_rim_cosine ",
         o.min_rim_cosine, ", wrap_rms ", o.wrap_rms, ", wrapped_iterations ",
-        o.wrapped_iterations, ", sphere_band_fit ", o.sphere_band_fit, ", sphere_margin ",
-        o.sphere_margin, ", converged_tolerance ", o.converged_tolerance,
+        o.wrapped_iterations, ", tube_flatness ", o.tube_flatness, ", tube_lead ", o.tube_lead,
+        ", swept_length ", o.swept_length, ", sphere_band_fit ", o.sphere_band_fit,
+        ", sphere_margin ", o.sphere_margin, ", converged_tolerance ", o.converged_tolerance,
         ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ", o.max_shell_share,
         ", min_median_points ", o.min_median_points, ", anchor_radius ", o.anchor_radius, ", held_margin ", o.held_margin));
   return absl::OkStatus();
@@ -537,6 +644,7 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   // Spline caps whose band has a sphere: their converged plate is solved apart, to be compared.
   std::vector<std::optional<AlgebraicSphere>> spheres(regions.size());
   std::vector<int32_t> candidates;
+  std::vector<CapStart> starts(regions.size(), CapStart::kSpline);
   for (size_t r = 0; r < regions.size(); ++r) {
     // The region's vertices but the held ones.
     std::vector<int32_t> region;
@@ -544,6 +652,7 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
       if (!pinned[v]) region.push_back(v);
     // Where the spline cannot shape it, the thin plate starts from the harmonic map.
     const CapStart start = ShapeCap(mesh, nb, star, region, free, l, options, x);
+    starts[r] = start;
     if (start != CapStart::kSpline) ++st.harmonic_starts;
     if (start == CapStart::kWrapped) ++st.wrapped;
     // A held cap converges (HeldCapsToConverge), whatever its start.
@@ -591,6 +700,19 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     if (count == 0 || !(solved < kept - options.sphere_margin * count)) continue;
     for (int32_t v : regions[r]) x[v] = converged[v];
     ++st.sphere_converged;
+  }
+  // Posts whose end the hole swallowed run on past the rim (HoleCapOptions::swept_length).
+  for (size_t r = 0; r < regions.size() && options.swept_length > 0; ++r) {
+    if (starts[r] != CapStart::kWrapped ||
+        std::any_of(regions[r].begin(), regions[r].end(), [&](int32_t v) { return pinned[v]; }))
+      continue;
+    const std::optional<double> radius =
+        TubeRadius(mesh, nb, star, regions[r], free, gap, x, l, options);
+    if (!radius) continue;
+    if (!SweepCap(mesh, nb, star, regions[r], free, gap, options.swept_length * *radius * l,
+                  options, x, cancel))
+      return absl::CancelledError("hole caps cancelled");
+    ++st.swept;
   }
 
   // Write the caps, then take back the parts that cross the mesh.

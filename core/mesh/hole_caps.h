@@ -83,6 +83,19 @@ struct HoleCapOptions {
   // plate would carry the walls' slope past the base and bulge.
   double wrap_rms = 3.0;
   int wrapped_iterations = 1000;
+  // A wrapped rim around a post or the edge of a thin part whose end the hole swallowed runs
+  // on past the rim: its band of sample_rings rings is square to the axis from the band's
+  // centroid toward the middle of the cap (the mean of (normal . axis)^2 over the band at most
+  // tube_flatness), and the cap lies ahead of the band along that axis by at least tube_lead
+  // of the band's mean distance from it (the tube's radius). Then the converged plate, a dome
+  // about half a radius high over such a rim, is swept on by swept_length radii along the
+  // walls (each rim vertex's direction into the hole along its tangent plane, carried over
+  // the cap by the harmonic map), its first rim_rings rings spread along the way: the walls
+  // run on into a rounded end, as a smooth surface through the band does. A cap held by
+  // points seen inside its gap is not swept: those points tell where it ends.
+  double tube_flatness = 0.25;
+  double tube_lead = 0.1;
+  double swept_length = 1.0;
   // The solves to convergence stop once no step moves a vertex by more than this: the
   // bi-Laplacian's steps fall below `tolerance` hundreds of iterations before the plate
   // settles (a cap of 1,588 vertices: 144 iterations at 0.01 voxel, 398 at 0.001, 589 at
@@ -111,6 +124,7 @@ struct HoleCapStats {
   int64_t uncapped_regions = 0;
   int64_t harmonic_starts = 0;   // caps with no height field: the thin plate from the harmonic map
   int64_t wrapped = 0;           // of those, rims around a swallowed part: thin plate converged
+  int64_t swept = 0;             // of those, rims around a post: the cap swept along its axis
   int64_t sphere_converged = 0;  // spline caps converged because the band's sphere says so
   int64_t held_converged = 0;    // caps converged because points seen inside the gap hold them
   int64_t iterations = 0;       // conjugate-gradient iterations, every solve
@@ -137,7 +151,9 @@ struct HoleCapStats {
 // band's algebraic sphere prefers the converged plate (sphere_band_fit, sphere_margin), or
 // where the cap has held vertices and its rim alone does not make the converged plate bulge
 // away from them (converge_held, held_margin). Regions with no fixed neighbour are left.
-// Then it searches the faces around moved vertices for crossings
+// A converged cap whose rim wraps around a post or a thin part's edge and holds no point seen
+// inside its gap is then swept on along the part's walls (tube_flatness, tube_lead,
+// swept_length). Then it searches the faces around moved vertices for crossings
 // and sends the moved vertices of each crossing pair back toward where they were (halfway
 // back_off_halvings times, then all the way) until no crossing involves a moved vertex: where
 // a cap would cross the mesh, that part of it is not built.

@@ -83,6 +83,7 @@ std::string HoleCapsJson(const HoleCapStats& h) {
   return absl::StrCat("{\"regions\": ", h.regions, ", \"vertices\": ", h.vertices,
                       ", \"harmonic_starts\": ", h.harmonic_starts,
                       ", \"wrapped_caps\": ", h.wrapped,
+                      ", \"swept_caps\": ", h.swept,
                       ", \"sphere_converged_caps\": ", h.sphere_converged,
                       ", \"held_converged_caps\": ", h.held_converged,
                       ", \"uncapped_regions\": ", h.uncapped_regions,

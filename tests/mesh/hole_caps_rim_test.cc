@@ -76,9 +76,9 @@ TEST(HoleCapRims, HoleOverTheEdgeOfAThinPartIsSpannedAlongItsFaces) {
   std::printf("slab edge: mean / max distance to the slab, voxels: converged %.2f / %.2f, "
               "60 iterations from the harmonic map %.2f / %.2f\n",
               wrapped.mean_error, wrapped.max_error, blended.mean_error, blended.max_error);
-  // Measured: 1.44 / 3.86 voxels converged, 2.70 / 4.99 with 60 iterations from the harmonic
-  // map (it cuts across the edge); the largest distances lie at the slab's sharp corners,
-  // which no smooth cap follows.
+  // Measured: 0.81 / 3.02 voxels converged and swept on along the slab's faces (1.44 / 3.86
+  // converged alone), 2.70 / 4.99 with 60 iterations from the harmonic map (it cuts across the
+  // edge); the largest distances lie at the slab's sharp corners, which no smooth cap follows.
   EXPECT_LT(wrapped.mean_error, 2.0);
   EXPECT_LT(wrapped.max_error, 5.0);
   EXPECT_GT(blended.mean_error, wrapped.mean_error + 0.8);

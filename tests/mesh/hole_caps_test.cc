@@ -187,6 +187,12 @@ TEST(HoleCaps, RefusesOptionsOutOfRange) {
   options = {};
   options.converged_tolerance = 0;
   EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument);
+  options = {};
+  options.swept_length = -1;
+  EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument);
+  options = {};
+  options.tube_flatness = -0.1;
+  EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument);
   EXPECT_EQ(CapHoles(mesh, -1.0, {}, HoleCapOptions{}).code(),
             absl::StatusCode::kInvalidArgument);
 }

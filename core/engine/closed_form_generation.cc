@@ -7,27 +7,27 @@
 #include "core/engine/closed_form_sweeps.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/incursion_test.h"
+#include "core/engine/interior_plane.h"
 #include "core/engine/plate.h"
 #include "core/engine/state_planes.h"
 #include "core/engine/topology_guard.h"
 
 namespace membrane {
-// The planes of a closed-form generation, named. The apply step's planes reuse planes of the
-// sweeps that are not read again by then (free_cells once the squares are made, back, reach,
-// the first square).
+// The planes of a closed-form generation, named: kClosedFormPlanes of them. The squares are
+// made from the free cells, whose plane then holds the second front's reach; the apply step
+// reuses the planes of the sweeps that are not read again by then (out stays).
 struct ClosedFormPlanes {
   explicit ClosedFormPlanes(WorkPlanes& p)
-      : interior(p.interior()), out0(p.plane(0)), free_cells(p.plane(1)), out(p.plane(2)),
-        back(p.plane(3)), reach(p.plane(4)), fresh(p.plane(6)),
-        scratch_a(p.plane(7)), scratch_b(p.plane(8)),
-        squares{&p.plane(9), &p.plane(10), &p.plane(5)},
-        was_boundary_soft(p.plane(3)), adjacent(p.plane(4)), converted(p.plane(1)),
-        near_hard(p.plane(9)) {}
-  const FlatBitset& interior;
-  FlatBitset &out0, &free_cells, &out, &back, &reach, &fresh, &scratch_a, &scratch_b;
+      : free_cells(p.plane(0)), out(p.plane(1)), back(p.plane(2)), reach(p.plane(3)),
+        reach_back(p.plane(0)), scratch(p.plane(4)),
+        squares{&p.plane(5), &p.plane(6), &p.plane(7)},
+        fresh(p.plane(0)), old_outside(p.plane(2)), was_boundary_soft(p.plane(2)),
+        adjacent(p.plane(3)), converted(p.plane(5)), near_hard(p.plane(6)) {}
+  FlatBitset &free_cells, &out, &back, &reach, &reach_back, &scratch;
   // Per plate axis; the third also holds the erosion along z the first two are made from.
   FlatBitset* squares[3];
-  FlatBitset &was_boundary_soft, &adjacent, &converted, &near_hard;  // the apply step's
+  // The apply step's (old_outside is read before was_boundary_soft is written).
+  FlatBitset &fresh, &old_outside, &was_boundary_soft, &adjacent, &converted, &near_hard;
 };
 
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
@@ -43,34 +43,33 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   }
   ClosedFormPlanes ws(planes);
 
-  const FlatBitset& interior = ws.interior;
-  FlatBitset& out0 = ws.out0;
-  FillStatePlane(grid.states(), StatePredicate::kOutside, out0);
-  if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
   // FREE: cells a plate may cover: no hard or frozen voxel, off the array border. Inside
   // and boundary only prune no-op plates (fast-shrink.md section 4), so both count.
   FlatBitset& free_cells = ws.free_cells;
   FillStatePlane(grid.states(), StatePredicate::kFree, free_cells);
-  free_cells.And(interior);
-
-  FlatBitset& out = ws.out;
-  out = out0;
+  ClearArrayBorder(grid.dims(), free_cells);
+  if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
   // Anchors of all-free n x n squares per plate axis (both signs share them), then the
   // sweeps' rounds until `out` is the fixed point.
   const PlaneBox box = MakePlaneBox(grid.dims());
-  FreeSquares(free_cells, n, box, ws.squares, ws.scratch_a);
+  FreeSquares(free_cells, n, box, ws.squares, ws.scratch);
   if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
+  FlatBitset& out = ws.out;
+  FillStatePlane(grid.states(), StatePredicate::kOutside, out);
   const SweepPlanes sweep{{ws.squares[0], ws.squares[1], ws.squares[2]}, &ws.back, &ws.reach,
-                          &ws.fresh, &ws.scratch_a, &ws.scratch_b};  // fresh: free until the apply
+                          &ws.reach_back, &ws.scratch};
   const std::optional<int> rounds = SweepToFixedPoint(out, n, box, sweep, cancel);
   if (!rounds) return absl::CancelledError("cancelled in a closed-form generation");
   outcome.rounds = *rounds;
 
   if (cancel.cancelled()) return absl::CancelledError("cancelled in a closed-form generation");
   // Apply: new outside voxels, and their inside 26-neighbours become boundary.
+  // The grid is as it was before the sweeps: its outside voxels are the ones they started from.
+  FlatBitset& old_outside = ws.old_outside;
+  FillStatePlane(grid.states(), StatePredicate::kOutside, old_outside);
   FlatBitset& fresh = ws.fresh;
   fresh = out;
-  fresh.AndNot(out0);
+  fresh.AndNot(old_outside);
   outcome.new_outside = fresh.Count();
   if (outcome.new_outside == 0) {
     outcome.applied = true;
@@ -80,7 +79,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   FillStatePlane(grid.states(), StatePredicate::kBoundarySoft, was_boundary_soft);
   FlatBitset& adjacent = ws.adjacent;
   adjacent = fresh;
-  adjacent.Dilate26(strides, ws.scratch_a);
+  adjacent.Dilate26(strides, ws.scratch);
   adjacent.AndNot(out);
   VoxelState* s = grid.mutable_states().data();
   const VoxelState label = OutsideState(options.generation_label);
@@ -112,7 +111,7 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   if (!cancelled && outcome.incursions == 0 && options.rules.topology_guard) {
     FlatBitset& near_hard = ws.near_hard;
     FillStatePlane(grid.states(), StatePredicate::kHard, near_hard);
-    near_hard.Dilate26(strides, ws.scratch_a);
+    near_hard.Dilate26(strides, ws.scratch);
     near_hard.And(fresh);
     const GuardOptions& guard = options.guard;
     near_hard.ForEach([&](int64_t i) {

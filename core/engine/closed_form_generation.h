@@ -30,7 +30,7 @@ struct ClosedFormOutcome {
 };
 
 // Work planes a closed-form generation uses (see RunClosedFormGeneration).
-inline constexpr int kClosedFormPlanes = 11;
+inline constexpr int kClosedFormPlanes = 8;
 
 // Runs generation `options` (plate size, label, guard and incursion settings) in closed form
 // on `grid`. On success the grid is the generation's result, the same as the chains would

@@ -30,7 +30,7 @@ std::optional<int> SweepToFixedPoint(FlatBitset& out, int n, const PlaneBox& box
   FlatBitset& back = *planes.back;
   FlatBitset& reach = *planes.reach;
   FlatBitset& reach_back = *planes.reach_back;
-  FlatBitset& scratch = *planes.scratch_a;
+  FlatBitset& scratch = *planes.scratch;
   // An axis whose last sweep added nothing, with `out` unchanged since, would add nothing
   // again: it is skipped. `out_version` counts the sweeps that changed `out`; `stable_at[a]`
   // is the version at which axis a last added nothing (-1: not yet).
@@ -53,10 +53,11 @@ std::optional<int> SweepToFixedPoint(FlatBitset& out, int n, const PlaneBox& box
       back.ErodeRun(n, sv, scratch);
       if (cancel.cancelled()) return std::nullopt;
       // Dig straight on: a plate whose back plate was contracted fits if its square is free.
+      // Both fronts' seeds first: `back` is then free to serve the spreads as scratch.
       reach.AssignAndShifted(squares, back, sa);
-      reach.SpreadAlong(squares, sa, box.dims[a], *planes.scratch_a, *planes.scratch_b);
       reach_back.AssignAndShifted(squares, back, -sa);
-      reach_back.SpreadAlong(squares, -sa, box.dims[a], *planes.scratch_a, *planes.scratch_b);
+      reach.SpreadAlong(squares, sa, box.dims[a], scratch, back);
+      reach_back.SpreadAlong(squares, -sa, box.dims[a], scratch, back);
       reach.Or(reach_back);
       if (cancel.cancelled()) return std::nullopt;
       // Cells covered by the plates reached (dilation distributes over the union).

@@ -25,14 +25,13 @@ PlaneBox MakePlaneBox(const std::array<int, 3>& dims);
 
 // The planes the sweeps work in, all of the box's size and distinct: squares[a] holds the
 // anchors of all-free n x n squares across plate axis a (FreeSquares), the others are
-// overwritten.
+// overwritten (`back` is also the spreads' second scratch once both fronts have read it).
 struct SweepPlanes {
   FlatBitset* squares[3];
   FlatBitset* back;
   FlatBitset* reach;
   FlatBitset* reach_back;
-  FlatBitset* scratch_a;
-  FlatBitset* scratch_b;
+  FlatBitset* scratch;
 };
 
 // squares[a] = anchors of the n x n squares of set `free_cells` across axis a (both signs of

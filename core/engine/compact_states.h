@@ -1,10 +1,11 @@
 // A copy of a grid's voxel states held as runs of equal bytes.
 //
 // The handle retry keeps the grid as it was before a generation, and the finished grid while
-// the retry runs. By then the grid is long runs of one outside label and of inside voxels,
-// broken only near the membrane: a 10M-point torus's 2.2e9 voxel states take about a
-// hundredth of their size as runs, where a plain copy would add 2.2 GB per checkpoint beside
-// the grid at the shrink's peak.
+// the retry runs; the pipeline keeps the final membrane while the surface cleans and frees
+// the grid itself (a second surface starts from the copy). By then the grid is long runs of
+// one outside label and of inside voxels, broken only near the membrane: a 10M-point torus's
+// 2.2e9 voxel states take about a hundredth of their size as runs, where a plain copy would
+// add 2.2 GB per checkpoint beside the grid at the shrink's peak.
 #ifndef MEMBRANE_CORE_ENGINE_COMPACT_STATES_H_
 #define MEMBRANE_CORE_ENGINE_COMPACT_STATES_H_
 

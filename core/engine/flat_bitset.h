@@ -50,6 +50,7 @@ class FlatBitset {
 
   bool test(int64_t i) const { return (words_[static_cast<size_t>(i >> 6)] >> (i & 63)) & 1; }
   void set(int64_t i) { words_[static_cast<size_t>(i >> 6)] |= 1ull << (i & 63); }
+  void reset(int64_t i) { words_[static_cast<size_t>(i >> 6)] &= ~(1ull << (i & 63)); }
   void clear_all();
   bool any() const;
 

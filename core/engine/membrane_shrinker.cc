@@ -97,6 +97,10 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
       return s;
     }
   }
+  // The steps after the generations take no work planes (the piece separation holds a byte
+  // a voxel of its own): the planes' bytes, as many as the grid's, go back first.
+  finder_.Release();
+  planes_.Release();
   {
     absl::StatusOr<PieceSeparationStats> separation =
         SeparateDataPieces(grid_, options_.separation, cancel_);

@@ -3,37 +3,29 @@
 #include <algorithm>
 #include <bit>
 
+#include "core/engine/interior_plane.h"
 #include "core/engine/state_planes.h"
 
 namespace membrane {
 
-// Every plane of a snapshot comes from the arena (the closed form needs fewer).
-static_assert(kPlaceFinderPlanes + kAnchorRowPlanes <= WorkPlanes::kArenaPlanes);
+// Every plane of a snapshot comes from the arena (the closed form needs as many).
+static_assert(kPlaceFinderPlanes <= WorkPlanes::kArenaPlanes);
 
 PlaceFinder::PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes)
     : grid_(grid), planes_(planes) {}
 
 std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelToken& cancel) {
-  const bool rows = n >= kAnchorRowsMinPlate;
-  if (!planes_.Ensure(kPlaceFinderPlanes + (rows ? kAnchorRowPlanes : 0), cancel)) {
-    return std::nullopt;
-  }
+  rows_ = n >= kAnchorRowsMinPlate;
+  if (!planes_.Ensure(kPlaceFinderPlanes, cancel)) return std::nullopt;
   n_ = n;
   const auto st = grid_.strides();
-  // Planes 0-5 hold E_o (and, for big plates, planes kPlaceFinderPlanes.. DC_o) until the
-  // next snapshot; the rest are work planes.
-  for (int o = 0; o < 6; ++o) {
-    anchors_[o] = &planes_.plane(o);
-    anchor_rows_[o] = rows ? &planes_.plane(kPlaceFinderPlanes + o) : nullptr;
-  }
-  FlatBitset& out = planes_.plane(6);
-  FlatBitset& free_cells = planes_.plane(7);  // outside or boundary soft, off the border
-  // Boundary soft first, in the plane that becomes free_cells: it is filled again at the end
-  // rather than kept in a plane of its own.
+  FlatBitset& free_cells = planes_.plane(0);  // outside or boundary soft, off the border
+  FlatBitset& out = planes_.plane(1);
   FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, free_cells);
   FillStatePlane(grid_.states(), StatePredicate::kOutside, out);
   if (cancel.cancelled()) return std::nullopt;
-  free_cells.AssignOrAnd(out, free_cells, planes_.interior());
+  free_cells.Or(out);
+  ClearArrayBorder(grid_.dims(), free_cells);
 
   // The anchors of orientation (a, sign) are the plates whose cells are free and whose back
   // side is outside: E = erode_uv(free & out shifted by sign along a), and erosion commutes
@@ -41,8 +33,8 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   // Both signs share the two eroded planes, and the three axes share the erosions along z
   // and along x: 8 erosion runs instead of 12. Copies are folded into the first pass of each
   // run (the *From operations): the planes fit in cache, so a copy costs as much as a pass.
-  FlatBitset& free_z = planes_.plane(8);
-  FlatBitset& out_z = planes_.plane(9);
+  FlatBitset& free_z = planes_.plane(2);
+  FlatBitset& out_z = planes_.plane(3);
   free_z.ErodeRunFrom(free_cells, n, st[2]);
   out_z.ErodeRunFrom(out, n, st[2]);
   if (cancel.cancelled()) return std::nullopt;
@@ -52,37 +44,42 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   out_x.ErodeRun(n, st[0]);
 
   // Candidates: bs & the union over axes of the cells covered by a plate of either sign
-  // (And distributes over the union, so it is applied once at the end).
-  FlatBitset& candidates = planes_.plane(10);
+  // (And distributes over the union, so it is applied once at the end). Each orientation's
+  // anchors are packed as soon as they are made, so that one plane at a time holds them.
+  FlatBitset& candidates = planes_.plane(4);
+  FlatBitset& free_square = planes_.plane(5);
+  FlatBitset& out_square = planes_.plane(6);
+  FlatBitset& second = planes_.plane(7);  // the second sign's anchors
   for (int a = 0; a < 3; ++a) {
     if (cancel.cancelled()) return std::nullopt;
     // In-plane axes (u, v) = (y, z), (z, x), (x, y): one more erosion of a shared plane.
     const bool from_z = a != 2;
     const int last_axis = a == 1 ? 0 : 1;
-    FlatBitset& free_square = planes_.plane(11);
-    FlatBitset& out_square = planes_.plane(12);
     free_square.ErodeRunFrom(from_z ? free_z : free_x, n, st[last_axis]);
     out_square.ErodeRunFrom(from_z ? out_z : out_x, n, st[last_axis]);
     const int64_t su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
+    // The cells covered by the axis' plates gather in the first sign's plane: the candidates
+    // for the first axis, then the z-eroded free plane, which the squares of the second axis
+    // were the last to read.
+    FlatBitset& covered = a == 0 ? candidates : free_z;
     for (int o = 2 * a; o < 2 * a + 2; ++o) {
-      FlatBitset& e = planes_.plane(o);
+      FlatBitset& e = o == 2 * a ? covered : second;
       e.AssignAndShifted(free_square, out_square, kOrientations[o].sign * st[a]);
-      if (rows) planes_.plane(kPlaceFinderPlanes + o).DilateRunFrom(e, n, sv);
+      anchors_[o].Assign(e);
+      // Dilation distributes over the union of both signs' plates: with rows, each sign is
+      // dilated along v for its rows and the union is taken after.
+      if (rows_) {
+        e.DilateRun(n, sv);
+        anchor_rows_[o].Assign(e);
+      }
     }
-    // Dilation distributes over the union of both signs' plates. The squares are not read
-    // again for this axis, so out_square holds the axis' cells for the later axes.
-    FlatBitset& covered = out_square;
-    FlatBitset& axis_covered = a == 0 ? candidates : covered;
-    if (rows) {
-      axis_covered.AssignOr(*anchor_rows_[2 * a], *anchor_rows_[2 * a + 1]);
-    } else {
-      axis_covered.AssignOr(planes_.plane(2 * a), planes_.plane(2 * a + 1));
-      axis_covered.DilateRun(n, sv);
-    }
-    axis_covered.DilateRun(n, su);
+    covered.Or(second);
+    if (!rows_) covered.DilateRun(n, sv);
+    covered.DilateRun(n, su);
     if (a != 0) candidates.Or(covered);
   }
-  FlatBitset& bs = planes_.plane(11);  // free_square is not read again
+  if (!rows_) anchor_rows_ = {};  // a bigger plate's rows are not read again
+  FlatBitset& bs = free_square;  // not read again
   FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, bs);
   candidates.And(bs);
   std::vector<int64_t> result;
@@ -98,6 +95,12 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   return result;
 }
 
+void PlaceFinder::Release() {
+  anchors_ = {};
+  anchor_rows_ = {};
+  rows_ = false;
+}
+
 std::optional<Plate> PlaceFinder::PlaceFor(int64_t index) const {
   const Coord c = grid_.CoordOf(index);
   for (int o = 0; o < 6; ++o) {
@@ -105,12 +108,11 @@ std::optional<Plate> PlaceFinder::PlaceFor(int64_t index) const {
     const int k = c[orient.axis], u = c[orient.u_axis()], v = c[orient.v_axis()];
     for (int u0 = std::max(u - n_ + 1, 0); u0 <= u; ++u0) {
       // The row test only skips rows whose anchors the loop below would not find.
-      if (anchor_rows_[o] != nullptr &&
-          !anchor_rows_[o]->test(grid_.Index(PlateCell(orient, k, u0, v)))) {
+      if (rows_ && !anchor_rows_[o].test(grid_.Index(PlateCell(orient, k, u0, v)))) {
         continue;
       }
       for (int v0 = std::max(v - n_ + 1, 0); v0 <= v; ++v0) {
-        if (anchors_[o]->test(grid_.Index(PlateCell(orient, k, u0, v0)))) {
+        if (anchors_[o].test(grid_.Index(PlateCell(orient, k, u0, v0)))) {
           return Plate{o, k, u0, v0};
         }
       }

@@ -14,25 +14,25 @@
 
 #include "core/base/cancel_token.h"
 #include "core/engine/flat_bitset.h"
+#include "core/engine/packed_plane.h"
 #include "core/engine/plate.h"
 #include "core/engine/voxel_grid.h"
 #include "core/engine/work_planes.h"
 
 namespace membrane {
 
-// Work planes of a snapshot, and the six more (the anchor rows DC_o) of a snapshot for plates
-// of kAnchorRowsMinPlate and more: below it, PlaceFor tests the n x n anchors of each
-// orientation directly, and the planes stay unallocated.
-inline constexpr int kPlaceFinderPlanes = 13;
-inline constexpr int kAnchorRowPlanes = 6;
+// Work planes of a snapshot. The anchors E_o of its six orientations (and, for plates of
+// kAnchorRowsMinPlate and more, the anchor rows DC_o) are kept as packed copies (PackedPlane)
+// until the next snapshot; below kAnchorRowsMinPlate, PlaceFor tests the n x n anchors of
+// each orientation directly, without rows.
+inline constexpr int kPlaceFinderPlanes = 8;
 inline constexpr int kAnchorRowsMinPlate = 8;
 
 class PlaceFinder {
  public:
   // Keeps references to `grid` and `planes` (made for that grid), which must outlive the
-  // finder. A snapshot overwrites the first kPlaceFinderPlanes planes (and the next
-  // kAnchorRowPlanes for n >= kAnchorRowsMinPlate); PlaceFor reads them, so nothing else may
-  // write them in between.
+  // finder. A snapshot overwrites the first kPlaceFinderPlanes planes; PlaceFor reads only the
+  // finder's own packed copies, so other users may write the planes in between.
   PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes);
 
   // Takes a snapshot for plate size n >= 1 of the current grid: every plate whose cells are
@@ -47,14 +47,19 @@ class PlaceFinder {
   // when no fitting plate covers the voxel in the snapshot.
   std::optional<Plate> PlaceFor(int64_t index) const;
 
+  // Frees the last snapshot's copies (the steps after the generations take none); PlaceFor
+  // must not be called until the next snapshot.
+  void Release();
+
  private:
   const VoxelGrid& grid_;
   WorkPlanes& planes_;
   int n_ = 0;
   // Set by the last snapshot: E_o, the lowest corner of each fitting plate, and DC_o, E_o
-  // dilated along v by n (null below kAnchorRowsMinPlate).
-  std::array<const FlatBitset*, 6> anchors_{};
-  std::array<const FlatBitset*, 6> anchor_rows_{};
+  // dilated along v by n (when rows_).
+  std::array<PackedPlane, 6> anchors_;
+  std::array<PackedPlane, 6> anchor_rows_;
+  bool rows_ = false;
 };
 
 }  // namespace membrane

@@ -1,12 +1,9 @@
 #include "core/engine/work_planes.h"
 
-#include "core/engine/interior_plane.h"
-
 namespace membrane {
 
 bool WorkPlanes::Ensure(int count, const CancelToken& cancel) {
   const int64_t nv = grid_.size();
-  if (interior_.bits() != nv) interior_ = InteriorPlane(grid_);
   if (arena_ == nullptr && count > 0) {
     // Planes are whole words, each block rounded to the arena's block alignment.
     const size_t words = static_cast<size_t>((nv + 63) / 64);
@@ -22,6 +19,11 @@ bool WorkPlanes::Ensure(int count, const CancelToken& cancel) {
     planes_.back()->set_threads(threads_);
   }
   return true;
+}
+
+void WorkPlanes::Release() {
+  planes_.clear();  // before the arena they were cut from
+  arena_.reset();
 }
 
 }  // namespace membrane

@@ -2,9 +2,8 @@
 //
 // Neither keeps anything in its planes from one generation to the next (a closed-form
 // generation runs before its generation's first snapshot, and a snapshot is taken again at
-// the start of every generation that runs chains), so one set serves both: 13 planes (19 when
-// chains run with plates of kAnchorRowsMinPlate or more), 115 MB on a 70 M voxel grid and
-// 3.5 GB on a 10M-point torus's 2.2e9 voxels, where a set each would be 24 planes.
+// the start of every generation that runs chains), so one set serves both: 8 planes, 88 MB on
+// a 70 M voxel grid and 2.2 GB on a 10M-point torus's 2.2e9 voxels (as much as the grid).
 #ifndef MEMBRANE_CORE_ENGINE_WORK_PLANES_H_
 #define MEMBRANE_CORE_ENGINE_WORK_PLANES_H_
 
@@ -24,24 +23,24 @@ class WorkPlanes {
   // planes' word passes run on `threads` threads (FlatBitset::set_threads).
   explicit WorkPlanes(const VoxelGrid& grid, int threads = 1) : grid_(grid), threads_(threads) {}
 
-  // Makes planes 0 .. count-1 and the interior plane available, one bit per voxel of the
-  // grid, allocating the missing ones (zeroed) and polling `cancel` between
-  // allocations: false when it fired. A plane's contents are whatever its last user left;
-  // references from plane() stay valid when later calls add planes.
+  // Makes planes 0 .. count-1 available, one bit per voxel of the grid, allocating the
+  // missing ones (zeroed) and polling `cancel` between allocations: false when it fired. A
+  // plane's contents are whatever its last user left; references from plane() stay valid when
+  // later calls add planes.
   bool Ensure(int count, const CancelToken& cancel);
 
+  // Frees every plane (the steps after the generations need none); Ensure makes them again.
+  void Release();
+
   // Planes cut from one huge-page arena (PlaneArena); more are allocated on their own.
-  static constexpr int kArenaPlanes = 19;
+  static constexpr int kArenaPlanes = 8;
 
   // Plane i < the largest count ensured so far.
   FlatBitset& plane(int i) { return *planes_[static_cast<size_t>(i)]; }
-  // Set for every voxel off the outermost array layer (InteriorPlane); valid after Ensure.
-  const FlatBitset& interior() const { return interior_; }
 
  private:
   const VoxelGrid& grid_;
   const int threads_;
-  FlatBitset interior_;
   // Declared before the planes, so destroyed after them.
   std::unique_ptr<PlaneArena> arena_;
   std::vector<std::unique_ptr<FlatBitset>> planes_;  // stable addresses

@@ -1,6 +1,7 @@
 #include "core/mesh/smooth_surface.h"
 
 #include <chrono>
+#include <utility>
 
 #include "absl/status/status.h"
 #include "core/mesh/cave_filling.h"
@@ -26,12 +27,23 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
                                            const SmoothSurfaceOptions& options,
                                            SmoothSurfaceStats* stats, const CancelToken& cancel,
                                            ProgressRange progress) {
+  // The membrane and its reported topology stay as they are: the clean-up is for the surface.
+  return SmoothSurface(VoxelGrid(membrane), points, options, stats, cancel, progress);
+}
+
+absl::StatusOr<TriangleMesh> SmoothSurface(VoxelGrid&& membrane,
+                                           absl::Span<const Point3f> points,
+                                           const SmoothSurfaceOptions& options,
+                                           SmoothSurfaceStats* stats, const CancelToken& cancel,
+                                           ProgressRange progress) {
   SmoothSurfaceStats local;
   SmoothSurfaceStats& s = stats ? *stats : local;
   s = SmoothSurfaceStats{};
   auto start = std::chrono::steady_clock::now();
-  // The membrane and its reported topology stay as they are: the clean-up is for the surface.
-  VoxelGrid grid = membrane;
+  // Taken over, so that it is freed on every return.
+  VoxelGrid grid = std::move(membrane);
+  membrane = VoxelGrid();
+  const double voxel_size = grid.voxel_size();
   // Progress: the clean-up's three steps, the nets, then the fit (most of the time).
   const ProgressRange prepare = progress.Part(0, kPrepareShare);
   prepare.Begin(3);
@@ -61,7 +73,7 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
   // The fit's first pass searches the whole mesh for crossings anyway: it also does the
   // surface nets' repair (toward the same fallback).
   UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(grid);
-  // The cleaned copy has given its mesh: the caps and the fit read the mesh and the points,
+  // The cleaned grid has given its mesh: the caps and the fit read the mesh and the points,
   // and a byte a voxel is most of what the surface holds on a large grid (2.2 GB at 10M points).
   grid = VoxelGrid();
   s.surface_nets_seconds = SecondsSince(start);
@@ -70,14 +82,14 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
   start = std::chrono::steady_clock::now();
   // Before the fit: the fit then pulls the caps' rims onto the data and smooths the caps; its
   // final search covers the caps too.
-  if (absl::Status capped = CapHoles(nets.mesh, membrane.voxel_size(), points, options.hole_caps,
+  if (absl::Status capped = CapHoles(nets.mesh, voxel_size, points, options.hole_caps,
                                      &s.caps, cancel);
       !capped.ok())
     return capped;
   s.cap_seconds = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
-  absl::StatusOr<FitStats> fit = FitToPoints(nets.mesh, membrane.voxel_size(), points,
+  absl::StatusOr<FitStats> fit = FitToPoints(nets.mesh, voxel_size, points,
                                              options.fit_options, cancel, &nets.fallback,
                                              progress.Part(kNetsEnd, 1));
   if (!fit.ok()) return fit.status();

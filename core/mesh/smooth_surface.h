@@ -59,6 +59,17 @@ absl::StatusOr<TriangleMesh> SmoothSurface(const VoxelGrid& membrane,
                                            const CancelToken& cancel = CancelToken::Never(),
                                            ProgressRange progress = ProgressRange());
 
+// The same from a membrane the caller gives up: the clean-up works on `membrane` itself, and
+// its bytes (one a voxel) are freed once the surface nets are made, so that the caps and the
+// fit hold the mesh and the points alone. `membrane` is left empty (a default VoxelGrid)
+// whatever the outcome. The same mesh and stats as the copying overload.
+absl::StatusOr<TriangleMesh> SmoothSurface(VoxelGrid&& membrane,
+                                           absl::Span<const Point3f> points,
+                                           const SmoothSurfaceOptions& options = {},
+                                           SmoothSurfaceStats* stats = nullptr,
+                                           const CancelToken& cancel = CancelToken::Never(),
+                                           ProgressRange progress = ProgressRange());
+
 }  // namespace membrane
 
 #endif  // MEMBRANE_CORE_MESH_SMOOTH_SURFACE_H_

@@ -36,29 +36,31 @@ constexpr StageCost kDecode = {kProcessBytes, 0, kCloudBytes, 0};
 // Voxelize: the grid (1 byte a voxel), the points' sorted voxels (8 bytes a point); formula
 // (1)'s hash set of distinct points before it (27 bytes a point, freed before the grid).
 constexpr StageCost kVoxelize = {kProcessBytes, 1, kCloudBytes + 36, 0};
-// The shrink: the grid (1 byte a voxel), the interior plane and up to 19 work planes (1 bit a
-// voxel each: 19 when a generation of plates of 8 or more runs chains, 13 otherwise), and the
-// handle retry's checkpoints as runs of equal bytes (a small fraction of a byte a voxel): 3.5
-// bytes a voxel at most; and the points indexed by voxel for the thin-part test
+// The shrink: the grid (1 byte a voxel), 8 work planes (1 bit a voxel each), the anchors of
+// the last snapshot kept as packed copies (place_finder.h: 0.54 bytes a voxel measured at 1M
+// points, 0.41 at 2M, less on larger grids, whose rows of words are longer than the membrane's
+// crossings), and the handle retry's checkpoints as runs of equal bytes (a small fraction of a
+// byte a voxel): 2.6 bytes a voxel; and the points indexed by voxel for the thin-part test
 // (HardVoxelPoints: 24 bytes a point at most, 40 while it is built, before any plane).
-constexpr StageCost kShrink = {kProcessBytes, 3.6, kCloudBytes + 24, 0};
+constexpr StageCost kShrink = {kProcessBytes, 2.6, kCloudBytes + 24, 0};
 // The relaxation: the grid, and lists of boundary voxels (8 bytes each, twice while the scan's
 // plane lists are joined; 1.7 MB over the grid and the cloud on a 1M-point torus).
 constexpr StageCost kRelax = {kProcessBytes, 1, kCloudBytes, 32};
-// The surface holds the membrane's grid throughout, in three steps one after the other. The
-// clean-up: the grid, its copy and the cave filling's two bit masks (2.25 bytes a voxel; the
-// loose sheets' one bit mask before them). The surface nets: the grid and the cleaned copy,
-// the voxel boundary's quads and fan vertices (64 bytes a boundary voxel, up to three times
-// that while their arrays grow) and the mesh with its fallback positions (48 more). The fit,
-// the copy freed: the grid (1.4 bytes a voxel measured with the fit's point index) and the
-// mesh and the fit's structures (580 bytes a boundary voxel on the torus, 600 on 100k points
-// of uniform noise, whose foam of a membrane has 2.2 faces a boundary voxel).
-constexpr StageCost kSurfaceCleanUp = {kProcessBytes, 2.3, kCloudBytes, 0};
-constexpr StageCost kSurfaceNets = {kProcessBytes, 2.1, kCloudBytes, 250};
-constexpr StageCost kSurfaceFit = {kProcessBytes, 1.4, kCloudBytes, 800};
-// The check and the encoding beside it: the grid, the mesh, the check's and the encoder's
-// structures (340-390 bytes a boundary voxel on the torus, 380 on noise).
-constexpr StageCost kCheck = {kProcessBytes, 1, kCloudBytes, 500};
+// The surface takes the membrane's grid (the pipeline keeps it as runs of equal bytes, a
+// hundredth of a byte a voxel on the torus: 0.05 allows for more) and holds, one step after
+// the other: the clean-up on the grid itself with the cave filling's two bit masks (1.25
+// bytes a voxel; the loose sheets' one bit mask before them). The surface nets: the cleaned
+// grid, the voxel boundary's quads and fan vertices (64 bytes a boundary voxel, up to three
+// times that while their arrays grow) and the mesh with its fallback positions (48 more). The
+// fit, the grid freed: the fit's point index (0.4 bytes a voxel measured) and the mesh and the
+// fit's structures (580 bytes a boundary voxel on the torus, 600 on 100k points of uniform
+// noise, whose foam of a membrane has 2.2 faces a boundary voxel).
+constexpr StageCost kSurfaceCleanUp = {kProcessBytes, 1.35, kCloudBytes, 0};
+constexpr StageCost kSurfaceNets = {kProcessBytes, 1.15, kCloudBytes, 250};
+constexpr StageCost kSurfaceFit = {kProcessBytes, 0.45, kCloudBytes, 800};
+// The check and the encoding beside it: the grid's runs, the mesh, the check's and the
+// encoder's structures (340-390 bytes a boundary voxel on the torus, 380 on noise).
+constexpr StageCost kCheck = {kProcessBytes, 0.05, kCloudBytes, 500};
 
 int64_t Bytes(const StageCost& cost, int64_t voxels, int64_t points, int64_t membrane_voxels) {
   // In double: a planned grid can hold 9e18 voxels before any budget caps it.

@@ -1,10 +1,13 @@
 #include "core/pipeline/reconstruction_pipeline.h"
 
+#include <array>
 #include <cstdint>
 #include <utility>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "absl/types/span.h"
+#include "core/engine/compact_states.h"
 #include "core/engine/plate_schedule.h"
 #include "core/pipeline/decimation_stage.h"
 #include "core/mesh/mesh_decimation.h"
@@ -129,9 +132,24 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
       OutputGrid(grid, options.output_bits_follow_voxel
                            ? OutputBitsForVoxel(grid, options.output_quantization_bits)
                            : options.output_quantization_bits);
+  const PositionGrid lossless_grid = OutputGrid(grid, 0);
+  // The surface takes the membrane's grid and frees it before its fit (a byte a voxel, 2.2 GB
+  // at 10M points, beside the fit's structures at the run's peak); the grid is kept as runs
+  // (about a hundredth of its bytes) for a second surface, the float32 fallback.
+  const std::array<int, 3> grid_dims = grid.dims();
+  const std::array<double, 3> grid_origin = grid.origin();
+  const double grid_voxel_size = grid.voxel_size();
+  CompactStates membrane_runs;
+  if (!membrane_runs.Encode(grid.states(), cancel)) return StopIfCancelled(cancel, last);
   for (;;) {
+    if (grid.size() == 0) {
+      grid = VoxelGrid(grid_dims, grid_origin, grid_voxel_size);
+      if (!membrane_runs.Decode(absl::MakeSpan(grid.mutable_states()), cancel)) {
+        return StopIfCancelled(cancel, last);
+      }
+    }
     absl::StatusOr<BuiltSurface> surface =
-        SurfaceStage(options, cancel, grid, *cloud, output_grid, report, observer,
+        SurfaceStage(options, cancel, std::move(grid), *cloud, output_grid, report, observer,
                      ticker.progress());
     if (!surface.ok()) return with_context(surface.status());
     if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
@@ -141,7 +159,7 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
     // and an encoding that would both be done again. Not when decimating: the collapses can
     // remove what is broken.
     if (!output_grid.lossless() && options.target_faces == 0 && KnownBroken(*surface)) {
-      output_grid = OutputGrid(grid, 0);
+      output_grid = lossless_grid;
       continue;
     }
     if (absl::Status s = DecimateStage(options, cancel, output_grid, *surface, report, observer,
@@ -157,7 +175,7 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
     const bool broken = report.mesh.self_intersections > 0 || report.mesh.degenerate_faces > 0;
     if (output_grid.lossless() || !broken) break;
     // The grid is too coarse for this surface: no position on it keeps the faces apart.
-    output_grid = OutputGrid(grid, 0);
+    output_grid = lossless_grid;
   }
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kCheck); !s.ok()) return s;
 

@@ -44,6 +44,17 @@ bool SplitFacesCross(const TriangleMesh& cuberille, const std::vector<char>& spl
   return any && !FindIntersectingFacesNear(cuberille, near, threads).empty();
 }
 
+BuiltSurface CuberilleSurface(const VoxelGrid& membrane, const PositionGrid& grid, int threads,
+                              ProgressRange progress) {
+  BuiltSurface built;
+  built.mesh = Cuberille(membrane);
+  const std::vector<char> split = SplitVertices(built.mesh, membrane);
+  for (Point3f& p : built.mesh.vertices) p = grid.Snap(p);
+  built.split_crossings = !grid.lossless() && SplitFacesCross(built.mesh, split, threads);
+  progress.Done();
+  return built;
+}
+
 }  // namespace
 
 absl::StatusOr<SurfaceKind> ParseSurfaceKind(absl::string_view name) {
@@ -70,22 +81,26 @@ absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const Point
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken& cancel, int threads,
                                           ProgressRange progress) {
+  // The cuberille only reads the membrane: no copy.
+  if (kind == SurfaceKind::kCuberille) return CuberilleSurface(membrane, grid, threads, progress);
+  return BuildSurface(VoxelGrid(membrane), cloud, kind, grid, cancel, threads, progress);
+}
+
+absl::StatusOr<BuiltSurface> BuildSurface(VoxelGrid&& given, const PointCloud& cloud,
+                                          SurfaceKind kind, const PositionGrid& grid,
+                                          const CancelToken& cancel, int threads,
+                                          ProgressRange progress) {
+  VoxelGrid membrane = std::move(given);
+  given = VoxelGrid();
+  if (kind == SurfaceKind::kCuberille) return CuberilleSurface(membrane, grid, threads, progress);
   BuiltSurface built;
-  if (kind == SurfaceKind::kCuberille) {
-    built.mesh = Cuberille(membrane);
-    const std::vector<char> split = SplitVertices(built.mesh, membrane);
-    for (Point3f& p : built.mesh.vertices) p = grid.Snap(p);
-    built.split_crossings = !grid.lossless() && SplitFacesCross(built.mesh, split, threads);
-    progress.Done();
-    return built;
-  }
   // The fit writes every position on the grid itself.
   SmoothSurfaceOptions options;
   options.fit_options.output_grid = grid;
   options.fit_options.threads = threads;
   SmoothSurfaceStats stats;
   absl::StatusOr<TriangleMesh> mesh =
-      SmoothSurface(membrane, cloud.points, options, &stats, cancel, progress);
+      SmoothSurface(std::move(membrane), cloud.points, options, &stats, cancel, progress);
   if (!mesh.ok()) return mesh.status();
   built.mesh = *std::move(mesh);
   built.hole_caps = stats.caps;

@@ -64,6 +64,14 @@ absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const Point
                                           const CancelToken& cancel, int threads = 1,
                                           ProgressRange progress = ProgressRange());
 
+// The same from a membrane the caller gives up (the pipeline, which keeps it as runs): the
+// smooth surface cleans it in place and frees it before the caps and the fit (SmoothSurface's
+// consuming overload). `membrane` is left empty (a default VoxelGrid) whatever the outcome.
+absl::StatusOr<BuiltSurface> BuildSurface(VoxelGrid&& membrane, const PointCloud& cloud,
+                                          SurfaceKind kind, const PositionGrid& grid,
+                                          const CancelToken& cancel, int threads = 1,
+                                          ProgressRange progress = ProgressRange());
+
 }  // namespace membrane
 
 #endif  // MEMBRANE_CORE_PIPELINE_SURFACE_BUILDER_H_

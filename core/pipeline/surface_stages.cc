@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <system_error>
 #include <thread>
+#include <utility>
 
 #include "absl/strings/str_format.h"
 #include "core/mesh/mesh_check.h"
@@ -11,7 +12,7 @@
 namespace membrane {
 
 absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
-                                          const CancelToken& cancel, const VoxelGrid& grid,
+                                          const CancelToken& cancel, VoxelGrid&& grid,
                                           const PointCloud& cloud,
                                           const PositionGrid& output_grid,
                                           ReconstructionReport& report,
@@ -19,8 +20,9 @@ absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
                                           ProgressRange progress) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kSurface, report);
-  absl::StatusOr<BuiltSurface> built = BuildSurface(grid, cloud, options.surface, output_grid,
-                                                    cancel, options.threads, progress);
+  absl::StatusOr<BuiltSurface> built = BuildSurface(std::move(grid), cloud, options.surface,
+                                                    output_grid, cancel, options.threads,
+                                                    progress);
   if (!built.ok()) return built.status();
   report.hole_caps = built->hole_caps;
   report.quantization.bits = output_grid.bits;

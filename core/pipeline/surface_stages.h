@@ -21,12 +21,13 @@
 namespace membrane {
 
 // The surface of the final membrane `grid` (BuildSurface of options.surface, fitted to
-// `cloud`), its positions on `output_grid`; the grid and the mesh's size in `report`. A second
+// `cloud`), its positions on `output_grid`; the grid and the mesh's size in `report`. `grid`
+// is given up: the smooth surface cleans it in place and frees it (left empty). A second
 // call (the float32 fallback) adds its seconds to the first's. Cancelled within milliseconds
 // of `cancel` firing during the smooth surface. `progress` counts the surface's work
 // (BuildSurface) once StageStarted has been told.
 absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
-                                          const CancelToken& cancel, const VoxelGrid& grid,
+                                          const CancelToken& cancel, VoxelGrid&& grid,
                                           const PointCloud& cloud,
                                           const PositionGrid& output_grid,
                                           ReconstructionReport& report,

@@ -100,10 +100,9 @@ FlatBitset Sweep(const RandomBox& g, FlatBitset start, int n) {
   const int64_t nv = g.box.size();
   FlatBitset squares[3] = {FlatBitset(nv), FlatBitset(nv), FlatBitset(nv)};
   FlatBitset* sq[3] = {&squares[0], &squares[1], &squares[2]};
-  FlatBitset back(nv), reach(nv), reach_back(nv), scratch_a(nv), scratch_b(nv);
-  FreeSquares(g.free_cells, n, g.box, sq, scratch_a);
-  const SweepPlanes planes{{sq[0], sq[1], sq[2]}, &back, &reach, &reach_back, &scratch_a,
-                           &scratch_b};
+  FlatBitset back(nv), reach(nv), reach_back(nv), scratch(nv);
+  FreeSquares(g.free_cells, n, g.box, sq, scratch);
+  const SweepPlanes planes{{sq[0], sq[1], sq[2]}, &back, &reach, &reach_back, &scratch};
   const std::optional<int> rounds = SweepToFixedPoint(start, n, g.box, planes, CancelToken::Never());
   EXPECT_TRUE(rounds.has_value());
   return start;

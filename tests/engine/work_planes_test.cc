@@ -1,5 +1,10 @@
 #include "core/engine/work_planes.h"
 
+#include <array>
+#include <cstdint>
+
+#include "core/engine/interior_plane.h"
+
 #include "gtest/gtest.h"
 
 namespace membrane {
@@ -18,13 +23,30 @@ TEST(WorkPlanes, PlanesHaveOneBitPerVoxelAndKeepTheirAddresses) {
   EXPECT_FALSE(planes.plane(29).any());
 }
 
-TEST(WorkPlanes, InteriorPlaneLeavesOutTheArrayBorder) {
-  const VoxelGrid grid({4, 4, 4}, {0, 0, 0}, 1.0);
+TEST(WorkPlanes, ReleasedPlanesAreMadeAgainZeroed) {
+  const VoxelGrid grid({7, 5, 6}, {0, 0, 0}, 1.0);
   WorkPlanes planes(grid);
-  ASSERT_TRUE(planes.Ensure(1, CancelToken::Never()));
-  EXPECT_EQ(planes.interior().Count(), 8);  // the 2 x 2 x 2 core
-  EXPECT_TRUE(planes.interior().test(grid.Index(1, 1, 1)));
-  EXPECT_FALSE(planes.interior().test(grid.Index(0, 1, 1)));
+  ASSERT_TRUE(planes.Ensure(3, CancelToken::Never()));
+  planes.plane(2).set(5);
+  planes.Release();
+  ASSERT_TRUE(planes.Ensure(3, CancelToken::Never()));
+  EXPECT_EQ(planes.plane(2).bits(), grid.size());
+  EXPECT_FALSE(planes.plane(2).any());
+}
+
+TEST(ClearArrayBorder, LeavesTheBitsOfInteriorPlane) {
+  // Odd sizes, so that rows and slabs straddle words; every bit set before.
+  for (const std::array<int, 3> dims :
+       {std::array<int, 3>{4, 4, 4}, {67, 3, 5}, {3, 70, 4}, {130, 9, 7}, {1, 5, 5}}) {
+    const int64_t nv = static_cast<int64_t>(dims[0]) * dims[1] * dims[2];
+    FlatBitset plane(nv);
+    for (int64_t i = 0; i < nv; ++i) plane.set(i);
+    ClearArrayBorder(dims, plane);
+    const FlatBitset interior = InteriorPlane(dims);
+    for (int64_t i = 0; i < nv; ++i) ASSERT_EQ(plane.test(i), interior.test(i)) << i;
+  }
+  const FlatBitset core = InteriorPlane({4, 4, 4});
+  EXPECT_EQ(core.Count(), 8);  // the 2 x 2 x 2 core
 }
 
 TEST(WorkPlanes, CancelledBeforeAllocatingReturnsFalse) {

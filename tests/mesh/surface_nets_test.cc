@@ -1,6 +1,8 @@
 #include "core/mesh/surface_nets.h"
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "core/engine/voxel_topology.h"
 #include "core/mesh/diagonal_bridging.h"
@@ -51,6 +53,27 @@ TEST(SurfaceNets, OfBallIsClosedManifoldSphereBeforeAndAfterFitting) {
 
 TEST(SurfaceNets, OfSolidTorusHasGenusOne) {
   ExpectValidSmoothSurfaces(SolidTorusGrid(32, 9, 3.5), 1, {1});
+}
+
+// A membrane given up is cleaned in place and freed: the same mesh as from a copy, and the
+// caller's grid is left empty (its bytes are not held through the caps and the fit).
+TEST(SmoothSurface, FromAGivenUpGridIsTheCopysMeshAndFreesTheGrid) {
+  const VoxelGrid torus = SolidTorusGrid(40, 12, 4);
+  std::vector<Point3f> points;
+  for (int64_t i = 0; i < torus.size(); ++i)
+    if (IsBoundary(torus.at(i))) {
+      const auto c = torus.Center(torus.CoordOf(i));
+      points.push_back({float(c[0] + 0.21), float(c[1] - 0.13), float(c[2] + 0.08)});
+    }
+  absl::StatusOr<TriangleMesh> copied = SmoothSurface(torus, points);
+  ASSERT_TRUE(copied.ok()) << copied.status();
+  VoxelGrid given = torus;
+  absl::StatusOr<TriangleMesh> moved = SmoothSurface(std::move(given), points);
+  ASSERT_TRUE(moved.ok()) << moved.status();
+  EXPECT_EQ(given.size(), 0);
+  EXPECT_EQ(moved->vertices, copied->vertices);
+  EXPECT_EQ(moved->faces, copied->faces);
+  EXPECT_FALSE(copied->faces.empty());
 }
 
 TEST(SurfaceNets, OfTwoBallsHasTwoShells) {

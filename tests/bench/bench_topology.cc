@@ -3,11 +3,15 @@
 // tests/engine/shrink_topology_test.cc, each shrunk once (ShrinkMembrane, default options): the
 // shells and genus against the expected ones, the shrink's wall seconds, and for every miss
 // where its handles and merges are, what the handle retry did and how many plugged holes were
-// opened. See README.md.
+// opened. On request, the data's own topology beside the membrane's (--data-genus, --probe)
+// and the same runs on an even sample of each reference mesh (--reference). See README.md.
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <numeric>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -21,6 +25,7 @@
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/voxel_topology.h"
 #include "core/engine/voxelization.h"
+#include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
 #include "core/synth/cube_pinholes.h"
 #include "core/synth/shape_catalog.h"
@@ -38,7 +43,8 @@ constexpr char kUsage[] =
     "                      [--thick-wall-detour R] [--thin-part-spread S] [--depth-bound D]\n"
     "                      [--rerun-thin K] [--no-retry] [--strict-only] [--no-close-cut-loops]\n"
     "                      [--no-hole-opening] [--far-steps F] [--near-far-steps N]\n"
-    "                      [--max-cut-fraction C]\n"
+    "                      [--max-cut-fraction C] [--data-genus R]\n"
+    "                      [--probe X,Y,Z,R] [--reference N]\n"
     "                      [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
@@ -58,6 +64,14 @@ constexpr char kUsage[] =
     "  --far-steps F, --near-far-steps N  the piece separation's far webs: non-hard voxels\n"
     "                   more than F steps from the data, then N (0 = no third trial)\n"
     "  --max-cut-fraction C  the piece separation's size test (PieceSeparationOptions)\n"
+    "  --data-genus R   also print the topology of the data itself: the hard voxels grown by R\n"
+    "                   26-neighbour steps, cavities filled (0..2), the whole data and each\n"
+    "                   piece of data alone (with --locate, their loops)\n"
+    "  --probe X,Y,Z,R  with --data-genus: the topology once the membrane is made the grown\n"
+    "                   data inside the box of half-width R around voxel (X, Y, Z)\n"
+    "  --reference N    also run N points spread evenly over data/models/MODEL.obj (where\n"
+    "                   present) at each size of the model's first cloud's voxel: the\n"
+    "                   object without the scan's gaps\n"
     "  --no-hole-opening  leave plugged holes closed (ShrinkOptions::holes.enabled false)\n"
     "  --no-retry       no handle retry (ShrinkOptions::retry.enabled false)\n"
     "  --strict-only    every generation under the handle retry's strict guard sizes, no retry\n"
@@ -73,6 +87,9 @@ struct Options {
   bool real = true;
   bool locate = false;
   int rerun_thin = 0;  // 0: no rerun
+  int data_genus = -1;  // -1: not printed; else the hard voxels' growth in steps
+  int reference_points = 0;  // > 0: also run a dense sample of each model's reference mesh
+  std::vector<std::array<int, 4>> probes;  // x, y, z, r boxes read against the grown data
   std::string shared_dir;
   ShrinkOptions shrink;
 };
@@ -117,6 +134,21 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.separation.near_far_steps)) return false;
     } else if (arg == "--max-cut-fraction" && has_value) {
       if (!absl::SimpleAtod(argv[++i], &o.shrink.separation.max_cut_fraction)) return false;
+    } else if (arg == "--data-genus" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.data_genus) || o.data_genus < 0 ||
+          o.data_genus > VoxelGrid::kPadding) {
+        return false;
+      }
+    } else if (arg == "--probe" && has_value) {
+      std::vector<std::string> f = absl::StrSplit(argv[++i], ',');
+      std::array<int, 4> p{};
+      if (f.size() != 4) return false;
+      for (int k = 0; k < 4; ++k)
+        if (!absl::SimpleAtoi(f[k], &p[k])) return false;
+      o.probes.push_back(p);
+    } else if (arg == "--reference" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.reference_points) || o.reference_points < 0)
+        return false;
     } else if (arg == "--strict-only") {
       o.shrink.guard = StrictGuardSizes(o.shrink);
       o.shrink.retry.enabled = false;
@@ -138,7 +170,7 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       return false;
     }
   }
-  return !o.factors.empty();
+  return !o.factors.empty() && (o.probes.empty() || o.data_genus >= 0);
 }
 
 bool Selected(const Options& o, const std::string& name) {
@@ -165,6 +197,141 @@ std::string RetryNote(const HandleRetry& r) {
                              : "");
 }
 
+// The hard voxels of `voxelized` (a grid straight from Voxelize) as a 0/1 mask, and their
+// 26-components holding at least 1% of them (the piece separation's pieces of data), largest
+// first, each as a mask of its own.
+std::vector<uint8_t> HardMask(const VoxelGrid& voxelized) {
+  std::vector<uint8_t> hard(voxelized.size(), 0);
+  for (int64_t i = 0; i < voxelized.size(); ++i) hard[i] = IsHard(voxelized.at(i));
+  return hard;
+}
+
+std::vector<std::vector<uint8_t>> HardPieces(const VoxelGrid& voxelized) {
+  const std::vector<uint8_t> hard = HardMask(voxelized);
+  const int64_t total = std::accumulate(hard.begin(), hard.end(), int64_t{0});
+  std::vector<int32_t> label(voxelized.size(), -1);
+  std::vector<std::vector<int64_t>> components;
+  for (int64_t i = 0; i < voxelized.size(); ++i) {
+    if (hard[i] == 0 || label[i] >= 0) continue;
+    const int32_t id = static_cast<int32_t>(components.size());
+    std::vector<int64_t> members = {i};
+    label[i] = id;
+    for (size_t k = 0; k < members.size(); ++k) {
+      for (int64_t o : voxelized.neighbour_offsets()) {
+        const int64_t w = members[k] + o;  // hard voxels are never on the array border
+        if (hard[w] != 0 && label[w] < 0) {
+          label[w] = id;
+          members.push_back(w);
+        }
+      }
+    }
+    components.push_back(std::move(members));
+  }
+  std::sort(components.begin(), components.end(),
+            [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  std::vector<std::vector<uint8_t>> pieces;
+  for (const std::vector<int64_t>& c : components) {
+    if (static_cast<int64_t>(c.size()) * 100 < total) break;
+    std::vector<uint8_t> mask(voxelized.size(), 0);
+    for (int64_t v : c) mask[v] = 1;
+    pieces.push_back(std::move(mask));
+  }
+  return pieces;
+}
+
+// The outside of the solid `solid` (0/1 per voxel of `like`): the 6-connected non-solid
+// voxels reached from the array border (which must not be solid). What it leaves is the solid
+// with its cavities filled.
+std::vector<uint8_t> OutsideOf(const VoxelGrid& like, const std::vector<uint8_t>& solid) {
+  const auto& d = like.dims();
+  const std::array<int64_t, 3> st = like.strides();
+  std::vector<uint8_t> outside(like.size(), 0);
+  std::vector<int64_t> queue;
+  for (int64_t i = 0; i < like.size(); ++i) {
+    if (like.OnArrayBorder(like.CoordOf(i))) {
+      outside[i] = 1;
+      queue.push_back(i);
+    }
+  }
+  while (!queue.empty()) {
+    const int64_t v = queue.back();
+    queue.pop_back();
+    const Coord c = like.CoordOf(v);
+    const int at[3] = {c.x, c.y, c.z};
+    for (int axis = 0; axis < 3; ++axis) {
+      for (int sign : {-1, 1}) {
+        const int to = at[axis] + sign;
+        if (to < 0 || to >= d[axis]) continue;
+        const int64_t w = v + sign * st[axis];
+        if (outside[w] != 0 || solid[w] != 0) continue;
+        outside[w] = 1;
+        queue.push_back(w);
+      }
+    }
+  }
+  return outside;
+}
+
+// The solid of the data itself: the voxels of `grown` (hard voxels) and every voxel within
+// `radius` 26-neighbour steps of one (never the array border), with the regions the
+// 6-connected outside cannot reach from the border filled, as the reference's r-tube check
+// fills them: the solid a membrane would be if it were exactly the grown data. Hard voxels
+// stay hard (the locator's contacts read them), the rest is soft; BOUNDARY where a face
+// neighbour is outside (the locator's thinning peels from there).
+VoxelGrid GrownDataSolid(const VoxelGrid& voxelized, std::vector<uint8_t> grown, int radius) {
+  const auto& d = voxelized.dims();
+  const std::array<int64_t, 3> st = voxelized.strides();
+  const std::vector<uint8_t> seed = grown;
+  // A 26-neighbour step is one step along each axis in turn.
+  for (int step = 0; step < radius; ++step) {
+    for (int axis = 0; axis < 3; ++axis) {
+      std::vector<uint8_t> next = grown;
+      for (int64_t i = 0; i < voxelized.size(); ++i) {
+        if (grown[i] == 0) continue;
+        const Coord c = voxelized.CoordOf(i);
+        const int at = axis == 0 ? c.x : axis == 1 ? c.y : c.z;
+        if (at > 1) next[i - st[axis]] = 1;
+        if (at < d[axis] - 2) next[i + st[axis]] = 1;
+      }
+      grown = std::move(next);
+    }
+  }
+  const std::vector<uint8_t> outside = OutsideOf(voxelized, grown);
+  VoxelGrid solid(d, voxelized.origin(), voxelized.voxel_size(), OutsideState(0));
+  for (int64_t i = 0; i < voxelized.size(); ++i) {
+    if (outside[i] != 0) continue;
+    bool boundary = false;
+    for (int axis = 0; axis < 3; ++axis)
+      boundary |= outside[i - st[axis]] != 0 || outside[i + st[axis]] != 0;
+    solid.set(i, seed[i] != 0 ? (boundary ? kBoundaryHard : kInsideHard)
+                              : (boundary ? kBoundarySoft : kInsideSoft));
+  }
+  return solid;
+}
+
+// A grid whose solid is `solid` (0/1 per voxel of `like`), every solid voxel inside soft.
+VoxelGrid SolidGrid(const VoxelGrid& like, const std::vector<uint8_t>& solid) {
+  VoxelGrid g(like.dims(), like.origin(), like.voxel_size(), OutsideState(0));
+  for (int64_t i = 0; i < like.size(); ++i)
+    if (solid[i] != 0) g.set(i, kInsideSoft);
+  return g;
+}
+
+// "S / [g,...] (v,...)": shells, and each shell's genus and voxels, the largest shell first.
+std::string ShellsBySize(const VoxelTopology& t) {
+  std::vector<int> order(t.shells);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return t.voxels[a] > t.voxels[b]; });
+  std::vector<int> genus;
+  std::vector<int64_t> voxels;
+  for (int k : order) {
+    genus.push_back(t.genus[k]);
+    voxels.push_back(t.voxels[k]);
+  }
+  return absl::StrCat(t.shells, " / [", absl::StrJoin(genus, ","), "] (",
+                      absl::StrJoin(voxels, ","), " voxels)");
+}
+
 // Shrinks `cloud` at `voxel_size` and prints one row; true when the topology is `expected`.
 bool RunOne(const Options& o, const std::string& name, double factor, const PointCloud& cloud,
             double voxel_size, const ShapeTopology& expected, bool genus_asserted, Tally& tally) {
@@ -178,6 +345,22 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
     return false;
   }
   const VoxelGrid voxelized = o.rerun_thin > 0 ? vox->grid : VoxelGrid();
+  // --data-genus: the data's own topology, made before the shrink changes the grid.
+  VoxelGrid data_solid;
+  std::string data_note;
+  std::vector<VoxelGrid> piece_solids;
+  if (o.data_genus >= 0) {
+    data_solid = GrownDataSolid(vox->grid, HardMask(vox->grid), o.data_genus);
+    data_note = absl::StrFormat("  data grown %d: %s", o.data_genus,
+                                ShellsBySize(ComputeVoxelTopology(data_solid)));
+    // Each piece of data alone: what the piece's own samples close, whatever its neighbours do.
+    std::vector<std::string> per_piece;
+    for (std::vector<uint8_t>& piece : HardPieces(vox->grid)) {
+      piece_solids.push_back(GrownDataSolid(vox->grid, std::move(piece), o.data_genus));
+      per_piece.push_back(ShellsBySize(ComputeVoxelTopology(piece_solids.back())));
+    }
+    absl::StrAppend(&data_note, "; each piece alone: ", absl::StrJoin(per_piece, "; "));
+  }
   double t0 = Now();
   absl::StatusOr<ShrinkResult> result =
       ShrinkMembrane(vox->grid, cloud.points, o.shrink, {}, CancelToken::Never());
@@ -240,7 +423,56 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
                                       sep.genus_after, sep.cavities_after, sep.cut_fraction,
                                       sep.seconds));
   }
-  std::printf("%s%12s %7.3f  %-16s %-16s %s%s%s%s%s\n", row.c_str(),
+  if (o.data_genus >= 0) {
+    // The membrane's shells in the same form, and the voxels the membrane keeps outside the
+    // grown data (webs and plugs) and the grown data's voxels it carved.
+    int64_t kept_off_data = 0, carved_data = 0;
+    for (int64_t i = 0; i < data_solid.size(); ++i) {
+      const bool in_membrane = !IsOutside(vox->grid.at(i));
+      const bool in_data = !IsOutside(data_solid.at(i));
+      kept_off_data += in_membrane && !in_data;
+      carved_data += in_data && !in_membrane;
+    }
+    absl::StrAppend(&data_note, absl::StrFormat("; membrane %s, %d voxels off the grown data, "
+                                                "%d of it carved",
+                                                ShellsBySize(topo), kept_off_data, carved_data));
+    // --probe: inside a box around a loop, the membrane made exactly the grown data there
+    // (its voxels off the grown data carved, the grown data's voxels filled), and each half
+    // of that alone: which of them removes the loop.
+    for (const std::array<int, 4>& p : o.probes) {
+      std::vector<uint8_t> filled(data_solid.size()), carved(data_solid.size()),
+          exact(data_solid.size());
+      for (int64_t i = 0; i < data_solid.size(); ++i) {
+        const Coord c = data_solid.CoordOf(i);
+        const bool in_box = std::abs(c.x - p[0]) <= p[3] && std::abs(c.y - p[1]) <= p[3] &&
+                            std::abs(c.z - p[2]) <= p[3];
+        const bool m = !IsOutside(vox->grid.at(i));
+        const bool g = !IsOutside(data_solid.at(i));
+        filled[i] = m || (in_box && g);
+        carved[i] = in_box ? m && g : m;
+        exact[i] = in_box ? g : m;
+      }
+      std::vector<std::string> parts;
+      for (auto* solid : {&filled, &carved, &exact}) {
+        const std::vector<uint8_t> out = OutsideOf(data_solid, *solid);
+        int cavities = 0;
+        for (int64_t i = 0; i < data_solid.size(); ++i) {
+          cavities += (*solid)[i] == 0 && out[i] == 0;
+          (*solid)[i] = out[i] == 0;
+        }
+        const VoxelTopology t = ComputeVoxelTopology(SolidGrid(data_solid, *solid));
+        std::vector<int> g = t.genus;
+        std::sort(g.begin(), g.end());
+        parts.push_back(absl::StrCat(t.shells, "/[", absl::StrJoin(g, ","), "]",
+                                     cavities > 0 ? absl::StrCat(" (", cavities, " filled)") : ""));
+      }
+      absl::StrAppend(&data_note,
+                      absl::StrFormat("\n    box (%d, %d, %d) +-%d: data filled %s, off-data "
+                                      "carved %s, both %s",
+                                      p[0], p[1], p[2], p[3], parts[0], parts[1], parts[2]));
+    }
+  }
+  std::printf("%s%12s %7.3f  %-16s %-16s %s%s%s%s%s%s\n", row.c_str(),
               absl::StrCat(d[0], "x", d[1], "x", d[2]).c_str(), seconds,
               absl::StrCat(topo.shells, " / [", absl::StrJoin(genus, ","), "]").c_str(),
               genus_asserted ? absl::StrCat(expected.shells, " / [",
@@ -248,9 +480,18 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
                                    .c_str()
                              : absl::StrCat(expected.shells, " / -").c_str(),
               right ? "ok" : "MISS", inv.ok() ? "" : absl::StrCat(" ", inv.ToString()).c_str(),
-              RetryNote(result->handle_retry).c_str(), holes_note.c_str(), rerun_note.c_str());
+              RetryNote(result->handle_retry).c_str(), holes_note.c_str(), rerun_note.c_str(),
+              data_note.c_str());
   if (!right && o.locate) {
     std::printf("%s", testing::LocateHandlesAndContacts(vox->grid).c_str());
+  }
+  if (o.locate && o.data_genus >= 0) {
+    std::printf("  the grown data's loops and contacts:\n%s",
+                testing::LocateHandlesAndContacts(data_solid).c_str());
+    for (size_t k = 0; k < piece_solids.size(); ++k) {
+      std::printf("  piece %zu's grown data alone, its loops:\n%s", k + 1,
+                  testing::LocateHandlesAndContacts(piece_solids[k]).c_str());
+    }
   }
   std::fflush(stdout);
   return right;
@@ -259,6 +500,49 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
 void PrintHeader() {
   std::printf("%-26s %6s %12s %7s  %-16s %-16s %s\n", "cloud", "voxel", "grid", "shrink",
               "shells / genus", "expected", "");
+}
+
+// `n` points spread over the faces of `mesh` by area (fixed seed): the reference object
+// sampled everywhere, without a scanner's occlusions.
+PointCloud SampleMesh(const TriangleMesh& mesh, int n) {
+  std::vector<double> cumulative;
+  double total = 0;
+  for (const auto& f : mesh.faces) {
+    const Point3f& a = mesh.vertices[f[0]];
+    const Point3f& b = mesh.vertices[f[1]];
+    const Point3f& c = mesh.vertices[f[2]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
+                 z = u[0] * v[1] - u[1] * v[0];
+    total += 0.5 * std::sqrt(x * x + y * y + z * z);
+    cumulative.push_back(total);
+  }
+  PointCloud cloud;
+  cloud.origin = mesh.origin;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < n && total > 0; ++i) {
+    const size_t k = std::min(cumulative.size() - 1,
+                              static_cast<size_t>(std::lower_bound(cumulative.begin(),
+                                                                   cumulative.end(),
+                                                                   unit(rng) * total) -
+                                                  cumulative.begin()));
+    double r1 = unit(rng), r2 = unit(rng);
+    if (r1 + r2 > 1) {
+      r1 = 1 - r1;
+      r2 = 1 - r2;
+    }
+    const auto& f = mesh.faces[k];
+    Point3f p;
+    for (int d = 0; d < 3; ++d) {
+      p[d] = static_cast<float>(mesh.vertices[f[0]][d] +
+                                r1 * (mesh.vertices[f[1]][d] - mesh.vertices[f[0]][d]) +
+                                r2 * (mesh.vertices[f[2]][d] - mesh.vertices[f[0]][d]));
+    }
+    cloud.points.push_back(p);
+  }
+  return cloud;
 }
 
 void RunReal(const Options& o, Tally& tally) {
@@ -277,6 +561,17 @@ void RunReal(const Options& o, Tally& tally) {
       const double l = EstimateVoxelSize(*box, static_cast<int64_t>(cloud->points.size()));
       for (double f : o.factors) {
         RunOne(o, name, f, *cloud, f * l, m.expected, m.genus_asserted, tally);
+      }
+      if (o.reference_points > 0 && kind == m.kinds.front()) {
+        absl::StatusOr<TriangleMesh> mesh =
+            ReadMesh(absl::StrCat(o.shared_dir, "/data/models/", m.model, ".obj"));
+        if (!mesh.ok()) continue;
+        const PointCloud reference = SampleMesh(*mesh, o.reference_points);
+        Tally not_counted;
+        for (double f : o.factors) {
+          RunOne(o, absl::StrCat(m.model, "-reference"), f, reference, f * l, m.expected,
+                 m.genus_asserted, not_counted);
+        }
       }
     }
   }

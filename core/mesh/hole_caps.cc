@@ -15,6 +15,7 @@
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_row_grid.h"
 #include "core/mesh/self_intersection.h"
+#include "core/mesh/sparse_cholesky.h"
 #include "core/mesh/thin_plate_spline.h"
 
 namespace membrane {
@@ -53,56 +54,85 @@ void BuildRows(const TriangleMesh& mesh, Rows& neighbours, Rows& faces) {
   }
 }
 
+// The part of the mesh a solve over `free` reads, renumbered: the free vertices first (local
+// 0..n-1, in the order of `free`), then the other vertices within one ring of them (n..m-1),
+// then those within two rings (m..size-1). Rows hold the local neighbours of the first m, in
+// the mesh's order, and each one's degree in the whole mesh: the Laplacian of a vertex within
+// one ring reads only local vertices, so the solve never touches a whole-mesh array.
+struct LocalSystem {
+  std::vector<int32_t> vertex;  // local -> mesh
+  int32_t n = 0, m = 0;
+  Rows nb;                      // rows of the first m local vertices
+};
+
+LocalSystem Localize(const Rows& nb, const std::vector<int32_t>& free, bool two_rings) {
+  LocalSystem s;
+  absl::flat_hash_map<int32_t, int32_t> local;
+  local.reserve(free.size() * 3);
+  auto add = [&](int32_t v) {
+    if (local.try_emplace(v, static_cast<int32_t>(s.vertex.size())).second) s.vertex.push_back(v);
+  };
+  for (int32_t v : free) add(v);
+  s.n = static_cast<int32_t>(s.vertex.size());
+  for (int32_t i = 0; i < s.n; ++i)
+    for (const int32_t* u = nb.begin(s.vertex[i]); u != nb.end(s.vertex[i]); ++u) add(*u);
+  s.m = two_rings ? static_cast<int32_t>(s.vertex.size()) : s.n;
+  for (int32_t i = 0; i < s.m; ++i)
+    for (const int32_t* u = nb.begin(s.vertex[i]); u != nb.end(s.vertex[i]); ++u) add(*u);
+  s.nb.start.assign(s.m + 1, 0);
+  for (int32_t i = 0; i < s.m; ++i) s.nb.start[i + 1] = s.nb.start[i] + nb.size(s.vertex[i]);
+  s.nb.items.resize(s.nb.start[s.m]);
+  int32_t* out = s.nb.items.data();
+  for (int32_t i = 0; i < s.m; ++i)
+    for (const int32_t* u = nb.begin(s.vertex[i]); u != nb.end(s.vertex[i]); ++u)
+      *out++ = local.find(*u)->second;
+  return s;
+}
+
 // Conjugate gradients over the free vertices, every other vertex fixed, for the graph
 // Laplacian (L x)_v = deg_v x_v - sum of the neighbours' x: the harmonic map L_ff x_f =
 // -L_fc x_c, or the thin plate K_ff x_f = -K_fc x_c with K = L D^-1 L (the minimum of the sum
 // of |L x_v|^2 / deg_v; both symmetric positive definite on regions with a fixed neighbour).
 // Jacobi-preconditioned, each coordinate on its own, from the positions in `x` (every vertex;
 // the free ones are updated). Stops after `max_iterations` or once no step moves a vertex by
-// more than `tolerance`. Returns the iterations run, or -1 when `cancel` fired.
-int Solve(bool thin_plate, const Rows& nb, const std::vector<int32_t>& free,
+// more than `tolerance`. Returns the iterations run, or -1 when `cancel` fired. Works on the
+// region and its two rings renumbered (LocalSystem): memory and time in the region's size.
+int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free,
           std::vector<Vec3d>& x, int max_iterations, double tolerance,
           const CancelToken& cancel) {
-  const size_t n = free.size();
+  const LocalSystem sys = Localize(mesh_nb, free, thin_plate);
+  const Rows& nb = sys.nb;
+  const size_t n = static_cast<size_t>(sys.n);
+  const int32_t m = sys.m;
   auto laplacian = [&](int32_t v, const std::vector<Vec3d>& y) {
     Vec3d sum = static_cast<double>(nb.size(v)) * y[v];
     for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) sum = sum - y[*u];
     return sum;
   };
-  // The free vertices and their neighbours: where D^-1 L y is needed for K y.
-  std::vector<int32_t> ring;
-  std::vector<Vec3d> scaled;
-  if (thin_plate) {
-    std::vector<char> in(x.size(), 0);
-    auto add = [&](int32_t w) {
-      if (!in[w]) ring.push_back(w);
-      in[w] = 1;
-    };
-    for (int32_t v : free) {
-      add(v);
-      for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) add(*u);
-    }
-    scaled.assign(x.size(), Vec3d{0, 0, 0});
-  }
+  // D^-1 L y over the free vertices and their ring (local 0..m-1), for K y.
+  std::vector<Vec3d> scaled(thin_plate ? m : 0);
   auto apply = [&](const std::vector<Vec3d>& y, std::vector<Vec3d>& out) {
     if (!thin_plate) {
-      for (size_t i = 0; i < n; ++i) out[i] = laplacian(free[i], y);
+      for (size_t i = 0; i < n; ++i) out[i] = laplacian(static_cast<int32_t>(i), y);
       return;
     }
-    for (int32_t v : ring) scaled[v] = (1.0 / nb.size(v)) * laplacian(v, y);
-    for (size_t i = 0; i < n; ++i) out[i] = laplacian(free[i], scaled);
+    for (int32_t v = 0; v < m; ++v) scaled[v] = (1.0 / nb.size(v)) * laplacian(v, y);
+    for (size_t i = 0; i < n; ++i) out[i] = laplacian(static_cast<int32_t>(i), scaled);
   };
   std::vector<double> inv_diag(n);
   for (size_t i = 0; i < n; ++i) {
-    double d = nb.size(free[i]);
+    const int32_t v = static_cast<int32_t>(i);
+    double d = nb.size(v);
     if (thin_plate)
-      for (const int32_t* u = nb.begin(free[i]); u != nb.end(free[i]); ++u) d += 1.0 / nb.size(*u);
+      for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) d += 1.0 / nb.size(*u);
     inv_diag[i] = 1.0 / d;
   }
-  // The search direction per vertex, zero off the free vertices.
-  std::vector<Vec3d> search(x.size(), Vec3d{0, 0, 0});
-  std::vector<Vec3d> r(n), z(n), p(n), q(n);
-  apply(x, r);
+  std::vector<Vec3d> y(sys.vertex.size());
+  for (size_t i = 0; i < y.size(); ++i) y[i] = x[sys.vertex[i]];
+  // The search direction per local vertex, zero off the free ones (the first n).
+  std::vector<Vec3d> p(sys.vertex.size(), Vec3d{0, 0, 0});
+  std::vector<Vec3d> r(n), z(n), q(n);
+  apply(y, r);
   Vec3d rz{0, 0, 0};
   for (size_t i = 0; i < n; ++i) {
     r[i] = -1.0 * r[i];
@@ -114,8 +144,7 @@ int Solve(bool thin_plate, const Rows& nb, const std::vector<int32_t>& free,
   while (it < max_iterations) {
     if (cancel.cancelled()) return -1;
     ++it;
-    for (size_t i = 0; i < n; ++i) search[free[i]] = p[i];
-    apply(search, q);
+    apply(p, q);
     Vec3d pq{0, 0, 0};
     for (size_t i = 0; i < n; ++i)
       for (int k = 0; k < 3; ++k) pq[k] += p[i][k] * q[i][k];
@@ -124,7 +153,7 @@ int Solve(bool thin_plate, const Rows& nb, const std::vector<int32_t>& free,
     double largest_step = 0;
     Vec3d rz_next{0, 0, 0};
     for (size_t i = 0; i < n; ++i) {
-      Vec3d& xi = x[free[i]];
+      Vec3d& xi = y[i];
       for (int k = 0; k < 3; ++k) {
         const double step = alpha[k] * p[i][k];
         xi[k] += step;
@@ -141,7 +170,64 @@ int Solve(bool thin_plate, const Rows& nb, const std::vector<int32_t>& free,
     }
     rz = rz_next;
   }
+  for (size_t i = 0; i < n; ++i) x[sys.vertex[i]] = y[i];
   return it;
+}
+
+// The factor of a plate solved exactly holds at most this many entries (12 bytes each); a
+// larger cap is solved by conjugate gradients (Solve) to the tolerance asked.
+constexpr int64_t kMaxFactorEntries = int64_t{4} << 20;
+
+// The thin plate over the free vertices solved exactly, every other vertex fixed: K_ff x_f =
+// -K_fc x_c (Solve's system) by a sparse Cholesky factor (sparse_cholesky.h), the positions in
+// `x` updated. false, with `x` unchanged, when the factor would be too large or fails.
+bool SolveExactly(const Rows& mesh_nb, const std::vector<int32_t>& free, std::vector<Vec3d>& x) {
+  // The factor's entries a row grow with the cap (24 at 1,726 unknowns, 84 at 11,214): past
+  // kMaxFactorEntries / 32 unknowns it cannot fit, and is not built.
+  if (static_cast<int64_t>(free.size()) * 32 > kMaxFactorEntries) return false;
+  const LocalSystem sys = Localize(mesh_nb, free, /*two_rings=*/true);
+  const Rows& nb = sys.nb;
+  const int32_t n = sys.n;
+  // K = L D^-1 L: row w of L (deg_w at w, -1 at each neighbour) pairs its free entries.
+  std::vector<SymmetricEntry> entries;
+  std::vector<Vec3d> b(n, Vec3d{0, 0, 0});
+  std::vector<std::pair<int32_t, double>> stencil;
+  for (int32_t w = 0; w < sys.m; ++w) {
+    const double inv = 1.0 / nb.size(w);
+    stencil.assign(1, {w, static_cast<double>(nb.size(w))});
+    for (const int32_t* u = nb.begin(w); u != nb.end(w); ++u) stencil.push_back({*u, -1.0});
+    // The fixed part of L x at w moves to the right-hand side.
+    Vec3d fixed{0, 0, 0};
+    for (const auto& [v, c] : stencil)
+      if (v >= n) fixed = fixed + c * x[sys.vertex[v]];
+    for (const auto& [a, ca] : stencil) {
+      if (a >= n) continue;
+      b[a] = b[a] - (ca * inv) * fixed;
+      for (const auto& [c, cc] : stencil)
+        if (c < n && a <= c) entries.push_back({a, c, ca * cc * inv});
+    }
+  }
+  std::vector<Vec3d> positions(n);
+  for (int32_t i = 0; i < n; ++i) positions[i] = x[sys.vertex[i]];
+  const auto factor = SparseCholesky::Factor(n, positions, entries, kMaxFactorEntries);
+  if (!factor) return false;
+  const std::vector<Vec3d> solved = factor->Solve(b);
+  for (int32_t i = 0; i < n; ++i)
+    if (!std::isfinite(solved[i][0]) || !std::isfinite(solved[i][1]) ||
+        !std::isfinite(solved[i][2]))
+      return false;
+  for (int32_t i = 0; i < n; ++i) x[sys.vertex[i]] = solved[i];
+  return true;
+}
+
+// The thin plate over the free vertices to convergence: exactly (SolveExactly) where the
+// factor fits, else by Solve to `tolerance` in at most `max_iterations`. Returns the
+// conjugate-gradient iterations run (0 when solved exactly), or -1 when `cancel` fired.
+int SolveConverged(const Rows& nb, const std::vector<int32_t>& free, std::vector<Vec3d>& x,
+                   int max_iterations, double tolerance, const CancelToken& cancel) {
+  if (cancel.cancelled()) return -1;
+  if (max_iterations > 0 && SolveExactly(nb, free, x)) return 0;
+  return Solve(true, nb, free, x, max_iterations, tolerance, cancel);
 }
 
 // Sum of the face normals (twice the areas) around v: its outward direction.
@@ -396,15 +482,16 @@ absl::StatusOr<std::vector<char>> HeldCapsToConverge(
   }
   if (judged.empty()) return converges;
   std::sort(judged_vertices.begin(), judged_vertices.end());
-  // The converged plate to `tolerance` only: a bulge stands voxels off, and the solves to
-  // converged_tolerance cost hundreds of iterations more.
+  // The converged plate exactly; where the cap is too large for the factor, to `tolerance`
+  // only: a bulge stands voxels off.
   std::vector<Vec3d> converged = kept;
   const int kept_iterations = Solve(true, nb, judged_vertices, kept,
                                     options.thin_plate_iterations, options.tolerance * l, cancel);
   const int converged_iterations =
       kept_iterations < 0 ? -1
-                          : Solve(true, nb, judged_vertices, converged,
-                                  options.wrapped_iterations, options.tolerance * l, cancel);
+                          : SolveConverged(nb, judged_vertices, converged,
+                                           options.wrapped_iterations, options.tolerance * l,
+                                           cancel);
   if (converged_iterations < 0) return absl::CancelledError("hole caps cancelled");
   iterations += kept_iterations + converged_iterations;
   for (size_t r : judged) {

@@ -51,7 +51,10 @@ struct HoleCapOptions {
   // cap from its rim alone says the converged plate leaves the surface: made without the
   // holds, the converged plate passes farther from the held points, on average, than the
   // thin_plate_iterations plate by more than held_margin voxels (the walls' slope carried
-  // past an open flat base into a bulge); then the thin_plate_iterations cap stays.
+  // past an open flat base into a bulge); then the thin_plate_iterations cap stays. That
+  // trial's converged plate is solved exactly, by a sparse Cholesky factor
+  // (sparse_cholesky.h), where the factor holds at most 4M entries; a larger cap takes
+  // conjugate gradients to `tolerance`, at most wrapped_iterations.
   bool converge_held = true;
   double held_margin = 0.5;
   // The cap's vertices are spread by the harmonic (minimal membrane) map of the region with

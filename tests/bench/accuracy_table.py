@@ -13,7 +13,9 @@ Columns per mesh: Chamfer-L1 in % of the reference's diagonal, F-score at 1%, CP
 the whole process (user + system, from wait4: reading, writing and Python's start-up
 included for Poisson), and `ok` = closed, manifold, oriented, outward and no
 self-intersection by the scorer, with the genus per shell. For the membrane also the share of
-input points within sqrt(3) L of the mesh (`fid`).
+input points within sqrt(3) L of the mesh (`fid`). After the means, the membrane's whole run
+in CPU s per 100k points against issue 17's budget of 1.2 (one core), the worst cloud and
+those over it.
 
 Clouds, Poisson meshes and Poisson scores are cached in --cache (default
 $MEMBRANE_BENCH_CACHE, else <repo>/../cache): they do not depend on membrane, so only the first
@@ -48,6 +50,21 @@ PROTOCOL_ARGS = {
     'holes': ['--holes', '3', '--hole-radius', '0.08'],
     'scanner': ['--views', '8', '--noise', '0.0005'],
 }
+
+
+# Issue 17: the whole run takes at most this many CPU seconds per 100k points on one core.
+CPU_BUDGET = 1.2
+
+
+def points_in(ply):
+    """The vertex count in a PLY file's header."""
+    with open(ply, 'rb') as fh:
+        for line in fh:
+            if line.startswith(b'element vertex'):
+                return int(line.split()[2])
+            if line.startswith(b'end_header'):
+                break
+    raise ValueError(f'{ply}: no vertex count in the header')
 
 
 def run(cmd, env=None):
@@ -264,6 +281,17 @@ def main():
                         f"{sum(r['f1'] for r in rows) / n:6.4f} "
                         f"{sum(r['cpu'] for r in rows) / n:6.2f}")
         emit(f"{'mean ' + protocol:24} before {cols[0]} | after {cols[1]} | Poisson {cols[2]}")
+    emit(f'# whole run, CPU s per 100k points against the budget of {CPU_BUDGET} (one core; '
+         'one run each, noisy under load: confirm a verdict with paired runs)')
+    for k, tag in ((2, 'before'), (3, 'after')):
+        per = [(r[k]['cpu'] * 100000 / points_in(make_cloud(args, r[0], r[1])), f'{r[0]}/{r[1]}')
+               for r in results if r[k] and 'error' not in r[k]]
+        if not per:
+            continue
+        over = [f'{name} {v:.2f}' for v, name in sorted(per, reverse=True) if v > CPU_BUDGET]
+        worst = max(per)
+        emit(f"{'budget ' + tag:24} max {worst[0]:5.2f} ({worst[1]}), {len(over)} of {len(per)} "
+             f"over{': ' + ', '.join(over) if over else ''}")
     if args.out:
         with open(args.out, 'w') as fh:
             fh.write('\n'.join(lines) + '\n')

@@ -32,7 +32,9 @@ TEST(PackedPlane, EveryBitIsThePlanes) {
       const FlatBitset plane = RunsPlane(bits, seed);
       PackedPlane packed;
       packed.Assign(plane);
-      for (int64_t i = 0; i < bits; ++i) ASSERT_EQ(packed.test(i), plane.test(i)) << bits << " " << i;
+      for (int64_t i = 0; i < bits; ++i) {
+        ASSERT_EQ(packed.test(i), plane.test(i)) << bits << " " << i;
+      }
     }
   }
 }

@@ -29,8 +29,10 @@ constexpr double kPostHoleRadius = 1.0;
 PointCloud PostWithHole() {
   std::mt19937_64 rng(3);
   return testing::BoxFacePoints(
-      Vec3d{-kPostHalfWidth, -2, -kPostHalfWidth}, Vec3d{kPostHalfWidth, kPostTop, kPostHalfWidth}, 3000, rng,
-      [](const Vec3d& p) { return SquaredNorm(p - kPostHole) >= kPostHoleRadius * kPostHoleRadius; });
+      Vec3d{-kPostHalfWidth, -2, -kPostHalfWidth},
+      Vec3d{kPostHalfWidth, kPostTop, kPostHalfWidth}, 3000, rng, [](const Vec3d& p) {
+        return SquaredNorm(p - kPostHole) >= kPostHoleRadius * kPostHoleRadius;
+      });
 }
 
 struct PostCap {
@@ -55,7 +57,8 @@ PostCap ReconstructPost(double swept_length) {
   if (!surface.ok()) return out;
   out.caps = surface->stats.caps;
   out.check = CheckMesh(surface->mesh);
-  const double rim = kPostHole[1] - std::sqrt(kPostHoleRadius * kPostHoleRadius - 2 * kPostHalfWidth * kPostHalfWidth);
+  const double rim = kPostHole[1] - std::sqrt(kPostHoleRadius * kPostHoleRadius -
+                                               2 * kPostHalfWidth * kPostHalfWidth);
   double top = -std::numeric_limits<double>::infinity();
   double sum = 0;
   int count = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -438,6 +439,26 @@ bool SweepCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
   return true;
 }
 
+// The mean distance from the held vertices' points (`pinned` vertices of `region`, at their
+// points in `holds`) to the nearest other vertex of the cap at `x`, the held ones aside (they
+// sit on their points in the converged plate, and a sweep carries them along): how far a cap
+// passes from the points seen inside its gap, in model units. 0 when none is held.
+double HeldPointsDistance(const std::vector<int32_t>& region, const std::vector<char>& pinned,
+                          const std::vector<Vec3d>& holds, const std::vector<Vec3d>& x) {
+  double sum = 0;
+  int count = 0;
+  for (int32_t v : region) {
+    if (!pinned[v]) continue;
+    double best = std::numeric_limits<double>::infinity();
+    for (int32_t u : region)
+      if (!pinned[u]) best = std::min(best, SquaredNorm(x[u] - holds[v]));
+    if (!std::isfinite(best)) continue;
+    sum += std::sqrt(best);
+    ++count;
+  }
+  return count > 0 ? sum / count : 0.0;
+}
+
 // Which caps held by points seen inside their gap (`pinned` vertices, at their points in `x`)
 // are solved to convergence (HoleCapOptions::converge_held): each such cap is made twice
 // without its holds, from the harmonic map and the spline as any cap, once with
@@ -788,17 +809,26 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     for (int32_t v : regions[r]) x[v] = converged[v];
     ++st.sphere_converged;
   }
-  // Posts whose end the hole swallowed run on past the rim (HoleCapOptions::swept_length).
+  // Posts whose end the hole swallowed run on past the rim (HoleCapOptions::swept_length),
+  // held caps where their points agree.
   for (size_t r = 0; r < regions.size() && options.swept_length > 0; ++r) {
-    if (starts[r] != CapStart::kWrapped ||
-        std::any_of(regions[r].begin(), regions[r].end(), [&](int32_t v) { return pinned[v]; }))
-      continue;
+    if (starts[r] != CapStart::kWrapped) continue;
     const std::optional<double> radius =
         TubeRadius(mesh, nb, star, regions[r], free, gap, x, l, options);
     if (!radius) continue;
+    const bool held =
+        std::any_of(regions[r].begin(), regions[r].end(), [&](int32_t v) { return pinned[v]; });
+    std::vector<Vec3d> swept = held ? x : std::vector<Vec3d>();
+    std::vector<Vec3d>& target = held ? swept : x;
     if (!SweepCap(mesh, nb, star, regions[r], free, gap, options.swept_length * *radius * l,
-                  options, x, cancel))
+                  options, target, cancel))
       return absl::CancelledError("hole caps cancelled");
+    if (held) {
+      if (HeldPointsDistance(regions[r], pinned, x, swept) / l >
+          HeldPointsDistance(regions[r], pinned, x, x) / l + options.held_margin)
+        continue;
+      for (int32_t v : regions[r]) x[v] = swept[v];
+    }
     ++st.swept;
   }
 

@@ -95,10 +95,13 @@ struct HoleCapOptions {
   // walls (each rim vertex's direction into the hole along its tangent plane, carried over
   // the cap by the harmonic map), its first rim_rings rings spread along the way: the walls
   // run on into a rounded end, as a smooth surface through the band does. A cap held by
-  // points seen inside its gap is not swept: those points tell where it ends.
+  // points seen inside its gap is swept only where those points agree: the swept cap's
+  // vertices (the held ones aside) pass no farther from the held points, on average, than the
+  // converged plate's by more than held_margin voxels; otherwise the points tell that the part
+  // ends nearer, and the converged plate stays.
   double tube_flatness = 0.25;
   double tube_lead = 0.1;
-  double swept_length = 1.0;
+  double swept_length = 0.75;
   // The solves to convergence stop once no step moves a vertex by more than this: the
   // bi-Laplacian's steps fall below `tolerance` hundreds of iterations before the plate
   // settles (a cap of 1,588 vertices: 144 iterations at 0.01 voxel, 398 at 0.001, 589 at
@@ -154,12 +157,13 @@ struct HoleCapStats {
 // band's algebraic sphere prefers the converged plate (sphere_band_fit, sphere_margin), or
 // where the cap has held vertices and its rim alone does not make the converged plate bulge
 // away from them (converge_held, held_margin). Regions with no fixed neighbour are left.
-// A converged cap whose rim wraps around a post or a thin part's edge and holds no point seen
-// inside its gap is then swept on along the part's walls (tube_flatness, tube_lead,
-// swept_length). Then it searches the faces around moved vertices for crossings
-// and sends the moved vertices of each crossing pair back toward where they were (halfway
-// back_off_halvings times, then all the way) until no crossing involves a moved vertex: where
-// a cap would cross the mesh, that part of it is not built.
+// A converged cap whose rim wraps around a post or a thin part's edge is then swept on along
+// the part's walls (tube_flatness, tube_lead, swept_length), unless points seen inside its gap
+// hold it and the swept cap passes farther from them (held_margin). Then it searches the
+// faces around moved vertices for crossings and sends the moved vertices of each crossing
+// pair back toward where they were (halfway back_off_halvings times, then all the way) until
+// no crossing involves a moved vertex: where a cap would cross the mesh, that part of it is
+// not built.
 // Faces are unchanged, so the mesh stays closed, manifold and oriented with its shells and
 // genus; crossings are those of the input or none.
 // The result depends only on the input (one thread). `stats` may be null.

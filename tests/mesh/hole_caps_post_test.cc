@@ -1,10 +1,12 @@
 // Caps over the end of a post that a hole swallowed (core/mesh/hole_caps.h, swept_length): the
-// walls run on past the rim instead of being cut off where the data end.
+// walls run on past the rim instead of being cut off where the data end, and past points seen
+// inside the gap where those points follow the walls.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "core/mesh/hole_caps.h"
 #include "core/mesh/mesh_check.h"
@@ -93,6 +95,77 @@ TEST(HoleCapPosts, SweptCapContinuesThePostsWalls) {
   EXPECT_LT(swept.wall_error, 1.5);
   testing::ExpectValidReport(swept.check, 1, {0});
   testing::ExpectValidReport(plate.check, 1, {0});
+}
+
+// A patch of 40 points seen inside the gap at height `y`: on the post's wall x =
+// +kPostHalfWidth (a disc of radius 0.05 around z = 0), or across a flat end of the post at
+// that height (a disc around the axis) when `end`.
+std::vector<Point3f> SeenPatch(double y, bool end) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point3f> patch;
+  for (int i = 0; i < 40; ++i) {
+    const double r = 0.05 * std::sqrt(u(rng)), a = 2 * M_PI * u(rng);
+    patch.push_back(end ? ToPoint3f(Vec3d{r * std::cos(a), y, r * std::sin(a)})
+                        : ToPoint3f(Vec3d{kPostHalfWidth, y + r * std::cos(a), r * std::sin(a)}));
+  }
+  return patch;
+}
+
+struct HeldPostCap {
+  double nets_top = 0, top = 0;  // the highest vertex before and after the caps
+  HoleCapStats caps;
+  MeshReport check;
+};
+
+// The post's surface nets (ending at its data, y = 0.1) capped with the post's points and
+// `seen`, which lie above the nets' end of the post: no vertex within the gap radius, so they
+// hold the cap. The rim is taken as wrapped, as in ReconstructPost.
+HeldPostCap CapPostWith(const std::vector<Point3f>& seen) {
+  SmoothSurfaceOptions surface;
+  surface.fit = false;  // the surface nets, uncapped
+  absl::StatusOr<testing::CloudSurface> nets =
+      testing::SmoothSurfaceOfCloud(PostWithHole(), surface, kPostVoxel);
+  EXPECT_TRUE(nets.ok()) << nets.status();
+  HeldPostCap out;
+  if (!nets.ok()) return out;
+  std::vector<Point3f> points = PostWithHole().points;
+  points.insert(points.end(), seen.begin(), seen.end());
+  HoleCapOptions options;
+  options.min_rim_cosine = 1;
+  options.wrap_rms = 0;
+  TriangleMesh mesh = nets->mesh;
+  auto top = [&] {
+    double y = -std::numeric_limits<double>::infinity();
+    for (const Point3f& p : mesh.vertices) y = std::max(y, static_cast<double>(p[1]));
+    return y;
+  };
+  out.nets_top = top();
+  EXPECT_TRUE(CapHoles(mesh, kPostVoxel, points, options, &out.caps).ok());
+  out.top = top();
+  out.check = CheckMesh(mesh);
+  return out;
+}
+
+// Points seen on the post's wall above the nets' end agree with the walls' continuation: the
+// held cap is swept past them. Points seen across a flat end of the post say it ends there:
+// the sweep would carry the cap past them, and the converged plate through them stays.
+TEST(HoleCapPosts, HeldCapIsSweptWhereItsPointsFollowTheWalls) {
+  const HeldPostCap wall = CapPostWith(SeenPatch(0.3, /*end=*/false));
+  const HeldPostCap end = CapPostWith(SeenPatch(0.25, /*end=*/true));
+  std::printf("held post end (nets end at %.2f): patch on the wall at 0.30: top %.2f, swept "
+              "%lld; patch across an end at 0.25: top %.2f, swept %lld\n",
+              wall.nets_top, wall.top, static_cast<long long>(wall.caps.swept), end.top,
+              static_cast<long long>(end.caps.swept));
+  EXPECT_GT(wall.caps.anchors, 0);
+  EXPECT_GT(end.caps.anchors, 0);
+  EXPECT_EQ(wall.caps.swept, 1);
+  EXPECT_EQ(end.caps.swept, 0);
+  // Measured: 0.565 swept past the wall's patch; 0.250 at the end's patch.
+  EXPECT_GT(wall.top, 0.3 + 4 * kPostVoxel);
+  EXPECT_LT(std::abs(end.top - 0.25), kPostVoxel);
+  testing::ExpectValidReport(wall.check, 1, {0});
+  testing::ExpectValidReport(end.check, 1, {0});
 }
 
 }  // namespace

@@ -21,6 +21,13 @@ V4f Load(const float* p) {
 
 float Sum(V4f v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
+// Whether any lane of a comparison's mask is set.
+bool AnyLane(V4i mask) {
+  uint64_t half[2];
+  std::memcpy(half, &mask, sizeof(half));
+  return (half[0] | half[1]) != 0;
+}
+
 }  // namespace
 
 NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
@@ -48,6 +55,7 @@ NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
       const V4f dn = dx * nx + dy * ny + dz * nz;
       // -1 in the lanes that hold a point of this run within the radius, 0 elsewhere.
       const V4i inside = (d2 <= r2) & (lane < static_cast<int32_t>(end - i));
+      if (!AnyLane(inside)) continue;  // see WeighNearPointsInFrame
       const V4f w = std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(d2 * a + dn * dn * b_minus_a)) &
                                        inside);
       count -= inside;
@@ -101,6 +109,10 @@ HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
       const V4f uu = u * u, uv = u * v, vv = v * v, h2 = h * h;
       const V4f t2 = uu + vv;
       const V4i inside = (t2 + h2 <= r2) & (lane < static_cast<int32_t>(end - i));
+      // Half the steps hold no point of the ball (the box's corners). Skipping them leaves
+      // every sum's bits as they are: a masked lane adds a zero, and a lane's sum, never -0
+      // (it starts at +0 and round-to-nearest cancels to +0), is unchanged by adding one.
+      if (!AnyLane(inside)) continue;
       const V4f w =
           std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(t2 * a + h2 * b)) & inside);
       count -= inside;

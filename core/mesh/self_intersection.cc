@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "core/base/parallel_tasks.h"
 #include "core/engine/huge_page_allocator.h"
@@ -16,8 +17,30 @@ namespace {
 
 // The search's big arrays, fresh on every call: 2 MB pages where the kernel gives them (their
 // 4 KB page faults would be a quarter of the search's time on the shared virtual machine).
+// Sized without being filled: every element is written before it is read, so a
+// value-initializing fill (a memset of tens of MB on a full search) would be one more pass
+// over memory that the search writes anyway.
 template <typename T>
-using BigVector = std::vector<T, HugePageAllocator<T>>;
+struct UnfilledAllocator : HugePageAllocator<T> {
+  UnfilledAllocator() = default;
+  template <typename U>
+  UnfilledAllocator(const UnfilledAllocator<U>& other) : HugePageAllocator<T>(other) {}
+  template <typename U>
+  struct rebind {
+    using other = UnfilledAllocator<U>;
+  };
+  // resize(n) and the size constructor default-initialize: nothing for these trivial types.
+  template <typename U>
+  void construct(U* p) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <typename T>
+using BigVector = std::vector<T, UnfilledAllocator<T>>;
 
 using Box = FaceBlockBoxes::Box;
 

@@ -20,6 +20,7 @@ namespace {
 constexpr int64_t kCancelPoll = 1 << 16;
 // Waves are labelled by their piece in one byte.
 constexpr uint8_t kNoWave = 255;
+constexpr uint8_t kOutsideWave = 254;
 constexpr size_t kMaxPieces = 254;
 
 // A cut voxel and the pair of pieces whose waves met there (smaller label * 256 + larger).
@@ -324,7 +325,9 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   // far_steps (and near_far_steps, for the third trial) from every piece (webs in open space,
   // or across a piece's own loops); in the waves' order, nearest the data first.
   if (pieces.size() > kMaxPieces) return done();
-  std::vector<uint8_t> wave(static_cast<size_t>(grid.size()), kNoWave);
+  // Outside voxels hold kOutsideWave: the spread reads one byte a neighbour, not two.
+  std::vector<uint8_t> wave(static_cast<size_t>(grid.size()));
+  for (int64_t i = 0; i < grid.size(); ++i) wave[i] = IsOutside(s[i]) ? kOutsideWave : kNoWave;
   std::vector<int64_t> frontier, next;
   for (size_t p = 0; p < pieces.size(); ++p)
     for (int64_t v : pieces[p]) {
@@ -355,15 +358,17 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
     for (const int64_t v : frontier) {
       if (++polls % kCancelPoll == 0 && cancel.cancelled()) return cancelled();
       if (layer > first_far_layer && !IsHard(s[v])) far.push_back(v);
+      const uint8_t own = wave[v];
       for (int64_t off : grid.neighbour_offsets()) {
         const int64_t n = v + off;
-        if (IsOutside(s[n])) continue;
-        if (wave[n] == kNoWave) {
-          wave[n] = wave[v];
+        const uint8_t other = wave[n];
+        if (other == own || other == kOutsideWave) continue;
+        if (other == kNoWave) {
+          wave[n] = own;
           next.push_back(n);
-        } else if (wave[n] != wave[v]) {
+        } else {
           meet = true;
-          const int pair = std::min(wave[n], wave[v]) * 256 + std::max(wave[n], wave[v]);
+          const int pair = std::min(other, own) * 256 + std::max(other, own);
           add_to_cut(v, pair);
           add_to_cut(n, pair);
         }

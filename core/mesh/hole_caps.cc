@@ -55,6 +55,39 @@ void BuildRows(const TriangleMesh& mesh, Rows& neighbours, Rows& faces) {
   }
 }
 
+// A position or a direction in a solve: x and y as one two-lane vector, z alone. Each lane
+// computes what the same operation on its coordinate alone computes (no contraction into
+// fused multiply-adds on this target), so the solve's arithmetic is Vec3d's, two coordinates
+// an instruction.
+using Pair = double __attribute__((vector_size(16), aligned(8)));
+struct Lanes {
+  Pair xy;
+  double z;
+  double operator[](int k) const { return k < 2 ? xy[k] : z; }
+  Lanes& operator+=(const Lanes& o) {
+    xy += o.xy;
+    z += o.z;
+    return *this;
+  }
+  Lanes& operator-=(const Lanes& o) {
+    xy -= o.xy;
+    z -= o.z;
+    return *this;
+  }
+  friend Lanes operator*(double s, const Lanes& a) { return {s * a.xy, s * a.z}; }
+  friend Lanes operator*(const Lanes& a, double s) { return {a.xy * s, a.z * s}; }
+  friend Lanes operator*(const Lanes& a, const Lanes& b) { return {a.xy * b.xy, a.z * b.z}; }
+  friend Lanes operator+(const Lanes& a, const Lanes& b) { return {a.xy + b.xy, a.z + b.z}; }
+  // |a| and the larger of a and b lane by lane, as std::abs and std::max on each.
+  friend Lanes Abs(const Lanes& a) { return {a.xy < 0 ? -a.xy : a.xy, std::abs(a.z)}; }
+  friend Lanes Max(const Lanes& a, const Lanes& b) {
+    return {a.xy < b.xy ? b.xy : a.xy, std::max(a.z, b.z)};
+  }
+};
+
+// Solve reads the neighbours of a vertex with at most this many as a row of fixed length.
+constexpr int32_t kRowWidth = 8;
+
 // The part of the mesh a solve over `free` reads, renumbered: the free vertices first (local
 // 0..n-1, in the order of `free`), then the other vertices within one ring of them (n..m-1),
 // then those within two rings (m..size-1). Rows hold the local neighbours of the first m, in
@@ -105,20 +138,52 @@ int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free
   const Rows& nb = sys.nb;
   const size_t n = static_cast<size_t>(sys.n);
   const int32_t m = sys.m;
-  auto laplacian = [&](int32_t v, const std::vector<Vec3d>& y) {
-    Vec3d sum = static_cast<double>(nb.size(v)) * y[v];
-    for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) sum = sum - y[*u];
-    return sum;
+  const size_t size = sys.vertex.size();
+  std::vector<double> degree(static_cast<size_t>(m)), inv_degree(static_cast<size_t>(m));
+  for (int32_t v = 0; v < m; ++v) {
+    degree[v] = static_cast<double>(nb.size(v));
+    inv_degree[v] = 1.0 / nb.size(v);
+  }
+  // Rows of up to kRowWidth neighbours, padded with the index of a zero entry (local `size`,
+  // one past the last vertex): subtracting +0 leaves a sum as it was, bit for bit, and a
+  // row of fixed length costs no mispredicted loop exit. Longer rows are read from `nb`.
+  const int32_t zero = static_cast<int32_t>(size);
+  std::vector<int32_t> padded(static_cast<size_t>(m) * kRowWidth, zero);
+  std::vector<char> long_row(static_cast<size_t>(m), 0);
+  for (int32_t v = 0; v < m; ++v) {
+    if (nb.size(v) > kRowWidth) {
+      long_row[v] = 1;
+      continue;
+    }
+    std::copy(nb.begin(v), nb.end(v), padded.begin() + static_cast<ptrdiff_t>(v) * kRowWidth);
+  }
+  // out = L y at local vertex v (y[size] is zero).
+  auto laplacian = [&](int32_t v, const Lanes* y, Lanes& out) {
+    Lanes sum = degree[v] * y[v];
+    if (long_row[v]) {
+      for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) sum -= y[*u];
+    } else {
+      const int32_t* row = padded.data() + static_cast<ptrdiff_t>(v) * kRowWidth;
+      for (int k = 0; k < kRowWidth; ++k) sum -= y[row[k]];
+    }
+    out = sum;
   };
   // D^-1 L y over the free vertices and their ring (local 0..m-1), for K y.
-  std::vector<Vec3d> scaled(thin_plate ? m : 0);
-  auto apply = [&](const std::vector<Vec3d>& y, std::vector<Vec3d>& out) {
-    if (!thin_plate) {
-      for (size_t i = 0; i < n; ++i) out[i] = laplacian(static_cast<int32_t>(i), y);
-      return;
+  std::vector<Lanes> scaled(thin_plate ? size + 1 : 0, Lanes{});
+  // out = K y, and dot += y . out over the free vertices, in their order.
+  auto apply = [&](const std::vector<Lanes>& y, std::vector<Lanes>& out, Lanes& dot) {
+    const Lanes* in = y.data();
+    if (thin_plate) {
+      for (int32_t v = 0; v < m; ++v) {
+        laplacian(v, y.data(), scaled[v]);
+        scaled[v] = inv_degree[v] * scaled[v];
+      }
+      in = scaled.data();
     }
-    for (int32_t v = 0; v < m; ++v) scaled[v] = (1.0 / nb.size(v)) * laplacian(v, y);
-    for (size_t i = 0; i < n; ++i) out[i] = laplacian(static_cast<int32_t>(i), scaled);
+    for (size_t i = 0; i < n; ++i) {
+      laplacian(static_cast<int32_t>(i), in, out[i]);
+      dot += y[i] * out[i];
+    }
   };
   std::vector<double> inv_diag(n);
   for (size_t i = 0; i < n; ++i) {
@@ -128,50 +193,50 @@ int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free
       for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) d += 1.0 / nb.size(*u);
     inv_diag[i] = 1.0 / d;
   }
-  std::vector<Vec3d> y(sys.vertex.size());
-  for (size_t i = 0; i < y.size(); ++i) y[i] = x[sys.vertex[i]];
+  std::vector<Lanes> y(size + 1, Lanes{});
+  for (size_t i = 0; i < size; ++i) {
+    const Vec3d& v = x[sys.vertex[i]];
+    y[i] = Lanes{Pair{v[0], v[1]}, v[2]};
+  }
   // The search direction per local vertex, zero off the free ones (the first n).
-  std::vector<Vec3d> p(sys.vertex.size(), Vec3d{0, 0, 0});
-  std::vector<Vec3d> r(n), z(n), q(n);
-  apply(y, r);
-  Vec3d rz{0, 0, 0};
+  std::vector<Lanes> p(size + 1, Lanes{});
+  std::vector<Lanes> r(n), z(n), q(n);
+  Lanes unused{};
+  apply(y, r, unused);
+  Lanes rz{};
   for (size_t i = 0; i < n; ++i) {
     r[i] = -1.0 * r[i];
     z[i] = inv_diag[i] * r[i];
     p[i] = z[i];
-    for (int k = 0; k < 3; ++k) rz[k] += r[i][k] * z[i][k];
+    rz += r[i] * z[i];
   }
   int it = 0;
   while (it < max_iterations) {
     if (cancel.cancelled()) return -1;
     ++it;
-    apply(p, q);
-    Vec3d pq{0, 0, 0};
-    for (size_t i = 0; i < n; ++i)
-      for (int k = 0; k < 3; ++k) pq[k] += p[i][k] * q[i][k];
-    Vec3d alpha{0, 0, 0};
-    for (int k = 0; k < 3; ++k) alpha[k] = pq[k] > 0 ? rz[k] / pq[k] : 0.0;
-    double largest_step = 0;
-    Vec3d rz_next{0, 0, 0};
+    Lanes pq{};
+    apply(p, q, pq);
+    double a[3];
+    for (int k = 0; k < 3; ++k) a[k] = pq[k] > 0 ? rz[k] / pq[k] : 0.0;
+    const Lanes alpha{Pair{a[0], a[1]}, a[2]};
+    Lanes largest{};
+    Lanes rz_next{};
     for (size_t i = 0; i < n; ++i) {
-      Vec3d& xi = y[i];
-      for (int k = 0; k < 3; ++k) {
-        const double step = alpha[k] * p[i][k];
-        xi[k] += step;
-        largest_step = std::max(largest_step, std::abs(step));
-        r[i][k] -= alpha[k] * q[i][k];
-        z[i][k] = r[i][k] * inv_diag[i];
-        rz_next[k] += r[i][k] * z[i][k];
-      }
+      const Lanes step = alpha * p[i];
+      y[i] += step;
+      largest = Max(largest, Abs(step));
+      r[i] -= alpha * q[i];
+      z[i] = r[i] * inv_diag[i];
+      rz_next += r[i] * z[i];
     }
-    if (largest_step <= tolerance) break;
-    for (int k = 0; k < 3; ++k) {
-      const double beta = rz[k] > 0 ? rz_next[k] / rz[k] : 0.0;
-      for (size_t i = 0; i < n; ++i) p[i][k] = z[i][k] + beta * p[i][k];
-    }
+    if (std::max({largest[0], largest[1], largest[2]}) <= tolerance) break;
+    double b[3];
+    for (int k = 0; k < 3; ++k) b[k] = rz[k] > 0 ? rz_next[k] / rz[k] : 0.0;
+    const Lanes beta{Pair{b[0], b[1]}, b[2]};
+    for (size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
     rz = rz_next;
   }
-  for (size_t i = 0; i < n; ++i) x[sys.vertex[i]] = y[i];
+  for (size_t i = 0; i < n; ++i) x[sys.vertex[i]] = Vec3d{y[i][0], y[i][1], y[i][2]};
   return it;
 }
 
@@ -842,9 +907,13 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   }
   std::vector<int> level(nv, 0);
   std::vector<char> backed(nv, 0);
+  // The runs' boxes, kept from round to round: a round reads only the faces of the runs
+  // near the faces that moved (`dirty` marks every face whose vertices moved since the last).
+  FaceBlockBoxes blocks;
   // Not cancelled: the caps are written, and only this loop makes them an embedded mesh.
   for (;;) {
-    const std::vector<std::pair<int32_t, int32_t>> pairs = FindIntersectingFacesNear(mesh, dirty);
+    const std::vector<std::pair<int32_t, int32_t>> pairs =
+        FindIntersectingFacesNear(mesh, dirty, /*threads=*/1, &blocks);
     std::vector<int32_t> moved;
     for (const auto& [a, b] : pairs)
       for (int32_t f : {a, b})

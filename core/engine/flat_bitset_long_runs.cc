@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/parallel_tasks.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/ivdep.h"
 #include "core/engine/word_blocks.h"
@@ -208,17 +209,43 @@ void CellPass(const uint64_t* src, uint64_t* dst, const uint64_t* tap, int64_t w
 // from cell c covers the end of c's block and the start of the next one). Dilation mirrors
 // it with ORs: `to_end` the OR to the block's end, `this` the OR from its start, then the
 // window from cell c - n + 1 to c.
+//
+// Each cell pass runs along whole chains, so it stays on one thread; but when src is not dst's
+// own words the two passes read only src and write only their own planes, and they run side
+// by side (two tasks, the same words as one after the other). In place, the second pass
+// overwrites the src the first one reads: one after the other.
+template <typename First, typename Second>
+void TwoCellPasses(const uint64_t* src, const FlatBitset& dst, const First& first,
+                   const Second& second) {
+  if (dst.threads() > 1 && src != dst.words()) {
+    RunTasks(2, 2, [&](int, int64_t task) {
+      if (task == 0) {
+        first();
+      } else {
+        second();
+      }
+    });
+    return;
+  }
+  first();
+  second();
+}
+
 void ErodeBlocks(const uint64_t* src, FlatBitset& dst, FlatBitset& from_start, int n, int64_t s) {
   const int64_t words = static_cast<int64_t>(dst.word_count());
-  CellPass<true, true>(src, from_start.words(), from_start.words(), words, s, n, 0, -s);
-  CellPass<true, false>(src, dst.words(), dst.words(), words, s, n, n - 1, s);
+  TwoCellPasses(
+      src, dst,
+      [&] { CellPass<true, true>(src, from_start.words(), from_start.words(), words, s, n, 0, -s); },
+      [&] { CellPass<true, false>(src, dst.words(), dst.words(), words, s, n, n - 1, s); });
   dst.AndShifted(from_start, -(n - 1) * s);
 }
 
 void DilateBlocks(const uint64_t* src, FlatBitset& dst, FlatBitset& to_end, int n, int64_t s) {
   const int64_t words = static_cast<int64_t>(dst.word_count());
-  CellPass<false, false>(src, to_end.words(), to_end.words(), words, s, n, n - 1, s);
-  CellPass<false, true>(src, dst.words(), dst.words(), words, s, n, 0, -s);
+  TwoCellPasses(
+      src, dst,
+      [&] { CellPass<false, false>(src, to_end.words(), to_end.words(), words, s, n, n - 1, s); },
+      [&] { CellPass<false, true>(src, dst.words(), dst.words(), words, s, n, 0, -s); });
   dst.OrShifted(to_end, (n - 1) * s);
 }
 

@@ -20,7 +20,7 @@ namespace membrane {
 class PackedPlane {
  public:
   // Becomes a copy of `plane`, reusing its buffers (they never shrink: a snapshot's copies are
-  // of similar sizes).
+  // of similar sizes). Runs on plane.threads() threads, with the same result for any count.
   void Assign(const FlatBitset& plane);
 
   // Bit i of the plane copied; i < its bits().

@@ -72,7 +72,7 @@ absl::StatusOr<TriangleMesh> SmoothSurface(VoxelGrid&& membrane,
   }
   // The fit's first pass searches the whole mesh for crossings anyway: it also does the
   // surface nets' repair (toward the same fallback).
-  UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(grid);
+  UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(grid, options.fit_options.threads);
   // The cleaned grid has given its mesh: the caps and the fit read the mesh and the points,
   // and a byte a voxel is most of what the surface holds on a large grid (2.2 GB at 10M points).
   grid = VoxelGrid();

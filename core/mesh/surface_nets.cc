@@ -69,8 +69,8 @@ std::vector<Point3f> ToModel(const VoxelGrid& grid, const std::vector<Vec3d>& la
 
 }  // namespace
 
-UnrepairedSurfaceNets SurfaceNetsBeforeRepair(const VoxelGrid& grid) {
-  const VoxelBoundary b = ExtractVoxelBoundary(grid);
+UnrepairedSurfaceNets SurfaceNetsBeforeRepair(const VoxelGrid& grid, int threads) {
+  const VoxelBoundary b = ExtractVoxelBoundary(grid, threads);
   const Placement p = Place(b);
   TriangleMesh mesh;
   mesh.faces.reserve(2 * b.quads.size());

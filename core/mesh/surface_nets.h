@@ -40,13 +40,14 @@ TriangleMesh SurfaceNets(const VoxelGrid& grid, SurfaceNetsStats* stats = nullpt
 // SurfaceNets() without its crossing repair: the mesh as placed (which may cross itself in the
 // rare configurations above) and, per vertex, the embedded fallback position. For a caller that
 // searches the whole mesh for crossings anyway (FitToPoints in SmoothSurface), so the search
-// runs once instead of twice.
+// runs once instead of twice. The voxel boundary's scan runs on `threads` threads (the same
+// mesh for any count).
 struct UnrepairedSurfaceNets {
   TriangleMesh mesh;
   std::vector<Point3f> fallback;
   int64_t corner_contacts = 0;
 };
-UnrepairedSurfaceNets SurfaceNetsBeforeRepair(const VoxelGrid& grid);
+UnrepairedSurfaceNets SurfaceNetsBeforeRepair(const VoxelGrid& grid, int threads = 1);
 
 }  // namespace membrane
 

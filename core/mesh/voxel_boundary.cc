@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <numeric>
 #include <utility>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
+#include "core/base/parallel_tasks.h"
 #include "core/engine/voxel_state_words.h"
 
 namespace membrane {
@@ -168,6 +170,35 @@ bool AnyBoundaryFace(const VoxelState* s, const std::array<int64_t, 3>& st) {
   return (solid & outside_neighbour) != 0;
 }
 
+// The voxels of each layer z (1 .. dims[2] - 2) that have a boundary face, by index in
+// ascending order, the layers side by side on `threads` threads: the scan reads every voxel
+// of the grid, the quads only these. A layer's list depends on the grid alone.
+std::vector<std::vector<int64_t>> BoundaryVoxelsByLayer(const VoxelGrid& grid, int threads) {
+  const auto st = grid.strides();
+  const auto& dims = grid.dims();
+  const VoxelState* states = grid.states().data();
+  std::vector<std::vector<int64_t>> layers(static_cast<size_t>(dims[2]));
+  RunTasks(threads, std::max(dims[2] - 2, 0), [&](int, int64_t task) {
+    const int z = static_cast<int>(task) + 1;
+    std::vector<int64_t>& list = layers[static_cast<size_t>(z)];
+    for (int y = 1; y < dims[1] - 1; ++y)
+      for (int x = 1; x < dims[0] - 1; ++x) {
+        const int64_t i = grid.Index(x, y, z);
+        // Eight voxels at a time where none has a boundary face (nearly everywhere).
+        if ((x - 1) % 8 == 0 && x + 8 <= dims[0] - 1 && !AnyBoundaryFace(states + i, st)) {
+          x += 7;
+          continue;
+        }
+        if (IsOutside(states[i])) continue;
+        bool face = false;
+        for (int a = 0; a < 3 && !face; ++a)
+          face = IsOutside(states[i - st[a]]) || IsOutside(states[i + st[a]]);
+        if (face) list.push_back(i);
+      }
+  });
+  return layers;
+}
+
 struct CornerEntry {
   int32_t base = -1;  // first fan vertex; -1: not made yet
   uint8_t config = 0;
@@ -203,7 +234,7 @@ Vec3d FanCentroid(int config, int fan) { return Table()[config].centroid[fan]; }
 Vec3d FanOutsideDirection(int config, int fan) { return Table()[config].outside_direction[fan]; }
 int FanSolidOctant(int config, int fan) { return Table()[config].solid_octant[fan]; }
 
-VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
+VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid, int threads) {
   const auto& table = Table();
   VoxelBoundary out;
   const auto st = grid.strides();
@@ -245,73 +276,71 @@ VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid) {
   };
 
   const auto& dims = grid.dims();
+  // The voxels with a boundary face, found on the threads; their quads are made here in index
+  // order, so the numbering is the same for any thread count.
+  std::vector<std::vector<int64_t>> layers = BoundaryVoxelsByLayer(grid, threads);
+  const int64_t row = dims[0];
+  const int64_t plane = row * dims[1];
   for (int z = 1; z < dims[2] - 1; ++z) {
     // Lattice layer z + 1 is new; its plane held layer z - 1, which no later quad touches.
     for (int64_t at : made[(z + 1) & 1]) corners[(z + 1) & 1][at] = CornerEntry{};
     made[(z + 1) & 1].clear();
-    for (int y = 1; y < dims[1] - 1; ++y)
-      for (int x = 1; x < dims[0] - 1; ++x) {
-        const int64_t i = grid.Index(x, y, z);
-        // Eight voxels at a time where none has a boundary face (nearly everywhere); the
-        // others one by one, in the same order, so the numbering is unchanged.
-        if ((x - 1) % 8 == 0 && x + 8 <= dims[0] - 1 && !AnyBoundaryFace(states + i, st)) {
-          x += 7;
-          continue;
-        }
-        if (IsOutside(states[i])) continue;
-        const Coord s{x, y, z};
-        for (int a = 0; a < 3; ++a)
-          for (int positive = 0; positive < 2; ++positive) {
-            const int64_t n = i + (positive ? st[a] : -st[a]);
-            if (!IsOutside(states[n])) continue;
-            VoxelBoundary::Quad quad;
-            quad.solid = s;
-            quad.axis = static_cast<int8_t>(a);
-            quad.positive = positive != 0;
-            const int u = (a + 1) % 3, v = (a + 2) % 3;
-            const std::array<Coord, 4> corner_coords = QuadCornerCoords(quad);
-            std::array<CornerEntry, 4> entries;
-            for (int k = 0; k < 4; ++k) {
-              const Coord& c = corner_coords[k];
-              const CornerEntry e = corner_entry(c);
-              entries[k] = e;
-              std::array<int, 3> bits{};
-              bits[u] = s[u] - c[u] + 1;
-              bits[v] = s[v] - c[v] + 1;
-              quad.corners[k] = e.base + table[e.config].quad_fan[QuadIndex(a, bits)];
-            }
-            Coord outside = s;
-            outside[a] += positive ? 1 : -1;
-            for (int k = 0; k < 4; ++k) {
-              const int k1 = (k + 1) % 4;
-              const Coord& c0 = corner_coords[k];
-              const Coord& c1 = corner_coords[k1];
-              const int w = c0[u] != c1[u] ? u : v;
-              const int up = c1[w] > c0[w] ? 1 : 0;
-              const int h0 = 2 * w + up, h1 = 2 * w + (1 - up);
-              const CornerFacts& f0 = table[entries[k].config];
-              const CornerFacts& f1 = table[entries[k1].config];
-              if (!((f0.ambiguous_one_fan >> h0) & 1) || !((f1.ambiguous_one_fan >> h1) & 1))
-                continue;
-              const Coord& lower = up ? c0 : c1;
-              const std::pair<int64_t, int64_t> key{grid.Index(lower) * 3 + w, grid.Index(outside)};
-              auto [it, inserted] = midpoint_ids.try_emplace(key);
-              if (inserted) {
-                // Provisional: index into `midpoints`; shifted past the fan vertices at the end.
-                it->second = static_cast<int32_t>(out.midpoints.size());
-                VoxelBoundary::EdgeMidpoint m;
-                m.ends = up ? std::array<int32_t, 2>{quad.corners[k], quad.corners[k1]}
-                            : std::array<int32_t, 2>{quad.corners[k1], quad.corners[k]};
-                m.edge_start = lower;
-                m.axis = w;
-                m.outside = outside;
-                out.midpoints.push_back(m);
-              }
-              quad.midpoints[k] = it->second;
-            }
-            out.quads.push_back(quad);
+    for (const int64_t i : layers[static_cast<size_t>(z)]) {
+      const int x = static_cast<int>(i % row), y = static_cast<int>(i % plane / row);
+      const Coord s{x, y, z};
+      for (int a = 0; a < 3; ++a)
+        for (int positive = 0; positive < 2; ++positive) {
+          const int64_t n = i + (positive ? st[a] : -st[a]);
+          if (!IsOutside(states[n])) continue;
+          VoxelBoundary::Quad quad;
+          quad.solid = s;
+          quad.axis = static_cast<int8_t>(a);
+          quad.positive = positive != 0;
+          const int u = (a + 1) % 3, v = (a + 2) % 3;
+          const std::array<Coord, 4> corner_coords = QuadCornerCoords(quad);
+          std::array<CornerEntry, 4> entries;
+          for (int k = 0; k < 4; ++k) {
+            const Coord& c = corner_coords[k];
+            const CornerEntry e = corner_entry(c);
+            entries[k] = e;
+            std::array<int, 3> bits{};
+            bits[u] = s[u] - c[u] + 1;
+            bits[v] = s[v] - c[v] + 1;
+            quad.corners[k] = e.base + table[e.config].quad_fan[QuadIndex(a, bits)];
           }
-      }
+          Coord outside = s;
+          outside[a] += positive ? 1 : -1;
+          for (int k = 0; k < 4; ++k) {
+            const int k1 = (k + 1) % 4;
+            const Coord& c0 = corner_coords[k];
+            const Coord& c1 = corner_coords[k1];
+            const int w = c0[u] != c1[u] ? u : v;
+            const int up = c1[w] > c0[w] ? 1 : 0;
+            const int h0 = 2 * w + up, h1 = 2 * w + (1 - up);
+            const CornerFacts& f0 = table[entries[k].config];
+            const CornerFacts& f1 = table[entries[k1].config];
+            if (!((f0.ambiguous_one_fan >> h0) & 1) || !((f1.ambiguous_one_fan >> h1) & 1))
+              continue;
+            const Coord& lower = up ? c0 : c1;
+            const std::pair<int64_t, int64_t> key{grid.Index(lower) * 3 + w, grid.Index(outside)};
+            auto [it, inserted] = midpoint_ids.try_emplace(key);
+            if (inserted) {
+              // Provisional: index into `midpoints`; shifted past the fan vertices at the end.
+              it->second = static_cast<int32_t>(out.midpoints.size());
+              VoxelBoundary::EdgeMidpoint m;
+              m.ends = up ? std::array<int32_t, 2>{quad.corners[k], quad.corners[k1]}
+                          : std::array<int32_t, 2>{quad.corners[k1], quad.corners[k]};
+              m.edge_start = lower;
+              m.axis = w;
+              m.outside = outside;
+              out.midpoints.push_back(m);
+            }
+            quad.midpoints[k] = it->second;
+          }
+          out.quads.push_back(quad);
+        }
+    }
+    std::vector<int64_t>().swap(layers[static_cast<size_t>(z)]);  // done with: freed
   }
   // Corners found after a midpoint still add fan vertices, so midpoint ids are final only now.
   const int32_t nfan = static_cast<int32_t>(out.fan_vertices.size());

@@ -79,8 +79,9 @@ struct VoxelBoundary {
 // and edge midpoints as described above. Any placement of the vertices near their lattice
 // corner (resp. cell) gives a closed, edge- and vertex-manifold mesh whose quads are oriented
 // outward; its shells and genus are those of the (26,6) solid wherever `corner_contacts` is 0.
-// Cost: O(voxels) scan plus O(quads) hash look-ups.
-VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid);
+// Cost: O(voxels) scan, layer by layer on `threads` threads, plus O(quads) hash look-ups on
+// the calling thread; the result is the same for any thread count.
+VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid, int threads = 1);
 
 // The lattice corners of `quad`, in the order of quad.corners.
 std::array<Coord, 4> QuadCornerCoords(const VoxelBoundary::Quad& quad);

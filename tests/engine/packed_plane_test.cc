@@ -47,6 +47,25 @@ TEST(PackedPlane, AssignedAgainHoldsTheNewPlane) {
   for (int64_t i = 0; i < second.bits(); ++i) ASSERT_EQ(packed.test(i), second.test(i)) << i;
 }
 
+TEST(PackedPlane, SameCopyOnAnyThreadCount) {
+  // Five blocks of words and a part (ForWordBlocks' 32k words), so that the ranks of every
+  // block but the first are offset by the mixed words of the blocks before it.
+  const int64_t bits = int64_t{64} * ((int64_t{5} << 15) + 1000) - 17;
+  const FlatBitset plane = RunsPlane(bits, 11);
+  int64_t one_thread_bytes = 0;
+  for (const int threads : {1, 2, 3}) {
+    FlatBitset threaded = plane;
+    threaded.set_threads(threads);
+    PackedPlane packed;
+    packed.Assign(threaded);
+    for (int64_t i = 0; i < bits; ++i) {
+      ASSERT_EQ(packed.test(i), plane.test(i)) << threads << " threads, bit " << i;
+    }
+    if (threads == 1) one_thread_bytes = packed.bytes();
+    EXPECT_EQ(packed.bytes(), one_thread_bytes) << threads << " threads";
+  }
+}
+
 TEST(PackedPlane, UniformWordsTakeTwoBitsEach) {
   // 2^20 voxels of zeros then ones: no mixed word, so only the flags and the ranks are held
   // (two flag bits a word and a 64-bit rank per 64 words: 3/64 of the plane's 128 KB).

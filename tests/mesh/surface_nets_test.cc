@@ -76,6 +76,24 @@ TEST(SmoothSurface, FromAGivenUpGridIsTheCopysMeshAndFreesTheGrid) {
   EXPECT_FALSE(copied->faces.empty());
 }
 
+TEST(SurfaceNets, SameMeshOnAnyThreadCount) {
+  // The boundary scan runs layer by layer on the threads; the quads are numbered in index
+  // order on the calling thread. Random solids hold every corner configuration (split fans,
+  // edge midpoints) in many layers.
+  for (uint32_t seed : {1u, 2u}) {
+    const VoxelGrid grid = RandomSolidGrid(36, 0.35, seed);
+    const UnrepairedSurfaceNets one = SurfaceNetsBeforeRepair(grid, 1);
+    ASSERT_GT(one.mesh.faces.size(), 1000u);
+    for (int threads : {2, 3}) {
+      const UnrepairedSurfaceNets many = SurfaceNetsBeforeRepair(grid, threads);
+      EXPECT_EQ(many.mesh.vertices, one.mesh.vertices) << threads << " threads, seed " << seed;
+      EXPECT_EQ(many.mesh.faces, one.mesh.faces) << threads << " threads, seed " << seed;
+      EXPECT_EQ(many.fallback, one.fallback) << threads << " threads, seed " << seed;
+      EXPECT_EQ(many.corner_contacts, one.corner_contacts);
+    }
+  }
+}
+
 TEST(SurfaceNets, OfTwoBallsHasTwoShells) {
   ExpectValidSmoothSurfaces(TwoBallsGrid(32, 6, 3), 2, {0, 0});
 }

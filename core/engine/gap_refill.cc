@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
@@ -111,6 +112,53 @@ RayCounts CountRays(const VoxelGrid& grid, const HardRowExtremes& rows, int64_t 
   return count;
 }
 
+// Of the 6 axis rays from an outside voxel, each walked at most `reach` voxels through
+// non-hard voxels: those that meet a hard voxel with an outside voxel at most `depth` voxels
+// behind it (a data wall with the outside beyond: seen from the object's inside), and those
+// that leave to the array border without meeting a hard voxel.
+struct PocketRays {
+  int backed = 0;
+  int open = 0;
+};
+
+// The count stops once fewer than `need` rays could still be backed (most outside voxels
+// beside the membrane fail on their first two rays).
+PocketRays CountPocketRays(const VoxelGrid& grid, int64_t v, int reach, int depth, int need) {
+  const Coord c = grid.CoordOf(v);
+  const int at[3] = {c.x, c.y, c.z};
+  const auto st = grid.strides();
+  PocketRays count;
+  int tried = 0;
+  for (int d = 0; d < 3; ++d)
+    for (int sign = -1; sign <= 1; sign += 2) {
+      if (count.backed + 6 - tried < need) return count;
+      ++tried;
+      int t = at[d] + sign;
+      int64_t u = v + sign * st[d];
+      int steps = 1;
+      while (t > 0 && t < grid.dim(d) - 1 && steps <= reach && !IsHard(grid.at(u))) {
+        t += sign;
+        u += sign * st[d];
+        ++steps;
+      }
+      if (t <= 0 || t >= grid.dim(d) - 1) {
+        ++count.open;
+        continue;
+      }
+      if (!IsHard(grid.at(u))) continue;
+      for (int k = 1; k <= depth; ++k) {
+        t += sign;
+        u += sign * st[d];
+        if (t < 0 || t > grid.dim(d) - 1) break;
+        if (IsOutside(grid.at(u))) {
+          ++count.backed;
+          break;
+        }
+      }
+    }
+  return count;
+}
+
 // No hard voxel within Chebyshev distance r of c (voxels past the array count as none).
 bool InGap(const VoxelGrid& grid, const Coord& c, int r) {
   const auto& d = grid.dims();
@@ -143,6 +191,76 @@ bool HasSolidFaceNeighbour(const VoxelGrid& grid, int64_t v) {
   return false;
 }
 
+// True when adding outside voxel v to the solid closes a loop of the outside and nothing
+// else: the solid around v is one 26-component (no shells join), the outside around it two
+// or more 6-components (T6), and those are still joined to each other without v (no
+// cavity). Breadth-first searches through the outside from one voxel of each component run
+// in turns, a step each, and join when they meet: a search that runs out first encloses a
+// cavity (refused), and so does one that has visited kLoopSearch voxels in all.
+constexpr int64_t kLoopSearch = int64_t{1} << 20;
+
+bool ClosesLoop(const VoxelGrid& grid, int64_t v) {
+  const uint32_t object = NeighbourhoodMask(grid, v, [](VoxelState x) { return !IsOutside(x); });
+  if (CountT26(object & ~kCentreBit) != 1 || CountT6(~object & kAll27) < 2) return false;
+  // One face neighbour of each local 6-component of the outside among the 18 neighbours.
+  const uint32_t background = ~object & N18Mask();
+  const std::array<int64_t, 27>& offsets = grid.block_offsets();
+  std::vector<int64_t> seeds;
+  uint32_t seen = 0;
+  for (int k = 0; k < 27; ++k) {
+    const uint32_t bit = 1u << k;
+    if ((FaceNeighboursMask() & background & bit) == 0 || (seen & bit) != 0) continue;
+    seen |= Flood6(bit, background);
+    seeds.push_back(v + offsets[k]);
+  }
+  const int n = static_cast<int>(seeds.size());
+  if (n < 2) return false;
+  // owner[u]: the search that reached u first; group[i]: the searches search i has met.
+  absl::flat_hash_map<int64_t, int> owner = {{v, -1}};
+  std::vector<int> group(n);
+  std::vector<std::deque<int64_t>> queues(n);
+  for (int i = 0; i < n; ++i) {
+    group[i] = i;
+    owner[seeds[i]] = i;
+    queues[i].push_back(seeds[i]);
+  }
+  auto root = [&](int i) {
+    while (group[i] != i) i = group[i];
+    return i;
+  };
+  int groups = n;
+  const auto st = grid.strides();
+  while (static_cast<int64_t>(owner.size()) < kLoopSearch) {
+    for (int i = 0; i < n; ++i) {
+      // A search whose group has another live search may run out: that one goes on.
+      if (queues[i].empty()) {
+        bool live = false;
+        for (int j = 0; j < n; ++j) live |= root(j) == root(i) && !queues[j].empty();
+        if (!live) return false;
+        continue;
+      }
+      const int64_t u = queues[i].front();
+      queues[i].pop_front();
+      if (grid.OnArrayBorder(grid.CoordOf(u))) continue;
+      for (int d = 0; d < 3; ++d)
+        for (int64_t w : {u - st[d], u + st[d]}) {
+          if (!IsOutside(grid.at(w))) continue;
+          const auto [it, fresh] = owner.try_emplace(w, i);
+          if (fresh) {
+            queues[i].push_back(w);
+            continue;
+          }
+          if (it->second < 0) continue;
+          const int a = root(i), b = root(it->second);
+          if (a == b) continue;
+          group[a] = b;
+          if (--groups == 1) return true;
+        }
+    }
+  }
+  return false;
+}
+
 // The state a non-outside voxel takes from its neighbourhood: BOUNDARY when it touches the
 // outside, INSIDE otherwise; a soft boundary voxel with an outside face neighbour is frozen.
 VoxelState Settled(const VoxelGrid& grid, int64_t v) {
@@ -158,11 +276,17 @@ VoxelState Settled(const VoxelGrid& grid, int64_t v) {
 absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefillOptions& options,
                                                  const CancelToken& cancel) {
   if (options.gap_radius < 1 || options.gap_radius > 16 || options.min_enclosed_rays < 1 ||
-      options.min_enclosed_rays > 6 || options.max_open_rays < 0 || options.max_open_rays > 6) {
+      options.min_enclosed_rays > 6 || options.max_open_rays < 0 || options.max_open_rays > 6 ||
+      options.pocket_backed_rays < 0 || options.pocket_backed_rays > 6 ||
+      options.pocket_wall_depth < 1 || options.pocket_wall_depth > 8 ||
+      options.pocket_reach < 1 || options.pocket_reach > 256 || options.max_pocket_loops < 0) {
     return absl::InvalidArgumentError(absl::StrCat(
         "gap refill options out of range: gap_radius ", options.gap_radius,
         " (1..16), min_enclosed_rays ", options.min_enclosed_rays, " (1..6), max_open_rays ",
-        options.max_open_rays, " (0..6)"));
+        options.max_open_rays, " (0..6), pocket_backed_rays ", options.pocket_backed_rays,
+        " (0..6), pocket_wall_depth ", options.pocket_wall_depth, " (1..8), pocket_reach ",
+        options.pocket_reach, " (1..256), max_pocket_loops ", options.max_pocket_loops,
+        " (>= 0)"));
   }
   GapRefillStats stats;
   if (!options.enabled) return stats;
@@ -170,13 +294,25 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   // The region to refill is read on the membrane as the shrink left it (the fill itself
   // changes what the rays meet): the outside voxels in a gap and behind gap walls, reached
   // from the membrane through such voxels.
+  absl::flat_hash_set<int64_t> region, rejected, pockets;
+  auto in_pocket = [&](int64_t v) {
+    if (options.pocket_backed_rays == 0 || GenerationLabel(grid.at(v)) == 0) return false;
+    const PocketRays count = CountPocketRays(grid, v, options.pocket_reach,
+                                             options.pocket_wall_depth,
+                                             options.pocket_backed_rays);
+    return count.backed >= options.pocket_backed_rays && count.open <= options.max_open_rays;
+  };
   auto in_region = [&](int64_t v) {
     if (!IsOutside(grid.at(v)) || grid.OnArrayBorder(grid.CoordOf(v))) return false;
-    if (!InGap(grid, grid.CoordOf(v), options.gap_radius)) return false;
-    const RayCounts count = CountRays(grid, rays, v);
-    return count.gap_walls >= options.min_enclosed_rays && count.open <= options.max_open_rays;
+    if (InGap(grid, grid.CoordOf(v), options.gap_radius)) {
+      const RayCounts count = CountRays(grid, rays, v);
+      if (count.gap_walls >= options.min_enclosed_rays && count.open <= options.max_open_rays)
+        return true;
+    }
+    if (!in_pocket(v)) return false;
+    pockets.insert(v);
+    return true;
   };
-  absl::flat_hash_set<int64_t> region, rejected;
   std::vector<int64_t> frontier;
   // Seeds in voxel order, off the array border. This loop reads the whole grid, mostly
   // outside voxels by now: it walks rows (no division for the border test) and steps over
@@ -224,23 +360,50 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
       }
   }
   rejected.clear();
+  stats.pocket_voxels = static_cast<int64_t>(pockets.size());
   // Fill from the membrane inwards, each voxel when it is beside the solid and simple; a
-  // voxel not simple yet is tried again when a neighbour joins the solid.
+  // voxel not simple yet is tried again when a neighbour joins the solid. When none is left,
+  // one pocket voxel whose addition closes a loop of the outside is added (the lowest index,
+  // for the same result on every run), and the simple fill goes on around it.
   std::deque<int64_t> queue(seeds.begin(), seeds.end());
   std::vector<int64_t> touched;
+  absl::flat_hash_set<int64_t> refused;  // pocket voxels whose addition closed no loop
   int64_t steps = 0;
-  while (!queue.empty()) {
-    if (++steps % kCancelPoll == 0 && cancel.cancelled()) break;
-    const int64_t v = queue.front();
-    queue.pop_front();
-    if (!IsOutside(grid.at(v)) || !HasSolidFaceNeighbour(grid, v)) continue;
-    const uint32_t object = NeighbourhoodMask(grid, v, [](VoxelState x) { return !IsOutside(x); });
-    if (!IsSimple(object)) continue;
+  auto add = [&](int64_t v) {
     grid.set(v, kInsideSoft);
     ++stats.refilled_voxels;
     touched.push_back(v);
     for (int64_t off : grid.neighbour_offsets())
       if (IsOutside(grid.at(v + off)) && region.contains(v + off)) queue.push_back(v + off);
+  };
+  for (;;) {
+    while (!queue.empty()) {
+      if (++steps % kCancelPoll == 0 && cancel.cancelled()) break;
+      const int64_t v = queue.front();
+      queue.pop_front();
+      if (!IsOutside(grid.at(v)) || !HasSolidFaceNeighbour(grid, v)) continue;
+      const uint32_t object =
+          NeighbourhoodMask(grid, v, [](VoxelState x) { return !IsOutside(x); });
+      if (!IsSimple(object)) continue;
+      add(v);
+    }
+    if (cancel.cancelled() || stats.loops_closed >= options.max_pocket_loops) break;
+    std::vector<int64_t> candidates;
+    for (int64_t v : pockets)
+      if (IsOutside(grid.at(v)) && HasSolidFaceNeighbour(grid, v) && !refused.contains(v))
+        candidates.push_back(v);
+    std::sort(candidates.begin(), candidates.end());
+    bool closed = false;
+    for (int64_t v : candidates) {
+      if (ClosesLoop(grid, v)) {
+        add(v);
+        ++stats.loops_closed;
+        closed = true;
+        break;
+      }
+      refused.insert(v);
+    }
+    if (!closed) break;
   }
   // Settle the positions of the refilled voxels and of the solid around them.
   for (int64_t v : touched) {

@@ -44,7 +44,8 @@ constexpr char kUsage[] =
     "                      [--rerun-thin K] [--no-retry] [--strict-only] [--no-close-cut-loops]\n"
     "                      [--no-hole-opening] [--far-steps F] [--near-far-steps N]\n"
     "                      [--max-cut-fraction C] [--data-genus R]\n"
-    "                      [--probe X,Y,Z,R] [--reference N]\n"
+    "                      [--probe X,Y,Z,R] [--reference N] [--slices X,Y,Z,R]\n"
+    "                      [--pocket-rays K] [--pocket-depth D] [--pocket-loops L]\n"
     "                      [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
@@ -72,6 +73,14 @@ constexpr char kUsage[] =
     "  --reference N    also run N points spread evenly over data/models/MODEL.obj (where\n"
     "                   present) at each size of the model's first cloud's voxel: the\n"
     "                   object without the scan's gaps\n"
+    "  --pocket-rays K, --pocket-depth D, --pocket-loops L  the gap refill's pockets: rays\n"
+    "                   backed by a data wall (0 = no pockets), the wall's depth, the loops it\n"
+    "                   may close (GapRefillOptions::pocket_backed_rays, pocket_wall_depth,\n"
+    "                   max_pocket_loops)\n"
+    "  --slices X,Y,Z,R print the final states in the box of half-width R around voxel\n"
+    "                   (X, Y, Z), one z layer at a time, outside voxels as their generation\n"
+    "                   labels; with data/models/MODEL.obj, those carved out of the model\n"
+    "                   marked, a count per label, and the topology with them put back\n"
     "  --no-hole-opening  leave plugged holes closed (ShrinkOptions::holes.enabled false)\n"
     "  --no-retry       no handle retry (ShrinkOptions::retry.enabled false)\n"
     "  --strict-only    every generation under the handle retry's strict guard sizes, no retry\n"
@@ -90,6 +99,7 @@ struct Options {
   int data_genus = -1;  // -1: not printed; else the hard voxels' growth in steps
   int reference_points = 0;  // > 0: also run a dense sample of each model's reference mesh
   std::vector<std::array<int, 4>> probes;  // x, y, z, r boxes read against the grown data
+  std::vector<std::array<int, 4>> slices;  // x, y, z, r boxes whose states are printed
   std::string shared_dir;
   ShrinkOptions shrink;
 };
@@ -146,6 +156,19 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       for (int k = 0; k < 4; ++k)
         if (!absl::SimpleAtoi(f[k], &p[k])) return false;
       o.probes.push_back(p);
+    } else if (arg == "--pocket-rays" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.refill.pocket_backed_rays)) return false;
+    } else if (arg == "--pocket-loops" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.refill.max_pocket_loops)) return false;
+    } else if (arg == "--pocket-depth" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.refill.pocket_wall_depth)) return false;
+    } else if (arg == "--slices" && has_value) {
+      std::vector<std::string> f = absl::StrSplit(argv[++i], ',');
+      std::array<int, 4> p{};
+      if (f.size() != 4) return false;
+      for (int k = 0; k < 4; ++k)
+        if (!absl::SimpleAtoi(f[k], &p[k])) return false;
+      o.slices.push_back(p);
     } else if (arg == "--reference" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.reference_points) || o.reference_points < 0)
         return false;
@@ -332,9 +355,135 @@ std::string ShellsBySize(const VoxelTopology& t) {
                       absl::StrJoin(voxels, ","), " voxels)");
 }
 
+// The voxels of row (y, z) whose centre lies inside `mesh` (a closed model): crossings of the
+// row's line with the faces' yz projections, counted by parity. All zero without a mesh.
+std::vector<uint8_t> InsideModelRow(const TriangleMesh* mesh, const VoxelGrid& grid, int y,
+                                    int z) {
+  const auto& d = grid.dims();
+  std::vector<uint8_t> inside(d[0], 0);
+  if (mesh == nullptr) return inside;
+  const std::array<double, 3> c = grid.Center({0, y, z});
+  std::vector<double> xs;
+  for (const auto& f : mesh->faces) {
+    const Point3f& a = mesh->vertices[f[0]];
+    const Point3f& b = mesh->vertices[f[1]];
+    const Point3f& e = mesh->vertices[f[2]];
+    // Barycentric coordinates of (c[1], c[2]) in the face's yz projection.
+    const double det = (b[1] - a[1]) * (e[2] - a[2]) - (e[1] - a[1]) * (b[2] - a[2]);
+    if (det == 0) continue;
+    const double u = ((c[1] - a[1]) * (e[2] - a[2]) - (e[1] - a[1]) * (c[2] - a[2])) / det;
+    const double v = ((b[1] - a[1]) * (c[2] - a[2]) - (c[1] - a[1]) * (b[2] - a[2])) / det;
+    if (u < 0 || v < 0 || u + v > 1) continue;
+    xs.push_back(a[0] + u * (b[0] - a[0]) + v * (e[0] - a[0]));
+  }
+  std::sort(xs.begin(), xs.end());
+  for (int x = 0; x < d[0]; ++x) {
+    const double cx = grid.Center({x, y, z})[0];
+    inside[x] = (std::lower_bound(xs.begin(), xs.end(), cx) - xs.begin()) % 2;
+  }
+  return inside;
+}
+
+// The box of half-width b[3] around voxel (b[0], b[1], b[2]), clipped to the grid less
+// `margin` layers: lo and hi per axis.
+struct Box {
+  std::array<int, 3> lo, hi;
+};
+Box ClippedBox(const VoxelGrid& grid, const std::array<int, 4>& b, int margin) {
+  Box box;
+  for (int k = 0; k < 3; ++k) {
+    box.lo[k] = std::max(b[k] - b[3], margin);
+    box.hi[k] = std::min(b[k] + b[3], grid.dim(k) - 1 - margin);
+  }
+  return box;
+}
+
+// --slices with the model: per generation label (and its plate size), in the box, the outside
+// voxels whose centre lies inside the model (carved out of the object), and the outside
+// voxels with a hard face neighbour outside the model and inside it (the data walls' outer
+// faces, reached from the outside, and their inner faces, reached from a carved pocket).
+// Then the topology of the membrane with every voxel of the box carved inside the model put
+// back (label 0, the piece separation's cut, left out; cavities filled): what any refill of
+// the pockets carved into the objects there could reach at best.
+void PrintCarvedByLabel(const VoxelGrid& grid, const std::array<int, 4>& b,
+                        const TriangleMesh& mesh, const std::vector<GenerationStats>& generations) {
+  std::array<int64_t, kMaxGenerationLabel + 1> carved{}, outer{}, inner{};
+  const auto st = grid.strides();
+  const Box box = ClippedBox(grid, b, 1);
+  std::vector<uint8_t> solid(grid.size(), 0);
+  for (int64_t i = 0; i < grid.size(); ++i) solid[i] = !IsOutside(grid.at(i));
+  int64_t put_back = 0;
+  for (int z = box.lo[2]; z <= box.hi[2]; ++z)
+    for (int y = box.lo[1]; y <= box.hi[1]; ++y) {
+      const std::vector<uint8_t> in_model = InsideModelRow(&mesh, grid, y, z);
+      for (int x = box.lo[0]; x <= box.hi[0]; ++x) {
+        const int64_t v = grid.Index(x, y, z);
+        if (!IsOutside(grid.at(v))) continue;
+        const int g = GenerationLabel(grid.at(v));
+        bool beside_hard = false;
+        for (int k = 0; k < 3; ++k)
+          beside_hard |= IsHard(grid.at(v - st[k])) || IsHard(grid.at(v + st[k]));
+        carved[g] += in_model[x];
+        (in_model[x] != 0 ? inner : outer)[g] += beside_hard;
+        if (in_model[x] != 0 && g > 0) {
+          solid[v] = 1;
+          ++put_back;
+        }
+      }
+    }
+  std::printf("  label (plate): carved inside the model / beside hard outside the model / "
+              "beside hard inside the model\n");
+  for (int g = 0; g <= kMaxGenerationLabel; ++g) {
+    if (carved[g] + outer[g] + inner[g] == 0) continue;
+    const int plate =
+        g >= 1 && g <= static_cast<int>(generations.size()) ? generations[g - 1].plate_size : 0;
+    std::printf("  %5d (%2d): %8lld %8lld %8lld\n", g, plate, static_cast<long long>(carved[g]),
+                static_cast<long long>(outer[g]), static_cast<long long>(inner[g]));
+  }
+  const std::vector<uint8_t> out = OutsideOf(grid, solid);
+  for (int64_t i = 0; i < grid.size(); ++i) solid[i] = out[i] == 0;
+  std::printf("  carved voxels inside the model put back: %lld, then %s\n",
+              static_cast<long long>(put_back),
+              ShellsBySize(ComputeVoxelTopology(SolidGrid(grid, solid))).c_str());
+}
+
+// --slices: the final states in the box, one z layer at a time (rows y, columns x): "#" hard,
+// "f" frozen, "." soft inside, "b" soft boundary, and an outside voxel's generation label
+// (which generation carved it); with the model, a label whose voxel's centre lies inside the
+// model is starred (boxes of half-width 20 or less: three characters a voxel) or a capital
+// letter (A = 0; wider boxes: one character a voxel, labels past 25 print as 25).
+void PrintSlices(const VoxelGrid& grid, const std::array<int, 4>& b, const TriangleMesh* mesh) {
+  const Box box = ClippedBox(grid, b, 0);
+  const bool wide = b[3] > 20;
+  for (int z = box.lo[2]; z <= box.hi[2]; ++z) {
+    std::printf("  z = %d, x from %d, y from %d\n", z, box.lo[0], box.lo[1]);
+    for (int y = box.lo[1]; y <= box.hi[1]; ++y) {
+      std::string line = absl::StrFormat("  %4d ", y);
+      const std::vector<uint8_t> in_model = InsideModelRow(mesh, grid, y, z);
+      for (int x = box.lo[0]; x <= box.hi[0]; ++x) {
+        const VoxelState s = grid.at(grid.Index(x, y, z));
+        if (!IsOutside(s)) {
+          absl::StrAppend(&line, wide ? "" : "  ",
+                          IsHard(s) ? "#" : IsFrozen(s) ? "f" : IsBoundary(s) ? "b" : ".");
+        } else if (wide) {
+          const char* digits =
+              in_model[x] != 0 ? "ABCDEFGHIJKLMNOPQRSTUVWXYZ" : "0123456789abcdefghijklmnop";
+          line.push_back(digits[std::min(GenerationLabel(s), 25)]);
+        } else {
+          absl::StrAppend(&line, absl::StrFormat(in_model[x] != 0 ? "%2d*" : "%3d",
+                                                 GenerationLabel(s)));
+        }
+      }
+      std::printf("%s\n", line.c_str());
+    }
+  }
+}
+
 // Shrinks `cloud` at `voxel_size` and prints one row; true when the topology is `expected`.
+// `model`: the cloud's reference mesh, read for --slices, else nullptr.
 bool RunOne(const Options& o, const std::string& name, double factor, const PointCloud& cloud,
-            double voxel_size, const ShapeTopology& expected, bool genus_asserted, Tally& tally) {
+            double voxel_size, const ShapeTopology& expected, bool genus_asserted, Tally& tally,
+            const TriangleMesh* model = nullptr) {
   VoxelizeOptions vo;
   vo.voxel_size = voxel_size;
   absl::StatusOr<Voxelization> vox = Voxelize(cloud.points, vo);
@@ -410,6 +559,12 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
   std::string holes_note =
       result->holes.opened > 0 ? absl::StrCat("  holes opened: ", result->holes.opened) : "";
   const PieceSeparationStats& sep = result->separation;
+  if (result->refill.pocket_voxels > 0) {
+    absl::StrAppend(&holes_note, absl::StrFormat("  refill %d (pockets %d, loops closed %d)",
+                                                 result->refill.refilled_voxels,
+                                                 result->refill.pocket_voxels,
+                                                 result->refill.loops_closed));
+  }
   if (sep.pieces > 1) {
     const std::string cut =
         absl::StrFormat("cut %d + web %d voxels (far webs from %d steps), %d loops closed",
@@ -482,6 +637,10 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
               right ? "ok" : "MISS", inv.ok() ? "" : absl::StrCat(" ", inv.ToString()).c_str(),
               RetryNote(result->handle_retry).c_str(), holes_note.c_str(), rerun_note.c_str(),
               data_note.c_str());
+  for (const std::array<int, 4>& b : o.slices) {
+    if (model != nullptr) PrintCarvedByLabel(vox->grid, b, *model, result->generations);
+    PrintSlices(vox->grid, b, model);
+  }
   if (!right && o.locate) {
     std::printf("%s", testing::LocateHandlesAndContacts(vox->grid).c_str());
   }
@@ -559,8 +718,13 @@ void RunReal(const Options& o, Tally& tally) {
       absl::StatusOr<Box3d> box = CheckedBounds(cloud->points);
       if (!box.ok()) continue;
       const double l = EstimateVoxelSize(*box, static_cast<int64_t>(cloud->points.size()));
+      absl::StatusOr<TriangleMesh> model = absl::NotFoundError("not read");
+      if (!o.slices.empty()) {
+        model = ReadMesh(absl::StrCat(o.shared_dir, "/data/models/", m.model, ".obj"));
+      }
       for (double f : o.factors) {
-        RunOne(o, name, f, *cloud, f * l, m.expected, m.genus_asserted, tally);
+        RunOne(o, name, f, *cloud, f * l, m.expected, m.genus_asserted, tally,
+               model.ok() ? &*model : nullptr);
       }
       if (o.reference_points > 0 && kind == m.kinds.front()) {
         absl::StatusOr<TriangleMesh> mesh =

@@ -143,6 +143,93 @@ TEST(RefillGapChannels, RaysOpenToTheBorderAreCounted) {
   EXPECT_EQ(grid.states(), before);
 }
 
+// A hollow carved behind the scanned skin through a narrow slot (3 x 8 voxels in the bottom
+// skin): the chamber's walls are the skin's data seen from inside, with the outside right
+// behind them, so it is a pocket of the solid's interior, refilled whole although it touches
+// the data; the slot and the outside below it stay, the topology is unchanged.
+TEST(RefillGapChannels, AHollowBehindTheSkinThroughASlotIsRefilled) {
+  auto slot = [](int x, int y, int z) { return z == 0 && x >= 14 && x < 17 && y >= 11 && y < 19; };
+  auto carved = [](int x, int y, int z) {
+    return (z >= 1 && z < 12 && x >= 1 && x < kN - 1 && y >= 1 && y < kN - 1) ||
+           (z == 0 && x == 15 && y >= 12 && y < 18);
+  };
+  VoxelGrid grid = Box(slot, carved);
+  ExpectValidMembrane(grid);
+  ASSERT_GT(OutsideIn(grid, 1), 10 * 28 * 28);
+  const VoxelTopology before = ComputeVoxelTopology(grid);
+  absl::StatusOr<GapRefillStats> stats =
+      RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(OutsideIn(grid, 1), 0);
+  EXPECT_GT(stats->pocket_voxels, 0);
+  EXPECT_EQ(stats->loops_closed, 0);
+  EXPECT_TRUE(IsOutside(grid.at(grid.Index(kAt + 15, kAt + 15, kAt - 1))));
+  ExpectValidMembrane(grid);
+  const VoxelTopology after = ComputeVoxelTopology(grid);
+  EXPECT_EQ(after.shells, before.shells);
+  EXPECT_EQ(after.genus, before.genus);
+  // Without pockets only the voxels far from the data could return: the chamber stays open.
+  VoxelGrid plain = Box(slot, carved);
+  GapRefillOptions options;
+  options.pocket_backed_rays = 0;
+  ASSERT_TRUE(RefillGapChannels(plain, options, CancelToken::Never()).ok());
+  EXPECT_GT(OutsideIn(plain, 1), 0);
+}
+
+// The same hollow entered through two slots: the outside runs in through one and out through
+// the other, a handle of the solid around the solid's own interior. Refilled with the
+// additions that close such a loop, the box is genus 0 again; with simple additions only
+// (max_pocket_loops 0) the handle stays.
+TEST(RefillGapChannels, AHandleThroughAHollowIsClosed) {
+  auto slots = [](int x, int y, int z) {
+    return z == 0 && y >= 11 && y < 19 && ((x >= 5 && x < 8) || (x >= 22 && x < 25));
+  };
+  auto carved = [](int x, int y, int z) {
+    return (z >= 1 && z < 12 && x >= 1 && x < kN - 1 && y >= 1 && y < kN - 1) ||
+           (z == 0 && (x == 6 || x == 23) && y >= 12 && y < 18);
+  };
+  VoxelGrid grid = Box(slots, carved);
+  ExpectValidMembrane(grid);
+  ASSERT_EQ(ComputeVoxelTopology(grid).genus, std::vector<int>{1});
+  VoxelGrid simple_only = grid;
+  absl::StatusOr<GapRefillStats> stats =
+      RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->loops_closed, 1);
+  ExpectValidMembrane(grid);
+  const VoxelTopology after = ComputeVoxelTopology(grid);
+  EXPECT_EQ(after.shells, 1);
+  EXPECT_EQ(after.cavities, 0);
+  EXPECT_EQ(after.genus, std::vector<int>{0});
+  GapRefillOptions options;
+  options.max_pocket_loops = 0;
+  ASSERT_TRUE(RefillGapChannels(simple_only, options, CancelToken::Never()).ok());
+  EXPECT_EQ(ComputeVoxelTopology(simple_only).genus, std::vector<int>{1});
+}
+
+// A hole through the box whose walls the scanner saw (hard voxels around it, the solid's
+// interior behind them): a real tunnel, whose rays leave on both sides. Nothing changes.
+TEST(RefillGapChannels, AScannedHoleThroughTheBoxStays) {
+  auto gap = [](int x, int y, int) { return x >= 10 && x < 20 && y >= 10 && y < 20; };
+  auto hole = [](int x, int y, int) { return x >= 11 && x < 19 && y >= 11 && y < 19; };
+  VoxelGrid grid = Box(gap, hole);
+  for (int z = 0; z < kN; ++z)
+    for (int y = 10; y < 20; ++y)
+      for (int x = 10; x < 20; ++x) {
+        const int64_t v = grid.Index(x + kAt, y + kAt, z + kAt);
+        if (IsOutside(grid.at(v))) continue;
+        grid.set(v, IsBoundary(grid.at(v)) ? kBoundaryHard : kInsideHard);
+      }
+  ExpectValidMembrane(grid);
+  const std::vector<VoxelState> before = grid.states();
+  absl::StatusOr<GapRefillStats> stats =
+      RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->refilled_voxels, 0);
+  EXPECT_EQ(grid.states(), before);
+  EXPECT_EQ(ComputeVoxelTopology(grid).genus, std::vector<int>{1});
+}
+
 TEST(RefillGapChannels, DisabledChangesNothing) {
   auto gap = [](int x, int y, int z) { return z == 0 && x >= 10 && x < 20 && y >= 10 && y < 20; };
   auto channel = [](int x, int y, int z) {
@@ -171,6 +258,14 @@ TEST(RefillGapChannels, OptionsOutOfRangeAreRefused) {
   EXPECT_NE(s.message().find("min_enclosed_rays 7"), absl::string_view::npos) << s;
   options = GapRefillOptions{};
   options.max_open_rays = -1;
+  EXPECT_EQ(RefillGapChannels(grid, options, CancelToken::Never()).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  options = GapRefillOptions{};
+  options.pocket_backed_rays = 7;
+  EXPECT_EQ(RefillGapChannels(grid, options, CancelToken::Never()).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  options = GapRefillOptions{};
+  options.pocket_wall_depth = 0;
   EXPECT_EQ(RefillGapChannels(grid, options, CancelToken::Never()).status().code(),
             absl::StatusCode::kInvalidArgument);
 }

@@ -261,6 +261,45 @@ bool ClosesLoop(const VoxelGrid& grid, int64_t v) {
   return false;
 }
 
+// A pocket is the solid's interior seen through gaps in its scanned walls, so few of its
+// voxels see the array border along an axis. A 6-component of the pocket voxels in which
+// more than `max_open_share` of the voxels do (`open`: one ray to the border, the other five
+// backed by data walls) is the inside of an open container seen through its mouth, a
+// concavity: its voxels leave `pockets` and `region`.
+void DropOpenPockets(const VoxelGrid& grid, double max_open_share,
+                     const absl::flat_hash_set<int64_t>& open,
+                     absl::flat_hash_set<int64_t>& pockets,
+                     absl::flat_hash_set<int64_t>& region) {
+  const auto st = grid.strides();
+  absl::flat_hash_set<int64_t> seen;
+  std::vector<int64_t> component, stack;
+  std::vector<int64_t> dropped;
+  for (int64_t start : pockets) {
+    if (!seen.insert(start).second) continue;
+    component.assign(1, start);
+    stack.assign(1, start);
+    int64_t open_count = 0;
+    while (!stack.empty()) {
+      const int64_t v = stack.back();
+      stack.pop_back();
+      open_count += open.contains(v);
+      for (int d = 0; d < 3; ++d)
+        for (int64_t u : {v - st[d], v + st[d]}) {
+          if (!pockets.contains(u) || !seen.insert(u).second) continue;
+          component.push_back(u);
+          stack.push_back(u);
+        }
+    }
+    if (open_count > max_open_share * static_cast<double>(component.size())) {
+      dropped.insert(dropped.end(), component.begin(), component.end());
+    }
+  }
+  for (int64_t v : dropped) {
+    pockets.erase(v);
+    region.erase(v);
+  }
+}
+
 // The state a non-outside voxel takes from its neighbourhood: BOUNDARY when it touches the
 // outside, INSIDE otherwise; a soft boundary voxel with an outside face neighbour is frozen.
 VoxelState Settled(const VoxelGrid& grid, int64_t v) {
@@ -279,14 +318,15 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
       options.min_enclosed_rays > 6 || options.max_open_rays < 0 || options.max_open_rays > 6 ||
       options.pocket_backed_rays < 0 || options.pocket_backed_rays > 6 ||
       options.pocket_wall_depth < 1 || options.pocket_wall_depth > 8 ||
-      options.pocket_reach < 1 || options.pocket_reach > 256 || options.max_pocket_loops < 0) {
+      options.pocket_reach < 1 || options.pocket_reach > 256 || options.max_pocket_loops < 0 ||
+      !(options.max_open_pocket_share >= 0 && options.max_open_pocket_share <= 1)) {
     return absl::InvalidArgumentError(absl::StrCat(
         "gap refill options out of range: gap_radius ", options.gap_radius,
         " (1..16), min_enclosed_rays ", options.min_enclosed_rays, " (1..6), max_open_rays ",
         options.max_open_rays, " (0..6), pocket_backed_rays ", options.pocket_backed_rays,
         " (0..6), pocket_wall_depth ", options.pocket_wall_depth, " (1..8), pocket_reach ",
         options.pocket_reach, " (1..256), max_pocket_loops ", options.max_pocket_loops,
-        " (>= 0)"));
+        " (>= 0), max_open_pocket_share ", options.max_open_pocket_share, " (0..1)"));
   }
   GapRefillStats stats;
   if (!options.enabled) return stats;
@@ -294,13 +334,16 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   // The region to refill is read on the membrane as the shrink left it (the fill itself
   // changes what the rays meet): the outside voxels in a gap and behind gap walls, reached
   // from the membrane through such voxels.
-  absl::flat_hash_set<int64_t> region, rejected, pockets;
+  absl::flat_hash_set<int64_t> region, rejected, pockets, open_pockets;
   auto in_pocket = [&](int64_t v) {
     if (options.pocket_backed_rays == 0 || GenerationLabel(grid.at(v)) == 0) return false;
     const PocketRays count = CountPocketRays(grid, v, options.pocket_reach,
                                              options.pocket_wall_depth,
                                              options.pocket_backed_rays);
-    return count.backed >= options.pocket_backed_rays && count.open <= options.max_open_rays;
+    if (count.backed < options.pocket_backed_rays || count.open > options.max_open_rays)
+      return false;
+    if (count.open > 0) open_pockets.insert(v);
+    return true;
   };
   auto in_region = [&](int64_t v) {
     if (!IsOutside(grid.at(v)) || grid.OnArrayBorder(grid.CoordOf(v))) return false;
@@ -343,7 +386,7 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
       }
     }
   }
-  const std::vector<int64_t> seeds = frontier;
+  const std::vector<int64_t> first = frontier;
   while (!frontier.empty()) {
     if (cancel.cancelled()) return absl::CancelledError("gap refill cancelled");
     const int64_t v = frontier.back();
@@ -360,6 +403,11 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
       }
   }
   rejected.clear();
+  DropOpenPockets(grid, options.max_open_pocket_share, open_pockets, pockets, region);
+  std::vector<int64_t> seeds;
+  for (int64_t v : first) {
+    if (region.contains(v)) seeds.push_back(v);
+  }
   stats.pocket_voxels = static_cast<int64_t>(pockets.size());
   // Fill from the membrane inwards, each voxel when it is beside the solid and simple; a
   // voxel not simple yet is tried again when a neighbour joins the solid. When none is left,

@@ -39,6 +39,10 @@ struct GapRefillOptions {
   int pocket_backed_rays = 5;
   int pocket_wall_depth = 3;
   int pocket_reach = 32;
+  // A 6-component of pocket voxels in which more than this share have an open ray (the other
+  // five backed) is the inside of an open container seen through its mouth, not a pocket:
+  // it is left alone.
+  double max_open_pocket_share = 0.25;
   // Inside pockets, once no simple addition is left, an addition that closes a loop of the
   // outside (the solid around it one 26-component, the outside two or more 6-components
   // that stay joined elsewhere: no cavity) is made too, at most this many times: a handle
@@ -55,9 +59,10 @@ struct GapRefillStats {
 // Input: a shrunk grid (the membrane invariants hold; every outside voxel 6-connected to the
 // array border).
 // Effect: returns to the solid every outside voxel that is in a gap and behind gap walls, or
-// in a pocket behind data walls (see GapRefillOptions), and reached from the membrane through
-// such voxels, that is 6-adjacent to the solid when it is added and whose addition is
-// (26,6)-simple, repeating until none is left, from the membrane inwards. So the fill starts
+// in a pocket behind data walls that is not an open container's inside (see
+// GapRefillOptions), and reached from the membrane through such voxels, that is 6-adjacent
+// to the solid when it is added and whose addition is (26,6)-simple, repeating until none is
+// left, from the membrane inwards. So the fill starts
 // only on membrane far from any data or inside a pocket, never joins two shells and never
 // makes a cavity. Simple additions change no topology; when none is left, a pocket voxel
 // whose addition closes a loop of the outside is added (at most max_pocket_loops times), one

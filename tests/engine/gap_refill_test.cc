@@ -230,6 +230,38 @@ TEST(RefillGapChannels, AScannedHoleThroughTheBoxStays) {
   EXPECT_EQ(ComputeVoxelTopology(grid).genus, std::vector<int>{1});
 }
 
+// An open container: a cup whose walls and bottom are 2 voxels thick with data on both
+// sides (a scanned mug), its inside outside up to the open top. From inside it, 5 of the 6
+// rays meet a data wall with the outside right behind it, as in a hollow behind a skin; but
+// the cup is open on its whole top, not through a slot, and its inside is a concavity the
+// membrane reached from above. Nothing is refilled.
+TEST(RefillGapChannels, AnOpenContainerKeepsItsInside) {
+  auto inside = [](int x, int y, int z) {
+    return z >= 2 && x >= 2 && x < kN - 2 && y >= 2 && y < kN - 2;
+  };
+  VoxelGrid grid = Box(Never, inside);
+  // The inner faces of the walls and the bottom hold data too.
+  for (int z = 0; z < kN; ++z)
+    for (int y = 0; y < kN; ++y)
+      for (int x = 0; x < kN; ++x) {
+        const int64_t v = grid.Index(x + kAt, y + kAt, z + kAt);
+        if (IsOutside(grid.at(v))) continue;
+        bool faces_inside = false;
+        for (int64_t off : grid.neighbour_offsets())
+          faces_inside |= IsOutside(grid.at(v + off)) && GenerationLabel(grid.at(v + off)) == 9;
+        if (faces_inside) grid.set(v, kInsideHard);
+      }
+  SetFinalMembraneStates(grid);
+  ExpectValidMembrane(grid);
+  const std::vector<VoxelState> before = grid.states();
+  absl::StatusOr<GapRefillStats> stats =
+      RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->refilled_voxels, 0);
+  EXPECT_EQ(stats->pocket_voxels, 0);
+  EXPECT_EQ(grid.states(), before);
+}
+
 TEST(RefillGapChannels, DisabledChangesNothing) {
   auto gap = [](int x, int y, int z) { return z == 0 && x >= 10 && x < 20 && y >= 10 && y < 20; };
   auto channel = [](int x, int y, int z) {
@@ -266,6 +298,10 @@ TEST(RefillGapChannels, OptionsOutOfRangeAreRefused) {
             absl::StatusCode::kInvalidArgument);
   options = GapRefillOptions{};
   options.pocket_wall_depth = 0;
+  EXPECT_EQ(RefillGapChannels(grid, options, CancelToken::Never()).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  options = GapRefillOptions{};
+  options.max_open_pocket_share = 1.5;
   EXPECT_EQ(RefillGapChannels(grid, options, CancelToken::Never()).status().code(),
             absl::StatusCode::kInvalidArgument);
 }

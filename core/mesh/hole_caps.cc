@@ -504,19 +504,20 @@ bool SweepCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
   return true;
 }
 
-// The mean distance from the held vertices' points (`pinned` vertices of `region`, at their
-// points in `holds`) to the nearest other vertex of the cap at `x`, the held ones aside (they
-// sit on their points in the converged plate, and a sweep carries them along): how far a cap
-// passes from the points seen inside its gap, in model units. 0 when none is held.
+// The mean distance from the held vertices' points (the `pinned` vertices of `region`, at
+// `holds`) to the nearest other vertex of the cap at `at`, the held ones aside (they sit on
+// their points in the converged plate, and a sweep carries them along): how far a cap passes
+// from the points seen inside its gap, in model units. `holds` and `at` run along `region`.
+// 0 when none is held.
 double HeldPointsDistance(const std::vector<int32_t>& region, const std::vector<char>& pinned,
-                          const std::vector<Vec3d>& holds, const std::vector<Vec3d>& x) {
+                          const std::vector<Vec3d>& holds, const std::vector<Vec3d>& at) {
   double sum = 0;
   int count = 0;
-  for (int32_t v : region) {
-    if (!pinned[v]) continue;
+  for (size_t i = 0; i < region.size(); ++i) {
+    if (!pinned[region[i]]) continue;
     double best = std::numeric_limits<double>::infinity();
-    for (int32_t u : region)
-      if (!pinned[u]) best = std::min(best, SquaredNorm(x[u] - holds[v]));
+    for (size_t j = 0; j < region.size(); ++j)
+      if (!pinned[region[j]]) best = std::min(best, SquaredNorm(at[j] - holds[i]));
     if (!std::isfinite(best)) continue;
     sum += std::sqrt(best);
     ++count;
@@ -883,16 +884,22 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     if (!radius) continue;
     const bool held =
         std::any_of(regions[r].begin(), regions[r].end(), [&](int32_t v) { return pinned[v]; });
-    std::vector<Vec3d> swept = held ? x : std::vector<Vec3d>();
-    std::vector<Vec3d>& target = held ? swept : x;
+    // A held cap's positions before the sweep (SweepCap moves only the region's vertices),
+    // put back when the swept cap passes farther from its points.
+    std::vector<Vec3d> unswept;
+    if (held)
+      for (int32_t v : regions[r]) unswept.push_back(x[v]);
     if (!SweepCap(mesh, nb, star, regions[r], free, gap, options.swept_length * *radius * l,
-                  options, target, cancel))
+                  options, x, cancel))
       return absl::CancelledError("hole caps cancelled");
     if (held) {
-      if (HeldPointsDistance(regions[r], pinned, x, swept) / l >
-          HeldPointsDistance(regions[r], pinned, x, x) / l + options.held_margin)
+      std::vector<Vec3d> swept;
+      for (int32_t v : regions[r]) swept.push_back(x[v]);
+      if (HeldPointsDistance(regions[r], pinned, unswept, swept) / l >
+          HeldPointsDistance(regions[r], pinned, unswept, unswept) / l + options.held_margin) {
+        for (size_t i = 0; i < regions[r].size(); ++i) x[regions[r][i]] = unswept[i];
         continue;
-      for (int32_t v : regions[r]) x[v] = swept[v];
+      }
     }
     ++st.swept;
   }

@@ -104,6 +104,17 @@ struct Options {
   ShrinkOptions shrink;
 };
 
+// "X,Y,Z,R" (--probe, --slices) appended to `boxes`; false when it is not four integers.
+bool ParseBox(const char* text, std::vector<std::array<int, 4>>& boxes) {
+  const std::vector<std::string> f = absl::StrSplit(text, ',');
+  std::array<int, 4> box{};
+  if (f.size() != 4) return false;
+  for (int k = 0; k < 4; ++k)
+    if (!absl::SimpleAtoi(f[k], &box[k])) return false;
+  boxes.push_back(box);
+  return true;
+}
+
 bool ParseArgs(int argc, char** argv, Options& o) {
   const char* env = std::getenv("MEMBRANE_SHARED_DIR");
   o.shared_dir = env != nullptr && *env != '\0' ? env : MEMBRANE_SOURCE_DIR "/../shared";
@@ -150,12 +161,7 @@ bool ParseArgs(int argc, char** argv, Options& o) {
         return false;
       }
     } else if (arg == "--probe" && has_value) {
-      std::vector<std::string> f = absl::StrSplit(argv[++i], ',');
-      std::array<int, 4> p{};
-      if (f.size() != 4) return false;
-      for (int k = 0; k < 4; ++k)
-        if (!absl::SimpleAtoi(f[k], &p[k])) return false;
-      o.probes.push_back(p);
+      if (!ParseBox(argv[++i], o.probes)) return false;
     } else if (arg == "--pocket-rays" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.refill.pocket_backed_rays)) return false;
     } else if (arg == "--pocket-loops" && has_value) {
@@ -163,12 +169,7 @@ bool ParseArgs(int argc, char** argv, Options& o) {
     } else if (arg == "--pocket-depth" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.refill.pocket_wall_depth)) return false;
     } else if (arg == "--slices" && has_value) {
-      std::vector<std::string> f = absl::StrSplit(argv[++i], ',');
-      std::array<int, 4> p{};
-      if (f.size() != 4) return false;
-      for (int k = 0; k < 4; ++k)
-        if (!absl::SimpleAtoi(f[k], &p[k])) return false;
-      o.slices.push_back(p);
+      if (!ParseBox(argv[++i], o.slices)) return false;
     } else if (arg == "--reference" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.reference_points) || o.reference_points < 0)
         return false;

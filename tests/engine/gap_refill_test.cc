@@ -53,6 +53,30 @@ int64_t OutsideIn(const VoxelGrid& grid, int z_from) {
   return count;
 }
 
+// Every voxel of the box where `where` holds that is not outside made hard (a scanned
+// surface), its position kept.
+void MakeHard(VoxelGrid& grid, const BoxPredicate& where) {
+  for (int z = 0; z < kN; ++z)
+    for (int y = 0; y < kN; ++y)
+      for (int x = 0; x < kN; ++x) {
+        const int64_t v = grid.Index(x + kAt, y + kAt, z + kAt);
+        if (IsOutside(grid.at(v)) || !where(x, y, z)) continue;
+        grid.set(v, IsBoundary(grid.at(v)) ? kBoundaryHard : kInsideHard);
+      }
+}
+
+// Runs the refill on `grid` with `options` and expects it to leave every voxel as it was;
+// returns its statistics.
+GapRefillStats ExpectNothingRefilled(VoxelGrid& grid, const GapRefillOptions& options) {
+  const std::vector<VoxelState> before = grid.states();
+  absl::StatusOr<GapRefillStats> stats = RefillGapChannels(grid, options, CancelToken::Never());
+  EXPECT_TRUE(stats.ok()) << stats.status();
+  if (!stats.ok()) return {};
+  EXPECT_EQ(stats->refilled_voxels, 0);
+  EXPECT_EQ(grid.states(), before);
+  return *stats;
+}
+
 void ExpectValidMembrane(const VoxelGrid& grid) {
   const absl::Status s = CheckMembraneInvariants(grid, InvariantOptions{});
   EXPECT_TRUE(s.ok()) << s;
@@ -93,20 +117,11 @@ TEST(RefillGapChannels, AChannelWithScannedWallsStays) {
     return z < 20 && x >= 11 && x < 19 && y >= 11 && y < 19;
   };
   VoxelGrid grid = Box(gap, channel);
-  for (int z = 0; z <= 20; ++z)
-    for (int y = 10; y < 20; ++y)
-      for (int x = 10; x < 20; ++x) {
-        const int64_t v = grid.Index(x + kAt, y + kAt, z + kAt);
-        if (IsOutside(grid.at(v))) continue;
-        grid.set(v, IsBoundary(grid.at(v)) ? kBoundaryHard : kInsideHard);
-      }
+  MakeHard(grid, [](int x, int y, int z) {
+    return z <= 20 && x >= 10 && x < 20 && y >= 10 && y < 20;
+  });
   ExpectValidMembrane(grid);
-  const std::vector<VoxelState> before = grid.states();
-  absl::StatusOr<GapRefillStats> stats =
-      RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never());
-  ASSERT_TRUE(stats.ok()) << stats.status();
-  EXPECT_EQ(stats->refilled_voxels, 0);
-  EXPECT_EQ(grid.states(), before);
+  ExpectNothingRefilled(grid, GapRefillOptions{});
 }
 
 // A hole 8 x 8 wide through the box between two gaps, its walls without data: the fill may
@@ -134,13 +149,9 @@ TEST(RefillGapChannels, RaysOpenToTheBorderAreCounted) {
     return z < 20 && x >= 11 && x < 19 && y >= 11 && y < 19;
   };
   VoxelGrid grid = Box(gap, channel);
-  const std::vector<VoxelState> before = grid.states();
   GapRefillOptions options;
   options.max_open_rays = 0;
-  absl::StatusOr<GapRefillStats> stats = RefillGapChannels(grid, options, CancelToken::Never());
-  ASSERT_TRUE(stats.ok()) << stats.status();
-  EXPECT_EQ(stats->refilled_voxels, 0);
-  EXPECT_EQ(grid.states(), before);
+  ExpectNothingRefilled(grid, options);
 }
 
 // A hollow carved behind the scanned skin through a narrow slot (3 x 8 voxels in the bottom
@@ -213,20 +224,9 @@ TEST(RefillGapChannels, AScannedHoleThroughTheBoxStays) {
   auto gap = [](int x, int y, int) { return x >= 10 && x < 20 && y >= 10 && y < 20; };
   auto hole = [](int x, int y, int) { return x >= 11 && x < 19 && y >= 11 && y < 19; };
   VoxelGrid grid = Box(gap, hole);
-  for (int z = 0; z < kN; ++z)
-    for (int y = 10; y < 20; ++y)
-      for (int x = 10; x < 20; ++x) {
-        const int64_t v = grid.Index(x + kAt, y + kAt, z + kAt);
-        if (IsOutside(grid.at(v))) continue;
-        grid.set(v, IsBoundary(grid.at(v)) ? kBoundaryHard : kInsideHard);
-      }
+  MakeHard(grid, gap);
   ExpectValidMembrane(grid);
-  const std::vector<VoxelState> before = grid.states();
-  absl::StatusOr<GapRefillStats> stats =
-      RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never());
-  ASSERT_TRUE(stats.ok()) << stats.status();
-  EXPECT_EQ(stats->refilled_voxels, 0);
-  EXPECT_EQ(grid.states(), before);
+  ExpectNothingRefilled(grid, GapRefillOptions{});
   EXPECT_EQ(ComputeVoxelTopology(grid).genus, std::vector<int>{1});
 }
 
@@ -240,26 +240,16 @@ TEST(RefillGapChannels, AnOpenContainerKeepsItsInside) {
     return z >= 2 && x >= 2 && x < kN - 2 && y >= 2 && y < kN - 2;
   };
   VoxelGrid grid = Box(Never, inside);
-  // The inner faces of the walls and the bottom hold data too.
-  for (int z = 0; z < kN; ++z)
-    for (int y = 0; y < kN; ++y)
-      for (int x = 0; x < kN; ++x) {
-        const int64_t v = grid.Index(x + kAt, y + kAt, z + kAt);
-        if (IsOutside(grid.at(v))) continue;
-        bool faces_inside = false;
-        for (int64_t off : grid.neighbour_offsets())
-          faces_inside |= IsOutside(grid.at(v + off)) && GenerationLabel(grid.at(v + off)) == 9;
-        if (faces_inside) grid.set(v, kInsideHard);
-      }
+  // The inner faces of the walls and the bottom hold data too: the voxels beside the inside.
+  MakeHard(grid, [&](int x, int y, int z) {
+    const int64_t v = grid.Index(x + kAt, y + kAt, z + kAt);
+    for (int64_t off : grid.neighbour_offsets())
+      if (IsOutside(grid.at(v + off)) && GenerationLabel(grid.at(v + off)) == 9) return true;
+    return false;
+  });
   SetFinalMembraneStates(grid);
   ExpectValidMembrane(grid);
-  const std::vector<VoxelState> before = grid.states();
-  absl::StatusOr<GapRefillStats> stats =
-      RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never());
-  ASSERT_TRUE(stats.ok()) << stats.status();
-  EXPECT_EQ(stats->refilled_voxels, 0);
-  EXPECT_EQ(stats->pocket_voxels, 0);
-  EXPECT_EQ(grid.states(), before);
+  EXPECT_EQ(ExpectNothingRefilled(grid, GapRefillOptions{}).pocket_voxels, 0);
 }
 
 TEST(RefillGapChannels, DisabledChangesNothing) {
@@ -268,13 +258,9 @@ TEST(RefillGapChannels, DisabledChangesNothing) {
     return z < 20 && x >= 11 && x < 19 && y >= 11 && y < 19;
   };
   VoxelGrid grid = Box(gap, channel);
-  const std::vector<VoxelState> before = grid.states();
   GapRefillOptions options;
   options.enabled = false;
-  absl::StatusOr<GapRefillStats> stats = RefillGapChannels(grid, options, CancelToken::Never());
-  ASSERT_TRUE(stats.ok()) << stats.status();
-  EXPECT_EQ(stats->refilled_voxels, 0);
-  EXPECT_EQ(grid.states(), before);
+  ExpectNothingRefilled(grid, options);
 }
 
 TEST(RefillGapChannels, OptionsOutOfRangeAreRefused) {

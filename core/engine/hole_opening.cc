@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/engine/incursion_test.h"
+#include "core/engine/plug_wall_core.h"
 #include "core/engine/post_process.h"
 #include "core/engine/voxel_state_words.h"
 #include "core/engine/voxel_topology.h"
@@ -209,6 +210,12 @@ absl::StatusOr<HoleOpeningStats> OpenPluggedHoles(VoxelGrid& grid,
           if (stats.opened + stats.refused >= options.max_openings) return done();
           if (!finder.Walk(i, dir, plug) || !finder.Surrounded(plug)) continue;
           const int64_t mid = plug.path[(plug.path.size() - 1) / 2];
+          if (options.wall_core_depth > 0 &&
+              PlugInsideWallCore(grid, mid, plug.dir, options.ring_radius,
+                                 options.wall_core_depth)) {
+            ++stats.wall_cores;
+            continue;
+          }
           if (OutsideJoinedInCube(grid, mid, plug.before, plug.after, options.join_radius))
             continue;
           if (!topology) topology = Counts(ComputeVoxelTopology(grid));

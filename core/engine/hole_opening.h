@@ -45,11 +45,17 @@ struct HoleOpeningOptions {
   // Plugs carved at most: bounds hostile clouds (each plug's topology change is counted in the
   // cube of join_radius around it, or over the grid when that cannot tell).
   int max_openings = 32;
+  // A plug is no hole when every ray across it (as above) that meets data finds the outside
+  // within wall_core_depth non-hard voxels past that data: it lies in the core of a thin wall,
+  // between digs through the data gaps of the wall's two faces (PlugInsideWallCore); 0: not
+  // tested.
+  int wall_core_depth = 3;
 };
 
 struct HoleOpeningStats {
   int64_t opened = 0;         // plugs carved, each one more handle
   int64_t refused = 0;        // plugs whose carving would not add exactly one handle (undone)
+  int64_t wall_cores = 0;     // plugs that passed the data tests but lie in a wall's core
   int64_t carved_voxels = 0;  // voxels turned outside
   int64_t whole_grid_counts = 0;  // plugs whose topology change was counted over the grid,
                                   // not around the plug (CountCarveLocally undecided)

@@ -1,7 +1,8 @@
 // bench_topology: the topology table of the shrink. Every cloud of ../shared/data/clouds at
 // 1x, 1.25x, 1.5x and 2x its formula-(1) voxel size, and the synthetic shapes of
-// tests/engine/shrink_topology_test.cc, each shrunk once (ShrinkMembrane, default options): the
-// shells and genus against the expected ones, the shrink's wall seconds, and for every miss
+// tests/engine/shrink_topology_test.cc and cup_topology_test.cc, each shrunk once
+// (ShrinkMembrane, default options): the shells and genus against the expected ones (for the
+// cups, the inside open too), the shrink's wall seconds, and for every miss
 // where its handles and merges are, what the handle retry did and how many plugged holes were
 // opened. On request, the data's own topology beside the membrane's (--data-genus, --probe)
 // and the same runs on an even sample of each reference mesh (--reference). See README.md.
@@ -31,6 +32,7 @@
 #include "core/synth/shape_catalog.h"
 #include "core/synth/synthesize.h"
 #include "tests/bench/bench_util.h"
+#include "tests/support/cup_cloud.h"
 #include "tests/support/shared_models.h"
 #include "tests/support/topology_locator.h"
 
@@ -42,7 +44,8 @@ constexpr char kUsage[] =
     "                      [--no-real] [--locate] [--retry T,S,W] [--thick-wall-run K]\n"
     "                      [--thick-wall-detour R] [--thin-part-spread S] [--depth-bound D]\n"
     "                      [--rerun-thin K] [--no-retry] [--strict-only] [--no-close-cut-loops]\n"
-    "                      [--no-hole-opening] [--far-steps F] [--near-far-steps N]\n"
+    "                      [--no-hole-opening] [--wall-core-depth D] [--far-steps F]\n"
+    "                      [--near-far-steps N]\n"
     "                      [--max-cut-fraction C] [--data-genus R]\n"
     "                      [--probe X,Y,Z,R] [--reference N] [--slices X,Y,Z,R]\n"
     "                      [--pocket-rays K] [--pocket-depth D] [--pocket-loops L]\n"
@@ -82,6 +85,9 @@ constexpr char kUsage[] =
     "                   labels; with data/models/MODEL.obj, those carved out of the model\n"
     "                   marked, a count per label, and the topology with them put back\n"
     "  --no-hole-opening  leave plugged holes closed (ShrinkOptions::holes.enabled false)\n"
+    "  --wall-core-depth D  the hole opening's wall-core test: a plug is no hole when every\n"
+    "                   ray across it meeting data has the outside within D voxels past it\n"
+    "                   (0 = not tested; HoleOpeningOptions::wall_core_depth)\n"
     "  --no-retry       no handle retry (ShrinkOptions::retry.enabled false)\n"
     "  --strict-only    every generation under the handle retry's strict guard sizes, no retry\n"
     "  --no-close-cut-loops  the piece separation returns only simple cut voxels\n"
@@ -182,6 +188,8 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       o.shrink.retry.enabled = false;
     } else if (arg == "--no-separation") {
       o.shrink.separation.enabled = false;
+    } else if (arg == "--wall-core-depth" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.holes.wall_core_depth)) return false;
     } else if (arg == "--no-hole-opening") {
       o.shrink.holes.enabled = false;
     } else if (arg == "--no-synthetic") {
@@ -484,7 +492,7 @@ void PrintSlices(const VoxelGrid& grid, const std::array<int, 4>& b, const Trian
 // `model`: the cloud's reference mesh, read for --slices, else nullptr.
 bool RunOne(const Options& o, const std::string& name, double factor, const PointCloud& cloud,
             double voxel_size, const ShapeTopology& expected, bool genus_asserted, Tally& tally,
-            const TriangleMesh* model = nullptr) {
+            const TriangleMesh* model = nullptr, double max_volume = 0) {
   VoxelizeOptions vo;
   vo.voxel_size = voxel_size;
   absl::StatusOr<Voxelization> vox = Voxelize(cloud.points, vo);
@@ -553,13 +561,25 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
   const absl::Status inv = CheckMembraneInvariants(vox->grid, io);
   std::vector<int> genus = topo.genus;
   std::sort(genus.begin(), genus.end());
+  // max_volume > 0 (the cups): the membrane's voxels must hold less, or the inside is filled.
+  int64_t solid = 0;
+  if (max_volume > 0)
+    for (int64_t i = 0; i < vox->grid.size(); ++i) solid += !IsOutside(vox->grid.at(i));
+  const double volume = std::pow(voxel_size, 3) * static_cast<double>(solid);
+  const bool filled = max_volume > 0 && volume >= max_volume;
   const bool right = inv.ok() && topo.shells == expected.shells && topo.cavities == 0 &&
-                     (!genus_asserted || genus == expected.genus);
+                     (!genus_asserted || genus == expected.genus) && !filled;
   tally.right += right;
   const auto& d = vox->grid.dims();
   std::string holes_note =
       result->holes.opened > 0 ? absl::StrCat("  holes opened: ", result->holes.opened) : "";
+  if (result->holes.wall_cores > 0)
+    absl::StrAppend(&holes_note, "  wall-core plugs kept: ", result->holes.wall_cores);
   const PieceSeparationStats& sep = result->separation;
+  if (max_volume > 0) {
+    absl::StrAppend(&holes_note, absl::StrFormat("  volume %.3f%s", volume,
+                                                 filled ? " (inside filled)" : ""));
+  }
   if (result->refill.pocket_voxels > 0) {
     absl::StrAppend(&holes_note, absl::StrFormat("  refill %d (pockets %d, loops closed %d)",
                                                  result->refill.refilled_voxels,
@@ -742,7 +762,7 @@ void RunReal(const Options& o, Tally& tally) {
   }
 }
 
-// The runs of tests/engine/shrink_topology_test.cc.
+// The runs of tests/engine/shrink_topology_test.cc and cup_topology_test.cc.
 void RunSynthetic(const Options& o, Tally& tally) {
   for (const char* shape : {"sphere", "two-spheres", "torus", "capped-sphere"}) {
     for (double density : {1.0, 30.0}) {
@@ -761,6 +781,17 @@ void RunSynthetic(const Options& o, Tally& tally) {
       for (double f : o.factors) {
         RunOne(o, name, f, *cloud, f * l, ExpectedTopology(shape), true, tally);
       }
+    }
+  }
+  // Thin-walled open cups (tests/engine/cup_topology_test.cc): walls of 2 to 8 voxels at 1x;
+  // a membrane holding half the cylinder's volume or more has its inside filled: a miss.
+  for (double wall : {2.0, 3.0, 4.5, 8.0}) {
+    const std::string name = absl::StrCat("cup-wall", wall);
+    if (!Selected(o, name)) continue;
+    const PointCloud cloud = testing::CupCloud(wall, 100000);
+    for (double f : o.factors) {
+      RunOne(o, name, f, cloud, f * testing::CupVoxelSize(100000), ExpectedTopology("sphere"),
+             true, tally, nullptr, 0.5 * testing::CupCylinderVolume());
     }
   }
   if (!Selected(o, "cube-pinholes")) return;

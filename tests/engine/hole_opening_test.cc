@@ -128,9 +128,13 @@ TEST(HoleOpeningTest, KeepsAWallsDataHoleClosed) {
   ASSERT_TRUE(stats.ok()) << stats.status();
   EXPECT_EQ(stats->opened, 0);
   EXPECT_EQ(grid.states(), before);
-  // The facing of the data is what keeps it: without that test the plug is opened.
+  // The facing of the data keeps it, and so does the wall-core test (the wall's face has the
+  // outside right behind it); without both the plug is opened.
   HoleOpeningOptions any_facing;
   any_facing.max_facing_cos = 2;
+  EXPECT_EQ(OpenPluggedHoles(grid, any_facing, &index, CancelToken::Never())->opened, 0);
+  EXPECT_EQ(grid.states(), before);
+  any_facing.wall_core_depth = 0;
   EXPECT_EQ(OpenPluggedHoles(grid, any_facing, &index, CancelToken::Never())->opened, 1);
   EXPECT_EQ(Genus(grid), 1);
 }

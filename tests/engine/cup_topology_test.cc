@@ -1,0 +1,74 @@
+// Thin-walled open cups (issue 18): walls and bottom 2, 3, 4.5 and 8 voxels thick at the
+// formula-(1) voxel, shrunk at 1x and 1.5x that voxel, give one shell of genus 0, with the inside
+// open where the wall is at least 3 voxels at the run's voxel. Walls of 3-5 voxels sampled at about a point a voxel let the shrink dig into their core
+// through the data gaps of both faces; the plug left between two digs must not be opened as a
+// hole (docs/engine-decisions.md "Plugged holes opened from the data", the wall-core test).
+#include <cstdint>
+#include <string>
+#include <tuple>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_replace.h"
+#include "gtest/gtest.h"
+#include "tests/support/cup_cloud.h"
+#include "tests/support/shrink_fixture.h"
+
+namespace membrane {
+namespace {
+
+using testing::CupCloud;
+using testing::CupCylinderVolume;
+using testing::CupSolidVolume;
+using testing::CupVoxelSize;
+using testing::ShrinkCloud;
+
+constexpr int64_t kCupPoints = 100000;
+
+// The membrane's volume: its non-outside voxels, model units cubed.
+double MembraneVolume(const VoxelGrid& grid) {
+  int64_t solid = 0;
+  for (int64_t i = 0; i < grid.size(); ++i) solid += !IsOutside(grid.at(i));
+  const double l = grid.voxel_size();
+  return static_cast<double>(solid) * l * l * l;
+}
+
+class CupTopologyTest : public ::testing::TestWithParam<std::tuple<double, double>> {};
+
+TEST_P(CupTopologyTest, OneShellOfGenusZeroWithTheInsideOpen) {
+  const auto& [wall_voxels, factor] = GetParam();
+  const PointCloud cloud = CupCloud(wall_voxels, kCupPoints);
+  auto run = ShrinkCloud(cloud, 1.0, {}, factor * CupVoxelSize(kCupPoints));
+  ASSERT_TRUE(run.ok()) << run.status();
+  EXPECT_TRUE(run->invariants.ok()) << run->Describe();
+  EXPECT_EQ(run->topology.shells, 1) << run->Describe();
+  EXPECT_EQ(run->topology.genus, std::vector<int>{0}) << run->Describe();
+  EXPECT_EQ(run->topology.cavities, 0) << run->Describe();
+  // The voxels hold the wall and about a voxel more on each face; a filled inside holds the
+  // cylinder's volume. Walls of 2 voxels or less at the run's voxel keep the inside filled: a
+  // plate that reaches the inner face finds a hard run of at most 3 voxels with the exterior of
+  // another generation behind it, joined to this side only over the rim, far outside the
+  // thin-part detour's cube, and the thick-wall incursion test undoes it
+  // (docs/engine-decisions.md "A plug in a wall's core is no hole", known limits). Asserted as
+  // it is, so that a rule which opens them turns this into the open-inside assertion.
+  const double wall = wall_voxels * CupVoxelSize(kCupPoints);
+  const double volume = MembraneVolume(run->voxels.grid);
+  if (wall_voxels / factor >= 3) {
+    EXPECT_GT(volume, CupSolidVolume(wall)) << run->Describe();
+    EXPECT_LT(volume, 2 * CupSolidVolume(wall)) << run->Describe();
+  } else {
+    EXPECT_GT(volume, 0.9 * CupCylinderVolume()) << run->Describe();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Walls, CupTopologyTest,
+                         ::testing::Combine(::testing::Values(2.0, 3.0, 4.5, 8.0),
+                                            ::testing::Values(1.0, 1.5)),
+                         [](const auto& info) {
+                           return absl::StrReplaceAll(
+                               absl::StrCat("wall", std::get<0>(info.param), "_x",
+                                            std::get<1>(info.param)),
+                               {{".", "p"}});
+                         });
+
+}  // namespace
+}  // namespace membrane

@@ -44,12 +44,12 @@ TEST_P(CupTopologyTest, OneShellOfGenusZeroWithTheInsideOpen) {
   EXPECT_EQ(run->topology.genus, std::vector<int>{0}) << run->Describe();
   EXPECT_EQ(run->topology.cavities, 0) << run->Describe();
   // The voxels hold the wall and about a voxel more on each face; a filled inside holds the
-  // cylinder's volume. Walls of 2 voxels or less at the run's voxel keep the inside filled: a
-  // plate that reaches the inner face finds a hard run of at most 3 voxels with the exterior of
-  // another generation behind it, joined to this side only over the rim, far outside the
-  // thin-part detour's cube, and the thick-wall incursion test undoes it
-  // (docs/engine-decisions.md "A plug in a wall's core is no hole", known limits). Asserted as
-  // it is, so that a rule which opens them turns this into the open-inside assertion.
+  // cylinder's volume. Walls of 2 voxels or less at the run's voxel keep the inside filled:
+  // the thick-wall incursion test undoes the chains that reach the bottom from inside (runs of
+  // 2 hard voxels between the padding under the cup and the carved inside, whose points show
+  // one face; docs/engine-decisions.md "A plug in a wall's core is no hole", known limits).
+  // Asserted as it is, so that a rule which opens them turns this into the open-inside
+  // assertion.
   const double wall = wall_voxels * CupVoxelSize(kCupPoints);
   const double volume = MembraneVolume(run->voxels.grid);
   if (wall_voxels / factor >= 3) {

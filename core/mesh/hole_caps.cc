@@ -401,11 +401,11 @@ std::optional<AlgebraicSphere> BandSphere(const TriangleMesh& mesh, const Rows& 
   return sphere;
 }
 
-// The radius of a wrapped rim around a post or the edge of a thin part whose end the hole
-// swallowed (HoleCapOptions::tube_flatness, tube_lead): the band's mean distance (voxels) from
-// the axis through its centroid toward the middle of the cap (the cap's vertices in the gap,
-// `gap`, at their positions in `x`). nullopt where the band's normals are not square to that
-// axis (no post), or the cap lies too little ahead of the band along it.
+// The radius of a rim (wrapped, or a spline cap's) around a post or the edge of a thin part
+// whose end the hole swallowed (HoleCapOptions::tube_flatness, tube_lead): the band's mean
+// distance (voxels) from the axis through its centroid toward the middle of the cap (the cap's
+// vertices in the gap, `gap`, at their positions in `x`). nullopt where the band's normals
+// are not square to that axis (no post), or the cap lies too little ahead of the band along it.
 std::optional<double> TubeRadius(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
                                  const std::vector<int32_t>& region,
                                  const std::vector<char>& free, const std::vector<char>& gap,
@@ -603,6 +603,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       o.max_samples < 3 || !(o.smoothing >= 0) || !(o.min_rim_cosine >= -1) ||
       !(o.wrap_rms >= 0) || o.wrapped_iterations < 0 || !(o.tube_flatness >= 0) ||
       !(o.tube_lead >= 0) || !(o.swept_length >= 0 && o.swept_length <= 16) ||
+      !(o.spline_swept_length >= 0 && o.spline_swept_length <= 16) ||
       !(o.sphere_band_fit >= 0) ||
       !(o.sphere_margin >= 0) || !(o.converged_tolerance > 0) ||
       o.back_off_halvings < 0 || !(o.max_shell_share > 0 && o.max_shell_share <= 1) ||
@@ -615,7 +616,8 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         ", max_samples ", o.max_samples, ", smoothing ", o.smoothing, ", min_rim_cosine ",
         o.min_rim_cosine, ", wrap_rms ", o.wrap_rms, ", wrapped_iterations ",
         o.wrapped_iterations, ", tube_flatness ", o.tube_flatness, ", tube_lead ", o.tube_lead,
-        ", swept_length ", o.swept_length, ", sphere_band_fit ", o.sphere_band_fit,
+        ", swept_length ", o.swept_length, ", spline_swept_length ", o.spline_swept_length,
+        ", sphere_band_fit ", o.sphere_band_fit,
         ", sphere_margin ", o.sphere_margin, ", converged_tolerance ", o.converged_tolerance,
         ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ", o.max_shell_share,
         ", min_median_points ", o.min_median_points, ", anchor_radius ", o.anchor_radius, ", held_margin ", o.held_margin));
@@ -875,10 +877,14 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     for (int32_t v : regions[r]) x[v] = converged[v];
     ++st.sphere_converged;
   }
-  // Posts whose end the hole swallowed run on past the rim (HoleCapOptions::swept_length),
-  // held caps where their points agree.
-  for (size_t r = 0; r < regions.size() && options.swept_length > 0; ++r) {
-    if (starts[r] != CapStart::kWrapped) continue;
+  // Posts whose end the hole swallowed run on past the rim (HoleCapOptions::swept_length,
+  // spline_swept_length), held caps where their points agree. A rim in its plane (the
+  // harmonic start: an open flat base) is no post.
+  for (size_t r = 0; r < regions.size(); ++r) {
+    const double length = starts[r] == CapStart::kWrapped  ? options.swept_length
+                          : starts[r] == CapStart::kSpline ? options.spline_swept_length
+                                                           : 0.0;
+    if (!(length > 0)) continue;
     const std::optional<double> radius =
         TubeRadius(mesh, nb, star, regions[r], free, gap, x, l, options);
     if (!radius) continue;
@@ -889,7 +895,7 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     std::vector<Vec3d> unswept;
     if (held)
       for (int32_t v : regions[r]) unswept.push_back(x[v]);
-    if (!SweepCap(mesh, nb, star, regions[r], free, gap, options.swept_length * *radius * l,
+    if (!SweepCap(mesh, nb, star, regions[r], free, gap, length * *radius * l,
                   options, x, cancel))
       return absl::CancelledError("hole caps cancelled");
     if (held) {

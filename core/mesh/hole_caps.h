@@ -102,6 +102,11 @@ struct HoleCapOptions {
   double tube_flatness = 0.25;
   double tube_lead = 0.1;
   double swept_length = 0.75;
+  // A cap shaped by the spline (its rim a height field) around a post whose end the hole
+  // swallowed (the same tube test: a leg's hoof, the tip of a horn) is swept on too, by
+  // spline_swept_length radii: the spline already lifts such a cap along the walls' slope
+  // into a dome, and a sweep as long as a wrapped rim's carries it past the part's end.
+  double spline_swept_length = 0.25;
   // The solves to convergence stop once no step moves a vertex by more than this: the
   // bi-Laplacian's steps fall below `tolerance` hundreds of iterations before the plate
   // settles (a cap of 1,588 vertices: 144 iterations at 0.01 voxel, 398 at 0.001, 589 at
@@ -158,8 +163,9 @@ struct HoleCapStats {
 // where the cap has held vertices and its rim alone does not make the converged plate bulge
 // away from them (converge_held, held_margin). Regions with no fixed neighbour are left.
 // A converged cap whose rim wraps around a post or a thin part's edge is then swept on along
-// the part's walls (tube_flatness, tube_lead, swept_length), unless points seen inside its gap
-// hold it and the swept cap passes farther from them (held_margin). Then it searches the
+// the part's walls (tube_flatness, tube_lead, swept_length), and so is a spline cap around a
+// post (spline_swept_length), unless points seen inside its gap hold it and the swept cap
+// passes farther from them (held_margin). Then it searches the
 // faces around moved vertices for crossings and sends the moved vertices of each crossing
 // pair back toward where they were (halfway back_off_halvings times, then all the way) until
 // no crossing involves a moved vertex: where a cap would cross the mesh, that part of it is

@@ -14,6 +14,15 @@ voxels (a crater, a channel, a cap off the surface); `cut_off` the largest of a 
 sample to the mesh (a bump the mesh cuts off), also in voxels. `signed_gap` is the mean signed
 distance of the gap mesh samples (positive: outside the reference, along its closest normal),
 in voxels: a cap that sinks into the solid is negative.
+
+When the cloud has the eval tools' metadata beside it (CLOUD.json with `hole_centres` and
+`hole_radius_abs`: the holes protocol), `holes` lists per hole, over the samples within 1.3 hole
+radii of its centre (the cap's rings reach past the hole's edge): `deepest` of the mesh samples
+in voxels with its side (`deepest_signed`, negative inside the reference's solid), `cut_off` of
+the reference samples, and `over2`, the share of those mesh samples farther than 2 voxels from
+the reference (issue 17's bound for a crater where the reference lies). A mesh sample in the
+middle of a part 16 voxels thick lies at most 8 voxels from the reference, so `deepest` stops
+growing once a cap cuts through a part; `cut_off` and `over2` keep telling how much is cut.
 """
 import argparse
 import json
@@ -55,6 +64,30 @@ def split(mesh, gt, points, voxel, samples, eval_dir):
         o3d.core.Tensor(np.ascontiguousarray(Pm[gap_m], np.float32)))['points'].numpy()
     signed = np.einsum('ij,ij->i', Pm[gap_m] - closest, n_acc[gap_m]) if gap_m.any() else []
 
+    holes = []
+    meta_path = os.path.splitext(points)[0] + '.json'
+    meta = {}
+    if os.path.exists(meta_path):
+        with open(meta_path) as fh:
+            meta = json.load(fh)
+    if meta.get('hole_centres') and meta.get('hole_radius_abs'):
+        reach = 1.3 * float(meta['hole_radius_abs'])
+        for centre in meta['hole_centres']:
+            c = np.asarray(centre, dtype=float)
+            near_m = np.linalg.norm(Pm - c, axis=1) < reach
+            near_g = np.linalg.norm(Pg - c, axis=1) < reach
+            if not near_m.any() or not near_g.any():
+                continue
+            k = int(np.flatnonzero(near_m)[np.argmax(d_acc[near_m])])
+            at = scene.compute_closest_points(o3d.core.Tensor(
+                np.ascontiguousarray(Pm[k:k + 1], np.float32)))['points'].numpy()[0]
+            holes.append({
+                'deepest': float(d_acc[k] / voxel),
+                'deepest_signed': float(np.dot(Pm[k] - at, n_acc[k]) / voxel),
+                'cut_off': float(d_comp[near_g].max() / voxel),
+                'over2': float(np.mean(d_acc[near_m] > 2.0 * voxel)),
+            })
+
     def pct(x):
         return float(100 * x / diag)
 
@@ -69,6 +102,8 @@ def split(mesh, gt, points, voxel, samples, eval_dir):
         'cut_off': float(d_comp.max() / voxel),
         'signed_gap': float(np.mean(signed) / voxel) if len(signed) else 0.0,
     }
+    if holes:
+        rep['holes'] = holes
     return rep
 
 
@@ -89,7 +124,9 @@ def main():
     if args.json:
         print(json.dumps(rep))
     else:
-        print(' '.join(f'{k} {v:.4f}' for k, v in rep.items()))
+        print(' '.join(f'{k} {v:.4f}' for k, v in rep.items() if k != 'holes'))
+        for i, h in enumerate(rep.get('holes', [])):
+            print(f'hole {i} ' + ' '.join(f'{k} {v:.4f}' for k, v in h.items()))
     return 0
 
 

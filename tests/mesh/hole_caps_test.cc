@@ -70,6 +70,8 @@ TEST(HoleCaps, SphereHoleIsSpannedCloseToTheSphere) {
   // Measured: 6.2 voxels without, 0.56 with.
   EXPECT_LT(with.max_error_in_hole, 1.0) << "without caps " << without.max_error_in_hole;
   EXPECT_EQ(with.caps.backed_off, 0);
+  // A patch of a sphere is no post: its band's normals point along the axis to the cap.
+  EXPECT_EQ(with.caps.swept, 0);
   testing::ExpectValidReport(without.check, 1, {0});
   testing::ExpectValidReport(with.check, 1, {0});
 }
@@ -237,6 +239,9 @@ TEST(HoleCaps, RefusesOptionsOutOfRange) {
   EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument);
   options = {};
   options.swept_length = -1;
+  EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument);
+  options = {};
+  options.spline_swept_length = -1;
   EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument);
   options = {};
   options.tube_flatness = -0.1;

@@ -23,7 +23,14 @@ class FlatBitset {
   // The same, with the words taken from `arena` while it has room (it must outlive this).
   FlatBitset(int64_t bits, PlaneArena* arena)
       : bits_(bits),
-        words_(static_cast<size_t>((bits + 63) / 64), 0, HugePageAllocator<uint64_t>(arena)) {}
+        words_(static_cast<size_t>((bits + 63) / 64), 0, UnfilledAllocator<uint64_t>(arena)) {}
+  // Tag of the constructor that leaves the words unset.
+  struct Unset {};
+  // The same with the words unset: the caller writes every word before reading any
+  // (clear_all() on threads(): a large plane's first writes are its page faults).
+  FlatBitset(int64_t bits, PlaneArena* arena, Unset)
+      : bits_(bits),
+        words_(static_cast<size_t>((bits + 63) / 64), UnfilledAllocator<uint64_t>(arena)) {}
 
   FlatBitset(const FlatBitset& other)
       : bits_(other.bits_), threads_(other.threads_), words_(other.words_) {}
@@ -131,7 +138,7 @@ class FlatBitset {
 
   int64_t bits_ = 0;
   int threads_ = 1;
-  std::vector<uint64_t, HugePageAllocator<uint64_t>> words_;
+  std::vector<uint64_t, UnfilledAllocator<uint64_t>> words_;
   // The words the in-place shifted passes on threads save before they write (at most a
   // sixteenth of the bitset; empty on one thread).
   std::vector<uint64_t> halo_;

@@ -10,6 +10,9 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
 
 #include "core/engine/voxel_state.h"
@@ -39,9 +42,38 @@ constexpr bool IsFaceStep(int k) {
   return (d.x != 0) + (d.y != 0) + (d.z != 0) == 1;
 }
 
+// std::allocator, except that a container's size constructor and resize(n) leave the new
+// elements unset (default-initialized): the grid's states can then be written first on several
+// threads, where a value-initializing constructor writes every byte once more on one thread.
+// Plain pages (no huge-page advice, unlike UnfilledAllocator): fresh huge pages fault several
+// times slower than 4 KB ones on the shared VM (tests/bench/2026-12-04-scale-serial.txt).
+template <typename T>
+struct UnsetAllocator : std::allocator<T> {
+  UnsetAllocator() = default;
+  template <typename U>
+  UnsetAllocator(const UnsetAllocator<U>&) {}
+  template <typename U>
+  struct rebind {
+    using other = UnsetAllocator<U>;
+  };
+  template <typename U>
+  void construct(U* p) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// The states of a grid's voxels, in index order.
+using VoxelStates = std::vector<VoxelState, UnsetAllocator<VoxelState>>;
+
 class VoxelGrid {
  public:
   static constexpr int kPadding = 2;
+  // Tag of the constructor that leaves the states unset.
+  struct Unset {};
 
   VoxelGrid() = default;
   // A grid of dims[0] x dims[1] x dims[2] voxels (padding included), all set to `fill`.
@@ -50,12 +82,15 @@ class VoxelGrid {
             VoxelState fill = kInsideSoft)
       : dims_(dims), origin_(origin), voxel_size_(voxel_size),
         states_(static_cast<size_t>(dims[0]) * dims[1] * dims[2], fill) {
-    const std::array<int64_t, 3> st = strides();
-    for (int k = 0, n = 0; k < 27; ++k) {
-      const Coord& d = kBlockSteps[k];
-      block_offsets_[k] = d.x * st[0] + d.y * st[1] + d.z * st[2];
-      if (k != kBlockCentre) neighbour_offsets_[n++] = block_offsets_[k];
-    }
+    SetOffsets();
+  }
+  // The same grid with its states unset: the caller writes every voxel before any is read
+  // (Voxelize() does on the run's threads: at 2.2e9 voxels a fill on one thread takes seconds
+  // of page faults and writes).
+  VoxelGrid(std::array<int, 3> dims, std::array<double, 3> origin, double voxel_size, Unset)
+      : dims_(dims), origin_(origin), voxel_size_(voxel_size),
+        states_(static_cast<size_t>(dims[0]) * dims[1] * dims[2]) {
+    SetOffsets();
   }
 
   // Size in voxels along x, y, z, padding included.
@@ -122,14 +157,23 @@ class VoxelGrid {
             origin_[2] + (c.z + 0.5) * voxel_size_};
   }
 
-  const std::vector<VoxelState>& states() const { return states_; }
-  std::vector<VoxelState>& mutable_states() { return states_; }
+  const VoxelStates& states() const { return states_; }
+  VoxelStates& mutable_states() { return states_; }
 
  private:
+  void SetOffsets() {
+    const std::array<int64_t, 3> st = strides();
+    for (int k = 0, n = 0; k < 27; ++k) {
+      const Coord& d = kBlockSteps[k];
+      block_offsets_[k] = d.x * st[0] + d.y * st[1] + d.z * st[2];
+      if (k != kBlockCentre) neighbour_offsets_[n++] = block_offsets_[k];
+    }
+  }
+
   std::array<int, 3> dims_{0, 0, 0};
   std::array<double, 3> origin_{0, 0, 0};
   double voxel_size_ = 1.0;
-  std::vector<VoxelState> states_;
+  VoxelStates states_;
   std::array<int64_t, 27> block_offsets_{};
   std::array<int64_t, 26> neighbour_offsets_{};
 };

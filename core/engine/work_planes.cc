@@ -15,8 +15,11 @@ bool WorkPlanes::Ensure(int count, const CancelToken& cancel) {
     // Fresh pages are slow enough that twenty planes of a large grid take longer than a
     // cancel may wait.
     if (cancel.cancelled()) return false;
-    planes_.push_back(std::make_unique<FlatBitset>(nv, arena_.get()));
+    // Zeroed on the planes' threads: these are the planes' first writes, and on a large grid
+    // their page faults were a tenth of the calling thread's time in a 2-thread run.
+    planes_.push_back(std::make_unique<FlatBitset>(nv, arena_.get(), FlatBitset::Unset{}));
     planes_.back()->set_threads(threads_);
+    planes_.back()->clear_all();
   }
   return true;
 }

@@ -21,25 +21,6 @@ namespace {
 // value-initializing fill (a memset of tens of MB on a full search) would be one more pass
 // over memory that the search writes anyway.
 template <typename T>
-struct UnfilledAllocator : HugePageAllocator<T> {
-  UnfilledAllocator() = default;
-  template <typename U>
-  UnfilledAllocator(const UnfilledAllocator<U>& other) : HugePageAllocator<T>(other) {}
-  template <typename U>
-  struct rebind {
-    using other = UnfilledAllocator<U>;
-  };
-  // resize(n) and the size constructor default-initialize: nothing for these trivial types.
-  template <typename U>
-  void construct(U* p) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-template <typename T>
 using BigVector = std::vector<T, UnfilledAllocator<T>>;
 
 using Box = FaceBlockBoxes::Box;

@@ -74,7 +74,7 @@ int Run(int argc, char** argv) {
       return 2;
     }
     std::vector<Times> times(threads.size());
-    std::vector<VoxelState> first;
+    VoxelStates first;
     std::string grid;
     for (int r = 0; r < repeats; ++r)
       for (size_t k = 0; k < threads.size(); ++k) {

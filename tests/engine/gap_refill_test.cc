@@ -68,7 +68,7 @@ void MakeHard(VoxelGrid& grid, const BoxPredicate& where) {
 // Runs the refill on `grid` with `options` and expects it to leave every voxel as it was;
 // returns its statistics.
 GapRefillStats ExpectNothingRefilled(VoxelGrid& grid, const GapRefillOptions& options) {
-  const std::vector<VoxelState> before = grid.states();
+  const VoxelStates before = grid.states();
   absl::StatusOr<GapRefillStats> stats = RefillGapChannels(grid, options, CancelToken::Never());
   EXPECT_TRUE(stats.ok()) << stats.status();
   if (!stats.ok()) return {};

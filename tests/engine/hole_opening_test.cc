@@ -121,7 +121,7 @@ TEST(HoleOpeningTest, KeepsAWallsDataHoleClosed) {
   VoxelGrid grid = Membrane(
       [](int x, int y, int z) { return x >= 2 && x < 38 && y >= 2 && y < 38 && z >= 18 && z < 20; },
       points);
-  const std::vector<VoxelState> before = grid.states();
+  const VoxelStates before = grid.states();
   const HardVoxelPoints index(grid, points);
   absl::StatusOr<HoleOpeningStats> stats =
       OpenPluggedHoles(grid, HoleOpeningOptions(), &index, CancelToken::Never());

@@ -190,7 +190,7 @@ TEST(SeparateDataPieces, TheNearerStepsAreNotTakenForNoFewerHandles) {
 
 // `grid` comes out unchanged, its data counted as `pieces` pieces.
 void ExpectLeftAlone(VoxelGrid grid, int pieces) {
-  const std::vector<VoxelState> before = grid.states();
+  const VoxelStates before = grid.states();
   const Outcome out = Separate(grid);
   EXPECT_EQ(out.stats.pieces, pieces);
   EXPECT_FALSE(out.stats.separated);
@@ -224,7 +224,7 @@ TEST(SeparateDataPieces, ACutAcrossAWholeSolidIsRefused) {
       }
   SetFinalMembraneStates(grid);
   ASSERT_EQ(ComputeVoxelTopology(grid).shells, 1);
-  const std::vector<VoxelState> before = grid.states();
+  const VoxelStates before = grid.states();
   const Outcome out = Separate(grid);
   EXPECT_EQ(out.stats.pieces, 2);
   EXPECT_FALSE(out.stats.separated);

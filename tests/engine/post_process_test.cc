@@ -32,7 +32,7 @@ int64_t CountState(const VoxelGrid& grid, VoxelState state) {
 
 TEST(ConnectInsideHardVoxels, ASealedInteriorLeavesTheWallAsItIs) {
   VoxelGrid grid = HollowBox(20);
-  const std::vector<VoxelState> before = grid.states();
+  const VoxelStates before = grid.states();
   absl::StatusOr<PostProcessStats> stats = ConnectInsideHardVoxels(grid, CancelToken::Never());
   ASSERT_TRUE(stats.ok()) << stats.status();
   EXPECT_EQ(stats->inside_hard_before, 18 * 18 * 18 - 16 * 16 * 16);

@@ -44,6 +44,43 @@ TEST(VoxelizationThreads, GridAndCountsAreTheSameForAnyThreadCount) {
   }
 }
 
+TEST(VoxelizationThreads, EveryVoxelHoldsTheInitialMembraneOnAnyThreadCount) {
+  // The grid is allocated unset and written plane by plane: the padding OUTSIDE (generation
+  // 0), the data region's outer layer BOUNDARY and its inside INSIDE, hard where points are.
+  // Odd sizes, so that the padding rows and columns differ in length.
+  std::vector<Point3f> points = UnevenSphere(3000);
+  for (Point3f& p : points) p[0] *= 1.7f;
+  for (int threads : {1, 2, 3}) {
+    absl::StatusOr<Voxelization> v =
+        Voxelize(points, VoxelizeOptions{.voxel_size = 0.09, .threads = threads});
+    ASSERT_TRUE(v.ok()) << v.status();
+    const VoxelGrid& g = v->grid;
+    const int p = VoxelGrid::kPadding;
+    ASSERT_NE(g.dim(0), g.dim(1));
+    int64_t hard = 0;
+    for (int z = 0; z < g.dim(2); ++z)
+      for (int y = 0; y < g.dim(1); ++y)
+        for (int x = 0; x < g.dim(0); ++x) {
+          const Coord c{x, y, z};
+          const VoxelState s = g.at(c);
+          bool padding = false, outer = false;
+          for (int d = 0; d < 3; ++d) {
+            padding = padding || c[d] < p || c[d] >= g.dim(d) - p;
+            outer = outer || c[d] == p || c[d] == g.dim(d) - p - 1;
+          }
+          hard += IsHard(s);
+          if (padding) {
+            ASSERT_EQ(s, OutsideState(0)) << x << " " << y << " " << z << ", " << threads;
+          } else if (outer) {
+            ASSERT_TRUE(IsBoundary(s)) << x << " " << y << " " << z << ", " << threads;
+          } else {
+            ASSERT_TRUE(IsInside(s)) << x << " " << y << " " << z << ", " << threads;
+          }
+        }
+    EXPECT_EQ(hard, v->hard_voxels) << threads;
+  }
+}
+
 TEST(VoxelizationThreads, TallGridOfManySlabsIsTheSameForAnyThreadCount) {
   // 40,000 planes: slabs of more than 8 planes each.
   std::vector<Point3f> points;

@@ -34,6 +34,20 @@ TEST(WorkPlanes, ReleasedPlanesAreMadeAgainZeroed) {
   EXPECT_FALSE(planes.plane(2).any());
 }
 
+TEST(WorkPlanes, PlanesAreZeroedOnTheirThreads) {
+  // Over two word blocks a plane (170^3 voxels), so that the zeroing is split between threads.
+  const VoxelGrid grid({170, 170, 170}, {0, 0, 0}, 1.0);
+  for (int threads : {1, 2, 3}) {
+    WorkPlanes planes(grid, threads);
+    ASSERT_TRUE(planes.Ensure(3, CancelToken::Never()));
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(planes.plane(i).bits(), grid.size());
+      EXPECT_EQ(planes.plane(i).threads(), threads);
+      EXPECT_FALSE(planes.plane(i).any()) << "plane " << i << ", " << threads << " threads";
+    }
+  }
+}
+
 TEST(ClearArrayBorder, LeavesTheBitsOfInteriorPlane) {
   // Odd sizes, so that rows and slabs straddle words; every bit set before.
   for (const std::array<int, 3> dims :

@@ -11,7 +11,7 @@ VoxelGrid OutsideGrid(int n, double voxel_size, std::array<double, 3> origin) {
 
 void ClassifyMembrane(VoxelGrid& grid, VoxelState boundary, VoxelState inside) {
   const auto& d = grid.dims();
-  std::vector<VoxelState> next = grid.states();
+  VoxelStates next = grid.states();
   for (int z = 0; z < d[2]; ++z)
     for (int y = 0; y < d[1]; ++y)
       for (int x = 0; x < d[0]; ++x) {

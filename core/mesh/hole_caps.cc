@@ -815,8 +815,10 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
                        options.tolerance * l, cancel);
   if (it < 0) return absl::CancelledError("hole caps cancelled");
   st.iterations = it + trial_iterations;
-  // The caps' vertices by their thin plate's iterations: those of wrapped rims apart.
-  std::vector<int32_t> blended, wrapped;
+  // The caps' vertices by their thin plate's iterations: the caps solved to convergence
+  // apart, one list each (see below).
+  std::vector<int32_t> blended;
+  std::vector<std::vector<int32_t>> converging;
   // Spline caps whose band has a sphere: their converged plate is solved apart, to be compared.
   std::vector<std::optional<AlgebraicSphere>> spheres(regions.size());
   std::vector<int32_t> candidates;
@@ -834,8 +836,10 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     // A held cap converges (HeldCapsToConverge), whatever its start.
     const bool converges = start == CapStart::kWrapped || held_converges[r];
     if (held_converges[r] && start != CapStart::kWrapped) ++st.held_converged;
-    auto& list = converges ? wrapped : blended;
-    list.insert(list.end(), region.begin(), region.end());
+    if (converges)
+      converging.push_back(region);
+    else
+      blended.insert(blended.end(), region.begin(), region.end());
     ++st.regions;
     if (!converges && start == CapStart::kSpline &&
         options.thin_plate_iterations < options.wrapped_iterations)
@@ -852,14 +856,24 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     if (ci < 0) return absl::CancelledError("hole caps cancelled");
     st.iterations += ci;
   }
-  for (auto [list, iterations] : {std::pair{&blended, options.thin_plate_iterations},
-                                  std::pair{&wrapped, options.wrapped_iterations}}) {
-    if (iterations == 0 || list->empty()) continue;
-    std::sort(list->begin(), list->end());
-    const double tolerance = list == &wrapped ? options.converged_tolerance : options.tolerance;
-    const int bi = Solve(true, nb, *list, x, iterations, tolerance * l, cancel);
+  if (options.thin_plate_iterations > 0 && !blended.empty()) {
+    std::sort(blended.begin(), blended.end());
+    const int bi = Solve(true, nb, blended, x, options.thin_plate_iterations,
+                         options.tolerance * l, cancel);
     if (bi < 0) return absl::CancelledError("hole caps cancelled");
     st.iterations += bi;
+  }
+  // Each cap that converges is solved on its own: one system's steps and stopping test
+  // belong to one plate, so a small cap stops once its own steps fall below the tolerance
+  // instead of running on as long as the largest cap of the mesh, and a cap that reaches
+  // wrapped_iterations does so at its own size.
+  for (std::vector<int32_t>& region : converging) {
+    if (options.wrapped_iterations == 0) break;
+    std::sort(region.begin(), region.end());
+    const int ci = Solve(true, nb, region, x, options.wrapped_iterations,
+                         options.converged_tolerance * l, cancel);
+    if (ci < 0) return absl::CancelledError("hole caps cancelled");
+    st.iterations += ci;
   }
   // The band's sphere picks between the two plates: the mean distance of the cap's gap
   // vertices from it (the rim's rings, near the data, are the fit's to settle).

@@ -83,7 +83,9 @@ struct HoleCapOptions {
   // carries the walls of the rim across the hole. A rim in its plane (an open flat base, whose
   // band of sample_rings rings runs down the side walls within about that many voxels of the
   // plane) keeps the harmonic map's flat span with thin_plate_iterations: the converged thin
-  // plate would carry the walls' slope past the base and bulge.
+  // plate would carry the walls' slope past the base and bulge. Each cap solved to
+  // convergence (wrapped, or held: converge_held) is its own system: its iterations and its
+  // stopping test are its own, whatever other caps the mesh has.
   double wrap_rms = 3.0;
   int wrapped_iterations = 1000;
   // A wrapped rim around a post or the edge of a thin part whose end the hole swallowed runs

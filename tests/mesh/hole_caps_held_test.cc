@@ -111,6 +111,67 @@ TEST(HoleCapHeld, SeenPatchesCarryTheConvergedCapToTheFlatTop) {
   testing::ExpectValidReport(iterated.check, 1, {0});
 }
 
+// The cut ball's cloud, and its bottom below kBottomCut cut too: a second hole (30 voxels
+// across), seen in patches as the top is.
+constexpr double kBottomCut = -0.8;
+PointCloud CutTwiceSeenInPatches(int per_unit_area) {
+  PointCloud cloud = CutBallSeenInPatches(per_unit_area);
+  std::erase_if(cloud.points, [](const Point3f& p) { return p[2] < kBottomCut; });
+  std::mt19937_64 rng(19);
+  std::uniform_real_distribution<double> u(0, 1);
+  const int per_patch = static_cast<int>(per_unit_area * M_PI * kSeenPatchRadius * kSeenPatchRadius);
+  for (const auto& c : kSeenPatches)
+    for (int i = 0; i < per_patch; ++i) {
+      const double r = kSeenPatchRadius * std::sqrt(u(rng)), a = 2 * M_PI * u(rng);
+      cloud.points.push_back(ToPoint3f(
+          Vec3d{0.5 * c[0] + r * std::cos(a), 0.5 * c[1] + r * std::sin(a), kBottomCut}));
+    }
+  return cloud;
+}
+
+// Each cap that converges is solved on its own: the top's plate is the same with the bottom
+// hole capped on the same mesh (a solve over both caps shares one step length and one
+// stopping test between them).
+TEST(HoleCapHeld, AConvergedCapDoesNotDependOnAnotherCap) {
+  SmoothSurfaceOptions surface;
+  surface.fit = false;
+  absl::StatusOr<testing::CloudSurface> ball =
+      testing::SmoothSurfaceOfCloud(Ball(4000), surface, kCutBallVoxel);
+  ASSERT_TRUE(ball.ok()) << ball.status();
+  auto cap = [&](const PointCloud& cloud, HoleCapStats& stats) {
+    TriangleMesh mesh = ball->mesh;
+    HoleCapOptions options;
+    options.wrapped_iterations = 400;
+    // Every held cap converges: the bottom's trial would keep its 60 iterations otherwise.
+    options.held_margin = 1000;
+    EXPECT_TRUE(CapHoles(mesh, kCutBallVoxel, cloud.points, options, &stats).ok());
+    testing::ExpectValidReport(CheckMesh(mesh), 1, {0});
+    return mesh;
+  };
+  HoleCapStats one, two;
+  const TriangleMesh top_only = cap(CutBallSeenInPatches(4000), one);
+  const TriangleMesh both = cap(CutTwiceSeenInPatches(4000), two);
+  EXPECT_EQ(one.regions, 1);
+  EXPECT_EQ(one.held_converged, 1);
+  EXPECT_EQ(two.regions, 2);
+  EXPECT_EQ(two.held_converged, 2);
+  double largest = 0;
+  int top = 0;
+  for (size_t v = 0; v < top_only.vertices.size(); ++v) {
+    const Point3f& p = top_only.vertices[v];
+    if (p[2] < 0.5) continue;
+    ++top;
+    largest = std::max(largest, Norm(ToVec3d(both.vertices[v]) - ToVec3d(p)) / kCutBallVoxel);
+  }
+  ASSERT_GT(top, 100);
+  std::printf("top cap, %d vertices: largest move with the bottom's cap beside it %.4f voxel "
+              "(iterations %lld alone, %lld with both)\n",
+              top, largest, static_cast<long long>(one.iterations),
+              static_cast<long long>(two.iterations));
+  // Measured: 0.0000 voxel; 0.0162 with both caps solved as one system.
+  EXPECT_LT(largest, 0.002);
+}
+
 TEST(HoleCapHeld, RefusesANegativeMargin) {
   TriangleMesh mesh;
   for (double margin : {-0.1, std::nan("")}) {

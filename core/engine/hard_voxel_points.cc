@@ -146,4 +146,27 @@ double HardVoxelPoints::NearestDistance(const VoxelGrid& grid, const Coord& c, i
   return std::sqrt(best2);
 }
 
+void HardVoxelPoints::SpotDistances(const VoxelGrid& grid, const Coord& c, int radius,
+                                    int samples, std::vector<double>& distances) const {
+  Coord a, b;
+  for (int d = 0; d < 3; ++d) {
+    a[d] = std::max(c[d] - radius, 0);
+    b[d] = std::min(c[d] + radius, grid.dim(d) - 1);
+  }
+  const double cap2 = static_cast<double>(radius + 1) * (radius + 1);
+  distances.assign(static_cast<size_t>(samples) * samples * samples, cap2);
+  ForEachPoint(grid, a, b, [&](const std::array<float, 3>& p) {
+    size_t n = 0;
+    for (int k = 0; k < samples; ++k)
+      for (int j = 0; j < samples; ++j)
+        for (int i = 0; i < samples; ++i, ++n) {
+          const double x = p[0] - (c.x + (i + 0.5) / samples),
+                       y = p[1] - (c.y + (j + 0.5) / samples),
+                       z = p[2] - (c.z + (k + 0.5) / samples);
+          distances[n] = std::min(distances[n], x * x + y * y + z * z);
+        }
+  });
+  for (double& d : distances) d = std::sqrt(d);
+}
+
 }  // namespace membrane

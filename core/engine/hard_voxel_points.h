@@ -43,6 +43,16 @@ class HardVoxelPoints {
   // farther than `radius` voxels from the centre lies outside them).
   double NearestDistance(const VoxelGrid& grid, const Coord& c, int radius) const;
 
+  // The distance, in voxels, from each spot of voxel `c` to the nearest point of the voxels
+  // within Chebyshev distance `radius` of it, into `distances` (resized): the spots are the
+  // centres of a `samples`^3 subdivision of the voxel, x fastest (samples 1: its centre, as
+  // NearestDistance). Exact up to `radius` (a point outside the voxels read lies farther from
+  // every spot); a spot with no point read within radius + 1 gets radius + 1. Where a passage
+  // narrower than two voxels runs off the voxel centres (a hole 2.4 voxels wide whose axis
+  // crosses a voxel 0.55 voxel from its centre), its free line passes spots, not centres.
+  void SpotDistances(const VoxelGrid& grid, const Coord& c, int radius, int samples,
+                     std::vector<double>& distances) const;
+
   int64_t points() const { return static_cast<int64_t>(positions_.size()); }
 
  private:

@@ -82,19 +82,40 @@ class PlugFinder {
     return true;
   }
 
-  // The tests of HoleOpeningOptions but the join and the topology, cheapest first.
+  // The tests of HoleOpeningOptions but the join and the topology, cheapest first. A passage
+  // lined with data stands in for the facing test and lets the clear line run off the voxel
+  // centres: both read a hole narrower than a plane fit's 3x3x3 voxels.
   bool Surrounded(const Plug& plug) const {
     const int64_t mid = plug.path[(plug.path.size() - 1) / 2];
-    return RaysMeetFacingData(plug.dir, mid) && DataAllAround(plug.dir, mid) && Clear(plug);
+    std::array<Coord, 8> hits;
+    int data = 0, farthest = 0;
+    if (!RaysMeetData(plug.dir, mid, hits, data, farthest) ||
+        std::popcount(Sectors(plug.dir, mid, 0, 3)) < o_.min_sectors) {
+      return false;
+    }
+    std::optional<bool> lined;
+    auto passage = [&] {
+      if (!lined) lined = DataAlongPassage(plug.dir, mid);
+      return *lined;
+    };
+    // Only a waist whose walls every ray meets within narrow_steps can be narrower than the
+    // plane fit.
+    const bool narrow = farthest <= o_.narrow_steps;
+    const int facing = HitsFacingPlug(plug.dir, hits, data);
+    if (facing < data && (!narrow || facing < o_.passage_facing_hits || !passage())) {
+      return false;
+    }
+    return Clear(plug, 1) || (o_.clearance_samples > 1 && narrow && passage() &&
+                              Clear(plug, o_.clearance_samples));
   }
 
  private:
-  // Rays across the plug: none reaches the outside, enough meet data, all data met faces the
-  // plug (the hole's walls, not a wall with a data hole, whose points face along the plug).
-  // The rays are walked first: the plane fits are read only where they decide.
-  bool RaysMeetFacingData(const Coord& dir, int64_t mid) const {
-    std::array<Coord, 8> hits;
-    int data = 0;
+  // Rays across the plug: none reaches the outside and enough meet data (`hits`, `data` of
+  // them, the farthest `farthest` steps from the middle voxel).
+  bool RaysMeetData(const Coord& dir, int64_t mid, std::array<Coord, 8>& hits, int& data,
+                    int& farthest) const {
+    data = 0;
+    farthest = 0;
     for (const Coord& e : kDirections) {
       if (CoordDot(e, dir) != 0) continue;
       const int64_t rs = e.x * st_[0] + e.y * st_[1] + e.z * st_[2];
@@ -106,30 +127,50 @@ class PlugFinder {
         if (grid_.OnArrayBorder(c) || IsOutside(s_[q])) return false;
         if (IsHard(s_[q])) {
           hits[data++] = c;
+          farthest = std::max(farthest, t);
           break;
         }
         // Into the solid's interior: enclosed, not open.
         if (IsInside(s_[q])) break;
       }
     }
-    if (data < o_.min_data_rays) return false;
+    return data >= o_.min_data_rays;
+  }
+
+  // How many of the hard voxels met face the plug (the hole's walls, not a wall with a data
+  // hole, whose points face along the plug).
+  int HitsFacingPlug(const Coord& dir, const std::array<Coord, 8>& hits, int data) const {
     const Vec3d along = ToVec3d(dir);
     const double len = Norm(along);
+    int facing = 0;
     for (int k = 0; k < data; ++k) {
       const Coord& c = hits[k];
       Vec3d n;
-      if (!points_.PlaneNormal(grid_, {c.x - 1, c.y - 1, c.z - 1}, {c.x + 1, c.y + 1, c.z + 1},
-                               n) ||
-          std::abs(Dot(n, along)) / len >= o_.max_facing_cos) {
-        return false;
+      if (points_.PlaneNormal(grid_, {c.x - 1, c.y - 1, c.z - 1}, {c.x + 1, c.y + 1, c.z + 1},
+                              n) &&
+          std::abs(Dot(n, along)) / len < o_.max_facing_cos) {
+        ++facing;
       }
     }
-    return true;
+    return facing;
   }
 
-  // The hard voxels near the middle voxel cover min_sectors of 8 angular sectors around the
-  // staircase's line.
-  bool DataAllAround(const Coord& dir, int64_t mid) const {
+  // A passage lined with data: the sectors around the staircase's line that hold hard voxels
+  // both before and after the middle voxel (passage_from to passage_to voxels along the line,
+  // either way) number at least passage_sectors. A scanned wall with a data hole holds its
+  // ring in one layer across the passage (tilted, its two halves on opposite sides); a hole
+  // whose walls curve at the voxel's scale (a waist 2.4 voxels wide: the points' planes in
+  // 3x3x3 voxels follow the funnel, not the wall) has data along it on both sides.
+  bool DataAlongPassage(const Coord& dir, int64_t mid) const {
+    return std::popcount(Sectors(dir, mid, o_.passage_from, o_.passage_to) &
+                         Sectors(dir, mid, -o_.passage_to, -o_.passage_from)) >=
+           o_.passage_sectors;
+  }
+
+  // The angular sectors (bit k: the k-th eighth of a turn) around the staircase's line that
+  // hold hard voxels within ring_radius - 1 of the middle voxel whose offset along the line
+  // lies in [from, to] (from 0: in [-to, to]).
+  unsigned Sectors(const Coord& dir, int64_t mid, double from, double to) const {
     const Vec3d along = ToVec3d(dir);
     const double len = Norm(along);
     const Vec3d d = {along[0] / len, along[1] / len, along[2] / len};
@@ -148,22 +189,33 @@ class PlugFinder {
           const Coord q{c.x + x, c.y + y, c.z + z};
           if (!grid_.Contains(q) || !IsHard(s_[grid_.Index(q)])) continue;
           const Vec3d p = {double(x), double(y), double(z)};
-          if (std::abs(Dot(p, d)) > 3) continue;
+          const double at = Dot(p, d);
+          if (from == 0 ? std::abs(at) > to : at < from || at > to) continue;
           const double pu = Dot(p, u), pv = Dot(p, v);
           const double radial = std::hypot(pu, pv);
           if (radial < 0.5 || radial > r) continue;
           const double turn = (std::atan2(pv, pu) + std::numbers::pi) / (2 * std::numbers::pi);
           sectors |= 1u << (static_cast<int>(turn * 8) & 7);
         }
-    return std::popcount(sectors) >= o_.min_sectors;
+    return sectors;
   }
 
-  // Every plug voxel at least min_clearance from the points.
-  bool Clear(const Plug& plug) const {
+  // A line parallel to the staircase, through the same spot of every plug voxel (of a
+  // samples^3 subdivision), at least min_clearance from the points.
+  bool Clear(const Plug& plug, int samples) const {
     const int radius = static_cast<int>(std::ceil(o_.min_clearance));
-    return std::all_of(plug.path.begin(), plug.path.end(), [&](int64_t p) {
-      return points_.NearestDistance(grid_, grid_.CoordOf(p), radius) >= o_.min_clearance;
-    });
+    std::vector<bool> open(static_cast<size_t>(samples) * samples * samples, true);
+    std::vector<double> distances;
+    for (int64_t p : plug.path) {
+      points_.SpotDistances(grid_, grid_.CoordOf(p), radius, samples, distances);
+      bool any = false;
+      for (size_t n = 0; n < open.size(); ++n) {
+        open[n] = open[n] && distances[n] >= o_.min_clearance;
+        any = any || open[n];
+      }
+      if (!any) return false;
+    }
+    return true;
   }
 
   const VoxelGrid& grid_;

@@ -36,9 +36,27 @@ struct HoleOpeningOptions {
   // The hard voxels within ring_radius - 1 of the middle voxel (and 3 voxels along the
   // staircase) lie in at least this many of 8 angular sectors around it: data all around.
   int min_sectors = 6;
-  // Every plug voxel's centre lies at least this far (voxels) from every point: the passage
-  // stays open in a tube of one voxel around the data.
+  // When a hard voxel met does not face the plug, the plug is still a hole's when the data
+  // line the passage: at least passage_sectors of the 8 sectors hold hard voxels (within
+  // ring_radius - 1 of the middle voxel) both at offsets passage_from to passage_to along the
+  // staircase and at -passage_to to -passage_from (a waist narrower than the 3x3x3 voxels of
+  // a plane fit, whose walls curve inside them; passage_sectors 9: never).
+  double passage_from = 1.5;
+  double passage_to = 3.5;
+  int passage_sectors = 4;
+  // Only for a waist whose walls every ray across the plug meets within narrow_steps (the
+  // plane fits' boxes then reach the plug's line), and with at least passage_facing_hits of
+  // the hard voxels met still facing the plug: a thin wall's two scanned faces, crossed
+  // through their data gaps, line a passage too, but face along it.
+  int narrow_steps = 1;
+  int passage_facing_hits = 2;
+  // Every plug voxel's centre lies at least min_clearance (voxels) from every point: the
+  // passage stays open in a tube of one voxel around the data. In a passage lined with data
+  // (passage_sectors), a line parallel to the staircase through the same spot of every plug
+  // voxel, one of the centres of a clearance_samples^3 subdivision of the voxel, will do
+  // (1: centres only): a waist 2.4 voxels wide whose axis runs off the voxel centres.
   double min_clearance = 1.0;
+  int clearance_samples = 3;
   // The two ends are not joined through the outside inside the cube of this radius around the
   // middle voxel: the plug closes a hole, not a notch.
   int join_radius = 16;

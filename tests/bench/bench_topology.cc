@@ -49,7 +49,7 @@ constexpr char kUsage[] =
     "                      [--max-cut-fraction C] [--data-genus R]\n"
     "                      [--probe X,Y,Z,R] [--reference N] [--slices X,Y,Z,R]\n"
     "                      [--pocket-rays K] [--pocket-depth D] [--pocket-loops L]\n"
-    "                      [--shared DIR]\n"
+    "                      [--clearance-samples K] [--passage-sectors P] [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
     "  --locate         print where the handles and merges of every miss are\n"
@@ -88,6 +88,9 @@ constexpr char kUsage[] =
     "  --wall-core-depth D  the hole opening's wall-core test: a plug is no hole when every\n"
     "                   ray across it meeting data has the outside within D voxels past it\n"
     "                   (0 = not tested; HoleOpeningOptions::wall_core_depth)\n"
+    "  --clearance-samples K, --passage-sectors P  the hole opening's clearance spots per\n"
+    "                   axis and the sectors of a passage lined with data (9: no passage\n"
+    "                   test; HoleOpeningOptions)\n"
     "  --no-retry       no handle retry (ShrinkOptions::retry.enabled false)\n"
     "  --strict-only    every generation under the handle retry's strict guard sizes, no retry\n"
     "  --no-close-cut-loops  the piece separation returns only simple cut voxels\n"
@@ -179,6 +182,10 @@ bool ParseArgs(int argc, char** argv, Options& o) {
     } else if (arg == "--reference" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.reference_points) || o.reference_points < 0)
         return false;
+    } else if (arg == "--clearance-samples" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.holes.clearance_samples)) return false;
+    } else if (arg == "--passage-sectors" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.holes.passage_sectors)) return false;
     } else if (arg == "--strict-only") {
       o.shrink.guard = StrictGuardSizes(o.shrink);
       o.shrink.retry.enabled = false;

@@ -76,5 +76,26 @@ TEST(HardVoxelPointsTest, NearestDistanceFromAVoxelCentre) {
   EXPECT_EQ(index.NearestDistance(g, Coord{0, 0, 0}, 1), 2.0);
 }
 
+TEST(HardVoxelPointsTest, SpotDistancesFromASubdividedVoxel) {
+  const std::vector<Point3f> points = {{4.5f, 4.5f, 6.0f}};
+  const VoxelGrid g = UnitGrid();
+  const HardVoxelPoints index(g, points);
+  std::vector<double> d;
+  // One spot: the centre, as NearestDistance.
+  index.SpotDistances(g, Coord{4, 4, 4}, 2, 1, d);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NEAR(d[0], 1.5, 1e-6);
+  // Two spots a side, x fastest: z 4.25 (the first four) and 4.75 (the last four); the spot
+  // (4.25, 4.25, 4.25) lies sqrt(0.0625 + 0.0625 + 3.0625) from the point.
+  index.SpotDistances(g, Coord{4, 4, 4}, 2, 2, d);
+  ASSERT_EQ(d.size(), 8u);
+  EXPECT_NEAR(d[0], std::sqrt(0.0625 + 0.0625 + 1.75 * 1.75), 1e-6);
+  EXPECT_NEAR(d[7], std::sqrt(0.0625 + 0.0625 + 1.25 * 1.25), 1e-6);
+  // Outside the searched voxels: radius + 1 for every spot.
+  index.SpotDistances(g, Coord{4, 4, 4}, 1, 3, d);
+  ASSERT_EQ(d.size(), 27u);
+  for (double x : d) EXPECT_EQ(x, 2.0);
+}
+
 }  // namespace
 }  // namespace membrane

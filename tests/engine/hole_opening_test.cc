@@ -139,6 +139,115 @@ TEST(HoleOpeningTest, KeepsAWallsDataHoleClosed) {
   EXPECT_EQ(Genus(grid), 1);
 }
 
+// A slab pierced by a funnel whose waist is 2.4 voxels wide, its axis off the voxel centres
+// (at x = y = 20.2), plugged by the one voxel at the waist that no wall point lies in: the
+// funnel's walls curve within a plane fit's 3x3x3 voxels and every voxel centre at the waist
+// lies nearer than a voxel to them; the data lining the passage on both sides of the plug and a
+// line through the plug's voxel 1.15 voxels from them (0.05 voxel off the axis) open it.
+constexpr double kWaistAxis = 20.2;
+constexpr double kWaistRadius = 1.2;
+
+// The funnel's radius at height z: kWaistRadius at z = 20.5, widening both ways.
+double FunnelRadius(double z) { return kWaistRadius + 0.15 * (z - 20.5) * (z - 20.5); }
+
+double FromWaistAxis(double x, double y) { return std::hypot(x - kWaistAxis, y - kWaistAxis); }
+
+// Points every 0.25 voxel on the slab's faces z = 14 and 26 (x, y in [2, 38), outside the
+// funnel) and on the funnel's wall between them (or, `wall_only`, a wall 2 voxels thick at
+// z = 19.99, scanned on one face, missing a disc of the waist's radius: no funnel).
+std::vector<Point3f> FunnelPoints(bool wall_only) {
+  std::vector<Point3f> points;
+  const double z0 = wall_only ? 19.99 : 14, z1 = 26;
+  for (double x = 2.125; x < 38; x += 0.25)
+    for (double y = 2.125; y < 38; y += 0.25) {
+      const double r = FromWaistAxis(x, y);
+      if (r < (wall_only ? kWaistRadius : FunnelRadius(z0))) continue;
+      points.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(z0)});
+      if (!wall_only && r >= FunnelRadius(z1))
+        points.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(z1)});
+    }
+  if (!wall_only) {
+    for (double z = z0 + 0.0625; z < z1; z += 0.125) {
+      const double r = FunnelRadius(z);
+      const int n = static_cast<int>(2 * M_PI * r * 8);
+      for (int k = 0; k < n; ++k) {
+        const double a = 2 * M_PI * k / n;
+        points.push_back({static_cast<float>(kWaistAxis + r * std::cos(a)),
+                          static_cast<float>(kWaistAxis + r * std::sin(a)),
+                          static_cast<float>(z)});
+      }
+    }
+  }
+  return points;
+}
+
+// The slab z in [14, 26) without the funnel's voxels (centre inside its radius), but for the
+// waist layer z = 20: the plug.
+bool PluggedFunnel(int x, int y, int z) {
+  const bool slab = x >= 2 && x < 38 && y >= 2 && y < 38 && z >= 14 && z < 26;
+  const bool hole = FromWaistAxis(x + 0.5, y + 0.5) < FunnelRadius(z + 0.5) && z != 20;
+  return slab && !hole;
+}
+
+TEST(HoleOpeningTest, OpensAWaistNarrowerThanAPlaneFit) {
+  const std::vector<Point3f> points = FunnelPoints(/*wall_only=*/false);
+  VoxelGrid grid = Membrane(PluggedFunnel, points);
+  const HardVoxelPoints index(grid, points);
+  ASSERT_EQ(Genus(grid), 0);
+  // Every voxel centre at the waist lies nearer than a voxel to the points: the centres alone
+  // keep the plug closed.
+  HoleOpeningOptions centres;
+  centres.clearance_samples = 1;
+  absl::StatusOr<HoleOpeningStats> stats =
+      OpenPluggedHoles(grid, centres, &index, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->opened, 0);
+  // Without the passage's data, neither the facing test nor the centres let it through.
+  HoleOpeningOptions no_passage;
+  no_passage.passage_sectors = 9;
+  EXPECT_EQ(OpenPluggedHoles(grid, no_passage, &index, CancelToken::Never())->opened, 0);
+  // Nor without the narrow waist: the rays meet the walls at the first step.
+  HoleOpeningOptions not_narrow;
+  not_narrow.narrow_steps = 0;
+  EXPECT_EQ(OpenPluggedHoles(grid, not_narrow, &index, CancelToken::Never())->opened, 0);
+  ASSERT_EQ(Genus(grid), 0);
+
+  stats = OpenPluggedHoles(grid, HoleOpeningOptions(), &index, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->opened, 1);
+  EXPECT_EQ(stats->carved_voxels, 1);
+  const VoxelTopology t = ComputeVoxelTopology(grid);
+  EXPECT_EQ(t.shells, 1);
+  EXPECT_EQ(t.cavities, 0);
+  EXPECT_EQ(Genus(grid), 1);
+  InvariantOptions io;
+  io.require_property3 = true;
+  EXPECT_TRUE(CheckMembraneInvariants(grid, io).ok()) << CheckMembraneInvariants(grid, io);
+}
+
+// The same waist as a data hole in a wall scanned on one face: the data around it lie in one
+// layer across the passage (none lines it), and face along it: it stays closed.
+TEST(HoleOpeningTest, KeepsANarrowDataHoleInAWallClosed) {
+  const std::vector<Point3f> points = FunnelPoints(/*wall_only=*/true);
+  VoxelGrid grid = Membrane(
+      [](int x, int y, int z) { return x >= 2 && x < 38 && y >= 2 && y < 38 && z >= 18 && z < 20; },
+      points);
+  const VoxelStates before = grid.states();
+  const HardVoxelPoints index(grid, points);
+  absl::StatusOr<HoleOpeningStats> stats =
+      OpenPluggedHoles(grid, HoleOpeningOptions(), &index, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->opened, 0);
+  EXPECT_EQ(grid.states(), before);
+  // The facing of the data is what keeps it: without that test (and the wall-core test, which
+  // this thin wall with outside on both sides also meets) the plug is opened.
+  HoleOpeningOptions any_facing;
+  any_facing.max_facing_cos = 2;
+  any_facing.wall_core_depth = 0;
+  EXPECT_EQ(OpenPluggedHoles(grid, any_facing, &index, CancelToken::Never())->opened, 1);
+  EXPECT_EQ(Genus(grid), 1);
+}
+
 TEST(HoleOpeningTest, Cancels) {
   const std::vector<Point3f> points = SlabPoints(10, 30, /*hole_wall=*/true);
   VoxelGrid grid = Membrane([](int, int y, int) { return y >= 2; }, points);

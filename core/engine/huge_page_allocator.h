@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "core/engine/plane_arena.h"
+#include "core/engine/unset_construct.h"
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -68,29 +69,9 @@ struct HugePageAllocator {
 };
 
 // A HugePageAllocator whose containers' size constructors and resize(n) leave the new elements
-// unset (default-initialized: nothing for trivial types). For big arrays whose every element
-// is written before it is read: a value-initializing fill is one more pass over their memory,
-// on one thread, and the pass that takes each page's first write (its page fault).
+// unset, for big arrays whose every element is written before it is read (unset_construct.h).
 template <typename T>
-struct UnfilledAllocator : HugePageAllocator<T> {
-  UnfilledAllocator() = default;
-  // Takes blocks from `arena` (may be null), as HugePageAllocator(arena) does.
-  explicit UnfilledAllocator(PlaneArena* arena) : HugePageAllocator<T>(arena) {}
-  template <typename U>
-  UnfilledAllocator(const UnfilledAllocator<U>& other) : HugePageAllocator<T>(other) {}
-  template <typename U>
-  struct rebind {
-    using other = UnfilledAllocator<U>;
-  };
-  template <typename U>
-  void construct(U* p) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
+using UnfilledAllocator = UnsetConstruct<HugePageAllocator<T>>;
 
 }  // namespace membrane
 

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/engine/unset_construct.h"
 #include "core/engine/voxel_state.h"
 
 namespace membrane {
@@ -42,29 +43,12 @@ constexpr bool IsFaceStep(int k) {
   return (d.x != 0) + (d.y != 0) + (d.z != 0) == 1;
 }
 
-// std::allocator, except that a container's size constructor and resize(n) leave the new
-// elements unset (default-initialized): the grid's states can then be written first on several
-// threads, where a value-initializing constructor writes every byte once more on one thread.
-// Plain pages (no huge-page advice, unlike UnfilledAllocator): fresh huge pages fault several
-// times slower than 4 KB ones on the shared VM (tests/bench/2026-12-04-scale-serial.txt).
+// std::allocator with the states left unset by the vector's constructor (unset_construct.h),
+// so that the voxelization writes them first on several threads. Plain pages (no huge-page
+// advice, unlike UnfilledAllocator): fresh huge pages fault several times slower than 4 KB
+// ones on the shared VM (tests/bench/2026-12-04-scale-serial.txt).
 template <typename T>
-struct UnsetAllocator : std::allocator<T> {
-  UnsetAllocator() = default;
-  template <typename U>
-  UnsetAllocator(const UnsetAllocator<U>&) {}
-  template <typename U>
-  struct rebind {
-    using other = UnsetAllocator<U>;
-  };
-  template <typename U>
-  void construct(U* p) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
+using UnsetAllocator = UnsetConstruct<std::allocator<T>>;
 
 // The states of a grid's voxels, in index order.
 using VoxelStates = std::vector<VoxelState, UnsetAllocator<VoxelState>>;

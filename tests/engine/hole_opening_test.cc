@@ -78,6 +78,23 @@ int Genus(const VoxelGrid& grid) {
   return std::accumulate(t.genus.begin(), t.genus.end(), 0);
 }
 
+// A wall 2 voxels thick (z in [18, 20)) across the grid, the outside on both of its sides: a dig
+// behind a scanned wall.
+bool ThinWall(int x, int y, int z) {
+  return x >= 2 && x < 38 && y >= 2 && y < 38 && z >= 18 && z < 20;
+}
+
+// Expects the hole opening with `options` to open nothing in `grid` and to leave it as it was.
+void ExpectKeptClosed(VoxelGrid& grid, const HardVoxelPoints& index,
+                      const HoleOpeningOptions& options) {
+  const VoxelStates before = grid.states();
+  absl::StatusOr<HoleOpeningStats> stats =
+      OpenPluggedHoles(grid, options, &index, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->opened, 0);
+  EXPECT_EQ(grid.states(), before);
+}
+
 // A slab 20 voxels thick pierced by a hole 6 voxels wide, closed at its waist by a plug 4 voxels
 // thick (soft: no data inside the hole): the hole's wall is data all around, facing the plug.
 TEST(HoleOpeningTest, OpensAPlugRimmedByTheHolesWall) {
@@ -111,29 +128,20 @@ TEST(HoleOpeningTest, OpensAPlugRimmedByTheHolesWall) {
   EXPECT_EQ(Genus(again), 0);
 }
 
-// A wall 2 voxels thick, outside on both sides (a dig behind a scanned wall), scanned on one
-// face, where the scanner missed a disc 6 voxels wide: the data around the gap are the wall's
-// face, facing along the passage, so the gap is a data hole of one surface, not a hole through
-// the object.
+// A thin wall scanned on one face, where the scanner missed a disc 6 voxels wide: the data
+// around the gap are the wall's face, facing along the passage, so the gap is a data hole of
+// one surface, not a hole through the object.
 TEST(HoleOpeningTest, KeepsAWallsDataHoleClosed) {
   const std::vector<Point3f> points =
       SlabPoints(18, 19.99, /*hole_wall=*/false, /*both_faces=*/false);
-  VoxelGrid grid = Membrane(
-      [](int x, int y, int z) { return x >= 2 && x < 38 && y >= 2 && y < 38 && z >= 18 && z < 20; },
-      points);
-  const VoxelStates before = grid.states();
+  VoxelGrid grid = Membrane(ThinWall, points);
   const HardVoxelPoints index(grid, points);
-  absl::StatusOr<HoleOpeningStats> stats =
-      OpenPluggedHoles(grid, HoleOpeningOptions(), &index, CancelToken::Never());
-  ASSERT_TRUE(stats.ok()) << stats.status();
-  EXPECT_EQ(stats->opened, 0);
-  EXPECT_EQ(grid.states(), before);
+  ExpectKeptClosed(grid, index, HoleOpeningOptions());
   // The facing of the data keeps it, and so does the wall-core test (the wall's face has the
   // outside right behind it); without both the plug is opened.
   HoleOpeningOptions any_facing;
   any_facing.max_facing_cos = 2;
-  EXPECT_EQ(OpenPluggedHoles(grid, any_facing, &index, CancelToken::Never())->opened, 0);
-  EXPECT_EQ(grid.states(), before);
+  ExpectKeptClosed(grid, index, any_facing);
   any_facing.wall_core_depth = 0;
   EXPECT_EQ(OpenPluggedHoles(grid, any_facing, &index, CancelToken::Never())->opened, 1);
   EXPECT_EQ(Genus(grid), 1);
@@ -229,16 +237,9 @@ TEST(HoleOpeningTest, OpensAWaistNarrowerThanAPlaneFit) {
 // layer across the passage (none lines it), and face along it: it stays closed.
 TEST(HoleOpeningTest, KeepsANarrowDataHoleInAWallClosed) {
   const std::vector<Point3f> points = FunnelPoints(/*wall_only=*/true);
-  VoxelGrid grid = Membrane(
-      [](int x, int y, int z) { return x >= 2 && x < 38 && y >= 2 && y < 38 && z >= 18 && z < 20; },
-      points);
-  const VoxelStates before = grid.states();
+  VoxelGrid grid = Membrane(ThinWall, points);
   const HardVoxelPoints index(grid, points);
-  absl::StatusOr<HoleOpeningStats> stats =
-      OpenPluggedHoles(grid, HoleOpeningOptions(), &index, CancelToken::Never());
-  ASSERT_TRUE(stats.ok()) << stats.status();
-  EXPECT_EQ(stats->opened, 0);
-  EXPECT_EQ(grid.states(), before);
+  ExpectKeptClosed(grid, index, HoleOpeningOptions());
   // The facing of the data is what keeps it: without that test (and the wall-core test, which
   // this thin wall with outside on both sides also meets) the plug is opened.
   HoleOpeningOptions any_facing;

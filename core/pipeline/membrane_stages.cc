@@ -58,8 +58,10 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
   if (!result.ok()) return result.status();
   report.generations = std::move(result->generations);
   report.post_process = result->post_process;
-  report.gap_refill = result->refill;
   report.handle_retry = result->handle_retry;
+  report.piece_separation = result->separation;
+  report.hole_opening = result->holes;
+  report.gap_refill = result->refill;
   report.seconds.shrink = watch.Seconds();
   observer.StageFinished(PipelineStage::kShrink, report.seconds.shrink, report);
   return absl::OkStatus();

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "core/engine/gap_refill.h"
+#include "core/engine/hole_opening.h"
 #include "core/engine/membrane_shrinker.h"
+#include "core/engine/piece_separation.h"
 #include "core/engine/post_process.h"
 #include "core/mesh/hole_caps.h"
 #include "core/mesh/mesh_check.h"
@@ -72,8 +74,12 @@ struct ReconstructionReport {
   int planned_generations = 0;               // plate sizes of the schedule, known before shrinking
   std::vector<GenerationStats> generations;  // one per plate size, the last has plate size 1
   PostProcessStats post_process;
-  GapRefillStats gap_refill;   // ShrinkResult::refill
   HandleRetry handle_retry;    // ShrinkResult::handle_retry
+  // The shrink's passes after the generations, in their order (ShrinkResult::separation,
+  // ::holes, ::refill): the grid's topology changes after the last generation are theirs.
+  PieceSeparationStats piece_separation;
+  HoleOpeningStats hole_opening;
+  GapRefillStats gap_refill;
   MembraneCounts membrane;     // the final DMS, before relaxation
   RelaxationStats relaxation;  // all 0 with --no-relax
   HoleCapStats hole_caps;      // the smooth surface's caps over data holes

@@ -53,6 +53,33 @@ std::string HandleRetryJson(const HandleRetry& h) {
                       ", \"seconds\": ", JsonNumber(h.seconds), "}");
 }
 
+std::string PieceSeparationJson(const PieceSeparationStats& p) {
+  return absl::StrCat("{\"pieces\": ", p.pieces, ", \"separated\": ", JsonBool(p.separated),
+                      ", \"cut_voxels\": ", p.cut_voxels, ", \"web_voxels\": ", p.web_voxels,
+                      ", \"loops_closed\": ", p.loops_closed,
+                      ", \"far_steps_cut\": ", p.far_steps_cut,
+                      ", \"shells_before\": ", p.shells_before,
+                      ", \"genus_before\": ", p.genus_before,
+                      ", \"shells_after\": ", p.shells_after, ", \"genus_after\": ", p.genus_after,
+                      ", \"cavities_after\": ", p.cavities_after,
+                      ", \"cut_fraction\": ", JsonNumber(p.cut_fraction),
+                      ", \"seconds\": ", JsonNumber(p.seconds), "}");
+}
+
+std::string HoleOpeningJson(const HoleOpeningStats& h) {
+  return absl::StrCat("{\"opened\": ", h.opened, ", \"refused\": ", h.refused,
+                      ", \"wall_core_kept\": ", h.wall_cores,
+                      ", \"carved_voxels\": ", h.carved_voxels,
+                      ", \"whole_grid_counts\": ", h.whole_grid_counts,
+                      ", \"seconds\": ", JsonNumber(h.seconds), "}");
+}
+
+std::string GapRefillJson(const GapRefillStats& g) {
+  return absl::StrCat("{\"refilled_voxels\": ", g.refilled_voxels,
+                      ", \"pocket_voxels\": ", g.pocket_voxels,
+                      ", \"loops_closed\": ", g.loops_closed, "}");
+}
+
 std::string RelaxationJson(const RelaxationStats& r) {
   return absl::StrCat("{\"phase1_moves\": ", r.phase1_moves, ", \"phase1_added\": ", r.phase1_added,
                       ", \"phase2_moves\": ", r.phase2_moves,
@@ -147,8 +174,10 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"surface\": ", JsonString(r.surface), ",\n  \"relaxed\": ", JsonBool(r.relaxed),
       ",\n  \"threads\": ", r.threads,
       ",\n  \"post_process\": ", PostProcessJson(r.post_process),
-      ",\n  \"gap_refill\": {\"refilled_voxels\": ", r.gap_refill.refilled_voxels, "}",
       ",\n  \"handle_retry\": ", HandleRetryJson(r.handle_retry),
+      ",\n  \"piece_separation\": ", PieceSeparationJson(r.piece_separation),
+      ",\n  \"hole_opening\": ", HoleOpeningJson(r.hole_opening),
+      ",\n  \"gap_refill\": ", GapRefillJson(r.gap_refill),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
       ",\n  \"hole_caps\": ", HoleCapsJson(r.hole_caps),
       ",\n  \"quantization\": ", QuantizationJson(r.quantization),

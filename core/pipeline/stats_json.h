@@ -21,9 +21,14 @@ namespace membrane {
 // Extra keys: data_grid (grid without padding), schedule, surface, relaxed; per generation
 // generation, contractions, undone_contractions, guard_refusals, depth_refusals, passes;
 // post_process {inside_hard_before, inside_hard_after, carved_voxels, bridge_voxels};
-// gap_refill {refilled_voxels} (GapRefillStats);
 // handle_retry {ran, kept, from_generation, loose_tunnels, shells_before, genus_before,
 // shells_after, genus_after, web_voxels, web_hard_rim, seconds} (HandleRetry);
+// piece_separation {pieces, separated, cut_voxels, web_voxels, loops_closed, far_steps_cut,
+// shells_before, genus_before, shells_after, genus_after, cavities_after, cut_fraction,
+// seconds} (PieceSeparationStats; the topology counts 0 when no cut was tried);
+// hole_opening {opened, refused, wall_core_kept, carved_voxels, whole_grid_counts, seconds}
+// (HoleOpeningStats; wall_core_kept: its wall_cores);
+// gap_refill {refilled_voxels, pocket_voxels, loops_closed} (GapRefillStats);
 // relaxation {phase1_moves, phase1_added, phase2_moves, phase2_uncovered, not_simple};
 // membrane.inside_frozen_voxels and membrane.genus; mesh.self_intersections and
 // mesh.positive_volume; seconds.check. Non-finite reals are written as null.

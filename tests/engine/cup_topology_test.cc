@@ -9,6 +9,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_replace.h"
+#include "core/engine/hard_voxel_points.h"
+#include "core/engine/voxelization.h"
 #include "gtest/gtest.h"
 #include "tests/support/cup_cloud.h"
 #include "tests/support/shrink_fixture.h"
@@ -32,6 +34,32 @@ double MembraneVolume(const VoxelGrid& grid) {
   return static_cast<double>(solid) * l * l * l;
 }
 
+// A cup's base lies on the cloud's least z, a voxel face: its points are read in the voxels
+// Voxelize made hard (the data's first layer), not in the padding under it, so a box across
+// the base 2 voxels thick holds both of its faces.
+TEST(CupBaseTest, ItsPointsAreReadInTheirHardVoxels) {
+  const PointCloud cloud = CupCloud(2.0, kCupPoints);
+  VoxelizeOptions options;
+  options.voxel_size = 1.5 * CupVoxelSize(kCupPoints);
+  absl::StatusOr<Voxelization> vox = Voxelize(cloud.points, options);
+  ASSERT_TRUE(vox.ok()) << vox.status();
+  const VoxelGrid& g = vox->grid;
+  const HardVoxelPoints index(g, cloud.points);
+  const int p = VoxelGrid::kPadding;
+  const Coord last{g.dim(0) - 1, g.dim(1) - 1, g.dim(2) - 1};
+  // No point in the padding under the data, every base point in the first data layer.
+  EXPECT_LT(index.PlaneSpread(g, Coord{0, 0, 0}, Coord{last.x, last.y, p - 1}, 1), 0);
+  EXPECT_GE(index.PlaneSpread(g, Coord{0, 0, p}, Coord{last.x, last.y, p}, 1), 0);
+  for (int64_t i = 0; i < g.size(); ++i) {
+    const Coord c = g.CoordOf(i);
+    if (c.z != p || IsHard(g.at(i))) continue;
+    ASSERT_LT(index.PlaneSpread(g, c, c, 1), 0) << "points in soft voxel " << c.x << "," << c.y;
+  }
+  // The base's two faces, 1.33 voxels apart, in the 2 layers of hard voxels at its centre.
+  const int cx = g.dim(0) / 2, cy = g.dim(1) / 2;
+  EXPECT_GT(index.PlaneSpread(g, Coord{cx - 1, cy - 1, p}, Coord{cx + 1, cy + 1, p + 1}), 0.5);
+}
+
 class CupTopologyTest : public ::testing::TestWithParam<std::tuple<double, double>> {};
 
 TEST_P(CupTopologyTest, OneShellOfGenusZeroWithTheInsideOpen) {
@@ -46,8 +74,9 @@ TEST_P(CupTopologyTest, OneShellOfGenusZeroWithTheInsideOpen) {
   // The voxels hold the wall and about a voxel more on each face; a filled inside holds the
   // cylinder's volume. Walls of 2 voxels or less at the run's voxel keep the inside filled:
   // the thick-wall incursion test undoes the chains that reach the bottom from inside (runs of
-  // 2 hard voxels between the padding under the cup and the carved inside, whose points show
-  // one face; docs/engine-decisions.md "A plug in a wall's core is no hole", known limits).
+  // 2 hard voxels between the padding under the cup and the carved inside, whose two sides
+  // meet only over the rim; docs/engine-decisions.md "A plug in a wall's core is no hole",
+  // known limits).
   // Asserted as it is, so that a rule which opens them turns this into the open-inside
   // assertion.
   const double wall = wall_voxels * CupVoxelSize(kCupPoints);

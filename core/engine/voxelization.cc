@@ -291,7 +291,9 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
                                       const VoxelizeOptions& options, ProgressRange progress,
                                       const CancelToken& cancel) {
   const auto cancelled = [] { return absl::CancelledError("voxelization cancelled"); };
-  absl::StatusOr<Box3d> bounds = CheckedBounds(points, cancel);
+  absl::StatusOr<Box3d> bounds = options.checked_bounds
+                                      ? absl::StatusOr<Box3d>(*options.checked_bounds)
+                                      : CheckedBounds(points, cancel);
   if (cancel.cancelled()) return cancelled();
   if (!bounds.ok()) return bounds.status();
   if (options.voxel_budget < 0) {

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
@@ -24,6 +25,11 @@ struct VoxelizeOptions {
   // Threads for the distinct-point count, the initial membrane's planes and the points' voxels
   // (RunTasks); the grid and the counts are the same for any number.
   int threads = 1;
+  // CheckedBounds of the same points, when the caller has them already (the pipeline's grid
+  // planning, PlanGrid): Voxelize then skips its own point check, one to four passes over the
+  // points. The grid is the same either way. A box that does not hold every point puts the
+  // points outside it in the data region's border voxels (never outside the grid).
+  std::optional<Box3d> checked_bounds = std::nullopt;
 };
 
 struct Voxelization {
@@ -69,23 +75,24 @@ double FormulaVoxelSize(const Box3d& bounds, absl::Span<const Point3f> points, i
 absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points,
                                     const CancelToken& cancel = CancelToken::Never());
 
-// Builds the voxel grid and the initial membrane for `points`. Each axis gets
+// Builds the voxel grid and the initial membrane for `points`, in the box
+// options.checked_bounds when given, else in CheckedBounds'. Each axis gets
 // n_d = floor(L_d / l) + 1 voxels (so the largest coordinate falls inside the grid) plus
 // VoxelGrid::kPadding outside layers on every side. Point p lies in voxel
 // floor((p - bounds.min) / l) + kPadding.
-// Errors: InvalidArgument for degenerate points (see CheckedBounds), a voxel size that is not
-// finite and positive, or coordinates so far from the origin that float32 positions there are
-// more than a quarter of a voxel apart (naming both), or so large that the grid around them
-// passes float32's range (naming both ranges); ResourceExhausted, naming the grid and
-// the budget, when the grid would exceed a positive options.voxel_budget (a negative one is
-// InvalidArgument). Nothing is allocated before the
-// budget check. `progress` counts the initial membrane's planes, then the points' voxels
-// sorted and marked (counting never changes the grid). options.threads share the distinct
-// count, the planes and the points' voxels (SortedPointVoxels), marked in slabs of z planes.
-// Every task (a part of the distinct count's points, a plane, a block of 65536 points, a slab)
-// asks `cancel` first, and every worker stops once it has fired: Cancelled then, the grid
-// freed (a cancel costs at most one task per thread after it; 10M points make tasks of a few
-// milliseconds each).
+// Errors: InvalidArgument for degenerate points (see CheckedBounds; left to the caller when
+// options.checked_bounds is given), a voxel size that is not finite and positive, or
+// coordinates so far from the origin that float32 positions there are more than a quarter of a
+// voxel apart (naming both), or so large that the grid around them passes float32's range
+// (naming both ranges); ResourceExhausted, naming the grid and the budget, when the grid would
+// exceed a positive options.voxel_budget (a negative one is InvalidArgument). Nothing is
+// allocated before the budget check. `progress` counts the initial membrane's planes, then the
+// points' voxels sorted and marked (counting never changes the grid). options.threads share
+// the distinct count, the planes and the points' voxels (SortedPointVoxels), marked in slabs of
+// z planes. Every task (a part of the distinct count's points, a plane, a block of 65536
+// points, a slab) asks `cancel` first, and every worker stops once it has fired: Cancelled
+// then, the grid freed (a cancel costs at most one task per thread after it; 10M points make
+// tasks of a few milliseconds each).
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
                                       const VoxelizeOptions& options,
                                       ProgressRange progress = ProgressRange(),

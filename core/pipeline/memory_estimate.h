@@ -32,7 +32,8 @@ struct PlannedGrid {
 };
 // Formula (1), when voxelize.voxel_size is 0, counts the points on voxelize.threads threads.
 // InvalidArgument for a degenerate cloud (CheckedBounds' message). Callers that then voxelize
-// pass the planned voxel_size on, so that formula (1) does not count the points again.
+// pass the planned voxel_size and bounds on (VoxelizeOptions::voxel_size, checked_bounds), so
+// that formula (1) does not count the points again nor Voxelize check them again.
 // Cancelled when `cancel` fires during the point check or the count (CheckedBounds and
 // DistinctPointCount ask it).
 absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize,

@@ -91,8 +91,8 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kDecode); !s.ok()) return s;
 
   // Planned before anything is allocated, so that the gate can refuse a grid too large for
-  // the memory at hand; the planned voxel size is passed on, so that formula (1) does not
-  // count the points again.
+  // the memory at hand; the planned voxel size and bounds are passed on, so that Voxelize
+  // neither counts (formula (1)) nor checks the points again.
   VoxelizeOptions voxelize = options.voxelize;
   voxelize.threads = options.threads;
   absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, voxelize, cancel);
@@ -104,6 +104,7 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
     return with_context(s);
   }
   voxelize.voxel_size = plan->voxel_size;
+  voxelize.checked_bounds = plan->bounds;
 
   absl::StatusOr<Voxelization> voxelization =
       VoxelizeStage(voxelize, *cloud, cancel, report, observer, ticker.progress());

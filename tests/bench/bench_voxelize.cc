@@ -1,8 +1,11 @@
 // bench_voxelize: Voxelize (core/engine/voxelization.h) at the formula-(1) voxel on 1 and on
 // more threads, side by side: wall and process CPU seconds (all threads), medians of
 // interleaved repetitions, the calling thread's CPU seconds (the longest path), and the
-// distinct-point count alone (formula (1)'s share). Checks
-// that every thread count gives the first one's grid; exit status 1 when not.
+// distinct-point count alone (formula (1)'s share). Then Voxelize as the pipeline calls it,
+// after its grid planning: given the planned voxel, and given the planned voxel and the
+// planned bounds (VoxelizeOptions::checked_bounds: no second point check), CPU seconds side by
+// side, and the point check (CheckedBounds) alone. Checks that every thread count and every
+// way gives the first one's grid; exit status 1 when not.
 //   bench_voxelize [--points 1000000,4000000] [--threads 1,2] [--repeats 3] [--shape torus]
 #include <time.h>
 
@@ -31,7 +34,17 @@ double CpuNow(clockid_t clock) {
 // the threads share; the calling thread's own CPU time is the longest path whatever the load.
 struct Times {
   std::vector<double> wall, cpu, caller_cpu, count_wall;
+  // Given the planned voxel; given the planned voxel and bounds; the point check alone.
+  std::vector<double> voxel_cpu, bounds_cpu, check_cpu;
 };
+
+// Process CPU seconds of `run`.
+template <typename Run>
+double CpuOf(const Run& run) {
+  const double c = CpuNow(CLOCK_PROCESS_CPUTIME_ID);
+  run();
+  return CpuNow(CLOCK_PROCESS_CPUTIME_ID) - c;
+}
 
 int Run(int argc, char** argv) {
   std::vector<int64_t> counts = {1000000, 4000000};
@@ -76,6 +89,19 @@ int Run(int argc, char** argv) {
     std::vector<Times> times(threads.size());
     VoxelStates first;
     std::string grid;
+    // The pipeline's grid planning (PlanGrid): the point check and formula (1), once.
+    const absl::StatusOr<Box3d> bounds = CheckedBounds(cloud->points);
+    if (!bounds.ok()) {
+      std::fprintf(stderr, "%s\n", std::string(bounds.status().message()).c_str());
+      return 2;
+    }
+    const double voxel = FormulaVoxelSize(*bounds, cloud->points);
+    const auto check_grid = [&](const absl::StatusOr<Voxelization>& v, int t, const char* way) {
+      if (v.ok() && v->grid.states() == first) return;
+      same = false;
+      std::printf("%s %lld points: %d threads, %s: another grid\n", shape.c_str(),
+                  static_cast<long long>(n), t, way);
+    };
     for (int r = 0; r < repeats; ++r)
       for (size_t k = 0; k < threads.size(); ++k) {
         double w = Now();
@@ -100,6 +126,20 @@ int Run(int argc, char** argv) {
           std::printf("%s %lld points: %d threads give another grid\n", shape.c_str(),
                       static_cast<long long>(n), threads[k]);
         }
+        absl::StatusOr<Voxelization> planned = absl::UnknownError("not run");
+        times[k].voxel_cpu.push_back(CpuOf([&] {
+          planned = Voxelize(cloud->points, {.voxel_size = voxel, .threads = threads[k]});
+        }));
+        check_grid(planned, threads[k], "given the voxel");
+        planned = absl::UnknownError("not run");
+        times[k].bounds_cpu.push_back(CpuOf([&] {
+          planned = Voxelize(cloud->points, {.voxel_size = voxel,
+                                             .threads = threads[k],
+                                             .checked_bounds = *bounds});
+        }));
+        check_grid(planned, threads[k], "given the voxel and bounds");
+        planned = absl::UnknownError("not run");
+        times[k].check_cpu.push_back(CpuOf([&] { (void)CheckedBounds(cloud->points); }));
       }
     for (size_t k = 0; k < threads.size(); ++k) {
       std::printf("%s %9lld points grid %-14s threads %d  voxelize %6.2f s wall %6.2f s cpu "
@@ -107,6 +147,15 @@ int Run(int argc, char** argv) {
                   shape.c_str(), static_cast<long long>(n), grid.c_str(), threads[k],
                   Median(times[k].wall), Median(times[k].cpu), Median(times[k].caller_cpu),
                   Median(times[k].count_wall), LoadAverage().c_str());
+      // Paired: each repetition ran both ways back to back.
+      std::vector<double> ratios;
+      for (size_t r = 0; r < times[k].voxel_cpu.size(); ++r)
+        ratios.push_back(times[k].bounds_cpu[r] / times[k].voxel_cpu[r]);
+      std::printf("%s %9lld points planned: given the voxel %6.3f s cpu, the voxel and bounds "
+                  "%6.3f s cpu (paired %.3fx; point check alone %6.3f s cpu)  threads %d\n",
+                  shape.c_str(), static_cast<long long>(n), Median(times[k].voxel_cpu),
+                  Median(times[k].bounds_cpu), Median(ratios), Median(times[k].check_cpu),
+                  threads[k]);
     }
   }
   std::printf(same ? "grids identical for every thread count\n" : "GRIDS DIFFER\n");

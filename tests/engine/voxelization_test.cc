@@ -216,5 +216,35 @@ TEST(Voxelization, NonPositiveVoxelSizeIsInvalidArgument) {
   EXPECT_THAT(v.status().message(), HasSubstr("voxel size -1"));
 }
 
+// The pipeline's grid planning checks the points once and passes the box on: Voxelize given it
+// makes the grid it makes from its own check, with the formula-(1) voxel and a given one.
+TEST(Voxelization, GivenCheckedBoundsGiveTheSameGrid) {
+  std::vector<Point3f> points;
+  for (int i = 0; i < 5000; ++i) {
+    const double t = 2.399963 * i, z = 1.0 - 2.0 * (i + 0.5) / 5000;
+    const double r = std::sqrt(1 - z * z);
+    points.push_back({float(0.3 + 1.7 * r * std::cos(t)), float(-2 + r * std::sin(t)),
+                      float(5 + 0.8 * z)});
+  }
+  const absl::StatusOr<Box3d> bounds = CheckedBounds(points);
+  ASSERT_TRUE(bounds.ok()) << bounds.status();
+  for (const double voxel_size : {0.0, 0.07}) {
+    const absl::StatusOr<Voxelization> own = Voxelize(points, {.voxel_size = voxel_size});
+    const absl::StatusOr<Voxelization> given =
+        Voxelize(points, {.voxel_size = voxel_size, .checked_bounds = *bounds});
+    ASSERT_TRUE(own.ok()) << own.status();
+    ASSERT_TRUE(given.ok()) << given.status();
+    EXPECT_EQ(given->grid.voxel_size(), own->grid.voxel_size()) << voxel_size;
+    EXPECT_EQ(given->grid.dims(), own->grid.dims()) << voxel_size;
+    EXPECT_EQ(given->grid.origin(), own->grid.origin()) << voxel_size;
+    EXPECT_TRUE(given->grid.states() == own->grid.states()) << voxel_size;
+    EXPECT_EQ(given->bounds.min, own->bounds.min) << voxel_size;
+    EXPECT_EQ(given->bounds.max, own->bounds.max) << voxel_size;
+    EXPECT_EQ(given->data_dims, own->data_dims) << voxel_size;
+    EXPECT_EQ(given->hard_voxels, own->hard_voxels) << voxel_size;
+    EXPECT_EQ(given->density_ratio, own->density_ratio) << voxel_size;
+  }
+}
+
 }  // namespace
 }  // namespace membrane

@@ -504,6 +504,51 @@ bool SweepCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
   return true;
 }
 
+// The vertices of `region` on a thin tube of the mesh (HoleCapOptions::tube_rings): those
+// whose `rings`-ring neighbourhood holds fewer than half the 3 k (k + 1) + 1 vertices of a flat
+// patch of degree 6, grown by `grow` rings within the region; in the order of `region`. Empty
+// when `rings` is 0. `stamp` is scratch kept across calls on disjoint regions: each vertex
+// holds the last source whose search reached it (a source is searched from once).
+std::vector<int32_t> TubeVertices(const Rows& nb, const std::vector<int32_t>& region, int rings,
+                                  int grow, std::vector<int32_t>& stamp) {
+  if (rings <= 0) return {};
+  if (stamp.empty()) stamp.assign(nb.start.size() - 1, -1);
+  const int64_t limit = (3 * int64_t{rings} * (rings + 1) + 1) / 2;
+  absl::flat_hash_set<int32_t> tube;
+  std::vector<int32_t> frontier, next;
+  for (int32_t s : region) {
+    // Breadth first, stopped once the neighbourhood holds `limit` vertices: flat enough.
+    frontier.assign(1, s);
+    stamp[s] = s;
+    int64_t count = 1;
+    for (int ring = 0; ring < rings && count < limit && !frontier.empty(); ++ring) {
+      next.clear();
+      for (int32_t v : frontier)
+        for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u)
+          if (stamp[*u] != s) {
+            stamp[*u] = s;
+            next.push_back(*u);
+            ++count;
+          }
+      frontier.swap(next);
+    }
+    if (count < limit) tube.insert(s);
+  }
+  if (tube.empty()) return {};
+  const absl::flat_hash_set<int32_t> in_region(region.begin(), region.end());
+  for (int ring = 0; ring < grow; ++ring) {
+    std::vector<int32_t> added;
+    for (int32_t v : tube)
+      for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u)
+        if (in_region.contains(*u) && !tube.contains(*u)) added.push_back(*u);
+    tube.insert(added.begin(), added.end());
+  }
+  std::vector<int32_t> out;
+  for (int32_t v : region)
+    if (tube.contains(v)) out.push_back(v);
+  return out;
+}
+
 // The mean distance from the held vertices' points (the `pinned` vertices of `region`, at
 // `holds`) to the nearest other vertex of the cap at `at`, the held ones aside (they sit on
 // their points in the converged plate, and a sweep carries them along): how far a cap passes
@@ -602,7 +647,8 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       o.harmonic_iterations < 0 || !(o.tolerance > 0) || o.sample_rings < 1 ||
       o.max_samples < 3 || !(o.smoothing >= 0) || !(o.min_rim_cosine >= -1) ||
       !(o.wrap_rms >= 0) || o.wrapped_iterations < 0 || !(o.tube_flatness >= 0) ||
-      !(o.tube_lead >= 0) || !(o.swept_length >= 0 && o.swept_length <= 16) ||
+      !(o.tube_lead >= 0) || o.tube_rings < 0 || o.tube_rings > 64 ||
+      !(o.swept_length >= 0 && o.swept_length <= 16) ||
       !(o.spline_swept_length >= 0 && o.spline_swept_length <= 16) ||
       !(o.sphere_band_fit >= 0) ||
       !(o.sphere_margin >= 0) || !(o.converged_tolerance > 0) ||
@@ -616,6 +662,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         ", max_samples ", o.max_samples, ", smoothing ", o.smoothing, ", min_rim_cosine ",
         o.min_rim_cosine, ", wrap_rms ", o.wrap_rms, ", wrapped_iterations ",
         o.wrapped_iterations, ", tube_flatness ", o.tube_flatness, ", tube_lead ", o.tube_lead,
+        ", tube_rings ", o.tube_rings,
         ", swept_length ", o.swept_length, ", spline_swept_length ", o.spline_swept_length,
         ", sphere_band_fit ", o.sphere_band_fit,
         ", sphere_margin ", o.sphere_margin, ", converged_tolerance ", o.converged_tolerance,
@@ -819,6 +866,7 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   // apart, one list each (see below).
   std::vector<int32_t> blended;
   std::vector<std::vector<int32_t>> converging;
+  std::vector<int32_t> stamp;  // TubeVertices' scratch
   // Spline caps whose band has a sphere: their converged plate is solved apart, to be compared.
   std::vector<std::optional<AlgebraicSphere>> spheres(regions.size());
   std::vector<int32_t> candidates;
@@ -836,7 +884,20 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     // A held cap converges (HeldCapsToConverge), whatever its start.
     const bool converges = start == CapStart::kWrapped || held_converges[r];
     if (held_converges[r] && start != CapStart::kWrapped) ++st.held_converged;
-    if (converges)
+    if (converges && start == CapStart::kWrapped) {
+      // A thin tube in the cap is its own system, solved after the rest (tube_rings).
+      std::vector<int32_t> tube =
+          TubeVertices(nb, region, options.tube_rings, options.rim_rings, stamp);
+      if (!tube.empty() && tube.size() < region.size()) {
+        const absl::flat_hash_set<int32_t> in_tube(tube.begin(), tube.end());
+        std::erase_if(region, [&](int32_t v) { return in_tube.contains(v); });
+        st.tube_vertices += static_cast<int64_t>(tube.size());
+        converging.push_back(region);
+        converging.push_back(std::move(tube));
+      } else {
+        converging.push_back(region);
+      }
+    } else if (converges)
       converging.push_back(region);
     else
       blended.insert(blended.end(), region.begin(), region.end());

@@ -109,6 +109,15 @@ struct HoleCapOptions {
   // spline_swept_length radii: the spline already lifts such a cap along the walls' slope
   // into a dome, and a sweep as long as a wrapped rim's carries it past the part's end.
   double spline_swept_length = 0.25;
+  // A wrapped cap's region can hold a thin tube of the mesh: a tunnel a voxel or two across
+  // that the shrink left through the solid, its walls far from any data, joined to the hole
+  // it runs from. Solved with the cap, its walls stand as the rim of the plate (their slope
+  // carried into a bulge past the base around them) and the tube couples the cap to its far
+  // end. Its vertices (those whose tube_rings-ring neighbourhood in the mesh holds fewer than
+  // half the vertices of a flat patch's, 3 k (k + 1) + 1, grown by rim_rings rings within the
+  // region) are solved apart, as their own converging system after the rest of the cap.
+  // 0: no test.
+  int tube_rings = 10;
   // The solves to convergence stop once no step moves a vertex by more than this: the
   // bi-Laplacian's steps fall below `tolerance` hundreds of iterations before the plate
   // settles (a cap of 1,588 vertices: 144 iterations at 0.01 voxel, 398 at 0.001, 589 at
@@ -140,6 +149,7 @@ struct HoleCapStats {
   int64_t swept = 0;             // of those, rims around a post: the cap swept along its axis
   int64_t sphere_converged = 0;  // spline caps converged because the band's sphere says so
   int64_t held_converged = 0;    // caps converged because points seen inside the gap hold them
+  int64_t tube_vertices = 0;     // wrapped caps' vertices on thin tubes, solved apart
   int64_t iterations = 0;       // conjugate-gradient iterations, every solve
   int64_t anchors = 0;           // cap vertices held at remote points
   int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
@@ -167,7 +177,9 @@ struct HoleCapStats {
 // A converged cap whose rim wraps around a post or a thin part's edge is then swept on along
 // the part's walls (tube_flatness, tube_lead, swept_length), and so is a spline cap around a
 // post (spline_swept_length), unless points seen inside its gap hold it and the swept cap
-// passes farther from them (held_margin). Then it searches the
+// passes farther from them (held_margin). A wrapped cap's vertices on a thin tube of the mesh
+// (tube_rings) are solved as their own converging system after the rest of it. Then it
+// searches the
 // faces around moved vertices for crossings and sends the moved vertices of each crossing
 // pair back toward where they were (halfway back_off_halvings times, then all the way) until
 // no crossing involves a moved vertex: where a cap would cross the mesh, that part of it is

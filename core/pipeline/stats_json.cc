@@ -113,6 +113,7 @@ std::string HoleCapsJson(const HoleCapStats& h) {
                       ", \"swept_caps\": ", h.swept,
                       ", \"sphere_converged_caps\": ", h.sphere_converged,
                       ", \"held_converged_caps\": ", h.held_converged,
+                      ", \"tube_vertices\": ", h.tube_vertices,
                       ", \"uncapped_regions\": ", h.uncapped_regions,
                       ", \"anchored_vertices\": ", h.anchors,
                       ", \"backed_off_vertices\": ", h.backed_off,

@@ -18,10 +18,12 @@ int64_t ChainRunner::CellIndex(int o, int layer, int u, int v) const {
   return grid_.Index(PlateCell(kOrientations[o], layer, u, v));
 }
 
-void ChainRunner::NoteZ(int64_t index) {
-  const int z = static_cast<int>(index / grid_.strides()[2]);
-  z_lo_ = std::min(z_lo_, z);
-  z_hi_ = std::max(z_hi_, z);
+void ChainRunner::NoteWrite(int o, int layer, int u_lo, int u_hi, int v_lo, int v_hi) {
+  const Orientation& orient = kOrientations[o];
+  VoxelBox box;
+  box.Add(PlateCell(orient, layer, u_lo, v_lo));
+  box.Add(PlateCell(orient, layer, u_hi, v_hi));
+  written_.push_back(box);
 }
 
 bool ChainRunner::RegionOk(int o, int layer, const Region& r, bool lenient,
@@ -76,7 +78,6 @@ bool ChainRunner::Contract(int o, int layer, const Region& r) {
       }
       log_.emplace_back(static_cast<uint32_t>(i), s[i]);
       s[i] = outside;
-      NoteZ(i);
       cu_lo = std::min(cu_lo, u);
       cu_hi = std::max(cu_hi, u);
       cv_lo = std::min(cv_lo, v);
@@ -85,6 +86,7 @@ bool ChainRunner::Contract(int o, int layer, const Region& r) {
   }
   ++counters_->contractions;
   if (cu_lo > cu_hi) return true;
+  NoteWrite(o, layer, cu_lo, cu_hi, cv_lo, cv_hi);
   // Incursion test on the hard and frozen voxels of the lateral side (this layer) and of the
   // front and lateral front sides (next layer) whose neighbourhood changed.
   for (int l = layer; l != layer + 2 * orient.sign; l += orient.sign) {
@@ -114,9 +116,9 @@ void ChainRunner::Freeze(const Plate& p) {
       const int64_t i = CellIndex(p.orientation, p.layer, u, v);
       if (s[i] == kBoundarySoft) {
         s[i] = kBoundaryFrozen;
-        NoteZ(i);
       }
     }
+  NoteWrite(p.orientation, p.layer, p.u0, p.u0 + n - 1, p.v0, p.v0 + n - 1);
 }
 
 void ChainRunner::CommitConversions() {
@@ -138,8 +140,7 @@ ChainOutcome ChainRunner::Run(const Plate& start, const ChainOptions& options,
   log_.clear();
   stack_.clear();
   contracted_.clear();
-  z_lo_ = grid_.dim(2);
-  z_hi_ = -1;
+  written_.clear();
   guard_refused_ = 0;
   const int n = options.plate_size();
   const Region full{start.u0, start.u0 + n - 1, start.v0, start.v0 + n - 1};
@@ -233,10 +234,18 @@ ChainOutcome ChainRunner::Run(const Plate& start, const ChainOptions& options,
     if (guard_refused_ > 0) ++counters.guard_refusals;
     if (depth_refused) ++counters.depth_refusals;
     UndoAll();
+    written_.clear();  // the chain's cells are as they were: only the freeze is left
     Freeze(start);
     return ChainOutcome::kBacktracked;
   }
   CommitConversions();
+  // The conversions write the cleared cells' 26-neighbours.
+  for (VoxelBox& box : written_) {
+    for (int d = 0; d < 3; ++d) {
+      box.lo[d] = std::max(box.lo[d] - 1, 0);
+      box.hi[d] = std::min(box.hi[d] + 1, grid_.dim(d) - 1);
+    }
+  }
   return ChainOutcome::kCommitted;
 }
 

@@ -19,6 +19,7 @@
 #include "core/engine/incursion_test.h"
 #include "core/engine/plate.h"
 #include "core/engine/topology_guard.h"
+#include "core/engine/voxel_box.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {
@@ -79,8 +80,9 @@ class ChainRunner {
   ChainOutcome Run(const Plate& start, const ChainOptions& options, const CancelToken& cancel,
                    ChainCounters& counters);
 
-  // Lowest and highest z (voxel coordinates) written by the last Run; lo > hi when none.
-  std::pair<int, int> last_z_range() const { return {z_lo_, z_hi_}; }
+  // Boxes holding every voxel whose state the last Run changed (a chain undone changed only
+  // its frozen start plate); none when it changed none.
+  const std::vector<VoxelBox>& last_written() const { return written_; }
 
  private:
   struct Region {  // cells [u_lo, u_hi] x [v_lo, v_hi] of one layer
@@ -102,7 +104,8 @@ class ChainRunner {
   void UndoAll();
   void Freeze(const Plate& plate);
   void CommitConversions();
-  void NoteZ(int64_t index);
+  // Notes the cells [u_lo, u_hi] x [v_lo, v_hi] of `layer` in orientation o as written.
+  void NoteWrite(int o, int layer, int u_lo, int u_hi, int v_lo, int v_hi);
   int64_t CellIndex(int o, int layer, int u, int v) const;
   static uint64_t PlateKey(const Plate& p) {
     return (static_cast<uint64_t>(p.layer) << 42) | (static_cast<uint64_t>(p.u0) << 21) |
@@ -115,7 +118,7 @@ class ChainRunner {
   std::vector<std::pair<uint32_t, VoxelState>> log_;  // (voxel, state before) per cleared cell
   std::vector<Frame> stack_;
   absl::flat_hash_set<uint64_t> contracted_;  // plates contracted by this chain
-  int z_lo_ = 0, z_hi_ = -1;
+  std::vector<VoxelBox> written_;  // see last_written()
   int guard_refused_ = 0;
 };
 

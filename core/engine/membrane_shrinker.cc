@@ -177,13 +177,19 @@ absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
 // snapshot contains a voxel that a chain of the pass changed.
 absl::Status MembraneShrinker::RunChains(const ChainOptions& chain, GenerationStats& stats) {
   ChainCounters counters;
-  for (;;) {
+  // The boxes the last pass's chains wrote: the next pass's snapshot is taken near them.
+  std::vector<VoxelBox> written;
+  for (bool first = true;; first = false) {
     if (cancel_.cancelled()) return CancelledIn(stats);
     const std::optional<std::vector<int64_t>> snapshot =
-        finder_.Snapshot(chain.plate_size(), cancel_);
+        first ? finder_.Snapshot(chain.plate_size(), cancel_)
+              : finder_.SnapshotAfter(chain.plate_size(), written,
+                                      options_.local_snapshots, cancel_);
     if (!snapshot) return CancelledIn(stats);
     const std::vector<int64_t>& candidates = *snapshot;
     ++stats.passes;
+    if (finder_.local()) ++stats.local_passes;
+    written.clear();
     bool changed = false;
     for (int64_t index : candidates) {
       if (grid_.at(index) != kBoundarySoft) continue;
@@ -195,6 +201,8 @@ absl::Status MembraneShrinker::RunChains(const ChainOptions& chain, GenerationSt
       ++stats.started_contractions;
       if (outcome == ChainOutcome::kBacktracked) ++stats.backtrackings;
       changed = true;
+      written.insert(written.end(), runner_.last_written().begin(),
+                     runner_.last_written().end());
     }
     if (!changed) break;
   }

@@ -61,6 +61,7 @@ struct GenerationStats {
   int64_t loose_tunnels = 0;
   bool handle_retry = false;         // run again by the handle retry, whose result was kept
   int passes = 0;                    // place-finding snapshots
+  int local_passes = 0;              // of which taken near the last pass's writes only
   bool closed_form = false;          // computed as a fixed point, without chains
   int closed_form_rounds = 0;        // rounds of its six sweeps (also when it was rejected)
   int64_t closed_form_checks = 0;    // incursion and guard tests after it

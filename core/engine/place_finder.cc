@@ -12,9 +12,27 @@ namespace membrane {
 static_assert(kPlaceFinderPlanes <= WorkPlanes::kArenaPlanes);
 
 PlaceFinder::PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes)
-    : grid_(grid), planes_(planes) {}
+    : grid_(grid), planes_(planes), local_(grid) {}
+
+std::optional<std::vector<int64_t>> PlaceFinder::SnapshotAfter(int n,
+                                                               const std::vector<VoxelBox>& written,
+                                                               const LocalSnapshotOptions& options,
+                                                               const CancelToken& cancel) {
+  if (n == n_ && n < kAnchorRowsMinPlate) {
+    std::optional<std::vector<int64_t>> local = local_.Take(n, written, options, cancel);
+    if (local) {
+      local_taken_ = true;
+      anchors_ = {};  // stale: the local bricks hold the anchors PlaceFor reads
+      return local;
+    }
+    if (cancel.cancelled()) return std::nullopt;
+  }
+  return Snapshot(n, cancel);
+}
 
 std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelToken& cancel) {
+  local_taken_ = false;
+  local_.Release();
   rows_ = n >= kAnchorRowsMinPlate;
   if (!planes_.Ensure(kPlaceFinderPlanes, cancel)) return std::nullopt;
   n_ = n;
@@ -96,12 +114,15 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
 }
 
 void PlaceFinder::Release() {
+  local_.Release();
+  local_taken_ = false;
   anchors_ = {};
   anchor_rows_ = {};
   rows_ = false;
 }
 
 std::optional<Plate> PlaceFinder::PlaceFor(int64_t index) const {
+  if (local_taken_) return local_.PlaceFor(index);
   const Coord c = grid_.CoordOf(index);
   for (int o = 0; o < 6; ++o) {
     const Orientation& orient = kOrientations[o];

@@ -14,6 +14,7 @@
 
 #include "core/base/cancel_token.h"
 #include "core/engine/flat_bitset.h"
+#include "core/engine/local_snapshot.h"
 #include "core/engine/packed_plane.h"
 #include "core/engine/plate.h"
 #include "core/engine/voxel_grid.h"
@@ -42,10 +43,22 @@ class PlaceFinder {
   // it fired.
   std::optional<std::vector<int64_t>> Snapshot(int n, const CancelToken& cancel);
 
+  // The same snapshot (the same candidates and places) taken after a pass of chains, given
+  // `written`: boxes holding every voxel written since the last snapshot, which had plate
+  // size n. Below kAnchorRowsMinPlate it is computed only near those voxels
+  // (local_snapshot.h) while their bricks' boxes hold at most options.max_share of the
+  // grid's voxels; otherwise, and for other n, it is Snapshot(n).
+  std::optional<std::vector<int64_t>> SnapshotAfter(int n, const std::vector<VoxelBox>& written,
+                                                    const LocalSnapshotOptions& options,
+                                                    const CancelToken& cancel);
+
   // The plate the paper's list scan would take for candidate voxel `index` at the snapshot:
   // first orientation in kOrientations order, then smallest u0, then smallest v0. nullopt
   // when no fitting plate covers the voxel in the snapshot.
   std::optional<Plate> PlaceFor(int64_t index) const;
+
+  // True when the last snapshot was taken near the writes only (SnapshotAfter).
+  bool local() const { return local_taken_; }
 
   // Frees the last snapshot's copies (the steps after the generations take none); PlaceFor
   // must not be called until the next snapshot.
@@ -60,6 +73,8 @@ class PlaceFinder {
   std::array<PackedPlane, 6> anchors_;
   std::array<PackedPlane, 6> anchor_rows_;
   bool rows_ = false;
+  LocalSnapshot local_;
+  bool local_taken_ = false;  // the last snapshot is local_'s
 };
 
 }  // namespace membrane

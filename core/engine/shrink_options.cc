@@ -23,6 +23,15 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(
         absl::StrFormat("threads_min_voxels %d must be >= 0", o.threads_min_voxels));
   }
+  if (!(o.local_snapshots.max_share >= 0 && o.local_snapshots.max_share <= 1000)) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "local_snapshots.max_share %g must be in [0, 1000] (0 = never)",
+        o.local_snapshots.max_share));
+  }
+  if (o.local_snapshots.brick < 1) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("local_snapshots.brick %d must be >= 1", o.local_snapshots.brick));
+  }
   if (o.closed_form_min_plate < 0) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "closed_form_min_plate %d must be >= 0 (0 = never)", o.closed_form_min_plate));

@@ -8,6 +8,7 @@
 
 #include "absl/status/status.h"
 #include "core/engine/contraction.h"
+#include "core/engine/local_snapshot.h"
 #include "core/engine/gap_refill.h"
 #include "core/engine/piece_separation.h"
 #include "core/engine/hole_opening.h"
@@ -37,6 +38,9 @@ struct ShrinkOptions {
   ChainRules chain;                 // depth bound, thick-wall run, guard on or off
   GuardSizes guard;                 // algorithm-notes 12
   int closed_form_min_plate = 8;    // generations with n >= this try the closed form; 0 = never
+  // A chain generation's passes after its first take their snapshot near the voxels the pass
+  // before wrote (place_finder.h, SnapshotAfter: the same candidates and places).
+  LocalSnapshotOptions local_snapshots;
   bool silhouette_preshrink = false;  // algorithm-notes 3 (Fig. 21b); off by default
   bool connect_inside_hard = true;  // section 7 post-process
   HandleRetryOptions retry;

@@ -433,16 +433,16 @@ Summary RunModel(const BenchOptions& o, const Model& m, bool open3d_available,
   std::printf("grid %dx%dx%d with padding (%s voxels), voxel %.6g, points %s, hard voxels %s\n",
               d[0], d[1], d[2], Thousands(s.voxels).c_str(), voxel_size,
               Thousands(s.points).c_str(), Thousands(hard).c_str());
-  std::printf("%4s %5s %12s %10s %11s %13s %12s %7s %6s %9s\n", "gen", "plate",
+  std::printf("%4s %5s %12s %10s %11s %13s %12s %7s %6s %6s %9s\n", "gen", "plate",
               "soft voxels", "started", "backtracks", "contractions", "undone", "passes",
-              "rounds", "seconds");
+              "local", "rounds", "seconds");
   double generation_sum = 0.0;
   for (const GenerationStats& g : res.generations) {
-    std::printf("%4d %5d %12s %10s %11s %13s %12s %7d %6d %9.3f\n", g.generation,
+    std::printf("%4d %5d %12s %10s %11s %13s %12s %7d %6d %6d %9.3f\n", g.generation,
                 g.plate_size, Thousands(g.soft_voxels).c_str(),
                 Thousands(g.started_contractions).c_str(), Thousands(g.backtrackings).c_str(),
                 Thousands(g.contractions).c_str(), Thousands(g.undone_contractions).c_str(),
-                g.passes, g.closed_form_rounds, g.seconds);
+                g.passes, g.local_passes, g.closed_form_rounds, g.seconds);
     generation_sum += g.seconds;
   }
   std::printf("shrink: median %.3f s wall, %.3f s CPU over R=%d (wall runs %s); %.1f ns/voxel "

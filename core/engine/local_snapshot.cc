@@ -1,0 +1,178 @@
+#include "core/engine/local_snapshot.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
+#include "absl/types/span.h"
+#include "core/engine/interior_plane.h"
+#include "core/engine/state_planes.h"
+#include "core/engine/voxel_state.h"
+
+namespace membrane {
+
+std::optional<std::vector<int64_t>> LocalSnapshot::Take(int n, const std::vector<VoxelBox>& written,
+                                                        const LocalSnapshotOptions& options,
+                                                        const CancelToken& cancel) {
+  Release();
+  if (options.max_share <= 0 || options.brick < 1) return std::nullopt;
+  n_ = n;
+  brick_ = options.brick;
+  const int kLocalBrick = brick_;
+  const std::array<int, 3>& dims = grid_.dims();
+  for (int d = 0; d < 3; ++d) brick_counts_[d] = (dims[d] + kLocalBrick - 1) / kLocalBrick;
+  slot_.assign(static_cast<size_t>(brick_counts_[0]) * brick_counts_[1] * brick_counts_[2], -1);
+  // The bricks within 2n + 1 of a written voxel, in increasing brick index.
+  const int reach = 2 * n + 1;
+  std::vector<int64_t> marked;
+  for (const VoxelBox& box : written) {
+    if (box.empty()) continue;
+    int b_lo[3], b_hi[3];
+    for (int d = 0; d < 3; ++d) {
+      b_lo[d] = std::max(box.lo[d] - reach, 0) / kLocalBrick;
+      b_hi[d] = std::min(box.hi[d] + reach, dims[d] - 1) / kLocalBrick;
+    }
+    for (int bz = b_lo[2]; bz <= b_hi[2]; ++bz)
+      for (int by = b_lo[1]; by <= b_hi[1]; ++by)
+        for (int bx = b_lo[0]; bx <= b_hi[0]; ++bx) {
+          const int64_t b = bx + static_cast<int64_t>(brick_counts_[0]) *
+                                     (by + static_cast<int64_t>(brick_counts_[1]) * bz);
+          if (slot_[static_cast<size_t>(b)] < 0) {
+            slot_[static_cast<size_t>(b)] = 0;
+            marked.push_back(b);
+          }
+        }
+  }
+  std::sort(marked.begin(), marked.end());
+  const int64_t side = kLocalBrick + 2 * (n + 2);
+  if (static_cast<double>(marked.size()) * static_cast<double>(side * side * side) >
+      options.max_share * static_cast<double>(grid_.size())) {
+    Release();
+    return std::nullopt;
+  }
+  bricks_.resize(marked.size());
+  std::vector<int64_t> candidates;
+  for (size_t k = 0; k < marked.size(); ++k) {
+    if (cancel.cancelled()) {
+      Release();
+      return std::nullopt;
+    }
+    const int64_t b = marked[k];
+    slot_[static_cast<size_t>(b)] = static_cast<int32_t>(k);
+    const Coord core_lo{
+        static_cast<int>(b % brick_counts_[0]) * kLocalBrick,
+        static_cast<int>((b / brick_counts_[0]) % brick_counts_[1]) * kLocalBrick,
+        static_cast<int>(b / (static_cast<int64_t>(brick_counts_[0]) * brick_counts_[1])) *
+            kLocalBrick};
+    Compute(bricks_[k], core_lo, candidates);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  return candidates;
+}
+
+void LocalSnapshot::Compute(Brick& brick, const Coord& core_lo, std::vector<int64_t>& candidates) {
+  const int n = n_;
+  const int kLocalBrick = brick_;
+  const std::array<int, 3>& dims = grid_.dims();
+  // The core and n + 2 voxels around it: the anchors the core's candidates read (within n - 1
+  // below them) read cells up to n + 1 away, off the box's outermost layer.
+  Coord core_hi;
+  for (int d = 0; d < 3; ++d) {
+    core_hi[d] = std::min(core_lo[d] + kLocalBrick, dims[d]) - 1;
+    brick.lo[d] = std::max(core_lo[d] - (n + 2), 0);
+    brick.dims[d] = std::min(core_hi[d] + n + 2, dims[d] - 1) - brick.lo[d] + 1;
+  }
+  const int64_t nx = brick.dims[0], ny = brick.dims[1], nz = brick.dims[2];
+  const int64_t size = nx * ny * nz;
+  const int64_t st[3] = {1, nx, nx * ny};
+  for (FlatBitset* p : {&free_, &out_, &bs_, &free_z_, &out_z_, &free_sq_, &out_sq_, &covered_,
+                        &anchor_, &scratch_}) {
+    p->EnsureSize(size);
+  }
+  // The box's states, row by row, then its planes as the dense snapshot builds them; the
+  // box's outermost layer (which holds the grid's border where the box reaches it) is
+  // cleared from `free`: plates touching it are left out, as at the border.
+  bytes_.resize(static_cast<size_t>(size));
+  const VoxelState* s = grid_.states().data();
+  for (int64_t z = 0; z < nz; ++z)
+    for (int64_t y = 0; y < ny; ++y) {
+      std::memcpy(bytes_.data() + nx * (y + ny * z),
+                  s + grid_.Index(brick.lo.x, brick.lo.y + static_cast<int>(y),
+                                  brick.lo.z + static_cast<int>(z)),
+                  static_cast<size_t>(nx));
+    }
+  const absl::Span<const VoxelState> box_states(bytes_);
+  FillStatePlane(box_states, StatePredicate::kBoundarySoft, bs_);
+  FillStatePlane(box_states, StatePredicate::kOutside, out_);
+  free_.AssignOr(bs_, out_);
+  ClearArrayBorder(brick.dims, free_);
+  // The dense snapshot's anchors (place_finder.cc), on the box.
+  free_z_.ErodeRunFrom(free_, n, st[2]);
+  out_z_.ErodeRunFrom(out_, n, st[2]);
+  FlatBitset& free_x = free_;
+  FlatBitset& out_x = out_;
+  free_x.ErodeRun(n, st[0]);
+  out_x.ErodeRun(n, st[0]);
+  covered_.clear_all();
+  for (int a = 0; a < 3; ++a) {
+    const bool from_z = a != 2;
+    const int last_axis = a == 1 ? 0 : 1;
+    free_sq_.ErodeRunFrom(from_z ? free_z_ : free_x, n, st[last_axis]);
+    out_sq_.ErodeRunFrom(from_z ? out_z_ : out_x, n, st[last_axis]);
+    const int64_t su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
+    for (int o = 2 * a; o < 2 * a + 2; ++o) {
+      anchor_.AssignAndShifted(free_sq_, out_sq_, kOrientations[o].sign * st[a]);
+      brick.anchors[static_cast<size_t>(o)].Assign(anchor_);
+      scratch_ = anchor_;
+      scratch_.DilateRun(n, sv);
+      scratch_.DilateRun(n, su);
+      covered_.Or(scratch_);
+    }
+  }
+  // The core's candidates.
+  covered_.And(bs_);
+  covered_.ForEach([&](int64_t local) {
+    const int64_t x = local % nx, y = (local / nx) % ny, z = local / (nx * ny);
+    const Coord c{brick.lo.x + static_cast<int>(x), brick.lo.y + static_cast<int>(y),
+                  brick.lo.z + static_cast<int>(z)};
+    for (int d = 0; d < 3; ++d) {
+      if (c[d] < core_lo[d] || c[d] > core_hi[d]) return;
+    }
+    candidates.push_back(grid_.Index(c));
+  });
+}
+
+std::optional<Plate> LocalSnapshot::PlaceFor(int64_t index) const {
+  const Coord c = grid_.CoordOf(index);
+  const int kLocalBrick = brick_;
+  const int64_t b =
+      c.x / kLocalBrick +
+      static_cast<int64_t>(brick_counts_[0]) *
+          (c.y / kLocalBrick + static_cast<int64_t>(brick_counts_[1]) * (c.z / kLocalBrick));
+  const int32_t k = slot_[static_cast<size_t>(b)];
+  if (k < 0) return std::nullopt;
+  const Brick& brick = bricks_[static_cast<size_t>(k)];
+  const int n = n_;
+  for (int o = 0; o < 6; ++o) {
+    const Orientation& orient = kOrientations[o];
+    const int layer = c[orient.axis], u = c[orient.u_axis()], v = c[orient.v_axis()];
+    const PackedPlane& anchors = brick.anchors[static_cast<size_t>(o)];
+    for (int u0 = std::max(u - n + 1, 0); u0 <= u; ++u0)
+      for (int v0 = std::max(v - n + 1, 0); v0 <= v; ++v0) {
+        const Coord p = PlateCell(orient, layer, u0, v0);
+        const int64_t local =
+            (p.x - brick.lo.x) +
+            brick.dims[0] * (static_cast<int64_t>(p.y - brick.lo.y) +
+                             static_cast<int64_t>(brick.dims[1]) * (p.z - brick.lo.z));
+        if (anchors.test(local)) return Plate{o, layer, u0, v0};
+      }
+  }
+  return std::nullopt;
+}
+
+void LocalSnapshot::Release() {
+  bricks_.clear();
+  slot_.clear();
+}
+
+}  // namespace membrane

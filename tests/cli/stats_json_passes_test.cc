@@ -3,15 +3,13 @@
 // keeps a thin cup wall's core closed, the gap refill fills cow-spot-belt's pockets; each
 // count agrees with the mesh delivered.
 #include <cstdint>
-#include <fstream>
-#include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/io/point_cloud_io.h"
 #include "gtest/gtest.h"
 #include "tests/cli/json_value.h"
+#include "tests/cli/reconstruct_stats.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/cup_cloud.h"
 #include "tests/support/scratch_dir.h"
@@ -23,18 +21,9 @@ namespace {
 // Reconstructs `cloud` with --stats-json (and `extra_flags`) and returns the parsed statistics.
 JsonValue StatsOf(const ScratchDir& dir, const std::string& cloud,
                   const std::vector<std::string>& extra_flags = {}) {
-  const std::string stats = dir.File("stats.json");
-  std::vector<std::string> args = {"reconstruct", cloud,          "-o", dir.File("mesh.drc"),
-                                   "--local",     "--stats-json", stats, "-q"};
-  args.insert(args.end(), extra_flags.begin(), extra_flags.end());
-  const CliResult r = RunMembrane(args, dir.path());
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  std::ifstream in(stats);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::optional<JsonValue> json = ParseJson(text.str());
-  EXPECT_TRUE(json.has_value()) << text.str();
-  return json.value_or(JsonValue{});
+  std::vector<std::string> flags = {"-q"};
+  flags.insert(flags.end(), extra_flags.begin(), extra_flags.end());
+  return ReconstructStats(dir, cloud, "mesh.drc", flags);
 }
 
 // The integer at `object`.`key`; -1 (and a failure) when it is missing or not an integer.

@@ -1,7 +1,5 @@
 // --stats-json writes every key of design/contracts.md with the documented type.
 #include <array>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -11,6 +9,7 @@
 #include "gtest/gtest.h"
 #include "tests/support/cli_runner.h"
 #include "tests/cli/json_value.h"
+#include "tests/cli/reconstruct_stats.h"
 #include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
@@ -25,18 +24,7 @@ JsonValue SphereStats(const ScratchDir& dir, const std::vector<std::string>& ext
   const CliResult synth =
       RunMembrane({"synth", "sphere", "-o", cloud, "--points", "5000"}, dir.path());
   EXPECT_EQ(synth.exit_code, 0) << synth.err;
-  const std::string stats = dir.File("stats.json");
-  std::vector<std::string> args = {"reconstruct", cloud,          "-o", dir.File("mesh.ply"),
-                                   "--local",     "--stats-json", stats};
-  args.insert(args.end(), extra_flags.begin(), extra_flags.end());
-  const CliResult r = RunMembrane(args, dir.path());
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  std::ifstream in(stats);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::optional<JsonValue> json = ParseJson(text.str());
-  EXPECT_TRUE(json.has_value()) << text.str();
-  return json.value_or(JsonValue{});
+  return ReconstructStats(dir, cloud, "mesh.ply", extra_flags);
 }
 
 // Expects `object` to hold `key` of `type` (and an integer when `integer`).

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <utility>
 
+#include "core/engine/point_density.h"
+
 namespace membrane {
 namespace {
 
@@ -29,8 +31,8 @@ HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f
   const auto& origin = grid.origin();
   const double l = grid.voxel_size();
   const double inv = 1.0 / l;
-  // Voxelize put a point in voxel floor((p - min) / l) past the padding, min the points' least
-  // coordinate. Computed from the origin (min - padding * l) instead, the rounding differs on
+  // Voxelize put a point in voxel DataVoxelAlong(p, min, l) past the padding, min the points'
+  // least coordinate. Computed from the origin (min - padding * l) instead, the rounding differs on
   // voxel faces, and the box's least face is one: the points of a flat base there would be
   // read in the padding, off their hard voxel. Their minimum gives Voxelize's voxel exactly
   // when the grid was voxelized from them; another grid is read from its origin.
@@ -53,9 +55,7 @@ HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f
   for (size_t i = 0; i < points.size(); ++i) {
     Coord c;
     for (int d = 0; d < 3; ++d) {
-      const double f = std::floor((points[i][d] - low[d]) / l);
-      const double last = grid.dim(d) - 1 - 2 * pad;
-      c[d] = pad + static_cast<int>(std::clamp(f, 0.0, last));
+      c[d] = pad + static_cast<int>(DataVoxelAlong(points[i][d], low[d], l, grid.dim(d) - 2 * pad));
     }
     order[i] = {grid.Index(c), static_cast<uint32_t>(i)};
   }

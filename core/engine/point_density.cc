@@ -32,10 +32,7 @@ std::vector<int64_t> SortedPointVoxels(absl::Span<const Point3f> points, const B
   const int slabs = std::clamp(dims[2], 1, kMaxSlabs);
   auto voxel_of = [&](const Point3f& p) {
     int64_t c[3];
-    for (int d = 0; d < 3; ++d) {
-      const double f = std::floor((p[d] - bounds.min[d]) / voxel_size);
-      c[d] = std::clamp(static_cast<int64_t>(f), int64_t{0}, int64_t{dims[d]} - 1);
-    }
+    for (int d = 0; d < 3; ++d) c[d] = DataVoxelAlong(p[d], bounds.min[d], voxel_size, dims[d]);
     return c[0] + dims[0] * (c[1] + int64_t{dims[1]} * c[2]);
   };
   // Increasing with the voxel index, so that the slabs in order, each sorted, are the list.

@@ -5,7 +5,9 @@
 #ifndef MEMBRANE_CORE_ENGINE_POINT_DENSITY_H_
 #define MEMBRANE_CORE_ENGINE_POINT_DENSITY_H_
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -18,6 +20,16 @@ namespace membrane {
 // Voxels per axis covering `bounds` with edge `voxel_size` (model units, > 0): floor(L / l) + 1,
 // so the largest coordinate falls inside (Voxelize's data region, without its padding).
 std::array<int, 3> DataDims(const Box3d& bounds, double voxel_size);
+
+// The data-region voxel of coordinate `p` along one axis: floor((p - min) / voxel_size), clamped
+// into [0, cells - 1], `min` the bounds' least coordinate on that axis and `cells` its DataDims.
+// Voxelize's rule: whoever reads a point in the voxel Voxelize made hard for it computes the
+// same expression (a division, not a multiplication by 1 / voxel_size, which rounds
+// differently on voxel faces).
+inline int64_t DataVoxelAlong(double p, double min, double voxel_size, int cells) {
+  const double f = std::floor((p - min) / voxel_size);
+  return std::clamp(static_cast<int64_t>(f), int64_t{0}, int64_t{cells} - 1);
+}
 
 // The data-region voxel of each point, x + nx (y + ny z) with (nx, ny, nz) = `dims` (DataDims
 // of the same bounds and size), sorted so that a voxel's points are adjacent. Voxel x of a

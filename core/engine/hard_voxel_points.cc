@@ -32,30 +32,31 @@ HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f
   const double l = grid.voxel_size();
   const double inv = 1.0 / l;
   // Voxelize put a point in voxel DataVoxelAlong(p, min, l) past the padding, min the points'
-  // least coordinate. Computed from the origin (min - padding * l) instead, the rounding differs on
-  // voxel faces, and the box's least face is one: the points of a flat base there would be
+  // least coordinate. Computed from the origin (min - padding * l) instead, the rounding differs
+  // on voxel faces, and the box's least face is one: the points of a flat base there would be
   // read in the padding, off their hard voxel. Their minimum gives Voxelize's voxel exactly
   // when the grid was voxelized from them; another grid is read from its origin.
   std::array<double, 3> low = origin;
   int pad = 0;
   if (!points.empty()) {
-    std::array<double, 3> least;
-    for (int d = 0; d < 3; ++d) {
-      float m = points[0][d];
-      for (const Point3f& p : points) m = std::min(m, p[d]);
-      least[d] = m;
-    }
+    Point3f least = points[0];
+    for (const Point3f& p : points)
+      for (int d = 0; d < 3; ++d) least[d] = std::min(least[d], p[d]);
     bool voxelized = true;
     for (int d = 0; d < 3; ++d) {
       voxelized = voxelized && least[d] - VoxelGrid::kPadding * l == origin[d];
     }
-    if (voxelized) low = least, pad = VoxelGrid::kPadding;
+    if (voxelized) {
+      low = {least[0], least[1], least[2]};
+      pad = VoxelGrid::kPadding;
+    }
   }
   std::vector<std::pair<int64_t, uint32_t>> order(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     Coord c;
     for (int d = 0; d < 3; ++d) {
-      c[d] = pad + static_cast<int>(DataVoxelAlong(points[i][d], low[d], l, grid.dim(d) - 2 * pad));
+      const int64_t along = DataVoxelAlong(points[i][d], low[d], l, grid.dim(d) - 2 * pad);
+      c[d] = pad + static_cast<int>(along);
     }
     order[i] = {grid.Index(c), static_cast<uint32_t>(i)};
   }

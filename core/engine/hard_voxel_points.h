@@ -16,8 +16,10 @@ namespace membrane {
 
 class HardVoxelPoints {
  public:
-  // Indexes `points` by the voxel of `grid` each lies in (voxel floor((p - origin) / l), as
-  // Voxelize placed them; a point past the array is clamped into it). The grid's states are
+  // Indexes `points` by the voxel of `grid` each lies in: when the grid was voxelized from
+  // these points (its origin is their least coordinate less the padding), the voxel Voxelize
+  // made hard for each (DataVoxelAlong past the padding); for another grid, voxel
+  // floor((p - origin) / l), a point past the array clamped into it. The grid's states are
   // not read, and the grid is not kept: queries take it again. Memory: 12 bytes a point and
   // 12 a voxel holding points (16 bytes a point more while it is built); cost: one sort of
   // the points' voxel indices.

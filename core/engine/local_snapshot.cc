@@ -18,9 +18,8 @@ std::optional<std::vector<int64_t>> LocalSnapshot::Take(int n, const std::vector
   if (options.max_share <= 0 || options.brick < 1) return std::nullopt;
   n_ = n;
   brick_ = options.brick;
-  const int kLocalBrick = brick_;
   const std::array<int, 3>& dims = grid_.dims();
-  for (int d = 0; d < 3; ++d) brick_counts_[d] = (dims[d] + kLocalBrick - 1) / kLocalBrick;
+  for (int d = 0; d < 3; ++d) brick_counts_[d] = (dims[d] + brick_ - 1) / brick_;
   slot_.assign(static_cast<size_t>(brick_counts_[0]) * brick_counts_[1] * brick_counts_[2], -1);
   // The bricks within 2n + 1 of a written voxel, in increasing brick index.
   const int reach = 2 * n + 1;
@@ -29,14 +28,13 @@ std::optional<std::vector<int64_t>> LocalSnapshot::Take(int n, const std::vector
     if (box.empty()) continue;
     int b_lo[3], b_hi[3];
     for (int d = 0; d < 3; ++d) {
-      b_lo[d] = std::max(box.lo[d] - reach, 0) / kLocalBrick;
-      b_hi[d] = std::min(box.hi[d] + reach, dims[d] - 1) / kLocalBrick;
+      b_lo[d] = std::max(box.lo[d] - reach, 0) / brick_;
+      b_hi[d] = std::min(box.hi[d] + reach, dims[d] - 1) / brick_;
     }
     for (int bz = b_lo[2]; bz <= b_hi[2]; ++bz)
       for (int by = b_lo[1]; by <= b_hi[1]; ++by)
         for (int bx = b_lo[0]; bx <= b_hi[0]; ++bx) {
-          const int64_t b = bx + static_cast<int64_t>(brick_counts_[0]) *
-                                     (by + static_cast<int64_t>(brick_counts_[1]) * bz);
+          const int64_t b = BrickIndex(bx, by, bz);
           if (slot_[static_cast<size_t>(b)] < 0) {
             slot_[static_cast<size_t>(b)] = 0;
             marked.push_back(b);
@@ -44,7 +42,7 @@ std::optional<std::vector<int64_t>> LocalSnapshot::Take(int n, const std::vector
         }
   }
   std::sort(marked.begin(), marked.end());
-  const int64_t side = kLocalBrick + 2 * (n + 2);
+  const int64_t side = brick_ + 2 * (n + 2);
   if (static_cast<double>(marked.size()) * static_cast<double>(side * side * side) >
       options.max_share * static_cast<double>(grid_.size())) {
     Release();
@@ -60,10 +58,10 @@ std::optional<std::vector<int64_t>> LocalSnapshot::Take(int n, const std::vector
     const int64_t b = marked[k];
     slot_[static_cast<size_t>(b)] = static_cast<int32_t>(k);
     const Coord core_lo{
-        static_cast<int>(b % brick_counts_[0]) * kLocalBrick,
-        static_cast<int>((b / brick_counts_[0]) % brick_counts_[1]) * kLocalBrick,
+        static_cast<int>(b % brick_counts_[0]) * brick_,
+        static_cast<int>((b / brick_counts_[0]) % brick_counts_[1]) * brick_,
         static_cast<int>(b / (static_cast<int64_t>(brick_counts_[0]) * brick_counts_[1])) *
-            kLocalBrick};
+            brick_};
     Compute(bricks_[k], core_lo, candidates);
   }
   std::sort(candidates.begin(), candidates.end());
@@ -72,13 +70,12 @@ std::optional<std::vector<int64_t>> LocalSnapshot::Take(int n, const std::vector
 
 void LocalSnapshot::Compute(Brick& brick, const Coord& core_lo, std::vector<int64_t>& candidates) {
   const int n = n_;
-  const int kLocalBrick = brick_;
   const std::array<int, 3>& dims = grid_.dims();
   // The core and n + 2 voxels around it: the anchors the core's candidates read (within n - 1
   // below them) read cells up to n + 1 away, off the box's outermost layer.
   Coord core_hi;
   for (int d = 0; d < 3; ++d) {
-    core_hi[d] = std::min(core_lo[d] + kLocalBrick, dims[d]) - 1;
+    core_hi[d] = std::min(core_lo[d] + brick_, dims[d]) - 1;
     brick.lo[d] = std::max(core_lo[d] - (n + 2), 0);
     brick.dims[d] = std::min(core_hi[d] + n + 2, dims[d] - 1) - brick.lo[d] + 1;
   }
@@ -144,11 +141,7 @@ void LocalSnapshot::Compute(Brick& brick, const Coord& core_lo, std::vector<int6
 
 std::optional<Plate> LocalSnapshot::PlaceFor(int64_t index) const {
   const Coord c = grid_.CoordOf(index);
-  const int kLocalBrick = brick_;
-  const int64_t b =
-      c.x / kLocalBrick +
-      static_cast<int64_t>(brick_counts_[0]) *
-          (c.y / kLocalBrick + static_cast<int64_t>(brick_counts_[1]) * (c.z / kLocalBrick));
+  const int64_t b = BrickIndex(c.x / brick_, c.y / brick_, c.z / brick_);
   const int32_t k = slot_[static_cast<size_t>(b)];
   if (k < 0) return std::nullopt;
   const Brick& brick = bricks_[static_cast<size_t>(k)];

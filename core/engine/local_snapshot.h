@@ -60,6 +60,11 @@ class LocalSnapshot {
     std::array<int, 3> dims;             // the box's size
     std::array<PackedPlane, 6> anchors;  // per orientation, over the box
   };
+  // Index in slot_ of the brick (bx, by, bz), x fastest.
+  int64_t BrickIndex(int bx, int by, int bz) const {
+    return bx + static_cast<int64_t>(brick_counts_[0]) *
+                    (by + static_cast<int64_t>(brick_counts_[1]) * bz);
+  }
   // Computes the anchors and candidates of `brick` (core [core_lo, core_lo + brick_)).
   void Compute(Brick& brick, const Coord& core_lo, std::vector<int64_t>& candidates);
 

@@ -884,23 +884,23 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     // A held cap converges (HeldCapsToConverge), whatever its start.
     const bool converges = start == CapStart::kWrapped || held_converges[r];
     if (held_converges[r] && start != CapStart::kWrapped) ++st.held_converged;
-    if (converges && start == CapStart::kWrapped) {
-      // A thin tube in the cap is its own system, solved after the rest (tube_rings).
-      std::vector<int32_t> tube =
-          TubeVertices(nb, region, options.tube_rings, options.rim_rings, stamp);
-      if (!tube.empty() && tube.size() < region.size()) {
+    if (converges) {
+      // A wrapped cap's thin tube is its own system, solved after the rest (tube_rings); a
+      // tube that is the whole cap is no part apart.
+      std::vector<int32_t> tube;
+      if (start == CapStart::kWrapped)
+        tube = TubeVertices(nb, region, options.tube_rings, options.rim_rings, stamp);
+      if (tube.size() >= region.size()) tube.clear();
+      if (!tube.empty()) {
         const absl::flat_hash_set<int32_t> in_tube(tube.begin(), tube.end());
         std::erase_if(region, [&](int32_t v) { return in_tube.contains(v); });
         st.tube_vertices += static_cast<int64_t>(tube.size());
-        converging.push_back(region);
-        converging.push_back(std::move(tube));
-      } else {
-        converging.push_back(region);
       }
-    } else if (converges)
       converging.push_back(region);
-    else
+      if (!tube.empty()) converging.push_back(std::move(tube));
+    } else {
       blended.insert(blended.end(), region.begin(), region.end());
+    }
     ++st.regions;
     if (!converges && start == CapStart::kSpline &&
         options.thin_plate_iterations < options.wrapped_iterations)

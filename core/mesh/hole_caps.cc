@@ -401,16 +401,23 @@ std::optional<AlgebraicSphere> BandSphere(const TriangleMesh& mesh, const Rows& 
   return sphere;
 }
 
-// The radius of a rim (wrapped, or a spline cap's) around a post or the edge of a thin part
-// whose end the hole swallowed (HoleCapOptions::tube_flatness, tube_lead): the band's mean
-// distance (voxels) from the axis through its centroid toward the middle of the cap (the cap's
-// vertices in the gap, `gap`, at their positions in `x`). nullopt where the band's normals
-// are not square to that axis (no post), or the cap lies too little ahead of the band along it.
-std::optional<double> TubeRadius(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
-                                 const std::vector<int32_t>& region,
-                                 const std::vector<char>& free, const std::vector<char>& gap,
-                                 const std::vector<Vec3d>& x, double l,
-                                 const HoleCapOptions& options) {
+// A rim around a post or the edge of a thin part whose end the hole swallowed: its axis, from
+// the band's centroid toward the middle of the cap (unit), and its radius, the band's mean
+// distance from that axis in voxels.
+struct Tube {
+  Vec3d axis;
+  double radius = 0;
+};
+
+// The tube of a rim (wrapped, or a spline cap's) around a post or the edge of a thin part
+// whose end the hole swallowed (HoleCapOptions::tube_flatness, tube_lead), the cap's middle
+// read from its vertices in the gap (`gap`, at their positions in `x`). nullopt where the
+// band's normals are not square to the axis (no post), or the cap lies too little ahead of the
+// band along it.
+std::optional<Tube> FindTube(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
+                             const std::vector<int32_t>& region, const std::vector<char>& free,
+                             const std::vector<char>& gap, const std::vector<Vec3d>& x, double l,
+                             const HoleCapOptions& options) {
   const std::vector<int32_t> band = Band(nb, region, free, options.sample_rings);
   if (band.size() < 3 || region.empty()) return std::nullopt;
   const Vec3d origin = ToVec3d(mesh.vertices[band[0]]);
@@ -445,21 +452,23 @@ std::optional<double> TubeRadius(const TriangleMesh& mesh, const Rows& nb, const
   radius /= count;
   if (!(off_square <= options.tube_flatness * count) || !(lead >= options.tube_lead * radius))
     return std::nullopt;
-  return radius;
+  return Tube{axis, radius};
 }
 
 // Sweeps a cap on past its rim by `length` (model units): each vertex of the first fixed ring
 // around the region points into the hole along its tangent plane (toward the middle of the
-// cap, the normal part taken off: down a post's walls, along a thin part's faces); the
-// harmonic map of those directions over the region carries them to the cap's vertices, and
-// the vertices k rings from the fixed ones move by min(k / rim_rings, 1) of `length` along
-// theirs: the first rim_rings rings stretch along the walls, the rest of the cap moves whole
-// (where the directions disagree, their harmonic mean is shorter). False when `cancel` fired
-// (x then unchanged).
+// cap, the normal part taken off: down a post's walls, along a thin part's faces; or, given
+// `axis`, along that axis with the normal part taken off, a unit step on a wall parallel to
+// it and shorter where the wall turns away); the harmonic map of those directions over the
+// region carries them to the cap's vertices, and the vertices k rings from the fixed ones
+// move by min(k / rim_rings, 1) of `length` along theirs: the first rim_rings rings stretch
+// along the walls, the rest of the cap moves whole (where the directions disagree, their
+// harmonic mean is shorter). False when `cancel` fired (x then unchanged).
 bool SweepCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
               const std::vector<int32_t>& region, const std::vector<char>& free,
-              const std::vector<char>& gap, double length, const HoleCapOptions& options,
-              std::vector<Vec3d>& x, const CancelToken& cancel) {
+              const std::vector<char>& gap, double length, const std::optional<Vec3d>& axis,
+              const HoleCapOptions& options, std::vector<Vec3d>& x,
+              const CancelToken& cancel) {
   Vec3d middle{0, 0, 0};
   int inside = 0;
   for (int32_t v : region)
@@ -477,8 +486,12 @@ bool SweepCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
         if (!rings.contains(v)) frontier.push_back(v);
         rings[v] = 1;
         const Vec3d n = Normalized(VertexNormal(mesh, star, *u));
-        const Vec3d to = middle - ToVec3d(mesh.vertices[*u]);
-        field[*u] = Normalized(to - Dot(to, n) * n);
+        if (axis) {
+          field[*u] = *axis - Dot(*axis, n) * n;
+        } else {
+          const Vec3d to = middle - ToVec3d(mesh.vertices[*u]);
+          field[*u] = Normalized(to - Dot(to, n) * n);
+        }
       }
   for (int ring = 2; !frontier.empty(); ++ring) {
     std::vector<int32_t> next;
@@ -960,9 +973,9 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
                           : starts[r] == CapStart::kSpline ? options.spline_swept_length
                                                            : 0.0;
     if (!(length > 0)) continue;
-    const std::optional<double> radius =
-        TubeRadius(mesh, nb, star, regions[r], free, gap, x, l, options);
-    if (!radius) continue;
+    const std::optional<Tube> tube =
+        FindTube(mesh, nb, star, regions[r], free, gap, x, l, options);
+    if (!tube) continue;
     const bool held =
         std::any_of(regions[r].begin(), regions[r].end(), [&](int32_t v) { return pinned[v]; });
     // A held cap's positions before the sweep (SweepCap moves only the region's vertices),
@@ -970,7 +983,12 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     std::vector<Vec3d> unswept;
     if (held)
       for (int32_t v : regions[r]) unswept.push_back(x[v]);
-    if (!SweepCap(mesh, nb, star, regions[r], free, gap, length * *radius * l,
+    // A spline cap's rim is a height field around the post: its walls run along the axis. A
+    // wrapped rim's walls turn with it (a thin part's edge, a post cut aslant), each toward
+    // the middle of the cap.
+    const std::optional<Vec3d> along =
+        starts[r] == CapStart::kSpline ? std::optional<Vec3d>(tube->axis) : std::nullopt;
+    if (!SweepCap(mesh, nb, star, regions[r], free, gap, length * tube->radius * l, along,
                   options, x, cancel))
       return absl::CancelledError("hole caps cancelled");
     if (held) {

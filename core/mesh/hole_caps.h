@@ -107,7 +107,10 @@ struct HoleCapOptions {
   // A cap shaped by the spline (its rim a height field) around a post whose end the hole
   // swallowed (the same tube test: a leg's hoof, the tip of a horn) is swept on too, by
   // spline_swept_length radii: the spline already lifts such a cap along the walls' slope
-  // into a dome, and a sweep as long as a wrapped rim's carries it past the part's end.
+  // into a dome, and a sweep as long as a wrapped rim's carries it past the part's end. Its
+  // rim vertices move along the tube's axis (their normal part taken off), not toward the
+  // middle of the cap: round a height-field rim the walls run along the axis, and the
+  // directions toward the middle lean in across them and carry the cap less far.
   double spline_swept_length = 0.25;
   // A wrapped cap's region can hold a thin tube of the mesh: a tunnel a voxel or two across
   // that the shrink left through the solid, its walls far from any data, joined to the hole
@@ -176,14 +179,13 @@ struct HoleCapStats {
 // away from them (converge_held, held_margin). Regions with no fixed neighbour are left.
 // A converged cap whose rim wraps around a post or a thin part's edge is then swept on along
 // the part's walls (tube_flatness, tube_lead, swept_length), and so is a spline cap around a
-// post (spline_swept_length), unless points seen inside its gap hold it and the swept cap
-// passes farther from them (held_margin). A wrapped cap's vertices on a thin tube of the mesh
-// (tube_rings) are solved as their own converging system after the rest of it. Then it
-// searches the
-// faces around moved vertices for crossings and sends the moved vertices of each crossing
-// pair back toward where they were (halfway back_off_halvings times, then all the way) until
-// no crossing involves a moved vertex: where a cap would cross the mesh, that part of it is
-// not built.
+// post, along the post's axis (spline_swept_length), unless points seen inside its gap hold
+// it and the swept cap passes farther from them (held_margin). A wrapped cap's vertices on a
+// thin tube of the mesh (tube_rings) are solved as their own converging system after the rest
+// of it. Then it searches the faces around moved vertices for crossings and sends the moved
+// vertices of each crossing pair back toward where they were (halfway back_off_halvings
+// times, then all the way) until no crossing involves a moved vertex: where a cap would cross
+// the mesh, that part of it is not built.
 // Faces are unchanged, so the mesh stays closed, manifold and oriented with its shells and
 // genus; crossings are those of the input or none.
 // The result depends only on the input (one thread). `stats` may be null.

@@ -192,4 +192,18 @@ void HardVoxelPoints::SpotDistances(const VoxelGrid& grid, const Coord& c, int r
   for (double& d : distances) d = std::sqrt(d);
 }
 
+bool HardVoxelPoints::PointsWithin(size_t ia, size_t ib, double reach) const {
+  const double reach2 = reach * reach;
+  for (uint32_t i = starts_[ia]; i < starts_[ia + 1]; ++i)
+    for (uint32_t j = starts_[ib]; j < starts_[ib + 1]; ++j) {
+      double d2 = 0;
+      for (int d = 0; d < 3; ++d) {
+        const double e = static_cast<double>(positions_[i][d]) - positions_[j][d];
+        d2 += e * e;
+      }
+      if (d2 <= reach2) return true;
+    }
+  return false;
+}
+
 }  // namespace membrane

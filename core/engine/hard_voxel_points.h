@@ -55,6 +55,14 @@ class HardVoxelPoints {
   void SpotDistances(const VoxelGrid& grid, const Coord& c, int radius, int samples,
                      std::vector<double>& distances) const;
 
+  // The grid indices of the voxels holding points, ascending: a voxel's rank is its position.
+  absl::Span<const int64_t> voxels() const { return voxels_; }
+
+  // Whether a point of the voxel of rank `a` and a point of the voxel of rank `b` lie within
+  // `reach` voxels of each other. Costs at most the product of their point counts, stopping at
+  // the first pair within reach.
+  bool PointsWithin(size_t a, size_t b, double reach) const;
+
   int64_t points() const { return static_cast<int64_t>(positions_.size()); }
 
  private:

@@ -13,7 +13,9 @@ struct InvariantOptions {
   // Property 3 holds only for a final DMS (after the n = 1 generation).
   bool require_property3 = true;
   // Number of voxels that held points, when known (-1: unknown): Property 4 then also checks
-  // that none of them became outside (every hard voxel is still there).
+  // that none of them became outside (every hard voxel is still there). After a shrink, pass
+  // that number less the hard voxels the piece separation cut (PieceSeparationStats::
+  // hard_cut_voxels).
   int64_t expected_hard_voxels = -1;
 };
 

@@ -61,10 +61,12 @@ MembraneShrinker::MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options
       planes_(grid, word_threads_),
       finder_(grid, planes_),
       runner_(grid) {
-  // Only the thin-part exception and the hole opening read the points.
+  // Only the thin-part exception, the piece separation's split and the hole opening read the
+  // points.
   const bool thin_parts = options.chain.thick_wall_run > 1 && options.chain.thick_wall_detour > 0 &&
                           options.chain.thin_part_min_spread > 0;
-  if ((thin_parts || options.holes.enabled) && !points.empty()) {
+  const bool split = options.separation.enabled && options.separation.split_reach > 0;
+  if ((thin_parts || split || options.holes.enabled) && !points.empty()) {
     points_.emplace(grid, points);
   }
 }
@@ -103,7 +105,7 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
   planes_.Release();
   {
     absl::StatusOr<PieceSeparationStats> separation =
-        SeparateDataPieces(grid_, options_.separation, cancel_);
+        SeparateDataPieces(grid_, options_.separation, cancel_, points_ ? &*points_ : nullptr);
     if (!separation.ok()) return separation.status();
     result.separation = *separation;
   }
@@ -112,6 +114,24 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
         OpenPluggedHoles(grid_, options_.holes, points_ ? &*points_ : nullptr, cancel_);
     if (!holes.ok()) return holes.status();
     result.holes = *holes;
+  }
+  // A separation can need a real hole the shrink left plugged (a ring's plugged hole facing
+  // another object): cutting the webs around it opens the hole as well, one handle more than
+  // the joined shell had, and the trials are refused. Once the hole opening has opened such
+  // holes from their data, a separation that passed the size test but not the topology test
+  // is tried again on the grid as it now is.
+  if (!result.separation.separated && result.separation.shells_after > 0 &&
+      result.separation.cut_fraction <= options_.separation.max_cut_fraction &&
+      result.holes.opened > 0) {
+    absl::StatusOr<PieceSeparationStats> again =
+        SeparateDataPieces(grid_, options_.separation, cancel_, points_ ? &*points_ : nullptr);
+    if (!again.ok()) return again.status();
+    if (again->separated) {
+      again->seconds += result.separation.seconds;
+      result.separation = *again;
+    } else {
+      result.separation.seconds += again->seconds;
+    }
   }
   {
     absl::StatusOr<GapRefillStats> refill = RefillGapChannels(grid_, options_.refill, cancel_);

@@ -2,15 +2,19 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <deque>
+#include <utility>
 #include <vector>
 
+#include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/local_topology.h"
+#include "core/engine/point_gap_split.h"
 #include "core/engine/post_process.h"
 #include "core/engine/voxel_topology.h"
 
@@ -29,18 +33,63 @@ struct CutVoxel {
   int pair;
 };
 
+// The pieces' own voxels with their pieces, sorted by voxel: the piece a ray meets.
+using PieceLookup = std::vector<std::pair<int64_t, uint8_t>>;
+
+// The piece of hard voxel `v`, or -1 when it belongs to none (stray points).
+int PieceOf(const PieceLookup& lookup, int64_t v) {
+  const auto it = std::lower_bound(lookup.begin(), lookup.end(), std::make_pair(v, uint8_t{0}));
+  return it != lookup.end() && it->first == v ? it->second : -1;
+}
+
+// The piece of the first hard voxel met from `v` (exclusive) along `step` through the solid,
+// or -1 when an outside voxel comes first or the hard voxel belongs to no piece.
+int FirstPieceAlong(const VoxelGrid& grid, const PieceLookup& lookup, int64_t v, int64_t step) {
+  const VoxelState* s = grid.states().data();
+  // The array's padding is outside, so a ray ends within its longest axis.
+  const int longest = std::max({grid.dim(0), grid.dim(1), grid.dim(2)});
+  int64_t u = v;
+  for (int k = 0; k < longest; ++k) {
+    u += step;
+    if (IsOutside(s[u])) return -1;
+    if (IsHard(s[u])) return PieceOf(lookup, u);
+  }
+  return -1;
+}
+
+// Whether voxel `v` lies between the data of pieces `a` and `b`: along one of the 13 lattice
+// lines through it, the first hard voxel met on one side is of `a` and on the other side of
+// `b`, with no outside voxel before either. A cross-section of a solid whose data are the two
+// pieces (a sphere's two caps) lies between them all over; a web in open space beside them,
+// which reaches the outside along every line, does not.
+bool LiesBetween(const VoxelGrid& grid, const PieceLookup& lookup, int64_t v, int a, int b) {
+  for (int64_t step : grid.neighbour_offsets()) {
+    if (step < 0) continue;  // each line once
+    const int ahead = FirstPieceAlong(grid, lookup, v, step);
+    if (ahead != a && ahead != b) continue;
+    const int behind = FirstPieceAlong(grid, lookup, v, -step);
+    if ((ahead == a && behind == b) || (ahead == b && behind == a)) return true;
+  }
+  return false;
+}
+
 // The largest ratio, over the pairs of pieces, of the voxels of the cut between them that a
-// trial leaves outside (`carved`, sorted) to the smaller piece's hard voxels. Voxels carved
-// that are not in `cut` (webs removed whole) belong to no pair.
-double CutFraction(std::vector<CutVoxel> cut, const std::vector<int64_t>& carved,
-                   const std::vector<int64_t>& piece_voxels) {
+// trial leaves outside (`carved`, sorted) and that lie between the two pieces' data
+// (LiesBetween; every one when `lookup` is empty) to the smaller piece's hard voxels. Voxels
+// carved that are not in `cut` (webs removed whole) belong to no pair. Read on the grid as it
+// was before the trial.
+double CutFraction(const VoxelGrid& grid, const PieceLookup& lookup, std::vector<CutVoxel> cut,
+                   const std::vector<int64_t>& carved, const std::vector<int64_t>& piece_voxels) {
   std::sort(cut.begin(), cut.end(),
             [](const CutVoxel& a, const CutVoxel& b) { return a.voxel < b.voxel; });
   std::vector<int64_t> per_pair(256 * 256, 0);
   size_t k = 0;
   for (int64_t v : carved) {
     while (k < cut.size() && cut[k].voxel < v) ++k;
-    if (k < cut.size() && cut[k].voxel == v) ++per_pair[cut[k].pair];
+    if (k < cut.size() && cut[k].voxel == v &&
+        (lookup.empty() || LiesBetween(grid, lookup, v, cut[k].pair / 256, cut[k].pair % 256))) {
+      ++per_pair[cut[k].pair];
+    }
   }
   double largest = 0.0;
   for (int pair = 0; pair < static_cast<int>(per_pair.size()); ++pair) {
@@ -52,9 +101,10 @@ double CutFraction(std::vector<CutVoxel> cut, const std::vector<int64_t>& carved
 }
 
 // The 26-components of the hard voxels holding at least `min_fraction` of them, as lists of
-// voxel indices (one pass over the grid).
+// voxel indices (one pass over the grid); `min_voxels` gets that fraction's voxel count.
 std::vector<std::vector<int64_t>> BigHardComponents(const VoxelGrid& grid, double min_fraction,
-                                                    const CancelToken& cancel) {
+                                                    const CancelToken& cancel,
+                                                    int64_t& min_voxels) {
   std::vector<std::vector<int64_t>> components;
   FlatBitset seen(grid.size());
   const VoxelState* s = grid.states().data();
@@ -74,9 +124,10 @@ std::vector<std::vector<int64_t>> BigHardComponents(const VoxelGrid& grid, doubl
       }
     hard += static_cast<int64_t>(component.size());
   }
-  const double min_voxels = std::max(1.0, min_fraction * static_cast<double>(hard));
+  min_voxels =
+      static_cast<int64_t>(std::ceil(std::max(1.0, min_fraction * static_cast<double>(hard))));
   std::erase_if(components, [&](const std::vector<int64_t>& c) {
-    return static_cast<double>(c.size()) < min_voxels;
+    return static_cast<int64_t>(c.size()) < min_voxels;
   });
   return components;
 }
@@ -90,13 +141,18 @@ class CutTrial {
     std::vector<int64_t> carved;  // voxels the cut leaves outside, in index order
     int64_t web_voxels = 0;       // of which in shells without data
     int64_t loops_closed = 0;     // cut voxels returned to close a loop the cut opened
+    int64_t hard_carved = 0;      // of `carved`, hard voxels where two pieces touched
+    int64_t hard_uncovered = 0;   // of those, without a face neighbour of their own data
   };
 
   // `scratch`: one byte a voxel, reused to hold the states of the voxels a trial changes.
-  // `close_loops`: PieceSeparationOptions::close_cut_loops.
-  CutTrial(VoxelGrid& grid, std::vector<VoxelState> scratch, bool close_loops)
+  // `close_loops`: PieceSeparationOptions::close_cut_loops. `contacts`: the hard voxels the
+  // cut may hold (where two pieces' hard voxels touch) and their pieces.
+  CutTrial(VoxelGrid& grid, std::vector<VoxelState> scratch, bool close_loops,
+           const absl::flat_hash_map<int64_t, uint8_t>& contacts)
       : close_loops_(close_loops), grid_(grid), s_(grid.mutable_states().data()),
-        original_(std::move(scratch)), in_cut_(grid.size()), seen_(grid.size()) {}
+        original_(std::move(scratch)), in_cut_(grid.size()), seen_(grid.size()),
+        contacts_(contacts) {}
 
   // Turns `cut` (non-hard solid voxels, nearest the data first) outside, returns the enclosed
   // parts of it, removes the shells left without a hard voxel, returns every cut voxel whose
@@ -118,8 +174,13 @@ class CutTrial {
     }
     out.loops_closed = loops_closed_;
     out.topology = ComputeVoxelTopology(grid_);
-    for (int64_t v : changed_)
-      if (IsOutside(s_[v])) out.carved.push_back(v);
+    for (int64_t v : changed_) {
+      if (!IsOutside(s_[v])) continue;
+      out.carved.push_back(v);
+      if (!IsHard(original_[v])) continue;
+      ++out.hard_carved;
+      if (!KeptByOwnData(v)) ++out.hard_uncovered;
+    }
     std::sort(out.carved.begin(), out.carved.end());
     Restore();
     return out;
@@ -133,6 +194,22 @@ class CutTrial {
   }
   void Restore() {
     for (int64_t v : changed_) s_[v] = original_[v];
+  }
+
+  // Whether hard voxel `v`, outside in this trial, has a face neighbour that is a hard voxel in
+  // the solid and not of another piece: the face between them is then on the membrane, within
+  // one voxel of every point of `v`.
+  bool KeptByOwnData(int64_t v) const {
+    const auto own = contacts_.find(v);
+    const auto st = grid_.strides();
+    for (int d = 0; d < 3; ++d)
+      for (int64_t n : {v - st[d], v + st[d]}) {
+        if (!IsHard(s_[n])) continue;
+        const auto other = contacts_.find(n);
+        if (other == contacts_.end() || own == contacts_.end() || other->second == own->second)
+          return true;
+      }
+    return false;
   }
 
   // Cut voxels enclosed by the solid (the interior of an object far from its data) are no
@@ -286,14 +363,17 @@ class CutTrial {
   FlatBitset seen_;
   std::vector<int64_t> flood_;
   absl::flat_hash_set<int64_t> flooded_;
+  const absl::flat_hash_map<int64_t, uint8_t>& contacts_;
 };
 
 }  // namespace
 
 absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
                                                         const PieceSeparationOptions& options,
-                                                        const CancelToken& cancel) {
+                                                        const CancelToken& cancel,
+                                                        const HardVoxelPoints* points) {
   if (options.min_piece_fraction <= 0 || options.min_piece_fraction > 0.5 ||
+      !(options.split_reach >= 0) ||
       options.far_steps < 1 || options.near_far_steps < 0 ||
       options.near_far_steps >= options.far_steps || !(options.max_cut_fraction > 0)) {
     return absl::InvalidArgumentError(
@@ -301,7 +381,7 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
                      options.min_piece_fraction, " (0..0.5], far_steps ", options.far_steps,
                      " (1 or more), near_far_steps ", options.near_far_steps,
                      " (0..far_steps - 1), max_cut_fraction ", options.max_cut_fraction,
-                     " (above 0)"));
+                     " (above 0), split_reach ", options.split_reach, " (0 or more)"));
   }
   PieceSeparationStats stats;
   if (!options.enabled) return stats;
@@ -313,9 +393,24 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   };
   auto cancelled = [] { return absl::CancelledError("reconstruction cancelled"); };
   VoxelState* s = grid.mutable_states().data();
+  int64_t min_piece_voxels = 0;
   std::vector<std::vector<int64_t>> pieces =
-      BigHardComponents(grid, options.min_piece_fraction, cancel);
+      BigHardComponents(grid, options.min_piece_fraction, cancel, min_piece_voxels);
   if (cancel.cancelled()) return cancelled();
+  // Pieces whose hard voxels touch but whose points do not come within split_reach of each
+  // other across the contact: their hard voxels there may be cut.
+  bool split = false;
+  if (points != nullptr && options.split_reach > 0) {
+    std::vector<std::vector<int64_t>> parts;
+    for (const std::vector<int64_t>& component : pieces) {
+      std::vector<std::vector<int64_t>> split_parts =
+          SplitAtPointGaps(grid, *points, component, options.split_reach, min_piece_voxels);
+      split = split || split_parts.size() > 1;
+      for (std::vector<int64_t>& part : split_parts) parts.push_back(std::move(part));
+    }
+    if (cancel.cancelled()) return cancelled();
+    pieces.swap(parts);
+  }
   stats.pieces = static_cast<int>(pieces.size());
   if (pieces.size() < 2) return done();
 
@@ -329,11 +424,20 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   std::vector<uint8_t> wave(static_cast<size_t>(grid.size()));
   for (int64_t i = 0; i < grid.size(); ++i) wave[i] = IsOutside(s[i]) ? kOutsideWave : kNoWave;
   std::vector<int64_t> frontier, next;
+  // The pieces' own voxels, when two pieces' hard voxels can touch.
+  FlatBitset in_piece(split ? grid.size() : 0);
   for (size_t p = 0; p < pieces.size(); ++p)
     for (int64_t v : pieces[p]) {
       wave[v] = static_cast<uint8_t>(p);
       frontier.push_back(v);
+      if (split) in_piece.set(v);
     }
+  PieceLookup lookup;
+  if (options.between_only) {
+    for (size_t p = 0; p < pieces.size(); ++p)
+      for (int64_t v : pieces[p]) lookup.emplace_back(v, static_cast<uint8_t>(p));
+    std::sort(lookup.begin(), lookup.end());
+  }
   std::vector<int64_t> piece_voxels;
   for (const std::vector<int64_t>& piece : pieces)
     piece_voxels.push_back(static_cast<int64_t>(piece.size()));
@@ -346,8 +450,10 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   const int first_far_layer =
       options.near_far_steps > 0 ? options.near_far_steps : options.far_steps;
   std::vector<CutVoxel> cut_pairs;
+  // Hard voxels of two pieces that touch, and their pieces.
+  absl::flat_hash_map<int64_t, uint8_t> contacts;
   auto add_to_cut = [&](int64_t v, int pair) {
-    if (IsHard(s[v]) || in_cut.test(v)) return;
+    if ((IsHard(s[v]) && !contacts.contains(v)) || in_cut.test(v)) return;
     in_cut.set(v);
     cut.push_back(v);
     cut_pairs.push_back({v, pair});
@@ -369,6 +475,10 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
         } else {
           meet = true;
           const int pair = std::min(other, own) * 256 + std::max(other, own);
+          if (layer == 0 && split && in_piece.test(n)) {
+            contacts.emplace(v, own);
+            contacts.emplace(n, other);
+          }
           add_to_cut(v, pair);
           add_to_cut(n, pair);
         }
@@ -391,10 +501,11 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
 
   const VoxelTopology before = ComputeVoxelTopology(grid);
   // The waves' bytes now hold the states of the voxels a trial changes.
-  CutTrial trial(grid, std::move(wave), options.close_cut_loops);
+  CutTrial trial(grid, std::move(wave), options.close_cut_loops, contacts);
   absl::StatusOr<CutTrial::Outcome> between = trial.Run(cut, cancel);
   if (!between.ok()) return between.status();
-  stats.cut_fraction = CutFraction(std::move(cut_pairs), between->carved, piece_voxels);
+  stats.cut_fraction =
+      CutFraction(grid, lookup, std::move(cut_pairs), between->carved, piece_voxels);
   // Shells that can hold a piece of data: no fewer voxels than the smallest piece's hard
   // voxels. A cut that only splits off slivers (a few stray points cut loose) separates no
   // pieces.
@@ -403,8 +514,9 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
     return std::count_if(t.voxels.begin(), t.voxels.end(),
                          [&](int64_t n) { return n >= smallest_piece; });
   };
-  auto better = [&](const VoxelTopology& after) {
-    return piece_shells(after) > piece_shells(before) &&
+  auto better = [&](const CutTrial::Outcome& trial) {
+    const VoxelTopology& after = trial.topology;
+    return trial.hard_uncovered == 0 && piece_shells(after) > piece_shells(before) &&
            TotalGenus(after) <= TotalGenus(before) && after.cavities <= before.cavities;
   };
   stats.shells_before = before.shells;
@@ -418,13 +530,13 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   // when the cut between the pieces alone leaves more loops than before: webs in open space
   // beside the cut can hold them (cow-spot-belt 1.5x: 3 shells, genus 5 without them, 4 with).
   if (stats.cut_fraction <= options.max_cut_fraction) {
-    if (better(between->topology)) kept = &*between;
+    if (better(*between)) kept = &*between;
     const size_t between_size = cut.size();
     if (far_split < far.size()) {
       cut.insert(cut.end(), far.begin() + static_cast<std::ptrdiff_t>(far_split), far.end());
       with_far = trial.Run(cut, cancel);
       if (!with_far.ok()) return with_far.status();
-      if (better(with_far->topology)) {
+      if (better(*with_far)) {
         kept = &*with_far;
         kept_far_steps = options.far_steps;
       }
@@ -438,7 +550,7 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
       cut.insert(cut.end(), far.begin(), far.end());
       with_near_far = trial.Run(cut, cancel);
       if (!with_near_far.ok()) return with_near_far.status();
-      if (better(with_near_far->topology) &&
+      if (better(*with_near_far) &&
           with_near_far->topology.shells == kept->topology.shells &&
           TotalGenus(with_near_far->topology) < TotalGenus(kept->topology)) {
         kept = &*with_near_far;
@@ -457,6 +569,7 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   stats.loops_closed = kept->loops_closed;
   stats.far_steps_cut = kept_far_steps;
   stats.cut_voxels = static_cast<int64_t>(kept->carved.size()) - kept->web_voxels;
+  stats.hard_cut_voxels = kept->hard_carved;
   return done();
 }
 

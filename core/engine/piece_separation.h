@@ -15,6 +15,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/base/cancel_token.h"
+#include "core/engine/hard_voxel_points.h"
 #include "core/engine/voxel_grid.h"
 
 namespace membrane {
@@ -36,16 +37,28 @@ struct PieceSeparationOptions {
   // smaller piece's hard voxels spans a solid's whole cross-section (a closed surface whose data
   // miss a band around it), not a plug or a sheet between objects: the trial is refused.
   double max_cut_fraction = 0.33;
+  // The size test counts only the cut voxels that lie between the two pieces' data (a lattice
+  // line through the voxel meets one piece's hard voxels on one side and the other's on the
+  // other side before the outside): a web in open space that the cut crosses, beside the
+  // objects, spans no solid's cross-section. False: every cut voxel counts.
+  bool between_only = true;
   // A cut voxel whose return to the solid closes a loop of the outside (no shells joined, no
   // cavity made) returns after the simple returns: the loop runs through the cut, a handle
   // the cut opened, not one the data show.
   bool close_cut_loops = true;
+  // A 26-component of hard voxels is split into the classes of its voxels whose points come
+  // within this many voxels of each other (SplitAtPointGaps: two objects whose one-voxel tubes
+  // do not touch, their hard voxels meeting at corners); 0: not split. The hard voxels where
+  // two such pieces touch may then be cut, each only where it keeps a face neighbour holding
+  // its own piece's points in the solid (that face lies within one voxel of its points).
+  double split_reach = 2.0;
 };
 
 struct PieceSeparationStats {
-  int pieces = 0;              // pieces of data (after joining close ones)
+  int pieces = 0;              // pieces of data (after the split by their points)
   bool separated = false;      // the cut was kept
   int64_t cut_voxels = 0;      // voxels turned outside and kept outside
+  int64_t hard_cut_voxels = 0; // of which hard: where two pieces' hard voxels touched
   int64_t web_voxels = 0;      // voxels of shells without data removed with the cut
   int64_t loops_closed = 0;    // cut voxels returned to close a loop the cut opened
   int far_steps_cut = 0;       // the kept trial's far webs: far_steps or near_far_steps
@@ -79,11 +92,19 @@ struct PieceSeparationStats {
 // shells and a smaller summed genus: then the third. The choice is applied: its voxels turned
 // outside with the membrane's states settled around them (CarveToOutside). Otherwise the grid
 // is unchanged.
+// With `points` (the hard voxels' points; nullptr: none) and split_reach above 0, a 26-component
+// of hard voxels is split into the pieces SplitAtPointGaps finds, and the hard voxels of two
+// pieces that are 26-adjacent join the cut between them: a trial that leaves such a voxel
+// outside without a face neighbour that is a hard voxel in the solid and not of another piece
+// is refused, so the points of a voxel cut stay within one voxel of a face between the solid
+// and the outside. Every other hard voxel stays; stats.hard_cut_voxels counts those carved.
+// A trial's size test counts the cut voxels between the two pieces' data (between_only).
 // Costs one byte a voxel and two bitsets while it runs, only when the data has two or more
 // pieces that meet. Cancelled when `cancel` fires (the grid is then unchanged).
 absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
                                                         const PieceSeparationOptions& options,
-                                                        const CancelToken& cancel);
+                                                        const CancelToken& cancel,
+                                                        const HardVoxelPoints* points = nullptr);
 
 }  // namespace membrane
 

@@ -55,7 +55,9 @@ std::string HandleRetryJson(const HandleRetry& h) {
 
 std::string PieceSeparationJson(const PieceSeparationStats& p) {
   return absl::StrCat("{\"pieces\": ", p.pieces, ", \"separated\": ", JsonBool(p.separated),
-                      ", \"cut_voxels\": ", p.cut_voxels, ", \"web_voxels\": ", p.web_voxels,
+                      ", \"cut_voxels\": ", p.cut_voxels,
+                      ", \"hard_cut_voxels\": ", p.hard_cut_voxels,
+                      ", \"web_voxels\": ", p.web_voxels,
                       ", \"loops_closed\": ", p.loops_closed,
                       ", \"far_steps_cut\": ", p.far_steps_cut,
                       ", \"shells_before\": ", p.shells_before,

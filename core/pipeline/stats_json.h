@@ -23,7 +23,8 @@ namespace membrane {
 // post_process {inside_hard_before, inside_hard_after, carved_voxels, bridge_voxels};
 // handle_retry {ran, kept, from_generation, loose_tunnels, shells_before, genus_before,
 // shells_after, genus_after, web_voxels, web_hard_rim, seconds} (HandleRetry);
-// piece_separation {pieces, separated, cut_voxels, web_voxels, loops_closed, far_steps_cut,
+// piece_separation {pieces, separated, cut_voxels, hard_cut_voxels, web_voxels, loops_closed,
+// far_steps_cut,
 // shells_before, genus_before, shells_after, genus_after, cavities_after, cut_fraction,
 // seconds} (PieceSeparationStats; the topology counts 0 when no cut was tried);
 // hole_opening {opened, refused, wall_core_kept, carved_voxels, whole_grid_counts, seconds}

@@ -46,7 +46,8 @@ constexpr char kUsage[] =
     "                      [--rerun-thin K] [--no-retry] [--strict-only] [--no-close-cut-loops]\n"
     "                      [--no-hole-opening] [--wall-core-depth D] [--far-steps F]\n"
     "                      [--near-far-steps N]\n"
-    "                      [--max-cut-fraction C] [--data-genus R]\n"
+    "                      [--max-cut-fraction C] [--all-cut-counts] [--split-reach R]\n"
+    "                      [--data-genus R]\n"
     "                      [--probe X,Y,Z,R] [--reference N] [--slices X,Y,Z,R]\n"
     "                      [--pocket-rays K] [--pocket-depth D] [--pocket-loops L]\n"
     "                      [--clearance-samples K] [--passage-sectors P] [--shared DIR]\n"
@@ -68,6 +69,10 @@ constexpr char kUsage[] =
     "  --far-steps F, --near-far-steps N  the piece separation's far webs: non-hard voxels\n"
     "                   more than F steps from the data, then N (0 = no third trial)\n"
     "  --max-cut-fraction C  the piece separation's size test (PieceSeparationOptions)\n"
+    "  --all-cut-counts  the size test counts every cut voxel, not only those between the\n"
+    "                   two pieces' data (PieceSeparationOptions::between_only false)\n"
+    "  --split-reach R  the piece separation's split of touching hard voxels by their points\n"
+    "                   (0 = not split; PieceSeparationOptions::split_reach)\n"
     "  --data-genus R   also print the topology of the data itself: the hard voxels grown by R\n"
     "                   26-neighbour steps, cavities filled (0..2), the whole data and each\n"
     "                   piece of data alone (with --locate, their loops)\n"
@@ -164,6 +169,10 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.separation.near_far_steps)) return false;
     } else if (arg == "--max-cut-fraction" && has_value) {
       if (!absl::SimpleAtod(argv[++i], &o.shrink.separation.max_cut_fraction)) return false;
+    } else if (arg == "--all-cut-counts") {
+      o.shrink.separation.between_only = false;
+    } else if (arg == "--split-reach" && has_value) {
+      if (!absl::SimpleAtod(argv[++i], &o.shrink.separation.split_reach)) return false;
     } else if (arg == "--data-genus" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.data_genus) || o.data_genus < 0 ||
           o.data_genus > VoxelGrid::kPadding) {
@@ -564,7 +573,8 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
   tally.seconds += seconds;
   tally.hole_seconds += result->holes.seconds;
   InvariantOptions io;
-  io.expected_hard_voxels = vox->hard_voxels;
+  // The piece separation may cut hard voxels where two pieces touch; every other one stays.
+  io.expected_hard_voxels = vox->hard_voxels - result->separation.hard_cut_voxels;
   const absl::Status inv = CheckMembraneInvariants(vox->grid, io);
   std::vector<int> genus = topo.genus;
   std::sort(genus.begin(), genus.end());
@@ -594,9 +604,11 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
                                                  result->refill.loops_closed));
   }
   if (sep.pieces > 1) {
-    const std::string cut =
+    std::string cut =
         absl::StrFormat("cut %d + web %d voxels (far webs from %d steps), %d loops closed",
                         sep.cut_voxels, sep.web_voxels, sep.far_steps_cut, sep.loops_closed);
+    if (sep.hard_cut_voxels > 0)
+      absl::StrAppend(&cut, absl::StrFormat(", %d hard cut", sep.hard_cut_voxels));
     absl::StrAppend(&holes_note, absl::StrFormat("  pieces %d, %s", sep.pieces,
                                                  sep.separated ? cut : "not cut"));
     if (sep.shells_after > 0)

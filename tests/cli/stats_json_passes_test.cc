@@ -1,11 +1,13 @@
 // --stats-json says what the shrink's passes after the generations did: the piece separation
 // cuts two spheres the shrink joined, the hole opening carves the pierced disk's plug and
-// keeps a thin cup wall's core closed, the gap refill fills cow-spot-belt's pockets; each
-// count agrees with the mesh delivered.
+// keeps a thin cup wall's core closed, the gap refill fills cow-spot-belt's pockets, and at
+// twice its voxel the separation cuts the hard voxels where cow and spot touch; each count
+// agrees with the mesh delivered.
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "absl/strings/str_format.h"
 #include "core/io/point_cloud_io.h"
 #include "gtest/gtest.h"
 #include "tests/cli/json_value.h"
@@ -59,9 +61,9 @@ TEST(StatsJsonPassesTest, EveryPassReportsOnASingleSphere) {
   const JsonValue& separation = Pass(s, "piece_separation");
   EXPECT_EQ(Count(separation, "pieces"), 1);
   EXPECT_FALSE(separation.Find("separated")->boolean);
-  for (const char* key : {"cut_voxels", "web_voxels", "loops_closed", "far_steps_cut",
-                          "shells_before", "genus_before", "shells_after", "genus_after",
-                          "cavities_after"}) {
+  for (const char* key : {"cut_voxels", "hard_cut_voxels", "web_voxels", "loops_closed",
+                          "far_steps_cut", "shells_before", "genus_before", "shells_after",
+                          "genus_after", "cavities_after"}) {
     EXPECT_EQ(Count(separation, key), 0) << key;
   }
   EXPECT_EQ(separation.Find("cut_fraction")->number, 0);
@@ -148,6 +150,28 @@ TEST(StatsJsonPassesTest, CowSpotBeltIsSeparatedAndRefilled) {
   const JsonValue& refill = Pass(s, "gap_refill");
   EXPECT_GT(Count(refill, "pocket_voxels"), 0);
   EXPECT_GT(Count(refill, "refilled_voxels"), 0);
+  EXPECT_EQ(Count(*s.Find("mesh"), "shells"), 3);
+  EXPECT_EQ(GenusSum(s), 1);
+  EXPECT_EQ(Count(separation, "hard_cut_voxels"), 0);  // its pieces' hard voxels never touch
+}
+
+// At twice the formula-(1) voxel the cow's and spot's hard voxels touch at two corners, their
+// points 2.57 voxels apart there: split by their points, the touching voxels are cut (each
+// beside its own data), and the belt's hole, which the cut between spot and the belt crosses,
+// is opened first by the hole opening; the mesh has the three shells.
+TEST(StatsJsonPassesTest, CowSpotBeltAtTwiceTheVoxelCutsTouchingHardVoxels) {
+  MEMBRANE_REQUIRE_SHARED_DATA(data_dir);
+  const ScratchDir dir;
+  const std::string cloud = data_dir + "/clouds/cow-spot-belt-scan.ply";
+  const double voxel = StatsOf(dir, cloud).Find("voxel_size")->number;
+  const JsonValue s = StatsOf(dir, cloud, {"--voxel-size", absl::StrFormat("%.17g", 2 * voxel)});
+  const JsonValue& separation = Pass(s, "piece_separation");
+  EXPECT_EQ(Count(separation, "pieces"), 3);
+  EXPECT_TRUE(separation.Find("separated")->boolean);
+  EXPECT_GT(Count(separation, "hard_cut_voxels"), 0);
+  EXPECT_LE(Count(separation, "hard_cut_voxels"), 4);
+  EXPECT_EQ(Count(separation, "shells_after"), 3);
+  EXPECT_GT(Count(Pass(s, "hole_opening"), "opened"), 0);
   EXPECT_EQ(Count(*s.Find("mesh"), "shells"), 3);
   EXPECT_EQ(GenusSum(s), 1);
 }

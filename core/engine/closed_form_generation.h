@@ -27,6 +27,7 @@ struct ClosedFormOutcome {
   int64_t guard_refusals = 0;  // new outside voxels the topology guard refused
   int rounds = 0;              // rounds of the sweeps (three axes, both fronts at once)
   int64_t checks = 0;          // incursion and guard tests run on the result
+  bool voxelwise = false;      // applied (and checked) voxel by voxel: few new outside voxels
 };
 
 // Work planes a closed-form generation uses (see RunClosedFormGeneration).
@@ -37,9 +38,11 @@ inline constexpr int kClosedFormPlanes = 8;
 // give (every new outside voxel has generation options.generation_label; inside voxels next to
 // them became boundary). Cancelled when `cancel` fires (the grid is then restored).
 // `planes` must have been made for this grid; the first kClosedFormPlanes of them are
-// overwritten.
+// overwritten. A result of at most `voxelwise_max` new outside voxels is applied and checked
+// voxel by voxel, a larger one by whole-grid planes: the same grid and outcome either way.
 absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
                                                           const ChainOptions& options,
+                                                          int64_t voxelwise_max,
                                                           const CancelToken& cancel,
                                                           WorkPlanes& planes);
 

@@ -172,12 +172,16 @@ absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
   // tunnel size): then only tunnels next to hard voxels are refused, and it checks those.
   if (options_.closed_form_min_plate > 0 && sizes_[g] >= options_.closed_form_min_plate &&
       sizes_[g] >= chain.guard.sizes.tunnel_min_plate) {
+    const int64_t voxelwise_max = options_.closed_form_voxelwise_ratio > 0
+                                      ? grid_.size() / options_.closed_form_voxelwise_ratio
+                                      : -1;
     absl::StatusOr<ClosedFormOutcome> closed =
-        RunClosedFormGeneration(grid_, chain, cancel_, planes_);
+        RunClosedFormGeneration(grid_, chain, voxelwise_max, cancel_, planes_);
     if (!closed.ok()) return CancelledIn(stats);
     done = stats.closed_form = closed->applied;
     stats.closed_form_rounds = closed->rounds;
     stats.closed_form_checks = closed->checks;
+    stats.closed_form_voxelwise = closed->voxelwise;
     // It allows every tunnel away from hard voxels: the strict rules might not have.
     if (done && chain.guard.classify_strict && sizes_[g] < strict_.tunnel_min_plate)
       stats.loose_tunnels = 1;

@@ -65,6 +65,7 @@ struct GenerationStats {
   bool closed_form = false;          // computed as a fixed point, without chains
   int closed_form_rounds = 0;        // rounds of its six sweeps (also when it was rejected)
   int64_t closed_form_checks = 0;    // incursion and guard tests after it
+  bool closed_form_voxelwise = false;  // its result was applied voxel by voxel (few new voxels)
   int64_t new_outside = 0;           // voxels the generation turned outside
   double seconds = 0.0;
 };

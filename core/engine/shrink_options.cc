@@ -32,6 +32,10 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(
         absl::StrFormat("local_snapshots.brick %d must be >= 1", o.local_snapshots.brick));
   }
+  if (o.closed_form_voxelwise_ratio < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "closed_form_voxelwise_ratio %d must be >= 0 (0 = always by planes)", o.closed_form_voxelwise_ratio));
+  }
   if (o.closed_form_min_plate < 0) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "closed_form_min_plate %d must be >= 0 (0 = never)", o.closed_form_min_plate));

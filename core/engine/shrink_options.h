@@ -38,6 +38,9 @@ struct ShrinkOptions {
   ChainRules chain;                 // depth bound, thick-wall run, guard on or off
   GuardSizes guard;                 // algorithm-notes 12
   int closed_form_min_plate = 8;    // generations with n >= this try the closed form; 0 = never
+  // A closed form adding at most one voxel per this many of the grid applies and checks its
+  // result voxel by voxel, others by whole-grid planes (the same result); 0 = always by planes.
+  int64_t closed_form_voxelwise_ratio = 256;
   // A chain generation's passes after its first take their snapshot near the voxels the pass
   // before wrote (place_finder.h, SnapshotAfter: the same candidates and places).
   LocalSnapshotOptions local_snapshots;

@@ -62,9 +62,10 @@ struct BenchOptions {
 constexpr char kUsage[] =
     "usage: bench_shrink [--quick] [--models a,b,c,d|NAME,...] [--repeat R] [--shared DIR]\n"
     "                    [--python PATH] [--open3d-threads N] [--open3d-timeout S]\n"
-    "                    [--no-open3d] [--retry T,S,W] [--threads N]\n"
+    "                    [--no-open3d] [--retry T,S,W] [--threads N] [--voxelwise-ratio R]\n"
     "  --quick           small sizes only, R=1, no open3d (the ctest smoke)\n"
-    "  --models LIST     a|real, b|scaling, c|million, d|tall, e|small, or any part of a\n"
+    "  --models LIST     a|real, b|scaling, c|million, d|tall, e|small, f|big (4M and 10M\n"
+    "                    points, only when named), or any part of a\n"
     "                    model name\n"
     "  --repeat R        shrink repetitions per model, the median is reported (default 3)\n"
     "  --shared DIR      the shared folder holding data/clouds (default: $MEMBRANE_SHARED_DIR,\n"
@@ -76,7 +77,10 @@ constexpr char kUsage[] =
     "  --retry T,S,W     the handle retry's tunnel, short-loop and wall-notch plate sizes\n"
     "                    (ShrinkOptions::retry; 0 = none of that kind)\n"
     "  --threads N       the shrink's threads, 1..256 (ShrinkOptions::threads; default 1;\n"
-    "                    CPU seconds are the whole process's)\n";
+    "                    CPU seconds are the whole process's)\n"
+    "  --voxelwise-ratio R  a closed form adding at most one voxel per R of the grid is\n"
+    "                    applied voxel by voxel (ShrinkOptions::closed_form_voxelwise_ratio;\n"
+    "                    default 256; 0 = always by planes)\n";
 
 std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
   BenchOptions o;
@@ -116,6 +120,12 @@ std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
           o.shrink.threads > 256) {
         return std::nullopt;
       }
+    } else if (arg == "--voxelwise-ratio") {
+      auto v = value();
+      if (!v || !absl::SimpleAtoi(*v, &o.shrink.closed_form_voxelwise_ratio) ||
+          o.shrink.closed_form_voxelwise_ratio < 0) {
+        return std::nullopt;
+      }
     } else if (arg == "--shared") {
       auto v = value();
       if (!v) return std::nullopt;
@@ -145,6 +155,7 @@ struct Model {
   std::function<absl::StatusOr<PointCloud>()> make;
   ShapeTopology expected;       // shells and sorted genus a correct reconstruction has
   bool genus_asserted = true;   // false for the teapot (data/README.md)
+  bool named_only = false;      // run only when --models names it (minutes and gigabytes)
 };
 
 // The expected reconstruction of the shared clouds (../shared/data/README.md).
@@ -160,7 +171,7 @@ std::string Describe(const ShapeTopology& t, bool genus_asserted = true) {
 }
 
 bool Selected(const BenchOptions& o, const Model& m) {
-  if (o.models.empty()) return true;
+  if (o.models.empty()) return !m.named_only;
   for (const std::string& t : o.models) {
     if (t.size() == 1) {  // a letter, never a substring
       if (t[0] == m.letter) return true;
@@ -255,6 +266,28 @@ std::vector<Model> AllModels(const BenchOptions& o, std::vector<std::string>& no
     };
     m.expected = ExpectedTopology(std::string(kShapeTorus));
     models.push_back(std::move(m));
+  }
+  // (f) issue-21 scale, only when named: the same torus at 4 and 10 million points (grids of
+  // 821^3 and 1295^3 voxels; the 10M one needs about 5 GB).
+  if (!o.quick) {
+    for (int millions : {4, 10}) {
+      Model m;
+      m.name = absl::StrCat("torus-", millions, "M");
+      m.letter = 'f';
+      m.group = "big";
+      m.named_only = true;
+      m.how = absl::StrCat("synthetic torus (R 0.7, r 0.45, axis (1,1,1)), ", millions,
+                           ",000,000 points");
+      m.make = [millions] {
+        SynthOptions s;
+        s.shape = std::string(kShapeTorus);
+        s.points = millions * 1'000'000;
+        s.seed = 1;
+        return SynthesizeShape(s);
+      };
+      m.expected = ExpectedTopology(std::string(kShapeTorus));
+      models.push_back(std::move(m));
+    }
   }
   // (d) the Buddha class: three stacked unit spheres, y height 745 voxels (quick: 120)
   {

@@ -303,3 +303,44 @@ TEST(ClosedFormGeneration, TurnsTheSameVoxelsOutsidePerGeneration) {
 
 }  // namespace
 }  // namespace membrane
+
+namespace membrane {
+namespace {
+
+// A closed form adding few voxels applies and checks its result voxel by voxel, one adding many
+// by whole-grid planes. Forced either way, accepted or rejected and restored, every generation
+// turns the same voxels outside after the same checks, and the membrane is the chains' one.
+TEST(ClosedFormGeneration, AppliesVoxelByVoxelOrByPlanesToTheSameMembrane) {
+  ShrinkOptions chains_only;
+  chains_only.closed_form_min_plate = 0;
+  ShrinkOptions by_planes;
+  by_planes.closed_form_voxelwise_ratio = 0;
+  ShrinkOptions by_voxels;
+  by_voxels.closed_form_voxelwise_ratio = 1;  // every result has at most the grid's voxels
+  int accepted_by_voxels = 0, rejected_by_voxels = 0;
+  for (const char* shape : {"sphere", "torus", "capped-sphere", "cube-pinholes"}) {
+    const PointCloud cloud = testing::SynthCloud(shape, 60000);
+    auto planes = testing::ShrinkCloud(cloud, 1.0, by_planes);
+    auto voxels = testing::ShrinkCloud(cloud, 1.0, by_voxels);
+    auto chains = testing::ShrinkCloud(cloud, 1.0, chains_only);
+    ASSERT_TRUE(planes.ok() && voxels.ok() && chains.ok()) << shape;
+    const std::vector<GenerationStats>& p = planes->result.generations;
+    const std::vector<GenerationStats>& v = voxels->result.generations;
+    ASSERT_EQ(p.size(), v.size()) << shape;
+    for (size_t g = 0; g < p.size(); ++g) {
+      SCOPED_TRACE(::testing::Message() << shape << " plate " << p[g].plate_size);
+      EXPECT_FALSE(p[g].closed_form_voxelwise);
+      EXPECT_EQ(p[g].closed_form, v[g].closed_form);
+      EXPECT_EQ(p[g].new_outside, v[g].new_outside);
+      EXPECT_EQ(p[g].closed_form_checks, v[g].closed_form_checks);
+      if (v[g].closed_form_voxelwise) ++(v[g].closed_form ? accepted_by_voxels : rejected_by_voxels);
+    }
+    EXPECT_TRUE(planes->voxels.grid.states() == voxels->voxels.grid.states()) << shape;
+    EXPECT_TRUE(voxels->voxels.grid.states() == chains->voxels.grid.states()) << shape;
+  }
+  EXPECT_GT(accepted_by_voxels, 0);
+  EXPECT_GT(rejected_by_voxels, 0);  // the capped sphere's checks refuse its result
+}
+
+}  // namespace
+}  // namespace membrane

@@ -359,7 +359,8 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   std::vector<int64_t> frontier;
   // Seeds in voxel order, off the array border. This loop reads the whole grid, mostly
   // outside voxels by now: it walks rows (no division for the border test) and steps over
-  // eight voxels whose face neighbours are all outside with six word loads.
+  // eight voxels whose face neighbours are all outside with six word loads, and eight solid
+  // ones with one.
   const auto& dims = grid.dims();
   const auto st = grid.strides();
   const VoxelState* states = grid.states().data();
@@ -374,7 +375,8 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
       const int64_t row = grid.Index(0, y, z);
       const int64_t end = row + dims[0] - 1;
       for (int64_t v = row + 1; v < end;) {
-        if (v + 8 <= end && outside_around_eight(v)) {
+        // A seed is outside: eight solid voxels (the solid's interior) are stepped over too.
+        if (v + 8 <= end && (NoOutsideOfEight(states + v) || outside_around_eight(v))) {
           v += 8;
           continue;
         }

@@ -16,6 +16,7 @@
 #include "core/engine/local_topology.h"
 #include "core/engine/point_gap_split.h"
 #include "core/engine/post_process.h"
+#include "core/engine/state_planes.h"
 #include "core/engine/voxel_topology.h"
 
 namespace membrane {
@@ -109,7 +110,12 @@ std::vector<std::vector<int64_t>> BigHardComponents(const VoxelGrid& grid, doubl
   FlatBitset seen(grid.size());
   const VoxelState* s = grid.states().data();
   int64_t hard = 0;
+  // Hard voxels are a few per thousand of the grid: eight voxels at a time where none is.
   for (int64_t i = 0; i < grid.size(); ++i) {
+    if (i + 8 <= grid.size() && NoHardOfEight(s + i)) {
+      i += 7;  // and the loop's ++i
+      continue;
+    }
     if (!IsHard(s[i]) || seen.test(i)) continue;
     if (cancel.cancelled()) return {};
     std::vector<int64_t>& component = components.emplace_back(1, i);

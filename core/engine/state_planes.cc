@@ -220,4 +220,8 @@ bool AllOutsideOfEight(const VoxelState* states) {
   return Matches<StatePredicate::kOutside>(Load8(states)) == kHigh;
 }
 
+bool NoOutsideOfEight(const VoxelState* states) {
+  return Matches<StatePredicate::kOutside>(Load8(states)) == 0;
+}
+
 }  // namespace membrane

@@ -48,10 +48,11 @@ StateCounts CountStates(absl::Span<const VoxelState> states, int threads = 1);
 int FirstBoundaryOfEight(const VoxelState* states);
 
 // True when none of the eight states at `states` is hard (IsHard), resp. when all eight are
-// outside: lets a scan of the grid for hard voxels, or for outside voxels beside the solid,
-// step over eight voxels at a time.
+// outside, resp. none is: lets a scan of the grid for hard voxels, for outside voxels beside
+// the solid, or for outside voxels at all step over eight voxels at a time.
 bool NoHardOfEight(const VoxelState* states);
 bool AllOutsideOfEight(const VoxelState* states);
+bool NoOutsideOfEight(const VoxelState* states);
 
 }  // namespace membrane
 

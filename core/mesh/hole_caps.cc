@@ -13,6 +13,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/geometry/vec3.h"
 #include "core/mesh/algebraic_sphere.h"
+#include "core/mesh/gap_vertices.h"
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_row_grid.h"
 #include "core/mesh/self_intersection.h"
@@ -708,7 +709,7 @@ std::vector<std::vector<int32_t>> Components(const Rows& nb, const std::vector<c
 
 absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,
                       const HoleCapOptions& options, HoleCapStats* stats,
-                      const CancelToken& cancel) {
+                      const CancelToken& cancel, int threads) {
   if (absl::Status s = Validate(voxel_size, options); !s.ok()) return s;
   HoleCapStats local;
   HoleCapStats& st = stats ? *stats : local;
@@ -719,47 +720,19 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
 
   // Gap vertices: no input point within gap_radius. The other vertices' counts of points
   // within gap_radius, in a histogram (the last bin holds every larger count), for their median.
-  std::vector<char> gap(nv, 0);
-  bool sparse = false;
   // The points with no vertex within gap_radius: buried in the solid or left outside it.
-  std::vector<Point3f> remote;
-  {
-    const double radius = options.gap_radius * l;
-    const double r2 = radius * radius;
-    const PointRowGrid grid(points, radius);
-    std::vector<char> covered(grid.num_points(), 0);
-    const float* px = grid.xs();
-    const float* py = grid.ys();
-    const float* pz = grid.zs();
-    int64_t count = 0;
-    std::vector<int64_t> histogram(options.min_median_points + 1, 0);
-    for (int32_t v = 0; v < nv; ++v) {
-      if (v % kCancelPollVertices == 0 && cancel.cancelled())
-        return absl::CancelledError("hole caps cancelled");
-      int near = 0;
-      const Vec3d c = ToVec3d(mesh.vertices[v]);
-      grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t end) {
-        for (uint32_t i = begin; i < end; ++i) {
-          const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
-          if (dx * dx + dy * dy + dz * dz <= r2) {
-            ++near;
-            covered[i] = 1;
-          }
-        }
-      });
-      gap[v] = near == 0;
-      count += gap[v];
-      if (near > 0) ++histogram[std::min(near, options.min_median_points)];
-    }
-    if (count < options.min_gap_vertices) return absl::OkStatus();
-    // Below the median: more than half of the vertices on the data have fewer points near.
-    int64_t fewer = 0;
-    for (int k = 0; k < options.min_median_points; ++k) fewer += histogram[k];
-    sparse = 2 * fewer > nv - count;
-    if (options.anchor_remote_points)
-      for (size_t i = 0; i < grid.num_points(); ++i)
-        if (!covered[i]) remote.push_back(Point3f{px[i], py[i], pz[i]});
-  }
+  absl::StatusOr<GapVertices> found =
+      FindGapVertices(mesh, points, options.gap_radius * l, options.min_median_points,
+                      options.anchor_remote_points, options.min_gap_vertices, threads, cancel);
+  if (!found.ok()) return found.status();
+  const std::vector<char>& gap = found->gap;
+  const int64_t count = found->count;
+  if (count < options.min_gap_vertices) return absl::OkStatus();
+  // Below the median: more than half of the vertices on the data have fewer points near.
+  int64_t fewer = 0;
+  for (int k = 0; k < options.min_median_points; ++k) fewer += found->histogram[k];
+  const bool sparse = 2 * fewer > nv - count;
+  const std::vector<Point3f> remote = std::move(found->remote);
   if (cancel.cancelled()) return absl::CancelledError("hole caps cancelled");
   Rows nb, star;
   BuildRows(mesh, nb, star);

@@ -188,12 +188,13 @@ struct HoleCapStats {
 // the mesh, that part of it is not built.
 // Faces are unchanged, so the mesh stays closed, manifold and oriented with its shells and
 // genus; crossings are those of the input or none.
-// The result depends only on the input (one thread). `stats` may be null.
+// The gap search runs on `threads` (<= 1: the calling thread), the rest on the calling
+// thread; the result depends only on the input, not on `threads`. `stats` may be null.
 // Errors: InvalidArgument for a bad voxel size or options out of range; Cancelled when
 // `cancel` fired (the mesh is then as it came in).
 absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,
                       const HoleCapOptions& options = {}, HoleCapStats* stats = nullptr,
-                      const CancelToken& cancel = CancelToken::Never());
+                      const CancelToken& cancel = CancelToken::Never(), int threads = 1);
 
 }  // namespace membrane
 

@@ -6,8 +6,13 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/parallel_tasks.h"
+
 namespace membrane {
 namespace {
+
+// Below this many vertices the sort is not split: a thread's start costs more than it saves.
+constexpr size_t kSplitVertices = 1 << 16;
 
 // Spreads the low 21 bits of v so that two zero bits follow each one.
 uint64_t Spread(uint64_t v) {
@@ -22,24 +27,37 @@ uint64_t Spread(uint64_t v) {
 
 }  // namespace
 
-void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companion) {
+void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companion,
+                 int threads) {
   const size_t nv = mesh.vertices.size();
   if (nv == 0) return;
   std::array<float, 3> lo = mesh.vertices[0];
   for (const Point3f& p : mesh.vertices)
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]);
   // (key, index) side by side: the sort then compares contiguous pairs instead of looking the
-  // keys up through the indices (half the sort's time). Unique pairs, so the order is the same.
+  // keys up through the indices (half the sort's time). Unique pairs, so the order is the same
+  // however the sort is split: each half sorted on a thread of its own, then merged.
   std::vector<std::pair<uint64_t, int32_t>> keyed(nv);
-  for (size_t v = 0; v < nv; ++v) {
-    uint64_t code = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double c = std::floor((mesh.vertices[v][k] - lo[k]) / cell);
-      code |= Spread(static_cast<uint64_t>(std::clamp(c, 0.0, double(0x1fffff)))) << k;
+  const int64_t halves = threads > 1 && nv >= kSplitVertices ? 2 : 1;
+  const size_t middle = halves == 2 ? nv / 2 : nv;
+  RunTasks(threads, halves, [&](int, int64_t half) {
+    const size_t begin = half == 0 ? 0 : middle, end = half == 0 ? middle : nv;
+    for (size_t v = begin; v < end; ++v) {
+      uint64_t code = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double c = std::floor((mesh.vertices[v][k] - lo[k]) / cell);
+        code |= Spread(static_cast<uint64_t>(std::clamp(c, 0.0, double(0x1fffff)))) << k;
+      }
+      keyed[v] = {code, static_cast<int32_t>(v)};
     }
-    keyed[v] = {code, static_cast<int32_t>(v)};
+    std::sort(keyed.begin() + begin, keyed.begin() + end);
+  });
+  if (halves == 2) {
+    std::vector<std::pair<uint64_t, int32_t>> merged(nv);
+    std::merge(keyed.begin(), keyed.begin() + middle, keyed.begin() + middle, keyed.end(),
+               merged.begin());
+    keyed = std::move(merged);
   }
-  std::sort(keyed.begin(), keyed.end());
   std::vector<int32_t> order(nv);
   for (size_t i = 0; i < nv; ++i) order[i] = keyed[i].second;
   std::vector<int32_t> new_id(nv);

@@ -16,8 +16,10 @@ namespace membrane {
 // Input: any mesh with valid indices. `cell` (model units, > 0) is the quantum of the curve,
 // e.g. the voxel size. `companion`, if not null, holds one value per vertex and is permuted
 // with the vertices. Output: the same mesh (same geometry, same faces up to renumbering, each
-// face's vertex order kept, so orientation is unchanged).
-void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companion = nullptr);
+// face's vertex order kept, so orientation is unchanged). The keys are made and sorted in two
+// halves on `threads` (<= 1: the calling thread), then merged: the same order on any count.
+void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companion = nullptr,
+                 int threads = 1);
 
 }  // namespace membrane
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -32,20 +34,41 @@ constexpr double kRoundsShare = 0.85;
 // lies in its own slab or the next ones (checked, not assumed).
 constexpr double kSlabVoxels = 4;
 
+// The fit's two indexes, the mesh's vertex rings and the points' grid: each is a pass of its
+// own over one input, so they are built side by side.
+struct FitIndexes {
+  MeshFans fans;
+  PointRowGrid points;
+};
+
+FitIndexes BuildIndexes(const TriangleMesh& mesh, double voxel_size,
+                        absl::Span<const Point3f> points, const FitOptions& options) {
+  std::optional<MeshFans> fans;
+  std::optional<PointRowGrid> grid;
+  RunTasks(options.threads, 2, [&](int, int64_t task) {
+    if (task == 0) {
+      fans.emplace(mesh);
+    } else {
+      // Cells of half the search radius: a query reads 5x5 rows of 5 cells, a box little
+      // larger than its ball.
+      grid.emplace(points, 0.5 * options.search_radius * voxel_size);
+    }
+  });
+  return FitIndexes{*std::move(fans), *std::move(grid)};
+}
+
 class Fitter {
  public:
-  Fitter(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,
-         const FitOptions& options, const std::vector<Point3f>* fallback)
+  Fitter(TriangleMesh& mesh, double voxel_size, FitIndexes indexes, const FitOptions& options,
+         const std::vector<Point3f>* fallback)
       : mesh_(mesh),
         l_(voxel_size),
         options_(options),
         fallback_(fallback),
         grid_(options.output_grid),
         rest_(mesh.vertices),
-        fans_(mesh),
-        // Cells of half the search radius: a query reads 5x5 rows of 5 cells, a box little
-        // larger than its ball.
-        points_(points, 0.5 * options.search_radius * voxel_size) {
+        fans_(std::move(indexes.fans)),
+        points_(std::move(indexes.points)) {
     const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
     const int32_t nf = static_cast<int32_t>(mesh.faces.size());
     star_start_.assign(nv + 1, 0);
@@ -598,7 +621,8 @@ absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
   if (fallback != nullptr && fallback->size() != mesh.vertices.size())
     return absl::InvalidArgumentError(absl::StrCat(
         "fallback has ", fallback->size(), " positions for ", mesh.vertices.size(), " vertices"));
-  Fitter fitter(mesh, voxel_size, points, options, fallback);
+  Fitter fitter(mesh, voxel_size, BuildIndexes(mesh, voxel_size, points, options), options,
+                fallback);
   if (absl::Status s = fitter.Run(cancel, progress, stats); !s.ok()) return s;
   return stats;
 }

@@ -83,7 +83,7 @@ absl::StatusOr<TriangleMesh> SmoothSurface(VoxelGrid&& membrane,
   // Before the fit: the fit then pulls the caps' rims onto the data and smooths the caps; its
   // final search covers the caps too.
   if (absl::Status capped = CapHoles(nets.mesh, voxel_size, points, options.hole_caps,
-                                     &s.caps, cancel);
+                                     &s.caps, cancel, options.fit_options.threads);
       !capped.ok())
     return capped;
   s.cap_seconds = SecondsSince(start);

@@ -95,7 +95,7 @@ UnrepairedSurfaceNets SurfaceNetsBeforeRepair(const VoxelGrid& grid, int threads
   // Spatial order for everything downstream; the fallback positions travel with their
   // vertices.
   UnrepairedSurfaceNets out{std::move(mesh), ToModel(grid, p.safe), b.corner_contacts};
-  MortonOrder(out.mesh, grid.voxel_size(), &out.fallback);
+  MortonOrder(out.mesh, grid.voxel_size(), &out.fallback, threads);
   return out;
 }
 

@@ -94,6 +94,19 @@ TEST(SurfaceNets, SameMeshOnAnyThreadCount) {
   }
 }
 
+TEST(SurfaceNets, SameMeshOnAnyThreadCountWithTheMortonSortSplit) {
+  // Enough vertices that the Morton order sorts two halves on two threads and merges them.
+  const VoxelGrid grid = RandomSolidGrid(72, 0.35, 3);
+  const UnrepairedSurfaceNets one = SurfaceNetsBeforeRepair(grid, 1);
+  ASSERT_GT(one.mesh.vertices.size(), size_t{1} << 17);
+  for (int threads : {2, 3}) {
+    const UnrepairedSurfaceNets many = SurfaceNetsBeforeRepair(grid, threads);
+    EXPECT_EQ(many.mesh.vertices, one.mesh.vertices) << threads << " threads";
+    EXPECT_EQ(many.mesh.faces, one.mesh.faces) << threads << " threads";
+    EXPECT_EQ(many.fallback, one.fallback) << threads << " threads";
+  }
+}
+
 TEST(SurfaceNets, OfTwoBallsHasTwoShells) {
   ExpectValidSmoothSurfaces(TwoBallsGrid(32, 6, 3), 2, {0, 0});
 }

@@ -1,0 +1,120 @@
+// The hole caps' gap search (core/mesh/gap_vertices.h) and the caps built on it: the same
+// flags, counts, remote points and caps on any thread count.
+#include "core/mesh/gap_vertices.h"
+
+#include <cmath>
+#include <random>
+
+#include "core/mesh/hole_caps.h"
+#include "core/mesh/smooth_surface.h"
+#include "gtest/gtest.h"
+#include "tests/support/shrink_fixture.h"
+
+namespace membrane {
+namespace {
+
+// Points uniformly on the unit sphere but none within 0.5 of the pole (0, 0, 1), and `buried`
+// points on a sphere of radius 0.3 inside it: no membrane vertex comes near those.
+PointCloud SphereWithHoleAndBuriedPoints(int n, int buried) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> gauss;
+  PointCloud cloud;
+  while (static_cast<int>(cloud.points.size()) < n) {
+    const Vec3d p = Normalized(Vec3d{gauss(rng), gauss(rng), gauss(rng)});
+    if (SquaredNorm(p - Vec3d{0, 0, 1}) < 0.25) continue;
+    cloud.points.push_back(ToPoint3f(p));
+  }
+  for (int i = 0; i < buried; ++i)
+    cloud.points.push_back(
+        ToPoint3f(0.3 * Normalized(Vec3d{gauss(rng), gauss(rng), gauss(rng)})));
+  return cloud;
+}
+
+struct NetsOfCloud {
+  TriangleMesh mesh;
+  double voxel_size = 0;
+};
+
+// The surface nets of the cloud's membrane (no caps, no fit): a crater sunk into the hole.
+NetsOfCloud Nets(const PointCloud& cloud) {
+  NetsOfCloud out;
+  auto run = testing::ShrinkCloud(cloud, 1.0);
+  EXPECT_TRUE(run.ok()) << run.status();
+  if (!run.ok()) return out;
+  SmoothSurfaceOptions options;
+  options.fit = false;
+  absl::StatusOr<TriangleMesh> mesh = SmoothSurface(run->voxels.grid, cloud.points, options);
+  EXPECT_TRUE(mesh.ok()) << mesh.status();
+  if (mesh.ok()) out.mesh = *std::move(mesh);
+  out.voxel_size = run->voxels.grid.voxel_size();
+  return out;
+}
+
+TEST(GapVertices, TheSameOnAnyThreadCount) {
+  const PointCloud cloud = SphereWithHoleAndBuriedPoints(20000, 300);
+  const NetsOfCloud nets = Nets(cloud);
+  // Several blocks of vertices, so that the threads share them.
+  ASSERT_GT(nets.mesh.vertices.size(), 12000u);
+  const double radius = 2 * nets.voxel_size;
+  absl::StatusOr<GapVertices> one =
+      FindGapVertices(nets.mesh, cloud.points, radius, 5, true, 1, 1, CancelToken::Never());
+  ASSERT_TRUE(one.ok()) << one.status();
+  // The crater's vertices are gaps, and the buried points are remote.
+  EXPECT_GT(one->count, 100);
+  EXPECT_GE(one->remote.size(), 300u);
+  int64_t counted = one->count;
+  for (const int64_t h : one->histogram) counted += h;
+  EXPECT_EQ(counted, static_cast<int64_t>(nets.mesh.vertices.size()));
+  // Fewer gaps than the caller's minimum: no remote points are listed.
+  absl::StatusOr<GapVertices> few = FindGapVertices(nets.mesh, cloud.points, radius, 5, true,
+                                                    one->count + 1, 2, CancelToken::Never());
+  ASSERT_TRUE(few.ok()) << few.status();
+  EXPECT_EQ(few->gap, one->gap);
+  EXPECT_TRUE(few->remote.empty());
+  for (const int threads : {2, 3}) {
+    absl::StatusOr<GapVertices> many =
+        FindGapVertices(nets.mesh, cloud.points, radius, 5, true, 1, threads, CancelToken::Never());
+    ASSERT_TRUE(many.ok()) << many.status();
+    EXPECT_EQ(many->gap, one->gap) << threads;
+    EXPECT_EQ(many->count, one->count) << threads;
+    EXPECT_EQ(many->histogram, one->histogram) << threads;
+    EXPECT_EQ(many->remote, one->remote) << threads;
+  }
+}
+
+TEST(GapVertices, CancelledIsCancelled) {
+  const PointCloud cloud = SphereWithHoleAndBuriedPoints(20000, 0);
+  const NetsOfCloud nets = Nets(cloud);
+  CancelToken cancel;
+  cancel.Cancel();
+  for (const int threads : {1, 2})
+    EXPECT_EQ(FindGapVertices(nets.mesh, cloud.points, 2 * nets.voxel_size, 5, false, 1,
+                              threads, cancel)
+                  .status()
+                  .code(),
+              absl::StatusCode::kCancelled);
+}
+
+TEST(HoleCapsThreads, TheCapsAreTheSameOnAnyThreadCount) {
+  const PointCloud cloud = SphereWithHoleAndBuriedPoints(20000, 300);
+  const NetsOfCloud nets = Nets(cloud);
+  TriangleMesh one = nets.mesh;
+  HoleCapStats one_stats;
+  ASSERT_TRUE(CapHoles(one, nets.voxel_size, cloud.points, {}, &one_stats).ok());
+  EXPECT_EQ(one_stats.regions, 1);
+  EXPECT_NE(one.vertices, nets.mesh.vertices);
+  for (const int threads : {2, 3}) {
+    TriangleMesh many = nets.mesh;
+    HoleCapStats stats;
+    ASSERT_TRUE(CapHoles(many, nets.voxel_size, cloud.points, {}, &stats, CancelToken::Never(),
+                         threads)
+                    .ok());
+    EXPECT_EQ(many.vertices, one.vertices) << threads;
+    EXPECT_EQ(stats.regions, one_stats.regions) << threads;
+    EXPECT_EQ(stats.vertices, one_stats.vertices) << threads;
+    EXPECT_EQ(stats.anchors, one_stats.anchors) << threads;
+  }
+}
+
+}  // namespace
+}  // namespace membrane

@@ -1,6 +1,7 @@
 #include "tests/mesh/cloud_surface.h"
 
 #include <algorithm>
+#include <random>
 #include <utility>
 
 #include "core/base/cancel_token.h"
@@ -9,6 +10,18 @@
 #include "tests/support/shrink_fixture.h"
 
 namespace membrane::testing {
+
+PointCloud SphereWithHole(int n, double hole, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> gauss;
+  PointCloud cloud;
+  while (static_cast<int>(cloud.points.size()) < n) {
+    const Vec3d p = Normalized(Vec3d{gauss(rng), gauss(rng), gauss(rng)});
+    if (SquaredNorm(p - Vec3d{0, 0, 1}) < hole * hole) continue;
+    cloud.points.push_back(ToPoint3f(p));
+  }
+  return cloud;
+}
 
 absl::StatusOr<CloudSurface> SmoothSurfaceOfCloud(const PointCloud& cloud,
                                                   const SmoothSurfaceOptions& options,

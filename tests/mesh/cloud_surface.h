@@ -3,6 +3,7 @@
 #ifndef MEMBRANE_TESTS_MESH_CLOUD_SURFACE_H_
 #define MEMBRANE_TESTS_MESH_CLOUD_SURFACE_H_
 
+#include <cstdint>
 #include <functional>
 
 #include "absl/status/statusor.h"
@@ -13,6 +14,10 @@
 #include "core/mesh/smooth_surface.h"
 
 namespace membrane::testing {
+
+// `n` points uniformly on the unit sphere (directions of Gaussian triples drawn with `seed`),
+// but none within `hole` of the pole (0, 0, 1): a scan with one data hole.
+PointCloud SphereWithHole(int n, double hole, uint64_t seed);
 
 struct CloudSurface {
   TriangleMesh mesh;

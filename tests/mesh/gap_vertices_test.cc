@@ -8,6 +8,7 @@
 #include "core/mesh/hole_caps.h"
 #include "core/mesh/smooth_surface.h"
 #include "gtest/gtest.h"
+#include "tests/mesh/cloud_surface.h"
 #include "tests/support/shrink_fixture.h"
 
 namespace membrane {
@@ -16,14 +17,9 @@ namespace {
 // Points uniformly on the unit sphere but none within 0.5 of the pole (0, 0, 1), and `buried`
 // points on a sphere of radius 0.3 inside it: no membrane vertex comes near those.
 PointCloud SphereWithHoleAndBuriedPoints(int n, int buried) {
-  std::mt19937_64 rng(5);
+  PointCloud cloud = testing::SphereWithHole(n, 0.5, 5);
+  std::mt19937_64 rng(6);
   std::normal_distribution<double> gauss;
-  PointCloud cloud;
-  while (static_cast<int>(cloud.points.size()) < n) {
-    const Vec3d p = Normalized(Vec3d{gauss(rng), gauss(rng), gauss(rng)});
-    if (SquaredNorm(p - Vec3d{0, 0, 1}) < 0.25) continue;
-    cloud.points.push_back(ToPoint3f(p));
-  }
   for (int i = 0; i < buried; ++i)
     cloud.points.push_back(
         ToPoint3f(0.3 * Normalized(Vec3d{gauss(rng), gauss(rng), gauss(rng)})));

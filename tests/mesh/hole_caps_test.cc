@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/relaxation.h"
@@ -18,20 +17,6 @@
 namespace membrane {
 namespace {
 
-// `n` points uniformly on the unit sphere, but none within `hole` of the pole (0, 0, 1).
-PointCloud SphereWithHole(int n, double hole) {
-  std::mt19937_64 rng(11);
-  std::normal_distribution<double> gauss;
-  PointCloud cloud;
-  while (static_cast<int>(cloud.points.size()) < n) {
-    Vec3d p{gauss(rng), gauss(rng), gauss(rng)};
-    p = Normalized(p);
-    if (SquaredNorm(p - Vec3d{0, 0, 1}) < hole * hole) continue;
-    cloud.points.push_back(ToPoint3f(p));
-  }
-  return cloud;
-}
-
 struct HoleResult {
   double max_error_in_hole = 0;  // voxels: largest | |v| - 1 | over vertices seen in the hole
   MeshReport check;
@@ -39,7 +24,7 @@ struct HoleResult {
 };
 
 HoleResult ReconstructSphereWithHole(bool caps) {
-  const PointCloud cloud = SphereWithHole(60000, 0.5);
+  const PointCloud cloud = testing::SphereWithHole(60000, 0.5, 11);
   SmoothSurfaceOptions options;
   options.hole_caps.enabled = caps;
   absl::StatusOr<testing::CloudSurface> surface = testing::SmoothSurfaceOfCloud(cloud, options);
@@ -92,7 +77,7 @@ testing::CapMeasure CapSphereHole(const PointCloud& cloud, bool converge) {
 }
 
 TEST(HoleCaps, TheBandsSphereKeepsTheCapCloserToIt) {
-  const PointCloud cloud = SphereWithHole(60000, 0.5);
+  const PointCloud cloud = testing::SphereWithHole(60000, 0.5, 11);
   const testing::CapMeasure picked = CapSphereHole(cloud, false);
   const testing::CapMeasure converged = CapSphereHole(cloud, true);
   EXPECT_EQ(picked.caps.regions, 1);
@@ -141,7 +126,7 @@ TriangleMesh UvSphere(int segments, int rings) {
 // to the sphere, the pole with it.
 TEST(HoleCaps, AVertexWithManyNeighboursIsCapped) {
   TriangleMesh mesh = UvSphere(64, 48);
-  const PointCloud cloud = SphereWithHole(40000, 0.5);
+  const PointCloud cloud = testing::SphereWithHole(40000, 0.5, 11);
   // The membrane sinks into the hole: its vertices within the hole's rim, pushed inward.
   for (Point3f& v : mesh.vertices)
     if (SquaredNorm(ToVec3d(v) - Vec3d{0, 0, 1}) < 0.45 * 0.45) v = ToPoint3f(0.85 * ToVec3d(v));
@@ -159,7 +144,7 @@ TEST(HoleCaps, AVertexWithManyNeighboursIsCapped) {
 }
 
 TEST(HoleCaps, CloudWithoutGapsIsLeftAsItIs) {
-  const PointCloud cloud = SphereWithHole(60000, 0.0);
+  const PointCloud cloud = testing::SphereWithHole(60000, 0.0, 11);
   auto run = testing::ShrinkCloud(cloud, 1.0);
   ASSERT_TRUE(run.ok()) << run.status();
   SmoothSurfaceOptions options;
@@ -180,7 +165,7 @@ TEST(HoleCaps, CloudWithoutGapsIsLeftAsItIs) {
 // data: no cap is built (without the bounds the caps took 83% of the vertices and lifted them
 // up to 31 voxels).
 TEST(HoleCaps, ScatteredPointsAreNoHole) {
-  const PointCloud cloud = SphereWithHole(8000, 0.0);
+  const PointCloud cloud = testing::SphereWithHole(8000, 0.0, 11);
   auto run = testing::ShrinkCloud(cloud, 1.0, {}, 0.0155);
   ASSERT_TRUE(run.ok()) << run.status();
   VoxelGrid& grid = run->voxels.grid;
@@ -201,7 +186,7 @@ TEST(HoleCaps, ScatteredPointsAreNoHole) {
 }
 
 TEST(HoleCaps, CancelledLeavesTheMeshAsItCame) {
-  const PointCloud cloud = SphereWithHole(20000, 0.5);
+  const PointCloud cloud = testing::SphereWithHole(20000, 0.5, 11);
   auto run = testing::ShrinkCloud(cloud, 1.0);
   ASSERT_TRUE(run.ok()) << run.status();
   SmoothSurfaceOptions options;

@@ -16,7 +16,6 @@
 #include "core/engine/local_topology.h"
 #include "core/engine/point_gap_split.h"
 #include "core/engine/post_process.h"
-#include "core/engine/state_planes.h"
 #include "core/engine/voxel_topology.h"
 
 namespace membrane {
@@ -99,43 +98,6 @@ double CutFraction(const VoxelGrid& grid, const PieceLookup& lookup, std::vector
     largest = std::max(largest, static_cast<double>(per_pair[pair]) / static_cast<double>(smaller));
   }
   return largest;
-}
-
-// The 26-components of the hard voxels holding at least `min_fraction` of them, as lists of
-// voxel indices (one pass over the grid); `min_voxels` gets that fraction's voxel count.
-std::vector<std::vector<int64_t>> BigHardComponents(const VoxelGrid& grid, double min_fraction,
-                                                    const CancelToken& cancel,
-                                                    int64_t& min_voxels) {
-  std::vector<std::vector<int64_t>> components;
-  FlatBitset seen(grid.size());
-  const VoxelState* s = grid.states().data();
-  int64_t hard = 0;
-  // Hard voxels are a few per thousand of the grid: eight voxels at a time where none is.
-  for (int64_t i = 0; i < grid.size(); ++i) {
-    if (i + 8 <= grid.size() && NoHardOfEight(s + i)) {
-      i += 7;  // and the loop's ++i
-      continue;
-    }
-    if (!IsHard(s[i]) || seen.test(i)) continue;
-    if (cancel.cancelled()) return {};
-    std::vector<int64_t>& component = components.emplace_back(1, i);
-    seen.set(i);
-    for (size_t k = 0; k < component.size(); ++k)
-      for (int64_t off : grid.neighbour_offsets()) {
-        const int64_t n = component[k] + off;
-        if (IsHard(s[n]) && !seen.test(n)) {
-          seen.set(n);
-          component.push_back(n);
-        }
-      }
-    hard += static_cast<int64_t>(component.size());
-  }
-  min_voxels =
-      static_cast<int64_t>(std::ceil(std::max(1.0, min_fraction * static_cast<double>(hard))));
-  std::erase_if(components, [&](const std::vector<int64_t>& c) {
-    return static_cast<int64_t>(c.size()) < min_voxels;
-  });
-  return components;
 }
 
 // One cut tried on the grid and undone: only outside-ness matters to the topology count, and
@@ -399,26 +361,17 @@ absl::StatusOr<PieceSeparationStats> SeparateDataPieces(VoxelGrid& grid,
   };
   auto cancelled = [] { return absl::CancelledError("reconstruction cancelled"); };
   VoxelState* s = grid.mutable_states().data();
-  int64_t min_piece_voxels = 0;
-  std::vector<std::vector<int64_t>> pieces =
-      BigHardComponents(grid, options.min_piece_fraction, cancel, min_piece_voxels);
-  if (cancel.cancelled()) return cancelled();
-  // Pieces whose hard voxels touch but whose points do not come within split_reach of each
-  // other across the contact: their hard voxels there may be cut.
-  bool split = false;
-  if (points != nullptr && options.split_reach > 0) {
-    std::vector<std::vector<int64_t>> parts;
-    for (const std::vector<int64_t>& component : pieces) {
-      std::vector<std::vector<int64_t>> split_parts =
-          SplitAtPointGaps(grid, *points, component, options.split_reach, min_piece_voxels);
-      split = split || split_parts.size() > 1;
-      for (std::vector<int64_t>& part : split_parts) parts.push_back(std::move(part));
-    }
-    if (cancel.cancelled()) return cancelled();
-    pieces.swap(parts);
-  }
-  stats.pieces = static_cast<int>(pieces.size());
-  if (pieces.size() < 2) return done();
+  // The pieces: big 26-components of hard voxels, split where two objects' hard voxels touch
+  // but their points do not come within split_reach of each other across the contact (their
+  // hard voxels there may then be cut).
+  absl::StatusOr<DataPieces> found =
+      FindDataPieces(grid, options.split_reach > 0 ? points : nullptr, options.split_reach,
+                     options.min_piece_fraction, cancel);
+  if (!found.ok()) return found.status();
+  stats.pieces = found->count;
+  if (found->count < 2) return done();
+  std::vector<std::vector<int64_t>> pieces = std::move(found->pieces);
+  const bool split = found->split;
 
   // Waves from every piece at once through the solid, one 26-step a layer (one byte a voxel
   // while this runs, only when the data has two or more pieces). The cut: the non-hard solid

@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "absl/status/statusor.h"
+#include "core/base/cancel_token.h"
 #include "core/engine/hard_voxel_points.h"
 #include "core/engine/voxel_grid.h"
 
@@ -33,6 +35,32 @@ std::vector<std::vector<int64_t>> SplitAtPointGaps(const VoxelGrid& grid,
                                                    const HardVoxelPoints& points,
                                                    const std::vector<int64_t>& component,
                                                    double reach, int64_t min_voxels);
+
+// The pieces of data of a grid: its big 26-components of hard voxels, split at point gaps.
+struct DataPieces {
+  int count = 0;           // pieces of data
+  std::vector<std::vector<int64_t>> pieces;  // their voxels, only when count >= 2
+  int64_t min_voxels = 0;  // min_fraction of the hard voxels, rounded up (at least 1)
+  bool split = false;      // a component was split into two or more pieces
+};
+
+// Input: a grid, its hard voxels' points (nullptr: none) and min_fraction in (0, 0.5].
+// Returns the pieces of data: the 26-components of the hard voxels holding at least
+// min_voxels of them, in the order of their least voxel, each replaced by SplitAtPointGaps(
+// grid, *points, component, reach, min_voxels)'s parts when `points` and a reach above 0 are
+// given; with two or more pieces, each lists its voxels in the order SplitAtPointGaps keeps for
+// a component listed breadth first from its least voxel (26-steps in the grid's neighbour
+// order): the order the waves between the pieces read. Fewer than two: the count alone.
+// CancelledError when `cancel` fires.
+// Cost: one pass over the grid listing the hard voxels (64 states to a word), one union-find
+// over them in index order with SplitAtPointGaps's 26-neighbour pairs (each pair's points read
+// only while its two voxels are not yet joined), no search through the grid. When one class
+// then holds all but fewer than min_voxels of the hard voxels there is one piece and nothing
+// more is done; otherwise a second union-find gives the components, the wider pairs are read
+// around the components with two big classes, and the breadth-first orders are taken.
+absl::StatusOr<DataPieces> FindDataPieces(const VoxelGrid& grid, const HardVoxelPoints* points,
+                                          double reach, double min_fraction,
+                                          const CancelToken& cancel);
 
 }  // namespace membrane
 

@@ -489,6 +489,17 @@ Summary RunModel(const BenchOptions& o, const Model& m, bool open3d_available,
               res.handle_retry.seconds, RetrySummary(res.handle_retry).c_str(),
               res.seconds - generation_sum,
               deterministic ? "" : "; COUNTERS DIFFER BETWEEN RUNS");
+  // The steps after the generations, each over R (wall: they run on the calling thread).
+  auto step_walls = [&](auto seconds_of) {
+    return absl::StrJoin(results, " ", [&](std::string* out, const ShrinkResult& r) {
+      absl::StrAppend(out, absl::StrFormat("%.3f", seconds_of(r)));
+    });
+  };
+  std::printf("after the generations (s, each run): piece separation %s (%d pieces, %s); "
+              "hole opening %s\n",
+              step_walls([](const ShrinkResult& r) { return r.separation.seconds; }).c_str(),
+              res.separation.pieces, res.separation.separated ? "separated" : "not separated",
+              step_walls([](const ShrinkResult& r) { return r.holes.seconds; }).c_str());
   std::printf("%s %.2f s, voxelize %.3f s (median, not in the shrink time); peak RSS %.1f MB\n",
               m.file.empty() ? "synthesize" : "read", load_seconds, Median(voxelize_seconds),
               s.rss_kb / 1024.0);

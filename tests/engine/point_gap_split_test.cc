@@ -7,8 +7,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <random>
+#include <string>
 #include <vector>
+
+#include "core/engine/flat_bitset.h"
 
 #include "core/engine/hard_voxel_points.h"
 #include "core/engine/membrane_invariants.h"
@@ -98,6 +104,131 @@ TEST(SplitAtPointGaps, CornersWhosePointsLieApartSplitTheComponent) {
   HardVoxelPoints close_points(close.grid, close.points);
   EXPECT_EQ(SplitAtPointGaps(close.grid, close_points, HardVoxels(close.grid), 2.0, 100).size(),
             1u);
+}
+
+// What FindDataPieces promises, computed the plain way: every 26-component of the hard voxels
+// listed breadth first from its least voxel, the big ones kept and each split by
+// SplitAtPointGaps.
+DataPieces ReferencePieces(const VoxelGrid& grid, const HardVoxelPoints* points, double reach,
+                           double min_fraction) {
+  std::vector<std::vector<int64_t>> components;
+  FlatBitset seen(grid.size());
+  int64_t hard = 0;
+  for (int64_t i = 0; i < grid.size(); ++i) {
+    if (!IsHard(grid.at(i)) || seen.test(i)) continue;
+    std::vector<int64_t>& component = components.emplace_back(1, i);
+    seen.set(i);
+    for (size_t k = 0; k < component.size(); ++k)
+      for (int64_t off : grid.neighbour_offsets()) {
+        const int64_t n = component[k] + off;
+        if (IsHard(grid.at(n)) && !seen.test(n)) {
+          seen.set(n);
+          component.push_back(n);
+        }
+      }
+    hard += static_cast<int64_t>(component.size());
+  }
+  DataPieces out;
+  if (hard == 0) return out;
+  out.min_voxels = static_cast<int64_t>(
+      std::ceil(std::max(1.0, min_fraction * static_cast<double>(hard))));
+  for (const std::vector<int64_t>& component : components) {
+    if (static_cast<int64_t>(component.size()) < out.min_voxels) continue;
+    if (points == nullptr || reach <= 0) {
+      out.pieces.push_back(component);
+      continue;
+    }
+    std::vector<std::vector<int64_t>> parts =
+        SplitAtPointGaps(grid, *points, component, reach, out.min_voxels);
+    out.split = out.split || parts.size() > 1;
+    for (std::vector<int64_t>& part : parts) out.pieces.push_back(std::move(part));
+  }
+  out.count = static_cast<int>(out.pieces.size());
+  if (out.count < 2) out.pieces.clear();
+  return out;
+}
+
+// Clumps of hard voxels (random walks, some beside each other) with one to three points each
+// anywhere in their voxel: components that touch, classes that split them, strays.
+struct Clumps {
+  VoxelGrid grid{{30, 30, 30}, {0, 0, 0}, 1.0, kInsideSoft};
+  std::vector<Point3f> points;
+};
+
+Clumps RandomClumps(uint32_t seed) {
+  Clumps clumps;
+  VoxelGrid& grid = clumps.grid;
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> coord(3, 26), step(-1, 1), walk(5, 120), clumps_n(2, 7),
+      per_voxel(1, 3);
+  std::uniform_real_distribution<float> within(0.0f, 0.999f);
+  for (int c = clumps_n(rng); c > 0; --c) {
+    Coord at{coord(rng), coord(rng), coord(rng)};
+    for (int w = walk(rng); w > 0; --w) {
+      const int64_t v = grid.Index(at);
+      if (!IsHard(grid.at(v))) {
+        grid.set(v, kInsideHard);
+        for (int p = per_voxel(rng); p > 0; --p)
+          clumps.points.push_back({at.x + within(rng), at.y + within(rng), at.z + within(rng)});
+      }
+      for (int d = 0; d < 3; ++d) at[d] = std::clamp(at[d] + step(rng), 2, 27);
+    }
+  }
+  // The padding is outside.
+  for (int64_t v = 0; v < grid.size(); ++v) {
+    const Coord c = grid.CoordOf(v);
+    for (int d = 0; d < 3; ++d)
+      if (c[d] == 0 || c[d] == grid.dim(d) - 1) grid.set(v, OutsideState(1));
+  }
+  return clumps;
+}
+
+void ExpectSamePieces(const VoxelGrid& grid, const HardVoxelPoints* points, double reach,
+                      double min_fraction, const std::string& what) {
+  const DataPieces want = ReferencePieces(grid, points, reach, min_fraction);
+  absl::StatusOr<DataPieces> got =
+      FindDataPieces(grid, points, reach, min_fraction, CancelToken::Never());
+  ASSERT_TRUE(got.ok()) << got.status();
+  EXPECT_EQ(got->count, want.count) << what;
+  EXPECT_EQ(got->pieces, want.pieces) << what;
+  EXPECT_EQ(got->split, want.split) << what;
+  EXPECT_EQ(got->min_voxels, want.min_voxels) << what;
+}
+
+TEST(FindDataPieces, TheSamePiecesAsEachComponentSplitBySplitAtPointGaps) {
+  int splits = 0, several = 0;
+  for (uint32_t seed = 1; seed <= 60; ++seed) {
+    const Clumps clumps = RandomClumps(seed);
+    const HardVoxelPoints points(clumps.grid, clumps.points);
+    for (const double reach : {0.0, 1.0, 2.0, 2.5})
+      for (const double fraction : {0.01, 0.1, 0.3}) {
+        const std::string what =
+            "seed " + std::to_string(seed) + " reach " + std::to_string(reach) + " fraction " +
+            std::to_string(fraction);
+        ExpectSamePieces(clumps.grid, &points, reach, fraction, what);
+        const DataPieces want = ReferencePieces(clumps.grid, &points, reach, fraction);
+        splits += want.split;
+        several += want.count >= 2;
+      }
+    ExpectSamePieces(clumps.grid, nullptr, 2.0, 0.01, "no points, seed " + std::to_string(seed));
+  }
+  // The clumps exercise every way: pieces split at point gaps, several pieces, lone ones.
+  EXPECT_GT(splits, 20);
+  EXPECT_GT(several, 100);
+  EXPECT_LT(several, 60 * 12);
+}
+
+TEST(FindDataPieces, TheCubesMeetingAtACornerAreTwoPiecesWhenTheirPointsLieApart) {
+  for (const float offset : {0.95f, 0.05f}) {
+    Cubes cubes = TwoCubes(offset);
+    const HardVoxelPoints points(cubes.grid, cubes.points);
+    absl::StatusOr<DataPieces> found =
+        FindDataPieces(cubes.grid, &points, 2.0, 0.01, CancelToken::Never());
+    ASSERT_TRUE(found.ok()) << found.status();
+    EXPECT_EQ(found->count, offset > 0.5f ? 2 : 1);
+    EXPECT_EQ(found->split, offset > 0.5f);
+    ExpectSamePieces(cubes.grid, &points, 2.0, 0.01, "cubes");
+  }
 }
 
 TEST(SeparateDataPieces, TouchingHardVoxelsOfTwoPiecesAreCut) {

@@ -1,13 +1,13 @@
 #include "core/engine/point_gap_split.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 #include <numeric>
 
-#include "absl/container/flat_hash_map.h"
 #include "absl/status/status.h"
 #include "absl/types/span.h"
 #include "core/engine/flat_bitset.h"
@@ -168,9 +168,32 @@ std::vector<int64_t> BreadthFirst(const VoxelGrid& grid, int64_t start, FlatBits
   return component;
 }
 
+// The position of voxel `v` in `sorted`, which holds it at `from` or after: galloping from
+// `from`, so that ascending look-ups cost the log of each step rather than of the list.
+size_t Gallop(const std::vector<int64_t>& sorted, size_t from, int64_t v) {
+  size_t lo = from, step = 1;
+  while (lo + step < sorted.size() && sorted[lo + step] < v) {
+    lo += step;
+    step *= 2;
+  }
+  const size_t hi = std::min(sorted.size(), lo + step + 1);
+  const auto begin = sorted.begin() + static_cast<std::ptrdiff_t>(lo);
+  const auto end = sorted.begin() + static_cast<std::ptrdiff_t>(hi);
+  return static_cast<size_t>(std::lower_bound(begin, end, v) - sorted.begin());
+}
+
 // The position of voxel `v` in `sorted`, which holds it.
 size_t PositionOf(const std::vector<int64_t>& sorted, int64_t v) {
   return static_cast<size_t>(std::lower_bound(sorted.begin(), sorted.end(), v) - sorted.begin());
+}
+
+// Joins the classes of roots `a` and `b` under the lower one, which it returns: the voxels
+// joined in index order then hang from a class's first voxel a step or two away, where
+// linking the older root under the newer would make a chain of the voxels as they come.
+int32_t Link(std::vector<int32_t>& parent, int32_t a, int32_t b) {
+  const int32_t root = std::min(a, b);
+  parent[std::max(a, b)] = root;
+  return root;
 }
 
 // Joins the voxels of `hard` (ascending grid indices) that lie `offsets` apart when
@@ -186,15 +209,15 @@ bool JoinNeighbours(const std::vector<int64_t>& hard, const std::vector<int64_t>
   for (size_t k = 0; k < n; ++k) {
     if (k % kCancelPoll == 0 && cancel.cancelled()) return false;
     const int64_t v = hard[k];
+    int32_t a = Find(parent, static_cast<int32_t>(k));
     for (size_t o = 0; o < offsets.size(); ++o) {
       const int64_t m = v + offsets[o];
       size_t& c = cursor[o];
       while (c < n && hard[c] < m) ++c;
       if (c == n || hard[c] != m) continue;
-      const int32_t a = Find(parent, static_cast<int32_t>(k));
       const int32_t b = Find(parent, static_cast<int32_t>(c));
       if (a == b || !near(k, c)) continue;
-      parent[a] = b;
+      a = Link(parent, a, b);
     }
   }
   return true;
@@ -264,9 +287,9 @@ absl::StatusOr<DataPieces> FindDataPieces(const VoxelGrid& grid, const HardVoxel
   std::vector<int32_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   auto near = [&](size_t k, size_t c) { return Near(*points, hard, ranks, k, c, reach); };
-  bool done = by_points
-                  ? JoinNeighbours(hard, offsets, cancel, parent, near)
-                  : JoinNeighbours(hard, offsets, cancel, parent, [](size_t, size_t) { return true; });
+  auto any = [](size_t, size_t) { return true; };
+  const bool done = by_points ? JoinNeighbours(hard, offsets, cancel, parent, near)
+                              : JoinNeighbours(hard, offsets, cancel, parent, any);
   if (!done) return cancelled();
   std::vector<int64_t> size(n, 0);
   for (size_t k = 0; k < n; ++k) ++size[Find(parent, static_cast<int32_t>(k))];
@@ -278,103 +301,118 @@ absl::StatusOr<DataPieces> FindDataPieces(const VoxelGrid& grid, const HardVoxel
     return out;
   }
 
-  // Each voxel's 26-component, numbered in the order of their least voxels.
-  std::vector<int32_t> label(n);
-  std::vector<int64_t> component_size;
-  std::vector<int64_t> component_start;  // its least voxel
+  // The 26-components, breadth first from each least voxel in index order (the order the
+  // pieces list their voxels in), with each voxel's position in `hard`.
+  struct Component {
+    std::vector<int64_t> voxels;  // breadth first
+    std::vector<int32_t> at;      // their positions in `hard`
+    bool split = false;
+  };
+  std::vector<Component> components;
+  std::vector<int32_t> label(n);  // each position's component
   {
-    std::vector<int32_t> joined;
-    if (by_points) {
-      joined.resize(n);
-      std::iota(joined.begin(), joined.end(), 0);
-      if (!JoinNeighbours(hard, offsets, cancel, joined, [](size_t, size_t) { return true; })) {
-        return cancelled();
-      }
-    }
-    std::vector<int32_t>& components = by_points ? joined : parent;
-    std::vector<int32_t> label_of_root(n, -1);
+    FlatBitset seen(grid.size());
     for (size_t k = 0; k < n; ++k) {
-      const int32_t r = Find(components, static_cast<int32_t>(k));
-      if (label_of_root[r] < 0) {
-        label_of_root[r] = static_cast<int32_t>(component_size.size());
-        component_size.push_back(0);
-        component_start.push_back(hard[k]);
+      if (seen.test(hard[k])) continue;
+      if (cancel.cancelled()) return cancelled();
+      Component& c = components.emplace_back();
+      c.voxels = BreadthFirst(grid, hard[k], seen);
+      c.at.reserve(c.voxels.size());
+      for (int64_t v : c.voxels) {
+        c.at.push_back(static_cast<int32_t>(PositionOf(hard, v)));
+        label[static_cast<size_t>(c.at.back())] = static_cast<int32_t>(components.size() - 1);
       }
-      label[k] = label_of_root[r];
-      ++component_size[static_cast<size_t>(label[k])];
     }
   }
-  const size_t components = component_size.size();
+  auto big_component = [&](const Component& c) {
+    return static_cast<int64_t>(c.voxels.size()) >= out.min_voxels;
+  };
 
   // A component's classes: split where two hold min_voxels each (SplitAtPointGaps's test),
   // the wider pairs read then around the voxels outside its largest class.
-  std::vector<bool> split(components, false);
   if (by_points) {
-    std::vector<int> big(components, 0);
-    for (size_t k = 0; k < n; ++k)
-      big[label[k]] += parent[k] == static_cast<int32_t>(k) && size[k] >= out.min_voxels;
     const int r = static_cast<int>(std::ceil(reach));
-    for (size_t c = 0; c < components; ++c) {
-      if (component_size[c] < out.min_voxels || big[c] < 2) continue;
+    // The rows of the (2r + 1)^3 block around a voxel, as offsets of their middle voxel.
+    std::vector<int64_t> rows;
+    const std::array<int64_t, 3> st = grid.strides();
+    for (int dz = -r; dz <= r; ++dz)
+      for (int dy = -r; dy <= r; ++dy) rows.push_back(dy * st[1] + dz * st[2]);
+    std::vector<size_t> cursor(rows.size());
+    for (size_t ci = 0; ci < components.size(); ++ci) {
+      Component& c = components[ci];
+      if (!big_component(c)) continue;
+      auto big_classes = [&] {
+        int big = 0;
+        for (int32_t k : c.at) big += parent[k] == k && size[k] >= out.min_voxels;
+        return big;
+      };
+      if (big_classes() < 2) continue;
       if (r > 1) {
-        std::vector<int32_t> at;  // the component's voxels: positions in `hard`, ascending
+        std::vector<int32_t> at;  // c.at ascending: SplitAtPointGaps's `sorted`
+        at.reserve(c.at.size());
         for (size_t k = 0; k < n; ++k)
-          if (label[k] == static_cast<int32_t>(c)) at.push_back(static_cast<int32_t>(k));
+          if (label[k] == static_cast<int32_t>(ci)) at.push_back(static_cast<int32_t>(k));
         int32_t largest_root = at.front();
         for (int32_t k : at)
           if (parent[k] == k && size[k] > size[largest_root]) largest_root = k;
         std::vector<int32_t> others;
+        std::vector<bool> other(n, false);
         for (int32_t k : at)
-          if (Find(parent, k) != largest_root) others.push_back(k);
-        const VoxelState* s = grid.states().data();
-        const int64_t voxels = grid.size();
-        const std::vector<int64_t> wide = ForwardOffsets(grid, r);
+          if (Find(parent, k) != largest_root) {
+            others.push_back(k);
+            other[static_cast<size_t>(k)] = true;
+          }
+        // Each pair with a voxel outside the largest class read once (a pair of two such
+        // voxels from the lower one), at most r apart along each axis: SplitAtPointGaps's.
+        // The hard voxels of one row of the block around a voxel are consecutive in `hard`,
+        // and the rows of ascending voxels ascend: each row's are found galloping from where
+        // that row's were last, not state by state in the grid.
+        std::fill(cursor.begin(), cursor.end(), 0);
         for (int32_t k : others) {
           if (cancel.cancelled()) return cancelled();
           const int64_t v = hard[static_cast<size_t>(k)];
-          for (int64_t off : wide)
-            for (int64_t m : {v - off, v + off}) {
-              if (m < 0 || m >= voxels || !IsHard(s[m])) continue;
-              const size_t p = PositionOf(hard, m);
-              if (label[p] != static_cast<int32_t>(c)) continue;
+          for (size_t row = 0; row < rows.size(); ++row) {
+            const int64_t first = v + rows[row] - r;
+            size_t& p = cursor[row];
+            p = Gallop(hard, p, first);
+            for (size_t q = p; q < n && hard[q] <= first + 2 * r; ++q) {
+              if (q == static_cast<size_t>(k) || label[q] != static_cast<int32_t>(ci)) continue;
+              if (q < static_cast<size_t>(k) && other[q]) continue;
               const int32_t a = Find(parent, k);
-              const int32_t b = Find(parent, static_cast<int32_t>(p));
-              if (a == b || !near(static_cast<size_t>(k), p)) continue;
-              parent[a] = b;
+              const int32_t b = Find(parent, static_cast<int32_t>(q));
+              if (a == b || !near(static_cast<size_t>(k), q)) continue;
+              Link(parent, a, b);
             }
+          }
         }
         for (int32_t k : at) size[k] = 0;
         for (int32_t k : at) ++size[Find(parent, k)];
-        big[c] = 0;
-        for (int32_t k : at) big[c] += parent[k] == k && size[k] >= out.min_voxels;
       }
-      split[c] = big[c] >= 2;
-      out.split = out.split || split[c];
+      c.split = big_classes() >= 2;
+      out.split = out.split || c.split;
     }
   }
 
   // Two pieces or more: each in its component's breadth-first order, a split component's
   // big classes numbered in the order their first voxel comes in it.
-  for (size_t c = 0; c < components; ++c)
-    if (component_size[c] >= out.min_voxels) out.count += split[c] ? 2 : 1;
+  for (const Component& c : components)
+    if (big_component(c)) out.count += c.split ? 2 : 1;
   if (out.count < 2) return out;
-  out.count = 0;
-  FlatBitset seen(grid.size());
-  for (size_t c = 0; c < components; ++c) {
-    if (component_size[c] < out.min_voxels) continue;
-    if (cancel.cancelled()) return cancelled();
-    std::vector<int64_t> component = BreadthFirst(grid, component_start[c], seen);
-    if (!split[c]) {
-      out.pieces.push_back(std::move(component));
+  std::vector<int32_t> part_of_root(by_points ? n : 0, -1);
+  for (Component& c : components) {
+    if (!big_component(c)) continue;
+    if (!c.split) {
+      out.pieces.push_back(std::move(c.voxels));
       continue;
     }
-    absl::flat_hash_map<int32_t, size_t> part;
-    for (int64_t v : component) {
-      const int32_t root = Find(parent, static_cast<int32_t>(PositionOf(hard, v)));
+    for (size_t i = 0; i < c.voxels.size(); ++i) {
+      const int32_t root = Find(parent, c.at[i]);
       if (size[root] < out.min_voxels) continue;
-      auto [it, added] = part.emplace(root, out.pieces.size());
-      if (added) out.pieces.emplace_back();
-      out.pieces[it->second].push_back(v);
+      if (part_of_root[root] < 0) {
+        part_of_root[root] = static_cast<int32_t>(out.pieces.size());
+        out.pieces.emplace_back();
+      }
+      out.pieces[static_cast<size_t>(part_of_root[root])].push_back(c.voxels[i]);
     }
   }
   out.count = static_cast<int>(out.pieces.size());

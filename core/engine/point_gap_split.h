@@ -56,8 +56,8 @@ struct DataPieces {
 // over them in index order with SplitAtPointGaps's 26-neighbour pairs (each pair's points read
 // only while its two voxels are not yet joined), no search through the grid. When one class
 // then holds all but fewer than min_voxels of the hard voxels there is one piece and nothing
-// more is done; otherwise a second union-find gives the components, the wider pairs are read
-// around the components with two big classes, and the breadth-first orders are taken.
+// more is done; otherwise the components are searched breadth first, and the wider pairs read
+// row by row through the list around the components with two big classes.
 absl::StatusOr<DataPieces> FindDataPieces(const VoxelGrid& grid, const HardVoxelPoints* points,
                                           double reach, double min_fraction,
                                           const CancelToken& cancel);

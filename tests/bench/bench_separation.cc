@@ -1,8 +1,9 @@
 // bench_separation: the piece separation (SeparateDataPieces) alone, timed on the grid the
 // generations leave, for the models where its cost was measured: the teapot class
-// (teapot-scan-164: the teapot scan subsampled to a formula-(1) grid 164 voxels long) and the
-// torus at N million points. The shrink runs once without its steps after the generations;
-// at 4M points and more its grid is kept in --cache (states, one byte a voxel) and read back.
+// (teapot-scan-164: the teapot scan subsampled to a formula-(1) grid 164 voxels long), the
+// torus at N million points (torus-NM) and the clouds of ../shared/data/clouds by name. The
+// shrink runs once without its steps after the generations; at 4M points and more its grid is
+// kept in --cache (states, one byte a voxel) and read back.
 // Each repetition separates a copy of that grid and reports the calling thread's CPU seconds
 // (the separation runs on it alone), the pieces and whether they were separated; the copies'
 // states after the separation are compared (one checksum for all repetitions).
@@ -39,12 +40,20 @@ double ThreadCpu() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+uintmax_t FileSize(const std::string& path) {
+  std::error_code ec;
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  return ec ? 0 : size;
+}
+
 absl::StatusOr<PointCloud> MakeModel(const std::string& name, const std::string& shared) {
   if (name == "teapot-scan-164") {
     absl::StatusOr<PointCloud> full = ReadPointCloud(shared + "/data/clouds/teapot-scan.ply");
     if (!full.ok()) return full.status();
     return SubsampleForGridSide(*full, 0, 164);
   }
+  const std::string file = shared + "/data/clouds/" + name + ".ply";
+  if (FileSize(file) > 0) return ReadPointCloud(file);
   int millions = 0;
   if (name.rfind("torus-", 0) == 0 && name.back() == 'M' &&
       absl::SimpleAtoi(name.substr(6, name.size() - 7), &millions) && millions > 0) {
@@ -55,12 +64,6 @@ absl::StatusOr<PointCloud> MakeModel(const std::string& name, const std::string&
     return SynthesizeShape(s);
   }
   return absl::InvalidArgumentError(absl::StrCat("unknown model ", name));
-}
-
-uintmax_t FileSize(const std::string& path) {
-  std::error_code ec;
-  const uintmax_t size = std::filesystem::file_size(path, ec);
-  return ec ? 0 : size;
 }
 
 uint64_t Checksum(const VoxelGrid& grid) {
@@ -84,7 +87,7 @@ int Run(int argc, char** argv) {
     else if (a == "--shared") shared = next();
     else {
       std::fprintf(stderr,
-                   "usage: bench_separation [--model teapot-scan-164|torus-NM] [--repeat R] "
+                   "usage: bench_separation [--model teapot-scan-164|torus-NM|CLOUD] [--repeat R] "
                    "[--cache DIR] [--shared DIR]\n");
       return 2;
     }
@@ -112,7 +115,8 @@ int Run(int argc, char** argv) {
     o.holes.enabled = false;
     o.refill.enabled = false;
     o.connect_inside_hard = false;
-    absl::StatusOr<ShrinkResult> r = ShrinkMembrane(grid, cloud->points, o, {}, CancelToken::Never());
+    absl::StatusOr<ShrinkResult> r =
+        ShrinkMembrane(grid, cloud->points, o, {}, CancelToken::Never());
     if (!r.ok()) {
       std::fprintf(stderr, "%s\n", r.status().ToString().c_str());
       return 1;

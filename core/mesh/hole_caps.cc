@@ -13,6 +13,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/geometry/vec3.h"
 #include "core/mesh/algebraic_sphere.h"
+#include "core/mesh/corner_crease.h"
 #include "core/mesh/gap_vertices.h"
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_row_grid.h"
@@ -654,6 +655,71 @@ absl::StatusOr<std::vector<char>> HeldCapsToConverge(
   return converges;
 }
 
+// The unit normal at v averaged over the vertices within `rings` rings of it: the surface
+// nets' faces turn by a voxel's staircase, their sum over a few rings by the surface's shape.
+Vec3d RingNormal(const TriangleMesh& mesh, const Rows& nb, const Rows& star, int32_t v,
+                 int rings) {
+  std::vector<int32_t> seen{v};
+  size_t begin = 0;
+  for (int ring = 0; ring < rings; ++ring) {
+    const size_t end = seen.size();
+    for (size_t i = begin; i < end; ++i)
+      for (const int32_t* u = nb.begin(seen[i]); u != nb.end(seen[i]); ++u)
+        if (std::find(seen.begin(), seen.end(), *u) == seen.end()) seen.push_back(*u);
+    begin = end;
+  }
+  Vec3d sum{0, 0, 0};
+  for (int32_t u : seen) sum = sum + Normalized(VertexNormal(mesh, star, u));
+  return Normalized(sum);
+}
+
+// The crease of a region's cap at a concave corner (HoleCapOptions::corner_angle): the cap's
+// gap vertices (the held ones aside) outside two opposite sides of the band (the fixed
+// vertices within sample_rings rings, surface-nets positions, read around the band's mean
+// normal) move onto the union of the two sides' solids (corner_crease.h), where the
+// membrane stayed outside the cap. Returns how many moved.
+int64_t CreaseCorner(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
+                     const std::vector<int32_t>& region, const std::vector<char>& free,
+                     const std::vector<char>& gap, const std::vector<char>& pinned, double l,
+                     const HoleCapOptions& options, std::vector<Vec3d>& x) {
+  std::vector<int32_t> cap;
+  std::vector<Vec3d> at;
+  // The membrane's mean offset outside the cap, along its outward normals. Where it stayed
+  // outside, by more than its own offset from the data, the shrink's plates could not
+  // enter: a corner narrower than they are. A cap
+  // lifted out of a crater the membrane sank into spans a part it had room to enter (a
+  // protrusion, a smooth surface), which no crease describes.
+  double outside = 0;
+  for (int32_t v : region)
+    if (gap[v] && !pinned[v]) {
+      cap.push_back(v);
+      at.push_back((1.0 / l) * x[v]);
+      outside += Dot((1.0 / l) * ToVec3d(mesh.vertices[v]) - at.back(),
+                     Normalized(VertexNormal(mesh, star, v)));
+    }
+  if (cap.empty() ||
+      !(outside > options.corner_membrane_margin * static_cast<double>(cap.size())))
+    return 0;
+  const std::vector<int32_t> band = Band(nb, region, free, options.sample_rings);
+  std::vector<Vec3d> positions, normals;
+  Vec3d axis{0, 0, 0};
+  for (int32_t v : band) {
+    positions.push_back((1.0 / l) * ToVec3d(mesh.vertices[v]));
+    normals.push_back(RingNormal(mesh, nb, star, v, options.corner_normal_rings));
+    axis = axis + normals.back();
+  }
+  if (!(Norm(axis) > 0)) return 0;
+  CornerCreaseOptions crease;
+  crease.sectors = options.corner_sectors;
+  crease.per_sector = options.corner_neighbours;
+  crease.min_angle = options.corner_angle;
+  crease.flat_tolerance = options.corner_flat_tolerance;
+  crease.max_move = options.corner_max_move;
+  const int moved = CreaseToCorner(positions, normals, Normalized(axis), crease, absl::MakeSpan(at));
+  for (size_t i = 0; i < cap.size(); ++i) x[cap[i]] = l * at[i];
+  return moved;
+}
+
 absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
   if (!(voxel_size > 0) || !std::isfinite(voxel_size))
     return absl::InvalidArgumentError(absl::StrCat("voxel size ", voxel_size, " is not positive"));
@@ -668,7 +734,11 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       !(o.sphere_margin >= 0) || !(o.converged_tolerance > 0) ||
       o.back_off_halvings < 0 || !(o.max_shell_share > 0 && o.max_shell_share <= 1) ||
       o.min_median_points < 1 || o.min_median_points > 1000 ||
-      !(o.anchor_radius > 0 && o.anchor_radius <= 64) || !(o.held_margin >= 0))
+      !(o.anchor_radius > 0 && o.anchor_radius <= 64) || !(o.held_margin >= 0) ||
+      !(o.corner_angle >= 0) || o.corner_sectors < 2 || o.corner_sectors > 360 ||
+      o.corner_neighbours < 1 || o.corner_neighbours > 64 || !(o.corner_flat_tolerance >= 0) ||
+      !(o.corner_max_move >= 0) || !(o.corner_membrane_margin >= 0) ||
+      o.corner_normal_rings < 0 || o.corner_normal_rings > 8)
     return absl::InvalidArgumentError(absl::StrCat(
         "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
         o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",
@@ -681,7 +751,12 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         ", sphere_band_fit ", o.sphere_band_fit,
         ", sphere_margin ", o.sphere_margin, ", converged_tolerance ", o.converged_tolerance,
         ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ", o.max_shell_share,
-        ", min_median_points ", o.min_median_points, ", anchor_radius ", o.anchor_radius, ", held_margin ", o.held_margin));
+        ", min_median_points ", o.min_median_points, ", anchor_radius ", o.anchor_radius,
+        ", held_margin ", o.held_margin, ", corner_angle ", o.corner_angle, ", corner_sectors ",
+        o.corner_sectors, ", corner_neighbours ", o.corner_neighbours,
+        ", corner_flat_tolerance ", o.corner_flat_tolerance, ", corner_max_move ",
+        o.corner_max_move, ", corner_membrane_margin ", o.corner_membrane_margin,
+        ", corner_normal_rings ", o.corner_normal_rings));
   return absl::OkStatus();
 }
 
@@ -975,6 +1050,17 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     }
     ++st.swept;
   }
+
+  // Concave corners: a band of two surfaces carries each into the hole until they meet.
+  if (options.corner_angle <= 180)
+    for (size_t r = 0; r < regions.size(); ++r) {
+      const int64_t moved = CreaseCorner(mesh, nb, star, regions[r], free, gap, pinned, l,
+                                         options, x);
+      if (moved > 0) {
+        ++st.creased;
+        st.creased_vertices += moved;
+      }
+    }
 
   // Write the caps, then take back the parts that cross the mesh.
   const std::vector<Point3f> before = mesh.vertices;

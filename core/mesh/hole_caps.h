@@ -136,6 +136,27 @@ struct HoleCapOptions {
   // thin_plate_iterations cap stays.
   double sphere_band_fit = 2.0;
   double sphere_margin = 0.05;
+  // A concave corner under the hole (a belly meeting a leg), which a smooth cap spans as a
+  // fillet outside it: where the membrane stayed outside the cap (its mean offset over the
+  // cap's gap vertices, along their normals, over corner_membrane_margin voxels outward, three
+  // times the surface nets' half-voxel offset from the data: the shrink's plates could not
+  // enter there), the band (the fixed vertices within sample_rings rings) is read around each gap
+  // vertex in corner_sectors sectors, each side the tangent plane of its corner_neighbours
+  // nearest band vertices carried into the hole. Where two opposite sides are flat or convex
+  // (their sector's band vertices at most corner_flat_tolerance voxels outside the plane on
+  // average), lie at least corner_angle degrees apart, each outside the other's plane, and
+  // the vertex lies outside both, it moves inward along their normals' mean to the first
+  // plane (the longest such move over the pairs, at most corner_max_move voxels): the sides
+  // meet in a crease, the boundary of the union of their solids (corner_crease.h). The
+  // band's normals are averaged over corner_normal_rings rings (the surface nets'
+  // staircase). Over 180 degrees: no crease.
+  double corner_angle = 45.0;
+  int corner_sectors = 12;
+  int corner_neighbours = 3;
+  double corner_flat_tolerance = 1.0;
+  double corner_max_move = 12.0;
+  double corner_membrane_margin = 1.5;
+  int corner_normal_rings = 2;
   // A cap vertex of a face that crosses another goes back toward its place before the cap:
   // halfway this many times, then all the way.
   int back_off_halvings = 4;
@@ -153,6 +174,8 @@ struct HoleCapStats {
   int64_t sphere_converged = 0;  // spline caps converged because the band's sphere says so
   int64_t held_converged = 0;    // caps converged because points seen inside the gap hold them
   int64_t tube_vertices = 0;     // wrapped caps' vertices on thin tubes, solved apart
+  int64_t creased = 0;           // caps whose band shows two sides: a crease at a concave corner
+  int64_t creased_vertices = 0;  // of their vertices, those moved onto a side's plane
   int64_t iterations = 0;       // conjugate-gradient iterations, every solve
   int64_t anchors = 0;           // cap vertices held at remote points
   int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
@@ -182,7 +205,9 @@ struct HoleCapStats {
 // post, along the post's axis (spline_swept_length), unless points seen inside its gap hold
 // it and the swept cap passes farther from them (held_margin). A wrapped cap's vertices on a
 // thin tube of the mesh (tube_rings) are solved as their own converging system after the rest
-// of it. Then it searches the faces around moved vertices for crossings and sends the moved
+// of it. A cap under the membrane whose band shows two sides meeting at a concave corner is
+// creased where their tangent planes meet (corner_angle and the corner_ options). Then it
+// searches the faces around moved vertices for crossings and sends the moved
 // vertices of each crossing pair back toward where they were (halfway back_off_halvings
 // times, then all the way) until no crossing involves a moved vertex: where a cap would cross
 // the mesh, that part of it is not built.

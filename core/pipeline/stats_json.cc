@@ -116,6 +116,8 @@ std::string HoleCapsJson(const HoleCapStats& h) {
                       ", \"sphere_converged_caps\": ", h.sphere_converged,
                       ", \"held_converged_caps\": ", h.held_converged,
                       ", \"tube_vertices\": ", h.tube_vertices,
+                      ", \"creased_caps\": ", h.creased,
+                      ", \"creased_vertices\": ", h.creased_vertices,
                       ", \"uncapped_regions\": ", h.uncapped_regions,
                       ", \"anchored_vertices\": ", h.anchors,
                       ", \"backed_off_vertices\": ", h.backed_off,

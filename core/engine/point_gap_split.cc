@@ -196,28 +196,33 @@ int32_t Link(std::vector<int32_t>& parent, int32_t a, int32_t b) {
   return root;
 }
 
-// Joins the voxels of `hard` (ascending grid indices) that lie `offsets` apart when
-// near(k, c) holds for their positions k < c; false when `cancel` fired. Each offset's partner
-// is found by a cursor through `hard` that only moves forward, as the voxels do: the grid's
-// states are not read (a state byte a plane ahead is a cache miss per voxel; the cursors
-// stream).
+// Joins the 26-neighbours among the voxels of `hard` (ascending indices of `grid`) when
+// near(k, c) holds for their positions k < c, in the order of the offsets; false when `cancel`
+// fired. The forward neighbours are the next voxel and four rows of three, whose hard voxels
+// are consecutive in `hard`: a cursor per row, moving forward as the voxels do, finds them
+// (the grid's states are not read: a state byte a plane ahead is a cache miss per voxel).
 template <typename Near>
-bool JoinNeighbours(const std::vector<int64_t>& hard, const std::vector<int64_t>& offsets,
+bool JoinNeighbours(const VoxelGrid& grid, const std::vector<int64_t>& hard,
                     const CancelToken& cancel, std::vector<int32_t>& parent, Near near) {
   const size_t n = hard.size();
-  std::vector<size_t> cursor(offsets.size(), 0);
+  const std::array<int64_t, 3> st = grid.strides();
+  // Each row's middle voxel, (dy, dz) = (1, 0), (-1, 1), (0, 1), (1, 1): ascending offsets.
+  const std::array<int64_t, 4> rows = {st[1], st[2] - st[1], st[2], st[2] + st[1]};
+  std::array<size_t, 4> cursor{};
   for (size_t k = 0; k < n; ++k) {
     if (k % kCancelPoll == 0 && cancel.cancelled()) return false;
     const int64_t v = hard[k];
     int32_t a = Find(parent, static_cast<int32_t>(k));
-    for (size_t o = 0; o < offsets.size(); ++o) {
-      const int64_t m = v + offsets[o];
-      size_t& c = cursor[o];
-      while (c < n && hard[c] < m) ++c;
-      if (c == n || hard[c] != m) continue;
+    auto join = [&](size_t c) {
       const int32_t b = Find(parent, static_cast<int32_t>(c));
-      if (a == b || !near(k, c)) continue;
-      a = Link(parent, a, b);
+      if (a != b && near(k, c)) a = Link(parent, a, b);
+    };
+    if (k + 1 < n && hard[k + 1] == v + 1) join(k + 1);
+    for (size_t r = 0; r < rows.size(); ++r) {
+      const int64_t first = v + rows[r] - 1;
+      size_t& c = cursor[r];
+      while (c < n && hard[c] < first) ++c;
+      for (size_t q = c; q < n && hard[q] <= first + 2; ++q) join(q);
     }
   }
   return true;
@@ -279,7 +284,6 @@ absl::StatusOr<DataPieces> FindDataPieces(const VoxelGrid& grid, const HardVoxel
       std::ceil(std::max(1.0, min_fraction * static_cast<double>(n))));
   const bool by_points = points != nullptr && reach > 0;
   const std::vector<size_t> ranks = by_points ? RanksOf(*points, hard) : std::vector<size_t>();
-  const std::vector<int64_t> offsets = ForwardOffsets(grid, 1);
 
   // The classes of SplitAtPointGaps's 26-neighbour step over all hard voxels at once (its
   // pairs never leave a component; the classes, not the roots, decide what it returns), or
@@ -288,8 +292,8 @@ absl::StatusOr<DataPieces> FindDataPieces(const VoxelGrid& grid, const HardVoxel
   std::iota(parent.begin(), parent.end(), 0);
   auto near = [&](size_t k, size_t c) { return Near(*points, hard, ranks, k, c, reach); };
   auto any = [](size_t, size_t) { return true; };
-  const bool done = by_points ? JoinNeighbours(hard, offsets, cancel, parent, near)
-                              : JoinNeighbours(hard, offsets, cancel, parent, any);
+  const bool done = by_points ? JoinNeighbours(grid, hard, cancel, parent, near)
+                              : JoinNeighbours(grid, hard, cancel, parent, any);
   if (!done) return cancelled();
   std::vector<int64_t> size(n, 0);
   for (size_t k = 0; k < n; ++k) ++size[Find(parent, static_cast<int32_t>(k))];

@@ -716,7 +716,25 @@ int64_t CreaseCorner(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
   crease.flat_tolerance = options.corner_flat_tolerance;
   crease.max_move = options.corner_max_move;
   const int moved = CreaseToCorner(positions, normals, Normalized(axis), crease, absl::MakeSpan(at));
-  for (size_t i = 0; i < cap.size(); ++i) x[cap[i]] = l * at[i];
+  if (moved == 0) return 0;
+  // The moves spread over the cap: where a pair of sides stops qualifying the move jumps to
+  // 0, and the faces across the jump fold (the back-off then sends them back toward the
+  // membrane). Half of each vertex's move is replaced by its neighbours' mean, the rim's and
+  // the held vertices' moves 0.
+  absl::flat_hash_map<int32_t, size_t> index;
+  for (size_t i = 0; i < cap.size(); ++i) index[cap[i]] = i;
+  std::vector<Vec3d> move(cap.size()), next(cap.size());
+  for (size_t i = 0; i < cap.size(); ++i) move[i] = at[i] - (1.0 / l) * x[cap[i]];
+  for (int step = 0; step < options.corner_smoothing; ++step) {
+    for (size_t i = 0; i < cap.size(); ++i) {
+      Vec3d sum{0, 0, 0};
+      for (const int32_t* u = nb.begin(cap[i]); u != nb.end(cap[i]); ++u)
+        if (const auto it = index.find(*u); it != index.end()) sum = sum + move[it->second];
+      next[i] = 0.5 * move[i] + (0.5 / std::max(nb.size(cap[i]), 1)) * sum;
+    }
+    move.swap(next);
+  }
+  for (size_t i = 0; i < cap.size(); ++i) x[cap[i]] = x[cap[i]] + l * move[i];
   return moved;
 }
 
@@ -738,6 +756,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       !(o.corner_angle >= 0) || o.corner_sectors < 2 || o.corner_sectors > 360 ||
       o.corner_neighbours < 1 || o.corner_neighbours > 64 || !(o.corner_flat_tolerance >= 0) ||
       !(o.corner_max_move >= 0) || !(o.corner_membrane_margin >= 0) ||
+      o.corner_smoothing < 0 || o.corner_smoothing > 100 ||
       o.corner_normal_rings < 0 || o.corner_normal_rings > 8)
     return absl::InvalidArgumentError(absl::StrCat(
         "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
@@ -756,6 +775,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         o.corner_sectors, ", corner_neighbours ", o.corner_neighbours,
         ", corner_flat_tolerance ", o.corner_flat_tolerance, ", corner_max_move ",
         o.corner_max_move, ", corner_membrane_margin ", o.corner_membrane_margin,
+        ", corner_smoothing ", o.corner_smoothing,
         ", corner_normal_rings ", o.corner_normal_rings));
   return absl::OkStatus();
 }

@@ -149,7 +149,10 @@ struct HoleCapOptions {
   // plane (the longest such move over the pairs, at most corner_max_move voxels): the sides
   // meet in a crease, the boundary of the union of their solids (corner_crease.h). The
   // band's normals are averaged over corner_normal_rings rings (the surface nets'
-  // staircase). Over 180 degrees: no crease.
+  // staircase). The moves are then spread over the cap by corner_smoothing steps, each
+  // replacing half of a vertex's move by its neighbours' mean (the rim's and the held
+  // vertices' moves 0): where a pair of sides stops qualifying, the move jumps and the faces
+  // across the jump fold. Over 180 degrees: no crease.
   double corner_angle = 45.0;
   int corner_sectors = 12;
   int corner_neighbours = 3;
@@ -157,6 +160,7 @@ struct HoleCapOptions {
   double corner_max_move = 12.0;
   double corner_membrane_margin = 1.5;
   int corner_normal_rings = 2;
+  int corner_smoothing = 5;
   // A cap vertex of a face that crosses another goes back toward its place before the cap:
   // halfway this many times, then all the way.
   int back_off_halvings = 4;

@@ -27,7 +27,7 @@ absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
   out.gap.assign(nv, 0);
   out.histogram.assign(last_bin + 1, 0);
   const double r2 = radius * radius;
-  const PointRowGrid grid(points, radius);
+  const PointRowGrid grid(points, radius, threads);
   // A point is marked by whichever vertex sees it first; every mark writes the same 1, so the
   // union does not depend on the order (relaxed atomic bytes: plain stores on x86).
   std::vector<char> covered(collect_remote ? grid.num_points() : 0, 0);

@@ -1,7 +1,11 @@
 #include "core/mesh/point_row_grid.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "gtest/gtest.h"
@@ -62,6 +66,7 @@ TEST(PointRowGrid, SparseCloudInAHugeBoxStaysSmallAndCorrect) {
   const std::vector<Point3f> points = {
       {0, 0, 0}, {0.1f, 0, 0}, {1e6f, 1e6f, 1e6f}, {1e6f, 1e6f, 1e6f + 0.1f}};
   const PointRowGrid grid(points, 0.01);
+  EXPECT_LE(grid.bytes(), size_t{9} << 20);  // 2^21 offsets and the points
   int found = 0;
   grid.ForEachWithin({1e6, 1e6, 1e6}, 0.5, [&](const Point3f&, double) { ++found; });
   EXPECT_EQ(found, 2);
@@ -75,6 +80,170 @@ TEST(PointRowGrid, EmptyCloudFindsNothing) {
   int found = 0;
   grid.ForEachWithin({0, 0, 0}, 10, [&](const Point3f&, double) { ++found; });
   EXPECT_EQ(found, 0);
+}
+
+// The dense index the grid must agree with: one offset per cell of the whole box, the cells as
+// asked, the points counting-sorted into (z, y, x) cell order (stable), one run per (y, z) row
+// of a query's box that holds a point.
+class DenseIndex {
+ public:
+  DenseIndex(const std::vector<Point3f>& points, double cell) : cell_(cell) {
+    std::array<double, 3> hi;
+    for (int k = 0; k < 3; ++k) lo_[k] = hi[k] = points[0][k];
+    for (const Point3f& p : points)
+      for (int k = 0; k < 3; ++k) {
+        lo_[k] = std::min<double>(lo_[k], p[k]);
+        hi[k] = std::max<double>(hi[k], p[k]);
+      }
+    const double max_cells = std::max(16.0 * points.size(), double(1 << 21));
+    for (;;) {
+      double cells = 1;
+      for (int k = 0; k < 3; ++k) {
+        dims_[k] = static_cast<int64_t>(std::floor((hi[k] - lo_[k]) / cell_)) + 1;
+        cells *= dims_[k];
+      }
+      if (cells <= max_cells) break;
+      cell_ *= 1.25;
+    }
+    start_.assign(dims_[0] * dims_[1] * dims_[2] + 1, 0);
+    std::vector<int64_t> cell_of(points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+      int64_t c[3];
+      for (int k = 0; k < 3; ++k)
+        c[k] = std::clamp<int64_t>(CellOf(points[i][k], k), 0, dims_[k] - 1);
+      cell_of[i] = c[0] + dims_[0] * (c[1] + dims_[1] * c[2]);
+      ++start_[cell_of[i] + 1];
+    }
+    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    stored.resize(points.size());
+    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (size_t i = 0; i < points.size(); ++i) stored[fill[cell_of[i]]++] = points[i];
+  }
+
+  std::vector<std::pair<uint32_t, uint32_t>> Runs(const Vec3d& centre, double radius) const {
+    std::vector<std::pair<uint32_t, uint32_t>> runs;
+    std::array<int64_t, 3> lo, hi;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::max<int64_t>(CellOf(centre[k] - radius, k), 0);
+      hi[k] = std::min<int64_t>(CellOf(centre[k] + radius, k), dims_[k] - 1);
+      if (lo[k] > hi[k]) return runs;
+    }
+    for (int64_t z = lo[2]; z <= hi[2]; ++z)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y) {
+        const int64_t row = dims_[0] * (y + dims_[1] * z);
+        const uint32_t begin = start_[row + lo[0]], end = start_[row + hi[0] + 1];
+        if (begin < end) runs.emplace_back(begin, end);
+      }
+    return runs;
+  }
+
+  double cell() const { return cell_; }
+  std::vector<Point3f> stored;
+
+ private:
+  int64_t CellOf(double v, int axis) const {
+    double c = (v - lo_[axis]) / cell_;
+    if (!(c >= -1.0)) c = -1.0;
+    if (c > double(dims_[axis])) c = double(dims_[axis]);
+    return static_cast<int64_t>(std::floor(c));
+  }
+
+  double cell_;
+  std::array<double, 3> lo_;
+  std::array<int64_t, 3> dims_;
+  std::vector<uint32_t> start_;
+};
+
+// The grid built on 1 and 3 threads against the dense index: the same stored points and, for
+// queries around and between the points (centres on cell walls among them), the same runs.
+void ExpectSameAsDense(const std::vector<Point3f>& points, double cell,
+                       const PointRowGrid::Limits& limits, PointRowGrid::Layout layout,
+                       std::mt19937& rng) {
+  const DenseIndex dense(points, cell);
+  for (int threads : {1, 3}) {
+    const PointRowGrid grid(points, cell, threads, limits);
+    ASSERT_EQ(grid.layout(), layout);
+    ASSERT_EQ(grid.cell(), dense.cell());
+    ASSERT_EQ(grid.num_points(), points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+      ASSERT_EQ(grid.xs()[i], dense.stored[i][0]) << i;
+      ASSERT_EQ(grid.ys()[i], dense.stored[i][1]) << i;
+      ASSERT_EQ(grid.zs()[i], dense.stored[i][2]) << i;
+    }
+    for (size_t i = points.size(); i < points.size() + PointRowGrid::kTail; ++i)
+      ASSERT_EQ(grid.xs()[i], PointRowGrid::kPadding);
+    std::uniform_int_distribution<size_t> pick(0, points.size() - 1);
+    std::uniform_real_distribution<double> jitter(-3, 3), radius(0.3, 4.5);
+    for (int q = 0; q < 3000; ++q) {
+      const Point3f& p = points[pick(rng)];
+      Vec3d c{p[0] + jitter(rng) * cell, p[1] + jitter(rng) * cell, p[2] + jitter(rng) * cell};
+      if (q % 3 == 0)  // on a cell wall along each axis (the walls' multiples of `cell`)
+        for (int k = 0; k < 3; ++k) c[k] = std::round(c[k] / cell) * cell;
+      const double r = (q % 5 == 0 ? std::round(radius(rng)) : radius(rng)) * cell;
+      std::vector<std::pair<uint32_t, uint32_t>> runs;
+      grid.ForEachRun(c, r, [&](uint32_t b, uint32_t e) { runs.emplace_back(b, e); });
+      ASSERT_EQ(runs, dense.Runs(c, r)) << "threads " << threads << " query " << q;
+    }
+  }
+}
+
+TEST(PointRowGrid, ReturnsWhatTheDenseIndexReturnsOnClusters) {
+  // Gaussian clusters with empty rows and cells between them, a line along x (a long row) and
+  // a lattice on the cell walls; more points than a task of the build, so 3 threads split it.
+  // In a small box the grid keeps an offset per cell, in a large one its occupied cells.
+  std::mt19937 rng(11);
+  std::normal_distribution<float> spread(0, 0.15f);
+  std::uniform_real_distribution<float> along(-2, 2);
+  std::vector<Point3f> points;
+  const std::array<std::array<float, 3>, 4> centres = {
+      {{0, 0, 0}, {1.5f, -1, 0.5f}, {-1.2f, 1.3f, -0.8f}, {0.3f, 1.8f, 1.6f}}};
+  for (int i = 0; i < 150000; ++i) {
+    const auto& m = centres[i % 4];
+    points.push_back({m[0] + spread(rng), m[1] + spread(rng), m[2] + spread(rng)});
+  }
+  for (int i = 0; i < 3000; ++i) points.push_back({along(rng), 0.7f, -0.4f});
+  for (int z = -3; z <= 3; ++z)
+    for (int y = -3; y <= 3; ++y)
+      for (int x = -3; x <= 3; ++x) points.push_back({0.05f * x, 0.05f * y, 0.05f * z});
+  ExpectSameAsDense(points, 0.05, {}, PointRowGrid::Layout::kDense, rng);
+  ExpectSameAsDense(points, 0.05, {.max_dense_cells = 0}, PointRowGrid::Layout::kRowTable, rng);
+  ExpectSameAsDense(points, 0.05, {.max_dense_cells = 0, .max_table_rows = 0},
+                    PointRowGrid::Layout::kSparseRows, rng);
+  // A cluster far off: a box larger than 16 cells a point, whose cells grow.
+  for (int i = 0; i < 2000; ++i)
+    points.push_back({12 + spread(rng), 12 + spread(rng), 12 + spread(rng)});
+  ExpectSameAsDense(points, 0.05, {.max_dense_cells = 0}, PointRowGrid::Layout::kRowTable, rng);
+}
+
+TEST(PointRowGrid, ReturnsWhatTheDenseIndexReturnsInASparseBox) {
+  // Clusters at the corners of a wide square across y and z, thin along x, its rows listed
+  // alone (and, for comparison, the default dense box); one cluster is a lattice on the cell
+  // walls.
+  std::mt19937 rng(12);
+  std::normal_distribution<float> spread(0, 0.3f);
+  std::vector<Point3f> points;
+  for (int i = 0; i < 20000; ++i) {
+    const float y = (i % 4) & 1 ? 120.0f : 0.0f, z = (i % 4) & 2 ? 120.0f : 0.0f;
+    points.push_back({0.1f + 0.05f * spread(rng), y + spread(rng), z + spread(rng)});
+  }
+  for (int z = 0; z <= 4; ++z)
+    for (int y = 0; y <= 4; ++y) points.push_back({0.1f, 60.0f + 0.1f * y, 60.0f + 0.1f * z});
+  const PointRowGrid::Limits sparse = {.max_dense_cells = 0, .max_table_rows = 0};
+  const PointRowGrid grid(points, 0.1, 1, sparse);
+  EXPECT_LT(grid.bytes(), 40 * points.size());  // the box's rows alone would be 4 bytes each
+  ExpectSameAsDense(points, 0.1, sparse, PointRowGrid::Layout::kSparseRows, rng);
+  ExpectSameAsDense(points, 0.1, {}, PointRowGrid::Layout::kDense, rng);
+}
+
+TEST(PointRowGrid, OnePointAndOneCell) {
+  std::mt19937 rng(13);
+  for (const auto& limits :
+       {PointRowGrid::Limits{}, PointRowGrid::Limits{.max_dense_cells = 0, .max_table_rows = 0}}) {
+    const auto layout = limits.max_dense_cells > 0 ? PointRowGrid::Layout::kDense
+                                                   : PointRowGrid::Layout::kSparseRows;
+    ExpectSameAsDense({{1, 2, 3}}, 0.5, limits, layout, rng);
+    ExpectSameAsDense({{1, 2, 3}, {1, 2, 3}, {1.1f, 2, 3}}, 0.5, limits, layout, rng);
+  }
 }
 
 }  // namespace

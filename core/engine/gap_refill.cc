@@ -10,6 +10,7 @@
 #include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/base/parallel_tasks.h"
 #include "core/engine/local_topology.h"
 #include "core/engine/state_planes.h"
 
@@ -23,35 +24,59 @@ constexpr int64_t kCancelPoll = 1 << 16;
 // axis 2 x + nx y.
 class HardRowExtremes {
  public:
-  explicit HardRowExtremes(const VoxelGrid& grid) : dims_(grid.dims()) {
+  // Read on `threads`, a slab of z planes a task: the rows along x and y lie in one plane and
+  // belong to its task; those along z cross every slab and are met per task, then merged.
+  HardRowExtremes(const VoxelGrid& grid, int threads) : dims_(grid.dims()) {
     const int nx = dims_[0], ny = dims_[1], nz = dims_[2];
-    const int32_t none_lo = std::numeric_limits<int32_t>::max(), none_hi = -1;
     rows_[0] = static_cast<size_t>(ny) * nz;
     rows_[1] = static_cast<size_t>(nx) * nz;
     rows_[2] = static_cast<size_t>(nx) * ny;
     for (int d = 0; d < 3; ++d) {
-      lo_[d].assign(rows_[d], none_lo);
-      hi_[d].assign(rows_[d], none_hi);
+      lo_[d].assign(rows_[d], kNoneLo);
+      hi_[d].assign(rows_[d], kNoneHi);
     }
-    // Every voxel of the grid is read, hard ones are few: eight at a time where none is.
+    // At most kMaxSlabs: each slab past the first holds 8 bytes a z row of its own.
+    const int slabs = std::clamp(std::min(threads, kMaxSlabs), 1, std::max(nz, 1));
+    // Slab 0 writes the z rows' own arrays, the others theirs, merged below.
+    std::vector<std::vector<int32_t>> z_lo(static_cast<size_t>(slabs - 1)),
+        z_hi(static_cast<size_t>(slabs - 1));
     const VoxelState* s = grid.states().data();
-    int64_t i = 0;
-    for (int z = 0; z < nz; ++z)
-      for (int y = 0; y < ny; ++y)
-        for (int x = 0; x < nx;) {
-          if (x + 8 <= nx && NoHardOfEight(s + i)) {
-            x += 8;
-            i += 8;
-            continue;
+    RunTasks(slabs, slabs, [&](int, int64_t slab) {
+      int32_t* zl = lo_[2].data();
+      int32_t* zh = hi_[2].data();
+      if (slab > 0) {
+        z_lo[slab - 1].assign(rows_[2], kNoneLo);
+        z_hi[slab - 1].assign(rows_[2], kNoneHi);
+        zl = z_lo[slab - 1].data();
+        zh = z_hi[slab - 1].data();
+      }
+      const int z0 = static_cast<int>(nz * slab / slabs);
+      const int z1 = static_cast<int>(nz * (slab + 1) / slabs);
+      // Every voxel of the grid is read, hard ones are few: eight at a time where none is.
+      for (int z = z0; z < z1; ++z)
+        for (int y = 0; y < ny; ++y) {
+          int64_t i = grid.Index(0, y, z);
+          for (int x = 0; x < nx;) {
+            if (x + 8 <= nx && NoHardOfEight(s + i)) {
+              x += 8;
+              i += 8;
+              continue;
+            }
+            if (IsHard(s[i])) {
+              Note(lo_[0].data(), hi_[0].data(), RowOf(0, x, y, z), x);
+              Note(lo_[1].data(), hi_[1].data(), RowOf(1, x, y, z), y);
+              Note(zl, zh, RowOf(2, x, y, z), z);
+            }
+            ++x;
+            ++i;
           }
-          if (IsHard(s[i])) {
-            Note(0, RowOf(0, x, y, z), x);
-            Note(1, RowOf(1, x, y, z), y);
-            Note(2, RowOf(2, x, y, z), z);
-          }
-          ++x;
-          ++i;
         }
+    });
+    for (size_t k = 0; k < z_lo.size(); ++k)
+      for (size_t r = 0; r < rows_[2]; ++r) {
+        lo_[2][r] = std::min(lo_[2][r], z_lo[k][r]);
+        hi_[2][r] = std::max(hi_[2][r], z_hi[k][r]);
+      }
   }
 
   // True when the row of voxel c along axis d holds a hard voxel past coordinate t on the
@@ -67,10 +92,13 @@ class HardRowExtremes {
     if (d == 1) return x + static_cast<size_t>(dims_[0]) * z;
     return x + static_cast<size_t>(dims_[0]) * y;
   }
-  void Note(int d, size_t row, int t) {
-    lo_[d][row] = std::min(lo_[d][row], t);
-    hi_[d][row] = std::max(hi_[d][row], t);
+  static void Note(int32_t* lo, int32_t* hi, size_t row, int t) {
+    lo[row] = std::min(lo[row], t);
+    hi[row] = std::max(hi[row], t);
   }
+
+  static constexpr int32_t kNoneLo = std::numeric_limits<int32_t>::max(), kNoneHi = -1;
+  static constexpr int kMaxSlabs = 8;
 
   std::array<int, 3> dims_;
   std::array<size_t, 3> rows_;
@@ -313,7 +341,7 @@ VoxelState Settled(const VoxelGrid& grid, int64_t v) {
 }  // namespace
 
 absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefillOptions& options,
-                                                 const CancelToken& cancel) {
+                                                 const CancelToken& cancel, int threads) {
   if (options.gap_radius < 1 || options.gap_radius > 16 || options.min_enclosed_rays < 1 ||
       options.min_enclosed_rays > 6 || options.max_open_rays < 0 || options.max_open_rays > 6 ||
       options.pocket_backed_rays < 0 || options.pocket_backed_rays > 6 ||
@@ -330,37 +358,43 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   }
   GapRefillStats stats;
   if (!options.enabled) return stats;
-  const HardRowExtremes rays(grid);
+  const HardRowExtremes rays(grid, threads);
   // The region to refill is read on the membrane as the shrink left it (the fill itself
   // changes what the rays meet): the outside voxels in a gap and behind gap walls, reached
-  // from the membrane through such voxels.
-  absl::flat_hash_set<int64_t> region, rejected, pockets, open_pockets;
-  auto in_pocket = [&](int64_t v) {
-    if (options.pocket_backed_rays == 0 || GenerationLabel(grid.at(v)) == 0) return false;
+  // from the membrane through such voxels. Reading a voxel writes nothing: the seeds below
+  // are read on the threads.
+  enum class Reading { kOut, kGap, kPocket, kOpenPocket };
+  auto read = [&](int64_t v) {
+    if (!IsOutside(grid.at(v)) || grid.OnArrayBorder(grid.CoordOf(v))) return Reading::kOut;
+    if (InGap(grid, grid.CoordOf(v), options.gap_radius)) {
+      const RayCounts count = CountRays(grid, rays, v);
+      if (count.gap_walls >= options.min_enclosed_rays && count.open <= options.max_open_rays)
+        return Reading::kGap;
+    }
+    if (options.pocket_backed_rays == 0 || GenerationLabel(grid.at(v)) == 0)
+      return Reading::kOut;
     const PocketRays count = CountPocketRays(grid, v, options.pocket_reach,
                                              options.pocket_wall_depth,
                                              options.pocket_backed_rays);
     if (count.backed < options.pocket_backed_rays || count.open > options.max_open_rays)
-      return false;
-    if (count.open > 0) open_pockets.insert(v);
-    return true;
+      return Reading::kOut;
+    return count.open > 0 ? Reading::kOpenPocket : Reading::kPocket;
   };
-  auto in_region = [&](int64_t v) {
-    if (!IsOutside(grid.at(v)) || grid.OnArrayBorder(grid.CoordOf(v))) return false;
-    if (InGap(grid, grid.CoordOf(v), options.gap_radius)) {
-      const RayCounts count = CountRays(grid, rays, v);
-      if (count.gap_walls >= options.min_enclosed_rays && count.open <= options.max_open_rays)
-        return true;
-    }
-    if (!in_pocket(v)) return false;
-    pockets.insert(v);
-    return true;
-  };
+  absl::flat_hash_set<int64_t> region, rejected, pockets, open_pockets;
   std::vector<int64_t> frontier;
-  // Seeds in voxel order, off the array border. This loop reads the whole grid, mostly
-  // outside voxels by now: it walks rows (no division for the border test) and steps over
-  // eight voxels whose face neighbours are all outside with six word loads, and eight solid
-  // ones with one.
+  // Notes a voxel read in the region; true when it is.
+  auto note = [&](int64_t v, Reading reading) {
+    if (reading == Reading::kOut) return false;
+    if (reading == Reading::kOpenPocket) open_pockets.insert(v);
+    if (reading != Reading::kGap) pockets.insert(v);
+    region.insert(v);
+    frontier.push_back(v);
+    return true;
+  };
+  // Seeds in voxel order, off the array border, a z plane a task. This loop reads the whole
+  // grid, mostly outside voxels by now: it walks rows (no division for the border test) and
+  // steps over eight voxels whose face neighbours are all outside with six word loads, and
+  // eight solid ones with one.
   const auto& dims = grid.dims();
   const auto st = grid.strides();
   const VoxelState* states = grid.states().data();
@@ -369,9 +403,14 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
            AllOutsideOfEight(states + v - st[1]) && AllOutsideOfEight(states + v + st[1]) &&
            AllOutsideOfEight(states + v - st[2]) && AllOutsideOfEight(states + v + st[2]);
   };
-  for (int z = 1; z < dims[2] - 1; ++z) {
+  std::vector<std::vector<std::pair<int64_t, Reading>>> seeds_of(
+      static_cast<size_t>(std::max(dims[2] - 2, 0)));
+  TaskCancel task_cancel(cancel, threads, 64);
+  RunTasks(threads, static_cast<int64_t>(seeds_of.size()), [&](int worker, int64_t task) {
+    const int z = static_cast<int>(task) + 1;
+    std::vector<std::pair<int64_t, Reading>>& out = seeds_of[static_cast<size_t>(task)];
     for (int y = 1; y < dims[1] - 1; ++y) {
-      if (cancel.cancelled()) return absl::CancelledError("gap refill cancelled");
+      if (task_cancel.Poll(worker)) return;
       const int64_t row = grid.Index(0, y, z);
       const int64_t end = row + dims[0] - 1;
       for (int64_t v = row + 1; v < end;) {
@@ -380,14 +419,18 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
           v += 8;
           continue;
         }
-        if (IsOutside(states[v]) && HasSolidFaceNeighbour(grid, v) && in_region(v)) {
-          region.insert(v);
-          frontier.push_back(v);
+        if (IsOutside(states[v]) && HasSolidFaceNeighbour(grid, v)) {
+          const Reading reading = read(v);
+          if (reading != Reading::kOut) out.emplace_back(v, reading);
         }
         ++v;
       }
     }
-  }
+  });
+  if (task_cancel.fired()) return absl::CancelledError("gap refill cancelled");
+  for (const auto& list : seeds_of)
+    for (const auto& [v, reading] : list) note(v, reading);
+  seeds_of.clear();
   const std::vector<int64_t> first = frontier;
   while (!frontier.empty()) {
     if (cancel.cancelled()) return absl::CancelledError("gap refill cancelled");
@@ -396,12 +439,7 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
     for (int d = 0; d < 3; ++d)
       for (int64_t u : {v - st[d], v + st[d]}) {
         if (region.contains(u) || rejected.contains(u)) continue;
-        if (in_region(u)) {
-          region.insert(u);
-          frontier.push_back(u);
-        } else {
-          rejected.insert(u);
-        }
+        if (!note(u, read(u))) rejected.insert(u);
       }
   }
   rejected.clear();

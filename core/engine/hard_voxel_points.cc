@@ -5,10 +5,14 @@
 #include <numbers>
 #include <utility>
 
+#include "core/base/split_sort.h"
 #include "core/engine/point_density.h"
 
 namespace membrane {
 namespace {
+
+// Below this many points the sort is not split: a thread's start costs more than it saves.
+constexpr size_t kSplitPoints = 1 << 16;
 
 // Smallest eigenvalue of the symmetric matrix a b c / b d e / c e f (the trigonometric
 // solution of its characteristic cubic).
@@ -27,7 +31,8 @@ double SmallestEigenvalue(double a, double b, double c, double d, double e, doub
 
 }  // namespace
 
-HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f> points) {
+HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f> points,
+                                 int threads) {
   const auto& origin = grid.origin();
   const double l = grid.voxel_size();
   const double inv = 1.0 / l;
@@ -51,16 +56,16 @@ HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f
       pad = VoxelGrid::kPadding;
     }
   }
+  // (voxel, point) pairs are unique: the same order on any thread count.
   std::vector<std::pair<int64_t, uint32_t>> order(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
+  MakeAndSortUnique(order, threads, kSplitPoints, [&](size_t i) {
     Coord c;
     for (int d = 0; d < 3; ++d) {
       const int64_t along = DataVoxelAlong(points[i][d], low[d], l, grid.dim(d) - 2 * pad);
       c[d] = pad + static_cast<int>(along);
     }
-    order[i] = {grid.Index(c), static_cast<uint32_t>(i)};
-  }
-  std::sort(order.begin(), order.end());
+    return std::pair<int64_t, uint32_t>{grid.Index(c), static_cast<uint32_t>(i)};
+  });
   size_t voxels = 0;
   for (size_t k = 0; k < order.size(); ++k) voxels += k == 0 || order[k].first != order[k - 1].first;
   voxels_.reserve(voxels);

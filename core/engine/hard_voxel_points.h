@@ -21,9 +21,10 @@ class HardVoxelPoints {
   // made hard for each (DataVoxelAlong past the padding); for another grid, voxel
   // floor((p - origin) / l), a point past the array clamped into it. The grid's states are
   // not read, and the grid is not kept: queries take it again. Memory: 12 bytes a point and
-  // 12 a voxel holding points (16 bytes a point more while it is built); cost: one sort of
-  // the points' voxel indices.
-  HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f> points);
+  // 12 a voxel holding points (16 bytes a point more while it is built, 32 while its two
+  // halves merge); cost: one sort of the points' voxel indices, its halves on two of
+  // `threads` (>= 1) when there are more than one: the same object for any count.
+  HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f> points, int threads = 1);
 
   // How far the points of the voxels in the box [lo, hi] (voxel coordinates, inclusive,
   // clipped to the grid) lie from their best-fitting plane: the square root of the smallest

@@ -67,7 +67,7 @@ MembraneShrinker::MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options
                           options.chain.thin_part_min_spread > 0;
   const bool split = options.separation.enabled && options.separation.split_reach > 0;
   if ((thin_parts || split || options.holes.enabled) && !points.empty()) {
-    points_.emplace(grid, points);
+    points_.emplace(grid, points, word_threads_);
   }
 }
 
@@ -134,12 +134,14 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
     }
   }
   {
-    absl::StatusOr<GapRefillStats> refill = RefillGapChannels(grid_, options_.refill, cancel_);
+    absl::StatusOr<GapRefillStats> refill =
+        RefillGapChannels(grid_, options_.refill, cancel_, word_threads_);
     if (!refill.ok()) return refill.status();
     result.refill = *refill;
   }
   if (options_.connect_inside_hard) {
-    absl::StatusOr<PostProcessStats> post = ConnectInsideHardVoxels(grid_, cancel_);
+    absl::StatusOr<PostProcessStats> post =
+        ConnectInsideHardVoxels(grid_, cancel_, /*max_path=*/64, word_threads_);
     if (!post.ok()) return post.status();
     result.post_process = *post;
   }

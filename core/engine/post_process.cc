@@ -8,6 +8,7 @@
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/status/status.h"
+#include "core/base/parallel_tasks.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/local_topology.h"
 #include "core/engine/state_planes.h"
@@ -47,7 +48,7 @@ void CarveToOutside(VoxelGrid& grid, int64_t i) {
 
 absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
                                                          const CancelToken& cancel,
-                                                         int max_path) {
+                                                         int max_path, int threads) {
   PostProcessStats stats;
   const auto st = grid.strides();
   const int64_t nv = grid.size();
@@ -160,8 +161,10 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
       ++stats.carved_voxels;
     }
   }
-  stats.inside_hard_after = std::count(grid.states().begin(), grid.states().end(), kInsideHard);
-  stats.bridge_voxels = BridgeMembraneContacts(grid);
+  // Nothing was carved when there was nothing to reach: no second pass over the grid then.
+  stats.inside_hard_after =
+      targets.empty() ? 0 : std::count(grid.states().begin(), grid.states().end(), kInsideHard);
+  stats.bridge_voxels = BridgeMembraneContacts(grid, threads);
   return stats;
 }
 
@@ -216,11 +219,11 @@ void MarkNear(const VoxelGrid& grid, int64_t v, FlatBitset& plane) {
 
 }  // namespace
 
-int64_t BridgeMembraneContacts(VoxelGrid& grid) {
+int64_t BridgeMembraneContacts(VoxelGrid& grid, int threads) {
   static constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                         {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   const auto& d = grid.dims();
-  const int64_t before = CountStates(grid.states()).boundary;
+  const int64_t before = CountStates(grid.states(), threads).boundary;
   const VoxelState* s = grid.states().data();
   // Bridges from boundary voxel i until none is missing or none can be made; the voxels
   // written go to `written`. True when something changed.
@@ -248,14 +251,22 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid) {
     }
     return changed;
   };
-  // First pass: every boundary voxel in index order.
-  bool changed = false;
-  for (int z = 1; z + 1 < d[2]; ++z)
-    for (int y = 1; y + 1 < d[1]; ++y)
+  // A voxel whose boundary neighbours are all joined to it through its block has nothing to
+  // bridge. That is read first for every boundary voxel at once, on the threads (a z plane a
+  // task, read only): the first pass then visits the voxels that read so, and those within
+  // distance 2 of a voxel written ahead of it in the pass (the outcome at a voxel reads only
+  // its 3x3x3 block, and its path voxels' when something is missing). Every other boundary
+  // voxel would find nothing missing when a scan of them all reached it: the same voxels are
+  // bridged in the same order as by that scan.
+  std::vector<std::vector<int64_t>> found(static_cast<size_t>(std::max(d[2] - 2, 0)));
+  RunTasks(threads, static_cast<int64_t>(found.size()), [&](int, int64_t task) {
+    const int z = static_cast<int>(task) + 1;
+    std::vector<int64_t>& out = found[static_cast<size_t>(task)];
+    for (int y = 1; y + 1 < d[1]; ++y) {
+      const int64_t row = grid.Index(0, y, z);
       for (int x = 1; x + 1 < d[0]; ++x) {
-        int64_t i = grid.Index(x, y, z);
-        // Most voxels are not on the boundary: skip them eight at a time. The states are
-        // read when the scan gets there, as one by one, so bridges made earlier count.
+        int64_t i = row + x;
+        // Most voxels are not on the boundary: skip them eight at a time.
         if (x + 8 < d[0]) {
           const int skip = FirstBoundaryOfEight(s + i);
           x += skip;
@@ -267,22 +278,33 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid) {
         } else if (!IsBoundary(s[i])) {
           continue;
         }
-        if (bridge_from(i)) changed = true;
+        const uint32_t boundary =
+            NeighbourhoodMask(grid, i, [](VoxelState v) { return IsBoundary(v); });
+        if ((boundary & ~Flood6(kCentreBit, boundary)) != 0) out.push_back(i);
       }
-  // Two more passes at most, as full scans would be, but visiting only the voxels within
-  // distance 2 of a voxel written since their last visit: the outcome at a voxel reads only
-  // states that near (its 3x3x3 neighbourhood, and those of its path voxels), and at the end
-  // of its last visit nothing could be bridged there, so elsewhere a full scan changes
-  // nothing. Writes ahead of the scan are marked in the pass itself; the rest wait for the
-  // next pass. The same voxels are visited in the same order where anything can change.
+    }
+  });
+  // Then at most three passes: the first from those voxels, each next one from the voxels
+  // within distance 2 of a voxel the pass before wrote (at the end of a voxel's last visit
+  // nothing could be bridged there, so elsewhere nothing changes). Writes ahead of the scan
+  // are marked in the pass itself; the rest wait for the next pass.
   FlatBitset visit;
-  for (int pass = 1; pass < 3 && changed; ++pass) {
+  bool any = false;
+  for (const std::vector<int64_t>& list : found) any = any || !list.empty();
+  if (!any) return 0;
+  visit.EnsureSize(grid.size());
+  for (const std::vector<int64_t>& list : found)
+    for (int64_t v : list) visit.set(v);
+  found.clear();
+  bool changed = true;
+  for (int pass = 0; pass < 3 && changed; ++pass) {
     changed = false;
-    visit.EnsureSize(grid.size());
-    visit.clear_all();
-    std::vector<int64_t> last;
-    last.swap(written);
-    for (int64_t v : last) MarkNear(grid, v, visit);
+    if (pass > 0) {
+      visit.clear_all();
+      std::vector<int64_t> last;
+      last.swap(written);
+      for (int64_t v : last) MarkNear(grid, v, visit);
+    }
     uint64_t* vw = visit.words();
     for (int64_t w = 0; w < static_cast<int64_t>(visit.word_count()); ++w) {
       int next_bit = 0;
@@ -304,7 +326,7 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid) {
       }
     }
   }
-  return CountStates(grid.states()).boundary - before;
+  return CountStates(grid.states(), threads).boundary - before;
 }
 
 }  // namespace membrane

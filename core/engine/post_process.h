@@ -33,17 +33,21 @@ void CarveToOutside(VoxelGrid& grid, int64_t index);
 // (so a sealed interior is searched once, not once per hard voxel on its wall), and all of them
 // together visit at most 4 voxels per grid voxel: past that, the remaining inside hard voxels
 // are left as they are (inside_hard_after counts them). Cancelled when `cancel` fires.
+// `threads` (>= 1) share BridgeMembraneContacts's reading of the grid: the same grid for any
+// count.
 absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
                                                          const CancelToken& cancel,
-                                                         int max_path = 64);
+                                                         int max_path = 64, int threads = 1);
 
 // Makes the membrane of each shell 6-connected (section 4.1: a DM is face-connected). The
 // (26,6) shrink may leave two boundary voxels touching only along an edge or at a corner (a
 // hard voxel of a sparse region whose last soft face neighbour a plate removed). Each such
 // contact gets a face-connected path of one or two voxels inside the 3x3x3 block: an inside
 // voxel becomes BOUNDARY, an outside one FROZEN BOUNDARY only when (26,6)-simple, so neither
-// the shells nor the genus change. Returns the number of voxels changed.
-int64_t BridgeMembraneContacts(VoxelGrid& grid);
+// the shells nor the genus change. Returns the number of voxels changed. The grid is read for
+// contacts on `threads` (>= 1) and bridged on the calling thread, in voxel order: the same
+// grid for any count.
+int64_t BridgeMembraneContacts(VoxelGrid& grid, int threads = 1);
 
 }  // namespace membrane
 

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/base/parallel_tasks.h"
+#include "core/base/split_sort.h"
 
 namespace membrane {
 namespace {
@@ -36,28 +36,16 @@ void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companio
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]);
   // (key, index) side by side: the sort then compares contiguous pairs instead of looking the
   // keys up through the indices (half the sort's time). Unique pairs, so the order is the same
-  // however the sort is split: each half sorted on a thread of its own, then merged.
+  // however the sort is split.
   std::vector<std::pair<uint64_t, int32_t>> keyed(nv);
-  const int64_t halves = threads > 1 && nv >= kSplitVertices ? 2 : 1;
-  const size_t middle = halves == 2 ? nv / 2 : nv;
-  RunTasks(threads, halves, [&](int, int64_t half) {
-    const size_t begin = half == 0 ? 0 : middle, end = half == 0 ? middle : nv;
-    for (size_t v = begin; v < end; ++v) {
-      uint64_t code = 0;
-      for (int k = 0; k < 3; ++k) {
-        const double c = std::floor((mesh.vertices[v][k] - lo[k]) / cell);
-        code |= Spread(static_cast<uint64_t>(std::clamp(c, 0.0, double(0x1fffff)))) << k;
-      }
-      keyed[v] = {code, static_cast<int32_t>(v)};
+  MakeAndSortUnique(keyed, threads, kSplitVertices, [&](size_t v) {
+    uint64_t code = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double c = std::floor((mesh.vertices[v][k] - lo[k]) / cell);
+      code |= Spread(static_cast<uint64_t>(std::clamp(c, 0.0, double(0x1fffff)))) << k;
     }
-    std::sort(keyed.begin() + begin, keyed.begin() + end);
+    return std::pair<uint64_t, int32_t>{code, static_cast<int32_t>(v)};
   });
-  if (halves == 2) {
-    std::vector<std::pair<uint64_t, int32_t>> merged(nv);
-    std::merge(keyed.begin(), keyed.begin() + middle, keyed.begin() + middle, keyed.end(),
-               merged.begin());
-    keyed = std::move(merged);
-  }
   std::vector<int32_t> order(nv);
   for (size_t i = 0; i < nv; ++i) order[i] = keyed[i].second;
   std::vector<int32_t> new_id(nv);

@@ -1,6 +1,8 @@
 #include "core/engine/hard_voxel_points.h"
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cmath>
 #include <vector>
 
@@ -95,6 +97,32 @@ TEST(HardVoxelPointsTest, SpotDistancesFromASubdividedVoxel) {
   index.SpotDistances(g, Coord{4, 4, 4}, 1, 3, d);
   ASSERT_EQ(d.size(), 27u);
   for (double x : d) EXPECT_EQ(x, 2.0);
+}
+
+// Sorted on two threads (enough points for the sort to split), the index is the one thread's:
+// the same voxels, and the same points in the same order (the same sums, bit for bit).
+TEST(HardVoxelPointsTest, TheSameIndexOnAnyThreadCount) {
+  const VoxelGrid g({40, 40, 40}, {0, 0, 0}, 1.0, kInsideSoft);
+  std::vector<Point3f> points;
+  uint64_t state = 12345;
+  auto next = [&] {  // a fixed linear congruential sequence in [2, 38)
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return 2.0f + 36.0f * static_cast<float>(state >> 40) / static_cast<float>(1 << 24);
+  };
+  for (int i = 0; i < 200000; ++i) points.push_back({next(), next(), next()});
+  const HardVoxelPoints one(g, points, 1);
+  for (int threads : {2, 3}) {
+    const HardVoxelPoints many(g, points, threads);
+    ASSERT_EQ(many.points(), one.points());
+    ASSERT_TRUE(std::equal(many.voxels().begin(), many.voxels().end(), one.voxels().begin(),
+                           one.voxels().end()));
+    for (int c = 4; c < 36; c += 5) {
+      const Coord lo{c - 1, c - 2, c - 1}, hi{c + 1, c + 1, c + 2};
+      EXPECT_EQ(many.PlaneSpread(g, lo, hi), one.PlaneSpread(g, lo, hi)) << c;
+      const Coord at{c, c, c};
+      EXPECT_EQ(many.NearestDistance(g, at, 2), one.NearestDistance(g, at, 2)) << c;
+    }
+  }
 }
 
 }  // namespace

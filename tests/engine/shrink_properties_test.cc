@@ -214,6 +214,30 @@ TEST(ShrinkPostProcess, BridgingJoinsEveryEdgeContactOfAStaircase) {
   EXPECT_EQ(BridgeMembraneContacts(grid), 0);  // idempotent
 }
 
+TEST(ShrinkPostProcess, BridgingIsTheSameOnAnyThreadCount) {
+  // Staircases in several z planes, some of whose contacts a bridge made earlier in the scan
+  // changes (two staircases crossing): the contacts read on the threads and the bridges made
+  // in voxel order give the grid one thread gives.
+  auto staircases = [] {
+    VoxelGrid grid({16, 16, 16}, {0.0, 0.0, 0.0}, 1.0, kInsideSoft);
+    for (int z = 3; z <= 12; z += 3)
+      for (int x = 2; x <= 12; ++x) {
+        grid.set(Coord{x, x, z}, kBoundaryHard);
+        grid.set(Coord{x, 14 - x, z}, kBoundaryHard);
+        grid.set(Coord{x, (x + z) % 13 + 1, z + 1}, kBoundaryHard);
+      }
+    return grid;
+  };
+  VoxelGrid one = staircases();
+  const int64_t added = BridgeMembraneContacts(one, /*threads=*/1);
+  EXPECT_GT(added, 0);
+  for (int threads : {2, 3, 16}) {
+    VoxelGrid many = staircases();
+    EXPECT_EQ(BridgeMembraneContacts(many, threads), added) << threads << " threads";
+    EXPECT_TRUE(many.states() == one.states()) << threads << " threads";
+  }
+}
+
 TEST(ShrinkPreshrink, SilhouettePreshrinkGivesAValidMembrane) {
   ShrinkOptions o;
   o.silhouette_preshrink = true;

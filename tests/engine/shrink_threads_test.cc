@@ -46,6 +46,12 @@ void ExpectSameShrinkForAnyThreadCount(const PointCloud& cloud, double factor,
       EXPECT_EQ(b.soft_voxels, a.soft_voxels) << at << ", generation " << a.generation;
       EXPECT_EQ(b.contractions, a.contractions) << at << ", generation " << a.generation;
     }
+    // The passes after the generations read the grid on the threads too.
+    EXPECT_EQ(many->result.refill.refilled_voxels, one->result.refill.refilled_voxels) << at;
+    EXPECT_EQ(many->result.post_process.bridge_voxels, one->result.post_process.bridge_voxels)
+        << at;
+    EXPECT_EQ(many->result.post_process.carved_voxels, one->result.post_process.carved_voxels)
+        << at;
     EXPECT_EQ(many->topology.shells, one->topology.shells) << at;
     EXPECT_EQ(many->topology.genus, one->topology.genus) << at;
   }

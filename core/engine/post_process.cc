@@ -223,7 +223,6 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid, int threads) {
   static constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                         {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   const auto& d = grid.dims();
-  const int64_t before = CountStates(grid.states(), threads).boundary;
   const VoxelState* s = grid.states().data();
   // Bridges from boundary voxel i until none is missing or none can be made; the voxels
   // written go to `written`. True when something changed.
@@ -251,13 +250,13 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid, int threads) {
     }
     return changed;
   };
-  // A voxel whose boundary neighbours are all joined to it through its block has nothing to
-  // bridge. That is read first for every boundary voxel at once, on the threads (a z plane a
-  // task, read only): the first pass then visits the voxels that read so, and those within
-  // distance 2 of a voxel written ahead of it in the pass (the outcome at a voxel reads only
-  // its 3x3x3 block, and its path voxels' when something is missing). Every other boundary
-  // voxel would find nothing missing when a scan of them all reached it: the same voxels are
-  // bridged in the same order as by that scan.
+  // A boundary voxel has something to bridge only when a boundary voxel of its block is not
+  // joined to it through the block's boundary voxels. That is read for every boundary voxel
+  // first, on the threads (a z plane a task, read only). The first pass visits the voxels
+  // read so and those within distance 2 of a voxel written ahead of them in the pass: the
+  // outcome at a voxel reads only its 3x3x3 block (and its path voxels' once something is
+  // missing), so every other boundary voxel would find nothing missing when a scan of them all
+  // reached it. The same voxels are bridged in the same order as by that scan.
   std::vector<std::vector<int64_t>> found(static_cast<size_t>(std::max(d[2] - 2, 0)));
   RunTasks(threads, static_cast<int64_t>(found.size()), [&](int, int64_t task) {
     const int z = static_cast<int>(task) + 1;
@@ -291,7 +290,8 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid, int threads) {
   FlatBitset visit;
   bool any = false;
   for (const std::vector<int64_t>& list : found) any = any || !list.empty();
-  if (!any) return 0;
+  if (!any) return 0;  // nothing to bridge: no count of the grid either
+  const int64_t before = CountStates(grid.states(), threads).boundary;
   visit.EnsureSize(grid.size());
   for (const std::vector<int64_t>& list : found)
     for (int64_t v : list) visit.set(v);

@@ -11,6 +11,7 @@
 #define MEMBRANE_CORE_ENGINE_HUGE_PAGE_ALLOCATOR_H_
 
 #include <cstddef>
+#include <cstdint>
 #include <new>
 #include <utility>
 
@@ -36,6 +37,12 @@ struct HugePageAllocator {
 
   // Uninitialized memory for `count` objects, failing as std::allocator does.
   T* allocate(std::size_t count) {
+    // As std::allocator: a count past the largest object (less a huge page, for the rounding
+    // below) fails before any size is computed from it, so that no size wraps (and the
+    // compiler sees no larger size reach operator new).
+    if (count > (static_cast<std::size_t>(PTRDIFF_MAX) - kHugePageBytes) / sizeof(T)) {
+      throw std::bad_array_new_length();
+    }
     const std::size_t bytes = count * sizeof(T);
     if (arena_ != nullptr) {
       if (void* p = arena_->Take(bytes)) return static_cast<T*>(p);

@@ -11,9 +11,6 @@
 namespace membrane {
 namespace {
 
-// Below this many points the sort is not split: a thread's start costs more than it saves.
-constexpr size_t kSplitPoints = 1 << 16;
-
 // Smallest eigenvalue of the symmetric matrix a b c / b d e / c e f (the trigonometric
 // solution of its characteristic cubic).
 double SmallestEigenvalue(double a, double b, double c, double d, double e, double f) {
@@ -58,7 +55,7 @@ HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f
   }
   // (voxel, point) pairs are unique: the same order on any thread count.
   std::vector<std::pair<int64_t, uint32_t>> order(points.size());
-  MakeAndSortUnique(order, threads, kSplitPoints, [&](size_t i) {
+  MakeAndSortUnique(order, threads, [&](size_t i) {
     Coord c;
     for (int d = 0; d < 3; ++d) {
       const int64_t along = DataVoxelAlong(points[i][d], low[d], l, grid.dim(d) - 2 * pad);

@@ -11,9 +11,6 @@
 namespace membrane {
 namespace {
 
-// Below this many vertices the sort is not split: a thread's start costs more than it saves.
-constexpr size_t kSplitVertices = 1 << 16;
-
 // Spreads the low 21 bits of v so that two zero bits follow each one.
 uint64_t Spread(uint64_t v) {
   v &= 0x1fffff;
@@ -38,7 +35,7 @@ void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companio
   // keys up through the indices (half the sort's time). Unique pairs, so the order is the same
   // however the sort is split.
   std::vector<std::pair<uint64_t, int32_t>> keyed(nv);
-  MakeAndSortUnique(keyed, threads, kSplitVertices, [&](size_t v) {
+  MakeAndSortUnique(keyed, threads, [&](size_t v) {
     uint64_t code = 0;
     for (int k = 0; k < 3; ++k) {
       const double c = std::floor((mesh.vertices[v][k] - lo[k]) / cell);

@@ -1,12 +1,16 @@
 // bench_scale: how each stage's cost grows with the cloud. One synthetic shape (default the
 // torus of `membrane synth torus`) at several point counts, each a whole RunReconstruction to
-// an in-memory Draco file at the .drc default of 11 bits, formula-(1) voxel. Per stage: wall
-// and CPU seconds, CPU microseconds per input point and per output face, and the ratio of the
-// stage's figure (per point up to the shrink, per face after) to the first (smallest)
-// count's; then each count's peak RSS. CPU time, because these machines are shared: a loaded
-// machine stretches the wall time, not the CPU time. The check runs beside the encode, so its
-// CPU time holds the encode's too. Each count runs in a child process of its own, so that its
-// peak RSS is its own. See README.md.
+// an in-memory Draco file, formula-(1) voxel. Per stage: wall and CPU seconds, CPU microseconds
+// per input point and per output face, and the ratio of the stage's figure (per point up to
+// the shrink, per face after) to the first (smallest) count's; then each count's peak RSS.
+// The output bits are those `membrane reconstruct` and membraned choose when none are asked:
+// 11, or more on a grid so wide that an 11-bit step would exceed kMaxOutputStepVoxels (12 at
+// 4M and 10M points). `--bits` fixes them: on a grid too wide for them the fit's snapped
+// vertices cross by the thousands and the surface's cost per face grows with the repairs, not
+// with the cloud. CPU time, because these machines are shared: a loaded machine stretches the
+// wall time, not the CPU time. The check runs beside the encode, so its CPU time holds the
+// encode's too. Each count runs in a child process of its own, so that its peak RSS is its
+// own. See README.md.
 //
 // Exit status 1 when a run fails.
 #include <sys/resource.h>
@@ -45,6 +49,7 @@ struct Options {
   std::string shape = "torus";
   int threads = 1;
   int bits = 11;
+  bool bits_follow_voxel = true;  // false once --bits is given
 };
 
 constexpr int kStages = static_cast<int>(PipelineStage::kEncode) + 1;
@@ -78,6 +83,7 @@ bool ParseArgs(int argc, char** argv, Options& o) {
         return false;
     } else if (a == "--bits" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.bits) || o.bits < 0 || o.bits > 30) return false;
+      o.bits_follow_voxel = false;
     } else {
       return false;
     }
@@ -121,6 +127,7 @@ Row RunOne(const Options& o, int64_t points) {
   }
   ReconstructionOptions options;
   options.output_quantization_bits = o.bits;
+  options.output_bits_follow_voxel = o.bits_follow_voxel;
   options.threads = o.threads;
   // The budget a dense grid of this count needs: the bench measures cost, not admission.
   options.voxelize.voxel_budget = int64_t{1} << 40;
@@ -163,8 +170,9 @@ int Main(int argc, char** argv) {
     std::fputs(kUsage, stderr);
     return 2;
   }
-  std::printf("bench_scale: %s, threads %d, %d output bits, load %s\n", o.shape.c_str(),
-              o.threads, o.bits, LoadAverage().c_str());
+  std::printf("bench_scale: %s, threads %d, %d output bits%s, load %s\n", o.shape.c_str(),
+              o.threads, o.bits, o.bits_follow_voxel ? " or more as the voxel needs" : "",
+              LoadAverage().c_str());
   std::vector<Row> rows;
   bool failed = false;
   for (int64_t n : o.points) {

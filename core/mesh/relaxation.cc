@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <vector>
 
@@ -31,15 +33,29 @@ int SumOfCategories(const VoxelState* s, const std::array<int64_t, 26>& offsets)
   return dlc;
 }
 
-// True when one of the 32 states from `s` on is a boundary voxel (AnyBoundary8 of four words,
-// one test: a row of a large grid is mostly far from the membrane).
-bool AnyBoundary32(const VoxelState* s) {
+// One bit per boundary voxel among the eight states from `s` on: bit 8k of the result for
+// state k (AnyBoundary8's test, kept per byte).
+uint64_t BoundaryBits8(const VoxelState* s) {
+  const uint64_t w = LoadStates8(s);
+  return w & ~(w >> 7) & kLowBits8;
+}
+
+// True when one of the 64 states from `s` on is a boundary voxel: a test a cache line, since a
+// plane of a large grid is mostly far from the membrane.
+bool AnyBoundary64(const VoxelState* s) {
   uint64_t any = 0;
-  for (int k = 0; k < 4; ++k) {
-    const uint64_t w = LoadStates8(s + 8 * k);
-    any |= w & ~(w >> 7);
-  }
-  return (any & kLowBits8) != 0;
+  for (int k = 0; k < 8; ++k) any |= BoundaryBits8(s + 8 * k);
+  return any != 0;
+}
+
+// Offsets of the nine rows of a 3x3x3 block (dz, dy in -1..1) from its centre's row.
+std::array<int64_t, 9> RowOffsets(const VoxelGrid& grid) {
+  const std::array<int64_t, 3> st = grid.strides();
+  std::array<int64_t, 9> rows{};
+  int k = 0;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy) rows[k++] = dz * st[2] + dy * st[1];
+  return rows;
 }
 
 class Relaxer {
@@ -51,7 +67,8 @@ class Relaxer {
         threads_(threads),
         cancel_(cancel),
         progress_(progress),
-        offsets_(grid.neighbour_offsets()) {}
+        offsets_(grid.neighbour_offsets()),
+        row_offsets_(RowOffsets(grid)) {}
 
   // sign = -1: phase 1 (DLC <= -threshold); +1: phase 2 (DLC >= threshold).
   absl::Status Phase(int sign, RelaxationStats& stats) {
@@ -105,16 +122,33 @@ class Relaxer {
 
   // DLC(V), summed from the 26 neighbours' states when asked: a grid-sized array kept up to
   // date would be 1 byte a voxel, and on a 10M-point cloud's 2e9-voxel grid its passes took
-  // longer than all the steps (the membrane is 0.2-1% of the voxels). `i` must not lie on the
-  // array border.
-  int Dlc(int64_t i) const { return SumOfCategories(grid_.states().data() + i, offsets_); }
+  // longer than all the steps (the membrane is 0.2-1% of the voxels). The 3x3x3 block is read
+  // as its nine rows of three states, four bytes a load, and counted a byte lane each (at most
+  // 9 a lane); the centre's own category is then taken off. `i` must lie in the movable region,
+  // so that each load stays within its row.
+  int Dlc(int64_t i) const {
+    constexpr uint32_t kLow3 = 0x010101;
+    const VoxelState* const s = grid_.states().data() + i - 1;
+    uint32_t outside = 0, inside = 0;
+    for (int64_t row : row_offsets_) {
+      uint32_t w;
+      std::memcpy(&w, s + row, 4);
+      outside += (w >> 7) & kLow3;
+      inside += ~(w | (w >> 7)) & kLow3;
+    }
+    const int block = static_cast<int>((outside * kLow3) >> 16 & 0xff) -
+                      static_cast<int>((inside * kLow3) >> 16 & 0xff);
+    return block - Category(grid_.at(i));
+  }
 
   int Key(int64_t i) const { return sign_ * Dlc(i); }
 
   // Phase 1's first qualifying voxels, in index order: each z plane of the movable region
   // lists its non-hard boundary voxels (candidates_, for phase 2) and those that qualify, the
   // planes side by side on the threads; the lists are then joined in plane order, so the
-  // result is the same whatever the count.
+  // result is the same whatever the count. A plane's movable rows are one stretch of memory
+  // (with the padding columns between them), read 64 states a test; the boundary voxels found
+  // in it outside the movable columns are left out.
   absl::StatusOr<std::vector<int64_t>> ScanGrid(const ProgressRange& progress) {
     const auto& d = grid_.dims();
     const int planes = d[2] - 2 * kPadding;
@@ -125,24 +159,23 @@ class Relaxer {
       if (stop.Poll(worker)) return;
       const int z = kPadding + static_cast<int>(plane);
       const VoxelState* const s = grid_.states().data();
-      for (int y = kPadding; y < d[1] - kPadding; ++y)
-        for (int x = kPadding; x < d[0] - kPadding;) {
-          const int64_t i = grid_.Index(x, y, z);
-          // 32 or 8 voxels at a time where none is a boundary voxel (most of the grid).
-          if (x + 32 <= d[0] - kPadding && !AnyBoundary32(s + i)) {
-            x += 32;
-            continue;
-          }
-          if (x + 8 <= d[0] - kPadding && !AnyBoundary8(s + i)) {
-            x += 8;
-            continue;
-          }
-          if (IsBoundary(s[i]) && !IsHard(s[i])) {
-            boundary[plane].push_back(i);
-            if (Key(i) >= threshold_) found[plane].push_back(i);
-          }
-          ++x;
-        }
+      const int64_t begin = grid_.Index(0, kPadding, z);
+      const int64_t end = grid_.Index(0, d[1] - kPadding, z);
+      auto visit = [&](int64_t i) {
+        const int x = static_cast<int>((i - begin) % d[0]);
+        if (x < kPadding || x >= d[0] - kPadding || IsHard(s[i])) return;
+        boundary[plane].push_back(i);
+        if (Key(i) >= threshold_) found[plane].push_back(i);
+      };
+      int64_t i = begin;
+      for (; i + 64 <= end; i += 64) {
+        if (!AnyBoundary64(s + i)) continue;
+        for (int k = 0; k < 8; ++k)
+          for (uint64_t bits = BoundaryBits8(s + i + 8 * k); bits != 0; bits &= bits - 1)
+            visit(i + 8 * k + std::countr_zero(bits) / 8);
+      }
+      for (; i < end; ++i)
+        if (IsBoundary(s[i])) visit(i);
       progress.Add(1);
     });
     if (stop.fired()) return Cancel();
@@ -286,6 +319,8 @@ class Relaxer {
   const CancelToken& cancel_;
   const ProgressRange progress_;
   const std::array<int64_t, 26>& offsets_;
+  // The first voxel of each row of the 3x3x3 block, from the centre's x - 1.
+  const std::array<int64_t, 9> row_offsets_;
   std::array<Bucket, 27> buckets_;
   // The non-hard boundary voxels of the movable region when phase 1 started, in index order,
   // and the voxels phase 1 made boundary (some made outside again when a step was undone).

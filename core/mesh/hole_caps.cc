@@ -738,6 +738,49 @@ int64_t CreaseCorner(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
   return moved;
 }
 
+// A fold of the caps untangled (HoleCapOptions::untangle_rounds): the cap vertices of the
+// crossing pairs (`folded`) and those within `rings` rings of them in the caps take
+// `iterations` steps each to their neighbours' mean, together. The faces around each moved
+// vertex are marked in `moved_faces` and the vertex in `untangled`. `mark`, all 0, is
+// scratch and is left so.
+void UntangleFold(const Rows& nb, const Rows& star, const std::vector<char>& in_cap,
+                  const std::vector<int32_t>& folded, int rings, int iterations,
+                  std::vector<char>& mark, TriangleMesh& mesh, std::vector<char>& moved_faces,
+                  std::vector<char>& untangled) {
+  std::vector<int32_t> patch;
+  for (int32_t v : folded)
+    if (in_cap[v] && !mark[v]) {
+      mark[v] = 1;
+      patch.push_back(v);
+    }
+  size_t begin = 0;
+  for (int ring = 0; ring < rings; ++ring) {
+    const size_t end = patch.size();
+    for (size_t i = begin; i < end; ++i)
+      for (const int32_t* u = nb.begin(patch[i]); u != nb.end(patch[i]); ++u)
+        if (in_cap[*u] && !mark[*u]) {
+          mark[*u] = 1;
+          patch.push_back(*u);
+        }
+    begin = end;
+  }
+  std::vector<Point3f> next(patch.size());
+  for (int it = 0; it < iterations; ++it) {
+    for (size_t i = 0; i < patch.size(); ++i) {
+      Vec3d sum{0, 0, 0};
+      for (const int32_t* u = nb.begin(patch[i]); u != nb.end(patch[i]); ++u)
+        sum = sum + ToVec3d(mesh.vertices[*u]);
+      next[i] = ToPoint3f((1.0 / std::max(nb.size(patch[i]), 1)) * sum);
+    }
+    for (size_t i = 0; i < patch.size(); ++i) mesh.vertices[patch[i]] = next[i];
+  }
+  for (int32_t v : patch) {
+    mark[v] = 0;
+    untangled[v] = 1;
+    for (const int32_t* f = star.begin(v); f != star.end(v); ++f) moved_faces[*f] = 1;
+  }
+}
+
 absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
   if (!(voxel_size > 0) || !std::isfinite(voxel_size))
     return absl::InvalidArgumentError(absl::StrCat("voxel size ", voxel_size, " is not positive"));
@@ -757,7 +800,9 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       o.corner_neighbours < 1 || o.corner_neighbours > 64 || !(o.corner_flat_tolerance >= 0) ||
       !(o.corner_max_move >= 0) || !(o.corner_membrane_margin >= 0) ||
       o.corner_smoothing < 0 || o.corner_smoothing > 100 ||
-      o.corner_normal_rings < 0 || o.corner_normal_rings > 8)
+      o.corner_normal_rings < 0 || o.corner_normal_rings > 8 || o.untangle_rounds < 0 ||
+      o.untangle_rounds > 1000 || o.untangle_rings < 0 || o.untangle_rings > 16 ||
+      o.untangle_iterations < 1 || o.untangle_iterations > 100)
     return absl::InvalidArgumentError(absl::StrCat(
         "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
         o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",
@@ -776,7 +821,9 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         ", corner_flat_tolerance ", o.corner_flat_tolerance, ", corner_max_move ",
         o.corner_max_move, ", corner_membrane_margin ", o.corner_membrane_margin,
         ", corner_smoothing ", o.corner_smoothing,
-        ", corner_normal_rings ", o.corner_normal_rings));
+        ", corner_normal_rings ", o.corner_normal_rings, ", untangle_rounds ",
+        o.untangle_rounds, ", untangle_rings ", o.untangle_rings, ", untangle_iterations ",
+        o.untangle_iterations));
   return absl::OkStatus();
 }
 
@@ -1090,11 +1137,52 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     st.max_lift = std::max(st.max_lift, Norm(x[v] - ToVec3d(before[v])) / l);
     for (const int32_t* f = star.begin(v); f != star.end(v); ++f) dirty[*f] = 1;
   }
-  std::vector<int> level(nv, 0);
-  std::vector<char> backed(nv, 0);
   // The runs' boxes, kept from round to round: a round reads only the faces of the runs
   // near the faces that moved (`dirty` marks every face whose vertices moved since the last).
   FaceBlockBoxes blocks;
+  // Folds first: a pair whose two faces each hold a moved cap vertex is the caps' own
+  // layout, untangled in place (UntangleFold); a region whose folds outlast untangle_rounds
+  // goes back to its cap as solved, for the back-off below, as every other crossing.
+  if (options.untangle_rounds > 0) {
+    std::vector<int32_t> region_of(nv, -1);
+    for (size_t r = 0; r < regions.size(); ++r)
+      for (int32_t v : regions[r]) region_of[v] = static_cast<int32_t>(r);
+    std::vector<char> in_cap(nv, 0), mark(nv, 0), untangled(nv, 0);
+    for (int32_t v : free_list) in_cap[v] = 1;
+    auto capped = [&](int32_t f) {
+      for (int32_t v : mesh.faces[f])
+        if (in_cap[v] && mesh.vertices[v] != before[v]) return true;
+      return false;
+    };
+    std::vector<char> moved_faces = dirty, failed(regions.size(), 0);
+    for (int round = 0;; ++round) {
+      std::vector<int32_t> folded;
+      for (const auto& [a, b] : FindIntersectingFacesNear(mesh, moved_faces, 1, &blocks))
+        if (capped(a) && capped(b))
+          for (int32_t f : {a, b})
+            for (int32_t v : mesh.faces[f])
+              if (in_cap[v] && mesh.vertices[v] != before[v]) folded.push_back(v);
+      if (folded.empty()) break;
+      if (round == options.untangle_rounds) {
+        for (int32_t v : folded)
+          if (region_of[v] >= 0) failed[region_of[v]] = 1;
+        break;
+      }
+      std::fill(moved_faces.begin(), moved_faces.end(), 0);
+      UntangleFold(nb, star, in_cap, folded, options.untangle_rings,
+                   options.untangle_iterations, mark, mesh, moved_faces, untangled);
+    }
+    // `dirty` still marks every face around a cap vertex: the back-off's first search reads
+    // them all, untangled or put back.
+    for (int32_t v : free_list) {
+      if (region_of[v] >= 0 && failed[region_of[v]])
+        mesh.vertices[v] = ToPoint3f(x[v]);
+      else
+        st.untangled += untangled[v];
+    }
+  }
+  std::vector<int> level(nv, 0);
+  std::vector<char> backed(nv, 0);
   // Not cancelled: the caps are written, and only this loop makes them an embedded mesh.
   for (;;) {
     const std::vector<std::pair<int32_t, int32_t>> pairs =

@@ -161,6 +161,18 @@ struct HoleCapOptions {
   double corner_membrane_margin = 1.5;
   int corner_normal_rings = 2;
   int corner_smoothing = 5;
+  // Where two faces of the caps cross (a cap folded over itself, or two caps), the cap
+  // vertices of the pair and those within untangle_rings rings of them in the caps take
+  // untangle_iterations steps each to their neighbours' mean, round after round of the
+  // crossing search, before anything is sent back: a fold is the cap's own layout (the
+  // surface nets' vertices drawn together where the cap is creased or pulled down onto a
+  // seen surface), and sending its vertices back toward the surface nets hangs the cap
+  // toward them, outside the solid. A region still folded after untangle_rounds rounds goes
+  // back to its cap as solved, for the back-off (a cap crossing itself all over, where the
+  // mean of the neighbours would spread it into a sheet). 0: every crossing backs off.
+  int untangle_rounds = 16;
+  int untangle_rings = 1;
+  int untangle_iterations = 3;
   // A cap vertex of a face that crosses another goes back toward its place before the cap:
   // halfway this many times, then all the way.
   int back_off_halvings = 4;
@@ -183,6 +195,7 @@ struct HoleCapStats {
   int64_t iterations = 0;       // conjugate-gradient iterations, every solve
   int64_t anchors = 0;           // cap vertices held at remote points
   int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
+  int64_t untangled = 0;         // cap vertices moved to untangle a fold, in regions it untangled
   double max_lift = 0;          // largest move of a vertex by its cap, in voxels
 };
 
@@ -211,7 +224,9 @@ struct HoleCapStats {
 // thin tube of the mesh (tube_rings) are solved as their own converging system after the rest
 // of it. A cap under the membrane whose band shows two sides meeting at a concave corner is
 // creased where their tangent planes meet (corner_angle and the corner_ options). Then it
-// searches the faces around moved vertices for crossings and sends the moved
+// searches the faces around moved vertices for crossings: where two faces of the caps cross,
+// the fold is untangled by steps to the neighbours' mean (untangle_ options), and a region
+// still folded after untangle_rounds goes back to its cap as solved. Then it sends the moved
 // vertices of each crossing pair back toward where they were (halfway back_off_halvings
 // times, then all the way) until no crossing involves a moved vertex: where a cap would cross
 // the mesh, that part of it is not built.

@@ -120,6 +120,7 @@ std::string HoleCapsJson(const HoleCapStats& h) {
                       ", \"creased_vertices\": ", h.creased_vertices,
                       ", \"uncapped_regions\": ", h.uncapped_regions,
                       ", \"anchored_vertices\": ", h.anchors,
+                      ", \"untangled_vertices\": ", h.untangled,
                       ", \"backed_off_vertices\": ", h.backed_off,
                       ", \"max_lift_voxels\": ", JsonNumber(h.max_lift), "}");
 }

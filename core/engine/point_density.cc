@@ -1,7 +1,10 @@
 #include "core/engine/point_density.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
+#include <vector>
 
 #include "core/base/parallel_tasks.h"
 
@@ -14,6 +17,43 @@ constexpr int64_t kBlockPoints = int64_t{1} << 16;
 // Slabs of z planes sorted apart: enough to share among the threads and to keep each sort in
 // a few MB at 10M points.
 constexpr int kMaxSlabs = 256;
+// Below this many voxels a slab is sorted by comparisons: the radix passes' counts would cost
+// more than the sort.
+constexpr int64_t kMinRadixItems = 256;
+
+// Sorts the n voxel indices from `a` on ascending, by least significant digit first over their
+// span (max - min): at most 12 bits a digit, a pass of counting and placing each (two for a
+// span of up to 2^24 voxels, such as a slab of five 1295^2 planes at 10M points). The
+// comparisons of a sort grow with the log of the slab's size: at 10M points std::sort took a
+// quarter of the voxelization's CPU. `scratch` is resized to n.
+void SortVoxels(int64_t* a, int64_t n, std::vector<int64_t>& scratch) {
+  if (n < kMinRadixItems) {
+    std::sort(a, a + n);
+    return;
+  }
+  const auto [lo_it, hi_it] = std::minmax_element(a, a + n);
+  const int64_t lo = *lo_it;
+  const auto span = static_cast<uint64_t>(*hi_it - lo);
+  if (span == 0) return;
+  const int bits = std::bit_width(span);
+  const int passes = (bits + 11) / 12;
+  const int width = (bits + passes - 1) / passes;
+  const uint64_t mask = (uint64_t{1} << width) - 1;
+  scratch.resize(static_cast<size_t>(n));
+  std::vector<int64_t> count(static_cast<size_t>(mask) + 2);
+  int64_t* from = a;
+  int64_t* to = scratch.data();
+  for (int pass = 0; pass < passes; ++pass) {
+    const int shift = pass * width;
+    auto digit = [&](int64_t v) { return (static_cast<uint64_t>(v - lo) >> shift) & mask; };
+    std::fill(count.begin(), count.end(), 0);
+    for (int64_t i = 0; i < n; ++i) ++count[digit(from[i]) + 1];
+    for (size_t d = 1; d < count.size(); ++d) count[d] += count[d - 1];
+    for (int64_t i = 0; i < n; ++i) to[count[digit(from[i])]++] = from[i];
+    std::swap(from, to);
+  }
+  if (from != a) std::copy(from, from + n, a);
+}
 
 }  // namespace
 
@@ -68,9 +108,11 @@ std::vector<int64_t> SortedPointVoxels(absl::Span<const Point3f> points, const B
       sorted[next[slab_of(voxel)]++] = voxel;
     }
   });
+  std::vector<std::vector<int64_t>> scratch(static_cast<size_t>(std::max(threads, 1)));
   RunTasks(threads, slabs, [&](int worker, int64_t s) {
     if (stop.Poll(worker)) return;
-    std::sort(sorted.begin() + slab_start[s], sorted.begin() + slab_start[s + 1]);
+    SortVoxels(sorted.data() + slab_start[s], slab_start[s + 1] - slab_start[s],
+               scratch[static_cast<size_t>(worker)]);
   });
   return sorted;
 }

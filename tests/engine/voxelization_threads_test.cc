@@ -132,5 +132,49 @@ TEST(VoxelizationThreads, SortedPointVoxelsIsTheSortedListForAnyThreadCount) {
   }
 }
 
+// The voxel of each point, x + nx (y + ny z), sorted: what SortedPointVoxels must return.
+std::vector<int64_t> SortedVoxelsOneByOne(const std::vector<Point3f>& points, const Box3d& box,
+                                          double size, const std::array<int, 3>& dims) {
+  std::vector<int64_t> voxels;
+  for (const Point3f& p : points) {
+    int64_t c[3];
+    for (int d = 0; d < 3; ++d) {
+      c[d] = std::clamp(static_cast<int64_t>(std::floor((p[d] - box.min[d]) / size)),
+                        int64_t{0}, int64_t{dims[d]} - 1);
+    }
+    voxels.push_back(c[0] + dims[0] * (c[1] + int64_t{dims[1]} * c[2]));
+  }
+  std::sort(voxels.begin(), voxels.end());
+  return voxels;
+}
+
+// Slabs sorted by radix passes: a box four planes deep (a plane a slab, the points above it
+// clamped into the top one), each slab tens of thousands of points whose span is one, two or
+// three 12-bit digits (planes of 5^2, 501^2 and 4167^2 voxels), many points sharing a voxel;
+// and a slab whose points all lie in one voxel.
+TEST(VoxelizationThreads, SortedPointVoxelsSortsLargeSlabs) {
+  std::vector<Point3f> points = UnevenSphere(150000);
+  for (int k = 0; k < 5000; ++k) points.push_back({0.5f, 0.5f, -0.99f});
+  for (const double size : {0.5, 0.004, 0.00048}) {
+    Box3d box;
+    box.min = {-1, -1, -1};
+    box.max = {1, 1, -1 + 3.5 * size};
+    const std::array<int, 3> dims = DataDims(box, size);
+    ASSERT_EQ(dims[2], 4);
+    const std::vector<int64_t> expected = SortedVoxelsOneByOne(points, box, size, dims);
+    for (int threads : {1, 3}) {
+      EXPECT_TRUE(SortedPointVoxels(points, box, size, dims, threads) == expected)
+          << "voxel " << size << ", " << threads << " threads";
+    }
+  }
+  const std::vector<Point3f> one_voxel(5000, Point3f{0.25f, 0.25f, 0.25f});
+  Box3d box;
+  box.min = {0, 0, 0};
+  box.max = {1, 1, 0.5};
+  const std::array<int, 3> dims = DataDims(box, 0.7);
+  EXPECT_TRUE(SortedPointVoxels(one_voxel, box, 0.7, dims) ==
+              SortedVoxelsOneByOne(one_voxel, box, 0.7, dims));
+}
+
 }  // namespace
 }  // namespace membrane

@@ -12,6 +12,7 @@
 #include "core/engine/gap_refill.h"
 #include "core/engine/hole_opening.h"
 #include "core/engine/handle_retry.h"
+#include "core/engine/interior_guard.h"
 #include "core/engine/plate_schedule.h"
 #include "core/engine/silhouette.h"
 
@@ -75,6 +76,12 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
   const Clock::time_point start = Clock::now();
   ShrinkResult result;
   if (options_.silhouette_preshrink) result.preshrink_outside_voxels = SilhouettePreshrink(grid_);
+  {
+    absl::StatusOr<InteriorGuardStats> guard =
+        GuardInteriors(grid_, options_, cancel_, &guarded_band_);
+    if (!guard.ok()) return guard.status();
+    result.interior_guard = *guard;
+  }
   counts_ = CountStates(grid_.states(), word_threads_);
   // The strict rules decide as the default ones do until the first removal they would refuse
   // (a loose tunnel): the handle retry starts at the generation that made it, from the grid
@@ -98,6 +105,9 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
         !s.ok()) {
       return s;
     }
+  }
+  if (result.interior_guard.frozen_voxels > 0) {
+    result.interior_guard.released_voxels = ReleaseInteriorGuard(grid_, word_threads_);
   }
   // The steps after the generations take no work planes (the piece separation holds a byte
   // a voxel of its own): the planes' bytes, as many as the grid's, go back first.
@@ -164,6 +174,10 @@ ChainOptions MembraneShrinker::ChainOptionsFor(size_t g, TunnelRules rules) cons
 absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
                                              std::vector<GenerationStats>& rows) {
   const Clock::time_point t0 = Clock::now();
+  if (!guarded_band_.coarse_voxels.empty() &&
+      sizes_[g] < options_.interior_guard.band_release_below) {
+    ReleaseGuardedBand(grid_, guarded_band_);
+  }
   GenerationStats stats;
   stats.generation = static_cast<int>(g) + 1;
   stats.plate_size = sizes_[g];

@@ -22,6 +22,7 @@
 #include "core/engine/compact_states.h"
 #include "core/engine/contraction.h"
 #include "core/engine/hard_voxel_points.h"
+#include "core/engine/interior_guard.h"
 #include "core/engine/place_finder.h"
 #include "core/engine/post_process.h"
 #include "core/engine/shrink_options.h"
@@ -73,6 +74,7 @@ struct GenerationStats {
 struct ShrinkResult {
   std::vector<GenerationStats> generations;
   int64_t preshrink_outside_voxels = 0;
+  InteriorGuardStats interior_guard;
   PostProcessStats post_process;
   HandleRetry handle_retry;
   PieceSeparationStats separation;
@@ -179,6 +181,7 @@ class MembraneShrinker {
   // The counts after the last generation, before the next: one pass over the states per
   // generation (on a 70 M voxel grid each pass costs as much as a small generation).
   StateCounts counts_;
+  GuardedBand guarded_band_;  // the band GuardInteriors froze, released by plate size
   WorkPlanes planes_;  // allocated at the first snapshot or closed form
   PlaceFinder finder_;
   ChainRunner runner_;

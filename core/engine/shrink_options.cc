@@ -36,6 +36,14 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "closed_form_voxelwise_ratio %d must be >= 0 (0 = always by planes)", o.closed_form_voxelwise_ratio));
   }
+  if (o.interior_guard.factor < 2 || o.interior_guard.factor > 4) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "interior_guard.factor %d is out of range [2, 4]", o.interior_guard.factor));
+  }
+  if (o.interior_guard.min_coarse_axis < 1) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "interior_guard.min_coarse_axis %d must be >= 1", o.interior_guard.min_coarse_axis));
+  }
   if (o.closed_form_min_plate < 0) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "closed_form_min_plate %d must be >= 0 (0 = never)", o.closed_form_min_plate));

@@ -12,6 +12,7 @@
 #include "core/engine/gap_refill.h"
 #include "core/engine/piece_separation.h"
 #include "core/engine/hole_opening.h"
+#include "core/engine/interior_guard.h"
 #include "core/engine/plate_schedule.h"
 #include "core/engine/topology_guard.h"
 
@@ -50,6 +51,7 @@ struct ShrinkOptions {
   GapRefillOptions refill;          // channels carved through data gaps (gap_refill.h)
   PieceSeparationOptions separation;  // pieces of data joined by the shrink (piece_separation.h)
   HoleOpeningOptions holes;         // plugged holes opened from the data (hole_opening.h)
+  InteriorGuardOptions interior_guard;  // the interior held by a coarser membrane (interior_guard.h)
   // Threads of the word passes of the closed form and the place finder and of the state
   // counts (1..256; ReconstructionOptions::threads): split by the grid, the same DMS for any
   // count. Grids under threads_min_voxels keep them on the calling thread: their passes take

@@ -56,6 +56,7 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
   absl::StatusOr<ShrinkResult> result =
       ShrinkMembrane(grid, cloud.points, shrink, on_generation, cancel);
   if (!result.ok()) return result.status();
+  report.interior_guard = result->interior_guard;
   report.generations = std::move(result->generations);
   report.post_process = result->post_process;
   report.handle_retry = result->handle_retry;

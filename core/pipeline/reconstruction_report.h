@@ -10,6 +10,7 @@
 
 #include "core/engine/gap_refill.h"
 #include "core/engine/hole_opening.h"
+#include "core/engine/interior_guard.h"
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/piece_separation.h"
 #include "core/engine/post_process.h"
@@ -72,6 +73,7 @@ struct ReconstructionReport {
   bool relaxed = false;                      // false with --no-relax
   int threads = 1;                           // ReconstructionOptions::threads
   int planned_generations = 0;               // plate sizes of the schedule, known before shrinking
+  InteriorGuardStats interior_guard;  // ShrinkResult::interior_guard, before the generations
   std::vector<GenerationStats> generations;  // one per plate size, the last has plate size 1
   PostProcessStats post_process;
   HandleRetry handle_retry;    // ShrinkResult::handle_retry

@@ -15,6 +15,10 @@ namespace {
 // generations' one is explained on the line itself.
 std::string PassesAfterGenerations(const ReconstructionReport& r) {
   std::string out;
+  if (r.interior_guard.frozen_voxels > 0) {
+    absl::StrAppendFormat(&out, "; %d voxels of the interior held by a coarser membrane",
+                          r.interior_guard.frozen_voxels);
+  }
   const PieceSeparationStats& p = r.piece_separation;
   if (p.separated) {
     absl::StrAppendFormat(&out, "; %d pieces of data separated into %d shells (%d voxels cut",

@@ -82,6 +82,14 @@ std::string GapRefillJson(const GapRefillStats& g) {
                       ", \"loops_closed\": ", g.loops_closed, "}");
 }
 
+std::string InteriorGuardJson(const InteriorGuardStats& g) {
+  return absl::StrCat("{\"levels\": ", g.levels, ", \"core_voxels\": ", g.core_voxels,
+                      ", \"frozen_voxels\": ", g.frozen_voxels,
+                      ", \"band_frozen\": ", g.band_frozen,
+                      ", \"released_voxels\": ", g.released_voxels,
+                      ", \"seconds\": ", JsonNumber(g.seconds), "}");
+}
+
 std::string RelaxationJson(const RelaxationStats& r) {
   return absl::StrCat("{\"phase1_moves\": ", r.phase1_moves, ", \"phase1_added\": ", r.phase1_added,
                       ", \"phase2_moves\": ", r.phase2_moves,
@@ -184,6 +192,7 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"piece_separation\": ", PieceSeparationJson(r.piece_separation),
       ",\n  \"hole_opening\": ", HoleOpeningJson(r.hole_opening),
       ",\n  \"gap_refill\": ", GapRefillJson(r.gap_refill),
+      ",\n  \"interior_guard\": ", InteriorGuardJson(r.interior_guard),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
       ",\n  \"hole_caps\": ", HoleCapsJson(r.hole_caps),
       ",\n  \"quantization\": ", QuantizationJson(r.quantization),

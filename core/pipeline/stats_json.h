@@ -30,6 +30,8 @@ namespace membrane {
 // hole_opening {opened, refused, wall_core_kept, carved_voxels, whole_grid_counts, seconds}
 // (HoleOpeningStats; wall_core_kept: its wall_cores);
 // gap_refill {refilled_voxels, pocket_voxels, loops_closed} (GapRefillStats);
+// interior_guard {levels, core_voxels, frozen_voxels, band_frozen, released_voxels, seconds}
+// (InteriorGuardStats; levels 0: no coarse membrane was built);
 // relaxation {phase1_moves, phase1_added, phase2_moves, phase2_uncovered, not_simple};
 // membrane.inside_frozen_voxels and membrane.genus; mesh.self_intersections and
 // mesh.positive_volume; seconds.check. Non-finite reals are written as null.

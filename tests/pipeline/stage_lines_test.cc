@@ -29,6 +29,19 @@ TEST(StageLines, ShrinkLineNamesThePassesAfterTheGenerationsThatChangedSomething
   EXPECT_THAT(line, EndsWith("; 4702 voxels refilled in data gaps"));
 }
 
+// The interior a coarser membrane held is named first: it decided what the generations saw.
+TEST(StageLines, ShrinkLineNamesTheInteriorHeldByACoarserMembrane) {
+  ReconstructionReport report;
+  report.generations.resize(9);
+  report.interior_guard.frozen_voxels = 16346613;
+  report.gap_refill.refilled_voxels = 66093;
+  const std::string line = StageFinishedLine(PipelineStage::kShrink, report);
+  EXPECT_THAT(line, HasSubstr("; 16346613 voxels of the interior held by a coarser membrane; "
+                              "66093 voxels refilled in data gaps"));
+  report.interior_guard.frozen_voxels = 0;
+  EXPECT_THAT(StageFinishedLine(PipelineStage::kShrink, report), Not(HasSubstr("interior")));
+}
+
 TEST(StageLines, ShrinkLineSaysWhenPiecesOfDataStayJoined) {
   ReconstructionReport report;
   report.piece_separation.pieces = 2;

@@ -1,0 +1,95 @@
+// The interior of a scanned solid held by a coarser membrane (docs/engine-decisions.md,
+// "Interiors held by a coarser membrane").
+//
+// On dense, noisy scans (a million points and up at the formula-(1) voxel) the skin's data is
+// porous and fuzzy, and the plates get into the solid through its unscanned base and its
+// sparse patches: they hollow the interior, the chains carve and undo it plate by plate
+// (a 1M-point scan's shrink doubles; a 10M-point one's takes hours), and where the hollow
+// meets the skin from inside handles are left. The same scan voxelized `factor` times coarser
+// has a closed skin there, and its membrane (factor^-3 of the voxels, shrunk and refilled
+// the same way) keeps the interior. The fine voxels of that interior are frozen before the
+// first generation, so the fine plates stop at it as at a wall.
+#ifndef MEMBRANE_CORE_ENGINE_INTERIOR_GUARD_H_
+#define MEMBRANE_CORE_ENGINE_INTERIOR_GUARD_H_
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/base/cancel_token.h"
+#include "core/engine/voxel_grid.h"
+
+namespace membrane {
+
+struct ShrinkOptions;
+
+struct InteriorGuardOptions {
+  bool enabled = true;
+  // A coarse voxel is factor^3 fine voxels, 2..4.
+  int factor = 4;
+  // The guard runs when the coarse grid's longest data axis has at least this many voxels:
+  // on smaller grids the plates that fit through the scan's gaps carve little, and the gap
+  // refill puts it back.
+  int min_coarse_axis = 96;
+  // A coarse voxel is interior when at most this many of its 6 axis rays reach the coarse
+  // outside before a hard voxel: one data hole seen, not a web or a plate left frozen.
+  int max_open_rays = 1;
+  // The band is released before the first generation whose plate is below this size
+  // (ReleaseGuardedBand); 0: kept to the end of the generations.
+  int band_release_below = 5;
+};
+
+// The coarse voxels of the band GuardInteriors froze, to release them later.
+struct GuardedBand {
+  int factor = 0;
+  std::array<int, 3> coarse_dims{};
+  std::vector<int64_t> coarse_voxels;  // indices in the coarse grid, increasing
+};
+
+struct InteriorGuardStats {
+  int levels = 0;             // coarse membranes built, this one and the coarser ones
+  int64_t core_voxels = 0;    // coarse voxels of the solid with no hard voxel in their block
+  int64_t frozen_voxels = 0;  // fine voxels frozen, the band's included
+  int64_t band_frozen = 0;    // fine voxels of the band the core's wave reached first
+  int64_t released_voxels = 0;  // still inside after the generations (ReleaseInteriorGuard)
+  double seconds = 0;
+};
+
+// Input: a voxelized grid before its first generation (padding outside, the data region
+// inside soft or hard, its outer layer boundary). Builds the grid `factor` times coarser (a
+// coarse voxel hard when any of its fine voxels is) and shrinks it with `options` (its own
+// interior guard included, so coarser levels hold it in turn; without points: the thin-part
+// exception, the split and the hole opening are off there; no dents). Then it freezes:
+//   - the core: the fine INSIDE soft voxels of every coarse voxel of the coarse solid with no
+//     hard voxel in its 3x3x3 block and at most max_open_rays of its 6 axis rays reaching the
+//     coarse outside before a hard voxel (an interior seen through one data hole at most; a
+//     web or a plate left frozen in a corner sees the outside on more);
+//   - the band: the fine INSIDE soft voxels of the other coarse solid voxels that a
+//     breadth-first wave from the core reaches through soft voxels before a wave from the
+//     coarse outside does, never a voxel next to a hard one (so the skin and its pores are
+//     left as they are).
+// Does nothing when the guard is off, the coarse grid's longest axis is under
+// min_coarse_axis or the coarse solid has no core.
+// Errors: Cancelled when `cancel` fires (the shrink is then abandoned; the grid may hold part
+// of the frozen voxels); the coarse shrink's.
+absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkOptions& options,
+                                                  const CancelToken& cancel,
+                                                  GuardedBand* band = nullptr);
+
+// Turns the band's frozen INSIDE voxels back to INSIDE soft (a chain freezes boundary voxels
+// only, so these are the guard's), leaving the core frozen: from the plate size
+// InteriorGuardOptions::band_release_below down, the plates that reach the skin work there as
+// they would without the guard. Idempotent. Returns how many voxels it released.
+int64_t ReleaseGuardedBand(VoxelGrid& grid, const GuardedBand& band);
+
+// After the generations: every voxel still INSIDE and frozen is one GuardInteriors froze (a
+// chain freezes boundary voxels only, and a boundary voxel never turns inside again); they
+// become INSIDE soft, so that the passes after the generations read the interior as they
+// would without the guard. Frozen boundary voxels stay frozen (Property 3). Runs on
+// `threads` (>= 1), a slab of the grid a task. Returns how many voxels it released.
+int64_t ReleaseInteriorGuard(VoxelGrid& grid, int threads);
+
+}  // namespace membrane
+
+#endif  // MEMBRANE_CORE_ENGINE_INTERIOR_GUARD_H_

@@ -1,0 +1,176 @@
+// The interior guard: a sphere scanned without its base keeps its interior through the
+// generations (the plates that fit through the base do not hollow it), a torus keeps its hole
+// free of frozen voxels, and small grids are left alone.
+#include "core/engine/interior_guard.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+#include <cstdlib>
+
+#include "core/engine/membrane_invariants.h"
+#include "core/engine/membrane_shrinker.h"
+#include "core/engine/plate_schedule.h"
+#include "core/engine/voxelization.h"
+#include "core/engine/voxel_topology.h"
+
+namespace membrane {
+namespace {
+
+constexpr double kVoxel = 0.02;
+
+// Points on a golden-angle spiral over the unit sphere, those within `hole` of (1, 0, 0) left
+// out: a scan that never saw that patch.
+std::vector<Point3f> SphereScan(int count, double hole, double noise = 0) {
+  std::vector<Point3f> points;
+  const double golden = M_PI * (3 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double z = 1 - 2 * (i + 0.5) / count;
+    const double r = std::sqrt(1 - z * z), a = golden * i;
+    const double x = r * std::cos(a), y = r * std::sin(a);
+    if (std::hypot(x - 1, y, z) < hole) continue;
+    // Noise along the normal, up to `noise` either way (a scanner's range noise).
+    const double f = 1 + noise * (2 * std::fmod(i * 0.6180339887498949, 1.0) - 1);
+    points.push_back({static_cast<float>(f * x), static_cast<float>(f * y), static_cast<float>(f * z)});
+  }
+  return points;
+}
+
+// Points on a torus of radii 1 and `tube` about the z axis, on a regular (u, v) lattice.
+std::vector<Point3f> Torus(int nu, int nv, double tube) {
+  std::vector<Point3f> points;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
+      const double w = 1 + tube * std::cos(v);
+      points.push_back({static_cast<float>(w * std::cos(u)), static_cast<float>(w * std::sin(u)),
+                        static_cast<float>(tube * std::sin(v))});
+    }
+  return points;
+}
+
+VoxelGrid GridOf(const std::vector<Point3f>& points) {
+  VoxelizeOptions v;
+  v.voxel_size = kVoxel;
+  absl::StatusOr<Voxelization> voxels = Voxelize(points, v);
+  EXPECT_TRUE(voxels.ok()) << voxels.status();
+  return std::move(voxels->grid);
+}
+
+// The model-space centre of a voxel.
+std::array<double, 3> CentreOf(const VoxelGrid& grid, int64_t index) {
+  const Coord c = grid.CoordOf(index);
+  std::array<double, 3> p;
+  for (int d = 0; d < 3; ++d) p[d] = grid.origin()[d] + (c[d] + 0.5) * grid.voxel_size();
+  return p;
+}
+
+// Guard options small enough for these grids (about 110 voxels a side, 28 coarse).
+ShrinkOptions GuardOn() {
+  ShrinkOptions o;
+  o.interior_guard.enabled = true;
+  o.interior_guard.min_coarse_axis = 16;
+  return o;
+}
+
+TEST(InteriorGuard, FreezesOnlyTheInteriorOfAScannedSphere) {
+  VoxelGrid grid = GridOf(SphereScan(200000, 0));
+  absl::StatusOr<InteriorGuardStats> stats = GuardInteriors(grid, GuardOn(), CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->levels, 1);
+  EXPECT_GT(stats->core_voxels, 0);
+  EXPECT_GT(stats->band_frozen, 0);
+  int64_t frozen = 0, outside_sphere = 0, deep = 0;
+  for (int64_t i = 0; i < grid.size(); ++i) {
+    if (!IsFrozen(grid.at(i))) continue;
+    ++frozen;
+    const std::array<double, 3> p = CentreOf(grid, i);
+    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    outside_sphere += r > 1 + kVoxel;
+    deep += r < 0.5;
+  }
+  EXPECT_EQ(frozen, stats->frozen_voxels);
+  // The frozen voxels lie inside the scanned skin, and they hold its deep interior.
+  EXPECT_EQ(outside_sphere, 0);
+  const double deep_voxels = 4.0 / 3 * M_PI * std::pow(0.5 / kVoxel, 3);
+  EXPECT_GT(deep, 0.9 * deep_voxels);
+}
+
+TEST(InteriorGuard, KeepsTheGenerationsOutOfTheInteriorBehindADataHole) {
+  const std::vector<Point3f> points = SphereScan(100000, 0.5, 0.04);
+  // The outside voxels inside the sphere after the last generation, before the passes after
+  // them (the refill would put them back): the hollow the plates carved through the base.
+  auto hollow_after_generations = [&](const ShrinkOptions& options, int* genus) {
+    VoxelGrid grid = GridOf(points);
+    int64_t hollow = 0;
+    const int generations = static_cast<int>(
+        PlateSizes({grid.dim(0) - 4, grid.dim(1) - 4, grid.dim(2) - 4}, options.schedule, 0)
+            .size());
+    absl::StatusOr<ShrinkResult> result = ShrinkMembrane(
+        grid, points, options,
+        [&](const GenerationStats& g) {
+          if (g.generation != generations) return;
+          for (int64_t i = 0; i < grid.size(); ++i) {
+            if (!IsOutside(grid.at(i))) continue;
+            const std::array<double, 3> p = CentreOf(grid, i);
+            hollow += p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 0.7 * 0.7;
+          }
+        },
+        CancelToken::Never());
+    EXPECT_TRUE(result.ok()) << result.status();
+    EXPECT_TRUE(CheckMembraneInvariants(grid, InvariantOptions()).ok());
+    const VoxelTopology topology = ComputeVoxelTopology(grid);
+    EXPECT_EQ(topology.shells, 1);
+    *genus = TotalGenus(topology);
+    return hollow;
+  };
+  ShrinkOptions off = GuardOn();
+  off.interior_guard.enabled = false;
+  int genus_off = -1, genus_on = -1;
+  const int64_t without = hollow_after_generations(off, &genus_off);
+  const int64_t with = hollow_after_generations(GuardOn(), &genus_on);
+  // Without the guard the plates that fit through the base carve the interior out; with it
+  // they stop at the frozen interior.
+  EXPECT_GT(without, 1000);
+  EXPECT_EQ(with, 0) << "without the guard: " << without;
+  EXPECT_EQ(genus_on, 0);
+}
+
+TEST(InteriorGuard, LeavesATorusHoleFree) {
+  VoxelGrid grid = GridOf(Torus(900, 240, 0.35));
+  absl::StatusOr<InteriorGuardStats> stats = GuardInteriors(grid, GuardOn(), CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_GT(stats->frozen_voxels, 0);
+  int64_t outside_tube = 0;
+  for (int64_t i = 0; i < grid.size(); ++i) {
+    if (!IsFrozen(grid.at(i))) continue;
+    const std::array<double, 3> p = CentreOf(grid, i);
+    const double ring = std::hypot(p[0], p[1]) - 1;
+    outside_tube += std::hypot(ring, p[2]) > 0.35 + kVoxel;
+  }
+  EXPECT_EQ(outside_tube, 0);
+}
+
+TEST(InteriorGuard, LeavesSmallGridsAlone) {
+  VoxelGrid grid = GridOf(SphereScan(200000, 0));
+  const VoxelStates before = grid.states();
+  ShrinkOptions o = GuardOn();
+  o.interior_guard.min_coarse_axis = 64;  // the coarse grid is 28 voxels a side
+  absl::StatusOr<InteriorGuardStats> stats = GuardInteriors(grid, o, CancelToken::Never());
+  ASSERT_TRUE(stats.ok());
+  EXPECT_EQ(stats->levels, 0);
+  EXPECT_EQ(stats->frozen_voxels, 0);
+  EXPECT_TRUE(grid.states() == before);
+}
+
+TEST(InteriorGuard, RefusesAFactorOutOfRange) {
+  ShrinkOptions o;
+  o.interior_guard.factor = 5;
+  const absl::Status s = ValidateShrinkOptions(o);
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("interior_guard.factor"), std::string::npos) << s;
+}
+
+}  // namespace
+}  // namespace membrane

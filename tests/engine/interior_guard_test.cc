@@ -1,13 +1,13 @@
-// The interior guard: a sphere scanned without its base keeps its interior through the
-// generations (the plates that fit through the base do not hollow it), a torus keeps its hole
-// free of frozen voxels, and small grids are left alone.
+// The interior guard: a closed sphere's frozen voxels all lie inside it and hold its interior;
+// a sphere scanned with range noise and a wide hole keeps its interior through the generations
+// (the plates that get through the hole do not hollow it), a torus keeps its hole free of
+// frozen voxels, and small grids are left alone.
 #include "core/engine/interior_guard.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
-#include <cstdlib>
 
 #include "core/engine/membrane_invariants.h"
 #include "core/engine/membrane_shrinker.h"

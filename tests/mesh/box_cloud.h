@@ -17,6 +17,28 @@ namespace membrane::testing {
 PointCloud BoxFacePoints(const Vec3d& lo, const Vec3d& hi, int per_unit_area,
                          std::mt19937_64& rng, const std::function<bool(const Vec3d&)>& keep);
 
+// A slab [-2, 2] x [-0.5, 0] x [-2, 2] with a box [-1, 1] x [0, 1.5] x [-1, 1] standing on it;
+// their inner edge between the box's face x = 1 and the slab's top runs along z through
+// kSlabCorner.
+inline const Vec3d kSlabCorner{1, 0, 0};
+
+// A prism over that edge: its slope from (1 + size, 0) to (1, size) across x and y, for
+// |z| <= length (how a membrane whose plates could not enter the corner leaves it).
+struct Shelf {
+  double size = 0;
+  double length = 0;
+};
+
+// Points on the surface of the box on the slab, `per_unit_area` per unit of area, `keep`
+// deciding which stay; with a shelf, on the surface of their union with it. The same seed
+// every call: the same points for the same arguments.
+PointCloud BoxOnSlab(int per_unit_area, const Shelf* shelf,
+                     const std::function<bool(const Vec3d&)>& keep);
+
+// Distance from p to the solid's surface near the inner edge: the slab's top (x >= 1, y = 0)
+// and the box's face (x = 1, y >= 0), across the edge.
+double SlabCornerDistance(const Vec3d& p);
+
 }  // namespace membrane::testing
 
 #endif  // MEMBRANE_TESTS_MESH_BOX_CLOUD_H_

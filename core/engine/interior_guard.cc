@@ -12,6 +12,7 @@
 #include "core/engine/gap_refill.h"
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/shrink_options.h"
+#include "core/engine/state_planes.h"
 
 namespace membrane {
 namespace {
@@ -20,35 +21,6 @@ constexpr int kPad = VoxelGrid::kPadding;
 
 // Marks of a grid's voxels, one byte each.
 using Marks = std::vector<uint8_t>;
-
-// Grows `marks` by `radius` voxels in every axis (the Chebyshev ball: one axis at a time).
-void Dilate(const std::array<int, 3>& dims, int radius, Marks& marks) {
-  if (radius <= 0) return;
-  const std::array<int64_t, 3> strides = {1, dims[0], static_cast<int64_t>(dims[0]) * dims[1]};
-  Marks line;
-  for (int axis = 0; axis < 3; ++axis) {
-    const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
-    const int n = dims[axis];
-    line.resize(n);
-    for (int j = 0; j < dims[a2]; ++j) {
-      for (int i = 0; i < dims[a1]; ++i) {
-        const int64_t base = i * strides[a1] + j * strides[a2];
-        for (int t = 0; t < n; ++t) line[t] = marks[base + t * strides[axis]];
-        // The distance back to the last mark, forwards and backwards.
-        int last = -radius - 1;
-        for (int t = 0; t < n; ++t) {
-          if (line[t]) last = t;
-          if (t - last <= radius) marks[base + t * strides[axis]] = 1;
-        }
-        last = n + radius;
-        for (int t = n - 1; t >= 0; --t) {
-          if (line[t]) last = t;
-          if (last - t <= radius) marks[base + t * strides[axis]] = 1;
-        }
-      }
-    }
-  }
-}
 
 // For every voxel, how many of its 6 axis rays reach an outside voxel before a hard one (the
 // array border counts as outside): 0 to 6.
@@ -128,8 +100,9 @@ VoxelGrid CoarseGrid(const VoxelGrid& fine, int k) {
 // The class of a coarse voxel after the coarse shrink and refill.
 enum CoarseClass : uint8_t {
   kCoarseOutside = 0,  // outside the coarse membrane
-  kCoarseBand = 1,     // in the coarse solid, hard or next to a hard voxel
-  kCoarseCore = 2,     // in the coarse solid, no hard voxel in its 3x3x3 block
+  kCoarseBand = 1,     // in the coarse solid, the rest
+  kCoarseCore = 2,     // in the coarse solid, no hard voxel in its 3x3x3 block, at most
+                       // max_open_rays axis rays reaching the outside
 };
 
 // The fine data-region voxels and their coarse voxels: fine (x, y, z) lies in coarse
@@ -191,20 +164,29 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
   if (!shrunk.ok()) return shrunk.status();
   stats.levels = 1 + shrunk->interior_guard.levels;
 
-  Marks near_hard(coarse.size());
-  for (int64_t i = 0; i < coarse.size(); ++i) near_hard[i] = IsHard(coarse.at(i));
-  Dilate(coarse.dims(), 1, near_hard);
+  // Hard voxels and their 26 neighbours (the padding keeps every hard voxel off the array
+  // border, so the dilation does not wrap).
+  FlatBitset near_hard(coarse.size()), scratch(coarse.size());
+  FillStatePlane(coarse.states(), StatePredicate::kHard, near_hard);
+  {
+    const std::array<int64_t, 3> st = coarse.strides();
+    const int64_t strides[3] = {st[0], st[1], st[2]};
+    near_hard.Dilate26(strides, scratch);
+  }
   const Marks open_rays = OpenRays(coarse);
   Marks classes(coarse.size());
   for (int64_t i = 0; i < coarse.size(); ++i) {
     const VoxelState c = coarse.at(i);
-    classes[i] = IsOutside(c)                                                  ? kCoarseOutside
-                 : near_hard[i] || IsHard(c) || open_rays[i] > o.max_open_rays ? kCoarseBand
-                                                                               : kCoarseCore;
+    if (IsOutside(c)) {
+      classes[i] = kCoarseOutside;
+    } else if (near_hard.test(i) || open_rays[i] > o.max_open_rays) {
+      classes[i] = kCoarseBand;
+    } else {
+      classes[i] = kCoarseCore;
+    }
     stats.core_voxels += classes[i] == kCoarseCore;
   }
   if (stats.core_voxels == 0) return stats;
-  Marks().swap(near_hard);
 
   const std::array<int, 3>& cd = coarse.dims();
   const auto for_data_coarse = [&](auto visit) {

@@ -13,6 +13,7 @@
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/shrink_options.h"
 #include "core/engine/state_planes.h"
+#include "core/engine/voxelization.h"
 
 namespace membrane {
 namespace {
@@ -62,16 +63,8 @@ VoxelGrid CoarseGrid(const VoxelGrid& fine, int k) {
     dims[d] = (fine.dim(d) - 2 * kPad + k - 1) / k + 2 * kPad;
     origin[d] = fine.origin()[d] + kPad * l - kPad * k * l;
   }
-  VoxelGrid coarse(dims, origin, k * l, OutsideState(0));
-  for (int z = kPad; z < dims[2] - kPad; ++z) {
-    for (int y = kPad; y < dims[1] - kPad; ++y) {
-      const bool outer = z == kPad || y == kPad || z == dims[2] - kPad - 1 || y == dims[1] - kPad - 1;
-      for (int x = kPad; x < dims[0] - kPad; ++x) {
-        const bool boundary = outer || x == kPad || x == dims[0] - kPad - 1;
-        coarse.set(coarse.Index(x, y, z), boundary ? kBoundarySoft : kInsideSoft);
-      }
-    }
-  }
+  VoxelGrid coarse(dims, origin, k * l, VoxelGrid::Unset{});
+  for (int z = 0; z < dims[2]; ++z) WriteInitialPlane(z, coarse);
   // Before the first generation a data voxel's state has bit 1 set exactly when it is hard:
   // eight voxels at a time are skipped when none has.
   constexpr uint64_t kHardBits = 0x0202020202020202ull;

@@ -287,6 +287,31 @@ PointDensity MarkHardVoxels(absl::Span<const int64_t> sorted, const std::array<i
 
 }  // namespace
 
+void WriteInitialPlane(int z, VoxelGrid& grid) {
+  const int p = VoxelGrid::kPadding;
+  const std::array<int, 3>& dims = grid.dims();
+  const int64_t row_length = dims[0] - 2 * p;
+  VoxelState* states = grid.mutable_states().data();
+  VoxelState* plane = states + grid.Index(0, 0, z);
+  const int64_t plane_size = static_cast<int64_t>(dims[0]) * dims[1];
+  if (z < p || z >= dims[2] - p) {
+    std::fill(plane, plane + plane_size, OutsideState(0));
+    return;
+  }
+  std::fill(plane, plane + static_cast<int64_t>(dims[0]) * p, OutsideState(0));
+  for (int y = p; y < dims[1] - p; ++y) {
+    VoxelState* row = states + grid.Index(p, y, z);
+    const bool outer = y == p || z == p || y == dims[1] - p - 1 || z == dims[2] - p - 1;
+    std::fill(row - p, row, OutsideState(0));
+    std::fill(row, row + row_length, outer ? kBoundarySoft : kInsideSoft);
+    row[0] = kBoundarySoft;
+    row[row_length - 1] = kBoundarySoft;
+    std::fill(row + row_length, row + row_length + p, OutsideState(0));
+  }
+  std::fill(plane + static_cast<int64_t>(dims[0]) * (dims[1] - p), plane + plane_size,
+            OutsideState(0));
+}
+
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
                                       const VoxelizeOptions& options, ProgressRange progress,
                                       const CancelToken& cancel) {
@@ -344,12 +369,8 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
                                         bounds->min[2] - VoxelGrid::kPadding * l};
   v.grid = VoxelGrid(dims, origin, l, VoxelGrid::Unset{});
 
-  // Every voxel is written here once, a z plane a task: the padding OUTSIDE, the data region
-  // INSIDE, its outer layer BOUNDARY. Row by row (a grid of 2e9 voxels set one at a time took
-  // seconds), and on the run's threads: the grid's first writes are its page faults.
-  const int p = VoxelGrid::kPadding;
-  VoxelState* states = v.grid.mutable_states().data();
-  const int64_t row_length = dims[0] - 2 * p;
+  // Every voxel is written here once (WriteInitialPlane), a z plane a task, on the run's
+  // threads: the grid's first writes are its page faults.
   // Half for the planes, half for the points: the planes follow the grid's volume and the sort
   // the points' count, and either can be the larger.
   const ProgressRange planes = progress.Part(0, 0.5);
@@ -357,25 +378,7 @@ absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
   TaskCancel stop(cancel, options.threads, 1);
   RunTasks(options.threads, dims[2], [&](int worker, int64_t task) {
     if (stop.Poll(worker)) return;
-    const int z = static_cast<int>(task);
-    VoxelState* plane = states + v.grid.Index(0, 0, z);
-    const int64_t plane_size = static_cast<int64_t>(dims[0]) * dims[1];
-    if (z < p || z >= dims[2] - p) {
-      std::fill(plane, plane + plane_size, OutsideState(0));
-    } else {
-      std::fill(plane, plane + static_cast<int64_t>(dims[0]) * p, OutsideState(0));
-      for (int y = p; y < dims[1] - p; ++y) {
-        VoxelState* row = states + v.grid.Index(p, y, z);
-        const bool outer = y == p || z == p || y == dims[1] - p - 1 || z == dims[2] - p - 1;
-        std::fill(row - p, row, OutsideState(0));
-        std::fill(row, row + row_length, outer ? kBoundarySoft : kInsideSoft);
-        row[0] = kBoundarySoft;
-        row[row_length - 1] = kBoundarySoft;
-        std::fill(row + row_length, row + row_length + p, OutsideState(0));
-      }
-      std::fill(plane + static_cast<int64_t>(dims[0]) * (dims[1] - p), plane + plane_size,
-                OutsideState(0));
-    }
+    WriteInitialPlane(static_cast<int>(task), v.grid);
     planes.Add(1);
   });
   if (stop.fired()) return cancelled();

@@ -93,6 +93,12 @@ absl::StatusOr<Box3d> CheckedBounds(absl::Span<const Point3f> points,
 // points, a slab) asks `cancel` first, and every worker stops once it has fired: Cancelled
 // then, the grid freed (a cancel costs at most one task per thread after it; 10M points make
 // tasks of a few milliseconds each).
+// Writes z plane `z` of `grid` as the initial membrane (section 4.1): the kPadding layers
+// OUTSIDE with generation label 0, the data region INSIDE soft, its outer layer BOUNDARY soft.
+// Row by row (a grid of 2e9 voxels set one at a time took seconds); planes are independent,
+// so callers may write them on several threads.
+void WriteInitialPlane(int z, VoxelGrid& grid);
+
 absl::StatusOr<Voxelization> Voxelize(absl::Span<const Point3f> points,
                                       const VoxelizeOptions& options,
                                       ProgressRange progress = ProgressRange(),

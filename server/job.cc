@@ -209,6 +209,7 @@ absl::Status Job::cancel_status() const {
 }
 
 void Job::FinishLocked(v1::JobState state, const absl::Status& status) {
+  const bool ran = state_ != v1::QUEUED;
   state_ = state;
   status_ = status;
   stage_.clear();
@@ -216,7 +217,7 @@ void Job::FinishLocked(v1::JobState state, const absl::Status& status) {
   upload_.shrink_to_fit();
   upload_hold_.Release();
   finished_at_ = absl::Now();
-  if (on_finish_) on_finish_(state, status, finished_at_ - created_at_, mesh_->size());
+  if (on_finish_) on_finish_(state, status, finished_at_ - created_at_, mesh_->size(), ran);
 }
 
 size_t Job::WaitForEvents(size_t next, absl::Duration timeout,

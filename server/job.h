@@ -25,10 +25,11 @@ namespace membrane::server {
 class Job {
  public:
   // Called once, when the job ends, whatever ends it (the worker, or a cancel while it is
-  // queued): its final state and status, the time since it was created, and the bytes of its
-  // mesh. Called under the job's lock: it must not call the job.
+  // queued): its final state and status, the time since it was created, the bytes of its
+  // mesh, and whether it ran (false: it ended QUEUED, no worker ever started it). Called under
+  // the job's lock: it must not call the job.
   using FinishHook = std::function<void(v1::JobState state, const absl::Status& status,
-                                        absl::Duration age, uint64_t mesh_bytes)>;
+                                        absl::Duration age, uint64_t mesh_bytes, bool ran)>;
 
   // A QUEUED job. `upload` is the Draco cloud (kept until the job runs); `upload_hold` its
   // bytes in the server's memory for uploads, given back by ReleaseUploadHold() or when the

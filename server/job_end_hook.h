@@ -11,8 +11,9 @@
 
 namespace membrane::server {
 
-// Counts the end of job `id` in `metrics`, then tells `store` (JobStore::Finished), which a
-// durable store writes down. `metrics` and `store` must outlive the job.
+// Counts the end of job `id` in `metrics`, logs it as job_finished when no worker ran the job
+// (the worker logs the others), then tells `store` (JobStore::Finished), which a durable store
+// writes down. `metrics` and `store` must outlive the job.
 Job::FinishHook JobEndHook(ServerMetrics& metrics, JobStore& store, std::string id);
 
 }  // namespace membrane::server

@@ -25,7 +25,7 @@ using ::membrane::testing::ScratchDir;
 // The hooks of resumed jobs: their end is written down, as the server's hook does.
 DiskJobStore::HookMaker HooksOf(DiskJobStore& store) {
   return [&store](const std::string& id) -> Job::FinishHook {
-    return [&store, id](v1::JobState, const absl::Status&, absl::Duration, uint64_t) {
+    return [&store, id](v1::JobState, const absl::Status&, absl::Duration, uint64_t, bool) {
       store.Finished(id);
     };
   };
@@ -53,7 +53,7 @@ std::shared_ptr<Job> NewJob(DiskJobStore& store, const std::string& id) {
   return std::make_shared<Job>(id, "ipv4:10.0.0.7:5555", parameters, std::string(1234, 'u'),
                                UploadMemory::Hold{},
                                [&store, id](v1::JobState, const absl::Status&, absl::Duration,
-                                            uint64_t) { store.Finished(id); });
+                                            uint64_t, bool) { store.Finished(id); });
 }
 
 void AddProgress(Job& job) {

@@ -1,5 +1,7 @@
-// A job's outcome as its followers get it: one shared mesh buffer, however many follow.
+// A job's outcome as its followers get it (one shared mesh buffer, however many follow), and
+// its end as the server's hook hears it.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -56,6 +58,26 @@ TEST(Job, RunningJobHasNoOutcomeAndAFailedOneNoMesh) {
   EXPECT_EQ(outcome->mesh, nullptr);
   EXPECT_EQ(outcome->done.done().state(), v1::FAILED);
   EXPECT_EQ(outcome->done.done().status().message(), "a degenerate cloud");
+}
+
+// The end hook hears once whether a worker ran the job: a cancel while QUEUED ends it there
+// (the server then logs its end, which no worker will), a cancel of a RUNNING one waits for
+// the worker's end.
+TEST(Job, TheEndHookSaysWhetherTheJobRan) {
+  std::vector<std::pair<v1::JobState, bool>> ends;
+  const Job::FinishHook hook = [&ends](v1::JobState state, const absl::Status&, absl::Duration,
+                                       uint64_t, bool ran) { ends.emplace_back(state, ran); };
+  Job queued("0123456789abcdef", "peer", v1::Parameters(), "upload", {}, hook);
+  queued.RequestCancel("cancelled by the client");
+  EXPECT_FALSE(queued.Start());
+  Job running("fedcba9876543210", "peer", v1::Parameters(), "upload", {}, hook);
+  ASSERT_TRUE(running.Start());
+  running.RequestCancel("cancelled by the client");
+  EXPECT_EQ(ends.size(), 1u);  // the running job ends when its worker sees the token
+  running.Fail(absl::CancelledError("cancelled while decoding"));
+  const std::vector<std::pair<v1::JobState, bool>> expected = {{v1::CANCELLED, false},
+                                                                {v1::CANCELLED, true}};
+  EXPECT_EQ(ends, expected);
 }
 
 }  // namespace

@@ -92,7 +92,8 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   // --server is the default unless --local.
   local->excludes(AddConnectionFlags(app, f.connection));
   app.add_option("--voxel-size", f.voxel_size,
-                 "voxel edge in model units; 0 = the paper's formula (1)")
+                 "voxel edge in model units; 0 = the paper's formula (1), or coarser where the "
+                 "points scatter across their surface by more than 0.15 of it")
       ->capture_default_str();
   app.add_option("--initial-plate", f.initial_plate,
                  "first plate size in voxels, [0, 100000]; 0 = from the grid")
@@ -168,8 +169,8 @@ absl::Status CheckFlagValues(const ReconstructFlags& f) {
       std::isfinite(f.voxel_size) && f.voxel_size >= 0
           ? absl::OkStatus()
           : absl::InvalidArgumentError(absl::StrFormat(
-                "--voxel-size %g must be positive (model units), or 0 for the paper's "
-                "formula (1)",
+                "--voxel-size %g must be positive (model units), or 0 for the default "
+                "(formula (1), coarser for noisy points)",
                 f.voxel_size)),
       CheckIntRange("--initial-plate", f.initial_plate, 0, kMaxInitialPlate),
       CheckIntRange("--quantization", f.quantization, 0, 30, "0 = lossless"),

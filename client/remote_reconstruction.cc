@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
+#include <string>
 
 #include <grpcpp/client_context.h>
 #include <grpcpp/create_channel.h>
@@ -42,6 +44,7 @@ struct Upload {
   v1::Parameters parameters;
   Origin3d origin{0, 0, 0};  // PointCloud::origin, to write the mesh back with
   size_t dropped = 0;        // points left out for NaN or infinite coordinates
+  std::optional<std::string> noise_note;  // UploadPlan::noise_note
 };
 
 std::chrono::system_clock::time_point ToChrono(absl::Time t) {
@@ -116,6 +119,7 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   }
   const UploadPlan plan = PlanUpload(*cloud, params.parameters.voxel_size());
   if (plan.voxel_size > 0) upload.parameters.set_voxel_size(plan.voxel_size);
+  upload.noise_note = plan.noise_note;
   DracoOptions draco = params.upload;
   if (params.adapt_upload_bits && draco.position_quantization_bits > 0) {
     draco.position_quantization_bits = std::max(draco.position_quantization_bits, plan.bits);
@@ -314,6 +318,7 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
     outcome.generations = sink.generations();
     outcome.statistics_json = sink.statistics_json();
     if (upload->dropped > 0) outcome.warnings.push_back(DroppedPointsNote(upload->dropped));
+    if (upload->noise_note) outcome.warnings.push_back(*upload->noise_note);
     outcome.warnings.insert(outcome.warnings.end(), sink.warnings().begin(),
                             sink.warnings().end());
     outcome.mesh = MeshReportOf(sink.mesh_summary());

@@ -5,6 +5,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/pipeline/memory_estimate.h"
+#include "core/pipeline/noise_voxel_note.h"
 
 namespace membrane::client {
 
@@ -14,6 +15,7 @@ UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size) {
       PlanGrid(cloud, VoxelizeOptions{.voxel_size = requested_voxel_size});
   if (!grid.ok()) return plan;
   plan.voxel_size = grid->voxel_size;
+  plan.noise_note = NoiseVoxelNote(*grid);
   const auto extent = grid->bounds.Extent();
   const double range = std::max({extent[0], extent[1], extent[2]});
   // Draco's step is range / (2^bits - 1).

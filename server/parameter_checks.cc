@@ -28,8 +28,8 @@ absl::Status CheckRange(const char* field, int64_t value, int64_t low, int64_t h
 absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t server_voxel_budget) {
   if (!std::isfinite(p.voxel_size()) || p.voxel_size() < 0) {
     return absl::InvalidArgumentError(absl::StrFormat(
-        "voxel_size %g is out of range: positive (model units), or 0 for the paper's "
-        "formula (1)",
+        "voxel_size %g is out of range: positive (model units), or 0 for the default "
+        "(formula (1), coarser for noisy points)",
         p.voxel_size()));
   }
   if (p.origin_size() != 0 && p.origin_size() != 3) {

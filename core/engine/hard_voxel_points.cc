@@ -2,31 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <utility>
 
 #include "core/base/split_sort.h"
+#include "core/engine/covariance_eigen.h"
 #include "core/engine/point_density.h"
 
 namespace membrane {
-namespace {
-
-// Smallest eigenvalue of the symmetric matrix a b c / b d e / c e f (the trigonometric
-// solution of its characteristic cubic).
-double SmallestEigenvalue(double a, double b, double c, double d, double e, double f) {
-  const double q = (a + d + f) / 3;
-  const double off = b * b + c * c + e * e;
-  const double p2 = (a - q) * (a - q) + (d - q) * (d - q) + (f - q) * (f - q) + 2 * off;
-  if (p2 <= 0) return q;  // a multiple of the identity
-  const double p = std::sqrt(p2 / 6);
-  const double ma = (a - q) / p, mb = b / p, mc = c / p, md = (d - q) / p, me = e / p,
-               mf = (f - q) / p;
-  const double det = ma * (md * mf - me * me) - mb * (mb * mf - me * mc) + mc * (mb * me - md * mc);
-  const double phi = std::acos(std::clamp(det / 2, -1.0, 1.0)) / 3;
-  return q + 2 * p * std::cos(phi + 2 * std::numbers::pi / 3);
-}
-
-}  // namespace
 
 HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f> points,
                                  int threads) {
@@ -125,36 +107,14 @@ double HardVoxelPoints::PlaneSpread(const VoxelGrid& grid, const Coord& lo, cons
                                     int min_points) const {
   Moments m;
   if (!BoxMoments(grid, lo, hi, m) || m.n < min_points) return -1;
-  const auto& c = m.cov;
-  const double smallest = SmallestEigenvalue(c[0], c[1], c[2], c[3], c[4], c[5]);
-  return std::sqrt(std::max(0.0, smallest));
+  return std::sqrt(std::max(0.0, SmallestEigenvalue(m.cov)));
 }
 
 bool HardVoxelPoints::PlaneNormal(const VoxelGrid& grid, const Coord& lo, const Coord& hi,
                                   std::array<double, 3>& normal, int min_points) const {
   Moments m;
   if (!BoxMoments(grid, lo, hi, m) || m.n < min_points) return false;
-  const auto& c = m.cov;
-  const double lambda = SmallestEigenvalue(c[0], c[1], c[2], c[3], c[4], c[5]);
-  // The eigenvector spans the null space of C - lambda I: the largest cross product of two of
-  // its rows (any two independent rows give it; the largest is the best conditioned).
-  const std::array<std::array<double, 3>, 3> r = {{{c[0] - lambda, c[1], c[2]},
-                                                    {c[1], c[3] - lambda, c[4]},
-                                                    {c[2], c[4], c[5] - lambda}}};
-  double best = 0;
-  for (int i = 0; i < 3; ++i) {
-    const auto& u = r[i];
-    const auto& v = r[(i + 1) % 3];
-    const std::array<double, 3> x = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                                     u[0] * v[1] - u[1] * v[0]};
-    const double len2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
-    if (len2 > best) {
-      best = len2;
-      const double inv = 1 / std::sqrt(len2);
-      normal = {x[0] * inv, x[1] * inv, x[2] * inv};
-    }
-  }
-  return best > 0;
+  return SmallestEigenvector(m.cov, normal);
 }
 
 double HardVoxelPoints::NearestDistance(const VoxelGrid& grid, const Coord& c, int radius) const {

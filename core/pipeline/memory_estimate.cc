@@ -83,8 +83,19 @@ absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOpti
   plan.bounds = *bounds;
   plan.voxel_size = voxelize.voxel_size;
   if (plan.voxel_size <= 0) {
-    plan.voxel_size = FormulaVoxelSize(*bounds, cloud.points, voxelize.threads, cancel);
-    // The count stopped short: its size means nothing.
+    plan.formula_voxel_size = FormulaVoxelSize(*bounds, cloud.points, voxelize.threads, cancel);
+    plan.voxel_size = plan.formula_voxel_size;
+    // Read at formula (1)'s voxel, and once more at the voxel that reading gives when it is
+    // coarser: noise over half a voxel reads low in cubes 4 voxels wide (their sides cut the
+    // tails), and the coarser cubes read it whole.
+    for (int reading = 0; reading < 2 && !cancel.cancelled(); ++reading) {
+      plan.noise = MeasurePointNoise(cloud.points, *bounds, kNoiseBoxVoxels / 2 * plan.voxel_size,
+                                     cancel);
+      const double size = NoiseAwareVoxelSize(plan.formula_voxel_size, plan.noise);
+      if (size <= plan.voxel_size) break;
+      plan.voxel_size = size;
+    }
+    // The count or the noise stopped short: the size means nothing.
     if (cancel.cancelled()) {
       return absl::CancelledError("reconstruction cancelled while planning the grid");
     }

@@ -12,17 +12,29 @@
 
 #include "absl/status/statusor.h"
 #include "core/base/cancel_token.h"
+#include "core/engine/point_noise.h"
 #include "core/engine/voxelization.h"
 #include "core/geometry/point_cloud.h"
 #include "core/pipeline/membrane_counts.h"
 
 namespace membrane {
 
+// The side, in formula-(1) voxels, of the cubes the default voxel size reads the points' noise
+// in (MeasurePointNoise's half-width is half of it).
+inline constexpr double kNoiseBoxVoxels = 4;
+
 // The grid Voxelize will allocate for `cloud` with `voxelize`, computed the same way before
 // anything is allocated.
 struct PlannedGrid {
   Box3d bounds;           // CheckedBounds of the points
-  double voxel_size = 0;  // voxelize.voxel_size when > 0, else formula (1)'s (model units)
+  // voxelize.voxel_size when > 0, else NoiseAwareVoxelSize of formula (1)'s and the noise
+  // (model units).
+  double voxel_size = 0;
+  // When voxelize.voxel_size is 0: formula (1)'s size, and the points' noise as last read: in
+  // cubes kNoiseBoxVoxels formula-(1) voxels on a side, then, when that reading raised the
+  // voxel, in cubes kNoiseBoxVoxels raised voxels on a side. Both 0 when the size was given.
+  double formula_voxel_size = 0;
+  PointNoise noise;
   int64_t voxels = 0;     // padding included
   int64_t points = 0;     // the cloud's
   // GridBytesEstimate of the grid and the points; a grid over a positive voxelize.voxel_budget
@@ -30,12 +42,13 @@ struct PlannedGrid {
   // allocating).
   int64_t bytes = 0;
 };
-// Formula (1), when voxelize.voxel_size is 0, counts the points on voxelize.threads threads.
+// Formula (1), when voxelize.voxel_size is 0, counts the points on voxelize.threads threads,
+// and MeasurePointNoise reads their noise (one or two more passes over them).
 // InvalidArgument for a degenerate cloud (CheckedBounds' message). Callers that then voxelize
 // pass the planned voxel_size and bounds on (VoxelizeOptions::voxel_size, checked_bounds), so
 // that formula (1) does not count the points again nor Voxelize check them again.
 // Cancelled when `cancel` fires during the point check or the count (CheckedBounds and
-// DistinctPointCount ask it).
+// DistinctPointCount ask it) or the noise's pass.
 absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize,
                                      const CancelToken& cancel = CancelToken::Never());
 

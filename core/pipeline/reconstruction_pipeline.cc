@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <utility>
 
 #include "absl/status/status.h"
@@ -15,6 +17,7 @@
 #include "core/pipeline/membrane_counts.h"
 #include "core/pipeline/membrane_stages.h"
 #include "core/pipeline/memory_estimate.h"
+#include "core/pipeline/noise_voxel_note.h"
 #include "core/pipeline/peak_memory.h"
 #include "core/pipeline/progress_ticker.h"
 #include "core/pipeline/stopwatch.h"
@@ -104,6 +107,11 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
     return with_context(s);
   }
   voxelize.voxel_size = plan->voxel_size;
+  report.formula_voxel_size = plan->formula_voxel_size;
+  report.point_noise = plan->noise.sigma;
+  if (std::optional<std::string> note = NoiseVoxelNote(*plan)) {
+    report.warnings.push_back(*std::move(note));
+  }
   voxelize.checked_bounds = plan->bounds;
 
   absl::StatusOr<Voxelization> voxelization =

@@ -64,6 +64,11 @@ struct ReconstructionReport {
   // coordinates; every other length here is the same in both.
   std::array<double, 3> origin{0, 0, 0};
   double voxel_size = 0;                     // model units
+  // When no voxel size was given: formula (1)'s, and the points' noise across their surface
+  // (PointNoise::sigma), both in model units; voxel_size is over formula_voxel_size when the
+  // noise raised it (NoiseAwareVoxelSize). Both 0 when the size was given.
+  double formula_voxel_size = 0;
+  double point_noise = 0;
   std::array<int, 3> grid{};                 // voxels per axis, VoxelGrid::kPadding layers included
   std::array<int, 3> data_grid{};            // voxels per axis covering the points (no padding)
   int64_t hard_voxels = 0;                   // voxels holding points

@@ -38,6 +38,13 @@ std::string PassesAfterGenerations(const ReconstructionReport& r) {
   return out;
 }
 
+// ", formula (1) L0 raised for the points' noise of S" when the noise chose the voxel size.
+std::string NoiseRaisedText(const ReconstructionReport& r) {
+  if (r.formula_voxel_size <= 0 || r.voxel_size <= r.formula_voxel_size) return "";
+  return absl::StrFormat(", formula (1)'s %.6g raised for the points' noise of %.3g",
+                         r.formula_voxel_size, r.point_noise);
+}
+
 }  // namespace
 
 std::string StageStartedLine(PipelineStage stage, const ReconstructionReport& report) {
@@ -64,8 +71,9 @@ std::string StageFinishedLine(PipelineStage stage, const ReconstructionReport& r
       return absl::StrFormat("decode: %d points in %.3f s", r.points, s.decode);
     case PipelineStage::kVoxelize:
       return absl::StrFormat(
-          "voxelize: grid %s (voxel size %.6g), %d hard voxels, density ratio %.3g in %.3f s",
-          absl::StrJoin(r.grid, "x"), r.voxel_size, r.hard_voxels, r.density_ratio, s.voxelize);
+          "voxelize: grid %s (voxel size %.6g%s), %d hard voxels, density ratio %.3g in %.3f s",
+          absl::StrJoin(r.grid, "x"), r.voxel_size, NoiseRaisedText(r), r.hard_voxels,
+          r.density_ratio, s.voxelize);
     case PipelineStage::kShrink:
       return absl::StrFormat(
           "shrink: %d generations in %.3f s; %d of %d inside hard voxels connected to the "

@@ -179,6 +179,8 @@ std::string WarningsJson(const std::vector<std::string>& warnings) {
 std::string StatsJson(const ReconstructionReport& r) {
   return absl::StrCat(
       "{\n  \"points\": ", r.points, ",\n  \"voxel_size\": ", JsonNumber(r.voxel_size),
+      ",\n  \"formula_voxel_size\": ", JsonNumber(r.formula_voxel_size),
+      ",\n  \"point_noise\": ", JsonNumber(r.point_noise),
       ",\n  \"grid\": ", IntArray(r.grid), ",\n  \"hard_voxels\": ", r.hard_voxels,
       ",\n  \"density_ratio\": ", JsonNumber(r.density_ratio),
       ",\n  \"generations\": ", GenerationsJson(r.generations),

@@ -1,6 +1,7 @@
 #include "core/pipeline/surface_stages.h"
 
 #include <cstdint>
+#include <string>
 #include <system_error>
 #include <thread>
 #include <utility>
@@ -39,12 +40,21 @@ absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
 // Why a cloud gave no surface at all: at this voxel size its points are too few, or too far
 // apart, to hold the membrane (a handful of points, or a stray point far away that stretches
 // the box and so the formula-(1) voxel size). An empty mesh is no answer: say so.
+// When the points' noise chose that size, the noise is named too: points spread through a
+// volume read as noise several formula-(1) voxels deep.
 absl::Status EmptySurfaceError(const ReconstructionReport& report) {
+  const std::string noise =
+      report.voxel_size > report.formula_voxel_size && report.formula_voxel_size > 0
+          ? absl::StrFormat(
+                " (the size of the points' scatter across their surface, %g, where formula "
+                "(1) gives %g: do they sample a surface?)",
+                report.point_noise, report.formula_voxel_size)
+          : "";
   return absl::InvalidArgumentError(absl::StrFormat(
-      "no surface: at voxel size %g (a %dx%dx%d grid) the %d points fill only %d voxel%s, too "
+      "no surface: at voxel size %g%s (a %dx%dx%d grid) the %d points fill only %d voxel%s, too "
       "few to enclose a solid; give a denser cloud, remove stray points far from the object, "
       "or ask for a smaller voxel size",
-      report.voxel_size, report.data_grid[0], report.data_grid[1], report.data_grid[2],
+      report.voxel_size, noise, report.data_grid[0], report.data_grid[1], report.data_grid[2],
       report.points, report.hard_voxels, report.hard_voxels == 1 ? "" : "s"));
 }
 

@@ -189,9 +189,10 @@ TEST_F(ErrorsTest, GridOverAGivenVoxelBudgetNamesIt) {
                                                    HasSubstr("--voxel-size"))));
 }
 
-// Uniform noise has no surface to find: its membrane is a foam whose surface takes many times
-// the grid's memory. The estimate made once the membrane is known refuses it before the
-// surface is built, in one line naming the limit, and nothing is written.
+// Uniform noise has no surface to find. At a voxel size given near formula (1)'s (0.017 for
+// 20k points in the unit cube) its membrane is a foam whose surface takes many times the
+// grid's memory. The estimate made once the membrane is known refuses it before the surface is
+// built, in one line naming the limit, and nothing is written.
 TEST_F(ErrorsTest, NoiseWhoseSurfaceIsOverTheMemoryLimitIsRefused) {
   const std::string path = dir_.File("noise.xyz");
   {
@@ -200,12 +201,18 @@ TEST_F(ErrorsTest, NoiseWhoseSurfaceIsOverTheMemoryLimitIsRefused) {
       out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
   }
   const CliResult r = Run({"reconstruct", path, "-o", dir_.File("out.ply"), "--local",
-                           "--quiet", "--memory-limit", "60000000"});
+                           "--quiet", "--memory-limit", "60000000", "--voxel-size", "0.017"});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_THAT(ErrorLines(r.err),
               ElementsAre(AllOf(HasSubstr("for its surface"), HasSubstr("memory limit of 60 MB"),
                                 HasSubstr("--memory-limit"), HasSubstr("foam"))));
   EXPECT_FALSE(std::ifstream(dir_.File("out.ply")).good()) << "out.ply was written";
+  // By default the voxel follows the points' scatter: a few voxels hold them all.
+  const CliResult coarse = Run({"reconstruct", path, "-o", dir_.File("out.ply"), "--local",
+                                "--quiet", "--memory-limit", "60000000"});
+  EXPECT_EQ(coarse.exit_code, 3);
+  EXPECT_THAT(ErrorLines(coarse.err), ElementsAre(AllOf(HasSubstr("no surface"),
+                                                        HasSubstr("do they sample a surface?"))));
   // A real cloud of the same size goes through under the same limit.
   const CliResult sphere = Run({"reconstruct", SphereCloud(20000), "-o", dir_.File("s.ply"),
                                 "--local", "--quiet", "--memory-limit", "60000000"});

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "absl/strings/str_cat.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/support/cli_runner.h"
@@ -102,19 +103,35 @@ TEST_F(ReconstructTest, QuietLeavesOnlyTheSummaryLineOnStdout) {
   EXPECT_EQ(r.err, "");
 }
 
-// Radial noise of 0.05 on a unit sphere scatters the points over two voxels: the run succeeds
-// but says, after its summary and even with --quiet, that the membrane may have false handles
-// and which voxel size suits such points; the statistics hold the same sentence. With that
-// size the sphere is a sphere again, and nothing is said.
+// Radial noise of 0.05 on a unit sphere (2 formula-(1) voxels): by default the voxel follows
+// the noise (13 times formula (1)'s), and the sphere comes back a sphere, with one warning
+// saying so. At formula (1)'s size, given, the points scatter over several voxels: the run
+// succeeds but says, after its summary and even with --quiet, that the membrane may have false
+// handles and which voxel size suits such points; the statistics hold the same sentence. With
+// that size the sphere is a sphere again, and nothing is said.
 TEST_F(ReconstructTest, ScatteredPointsAreWarnedAboutWithAVoxelSizeThatSuitsThem) {
   const std::string cloud = dir_.File("noisy.ply");
   ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "50000", "--noise", "0.05", "--seed",
                  "3"})
                 .exit_code,
             0);
+  const std::string defaults = dir_.File("default.json");
+  const CliResult d = Run({"reconstruct", cloud, "-o", dir_.File("default_mesh.ply"), "--local",
+                           "--quiet", "--surface", "cuberille", "--stats-json", defaults});
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_THAT(d.err, ::testing::StartsWith("warning: the points scatter across their surface"));
+  EXPECT_EQ(std::count(d.err.begin(), d.err.end(), '\n'), 1) << d.err;
+  EXPECT_THAT(d.out, HasSubstr("1 shell, genus [0]"));
+  const std::optional<JsonValue> chosen = ParseJson(ReadWholeFile(defaults));
+  ASSERT_TRUE(chosen.has_value());
+  const double formula = chosen->Find("formula_voxel_size")->number;
+  EXPECT_GT(chosen->Find("voxel_size")->number, 4 * formula);
+  EXPECT_GT(chosen->Find("point_noise")->number, formula);
+
   const std::string stats = dir_.File("noisy.json");
   const CliResult r = Run({"reconstruct", cloud, "-o", dir_.File("noisy_mesh.ply"), "--local",
-                           "--quiet", "--surface", "cuberille", "--stats-json", stats});
+                           "--quiet", "--surface", "cuberille", "--stats-json", stats,
+                           "--voxel-size", absl::StrCat(formula)});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, ::testing::StartsWith("warning: the points scatter"));
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

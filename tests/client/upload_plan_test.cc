@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/engine/voxelization.h"
+#include "core/pipeline/memory_estimate.h"
 #include "core/geometry/point_cloud.h"
 #include "gtest/gtest.h"
 
@@ -25,14 +27,42 @@ PointCloud Lattice(int n, float spacing) {
 // Draco's quantization step for `bits` over `range`.
 double Step(double range, int bits) { return range / (std::ldexp(1.0, bits) - 1); }
 
-TEST(UploadPlan, DefaultVoxelIsFormulaOneOfTheCloud) {
+// `n` points spread evenly over the unit sphere (a Fibonacci spiral): a clean surface.
+PointCloud Sphere(int n) {
+  PointCloud cloud;
+  const double golden = M_PI * (3 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i) {
+    const double z = 1 - (i + 0.5) * 2 / n;
+    const double r = std::sqrt(1 - z * z);
+    cloud.points.push_back({static_cast<float>(r * std::cos(golden * i)),
+                            static_cast<float>(r * std::sin(golden * i)),
+                            static_cast<float>(z)});
+  }
+  return cloud;
+}
+
+TEST(UploadPlan, DefaultVoxelOfASurfaceIsFormulaOnesWithNoNote) {
+  const PointCloud cloud = Sphere(8000);
+  const UploadPlan plan = PlanUpload(cloud, 0);
+  const absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
+  ASSERT_TRUE(bounds.ok());
+  EXPECT_NEAR(plan.voxel_size, EstimateVoxelSize(*bounds, 8000), 1e-9);
+  EXPECT_FALSE(plan.noise_note.has_value()) << *plan.noise_note;
+  // 2 / 0.055 * 8 = 291 steps: the default 11 bits (2047 steps) are fine enough.
+  EXPECT_EQ(plan.bits, kDefaultUploadBits);
+}
+
+// A lattice fills a volume, which reads as noise: the default voxel is PlanGrid's, coarser than
+// formula (1)'s, and the plan carries the note that the server, given that size, cannot make.
+TEST(UploadPlan, DefaultVoxelIsThePipelinesWithItsNoiseNote) {
   const PointCloud cloud = Lattice(20, 1.0f);  // side 19, 8000 points
   const UploadPlan plan = PlanUpload(cloud, 0);
-  Box3d bounds;
-  bounds.max = {19, 19, 19};
-  EXPECT_NEAR(plan.voxel_size, EstimateVoxelSize(bounds, 8000), 1e-9);
-  // 19 / 0.52 * 8 = 292 steps: the default 11 bits (2047 steps) are fine enough.
-  EXPECT_EQ(plan.bits, kDefaultUploadBits);
+  const absl::StatusOr<PlannedGrid> grid = PlanGrid(cloud, VoxelizeOptions{});
+  ASSERT_TRUE(grid.ok()) << grid.status();
+  EXPECT_EQ(plan.voxel_size, grid->voxel_size);
+  EXPECT_GT(plan.voxel_size, grid->formula_voxel_size);
+  ASSERT_TRUE(plan.noise_note.has_value());
+  EXPECT_NE(plan.noise_note->find("scatter across their surface"), std::string::npos);
 }
 
 TEST(UploadPlan, KeepsTheRequestedVoxel) {

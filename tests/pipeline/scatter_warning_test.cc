@@ -1,6 +1,7 @@
 // Points scattered about their surface by more than a voxel give false handles; the pipeline
 // says so, with a voxel size that suits them, and says nothing for clean scans.
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -43,12 +44,14 @@ TEST(ScatterWarning, CleanScanGetsNone) {
   EXPECT_TRUE(report.warnings.empty());
 }
 
-// Radial noise of 0.05 on a unit sphere is more than two formula-(1) voxels: the membrane gets
-// a false handle. The warning's voxel size reaches a scan's ratio, and there the sphere is a
-// sphere again, without a warning.
+// Radial noise of 0.05 on a unit sphere is more than two formula-(1) voxels: at that size,
+// given, the membrane gets a false handle. The warning's voxel size reaches a scan's ratio, and
+// there the sphere is a sphere again, without a warning.
 TEST(ScatterWarning, NoisySphereIsWarnedAndTheSuggestedSizeMendsItsGenus) {
   const PointCloud cloud = Sphere(0.05);
-  const ReconstructionReport report = Reconstruct(cloud, 0);
+  const absl::StatusOr<Box3d> box = CheckedBounds(cloud.points);
+  ASSERT_TRUE(box.ok());
+  const ReconstructionReport report = Reconstruct(cloud, FormulaVoxelSize(*box, cloud.points));
   ASSERT_LT(report.density_ratio, kScatteredDensityRatio);
   ASSERT_EQ(report.warnings.size(), 1u);
   const std::string& w = report.warnings[0];
@@ -66,6 +69,19 @@ TEST(ScatterWarning, NoisySphereIsWarnedAndTheSuggestedSizeMendsItsGenus) {
   EXPECT_EQ(mended.membrane.shells, 1);
   EXPECT_EQ(mended.membrane.genus, std::vector<int>{0});
   EXPECT_TRUE(mended.warnings.empty());
+}
+
+// By default the voxel follows the noise (NoiseAwareVoxelSize): the sphere is a sphere, and the
+// one warning says why the voxel is coarser than formula (1)'s.
+TEST(ScatterWarning, NoisySphereByDefaultGetsAVoxelForItsNoiseAndIsToldSo) {
+  const ReconstructionReport report = Reconstruct(Sphere(0.05), 0);
+  EXPECT_GT(report.voxel_size, 4 * report.formula_voxel_size);
+  EXPECT_GE(report.density_ratio, kScatteredDensityRatio);
+  EXPECT_EQ(report.membrane.shells, 1);
+  EXPECT_EQ(report.membrane.genus, std::vector<int>{0});
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("scatter across their surface"), std::string::npos)
+      << report.warnings[0];
 }
 
 TEST(ScatterWarning, PointsThatNoSizeTriedGathersAreAskedAbout) {

@@ -779,7 +779,10 @@ TEST_F(EndToEndTest, SigtermStopsTheServerGracefully) {
 }
 
 // The server's warnings reach the --server client's stderr after its summary, as --local's do,
-// and `jobs watch` prints them too.
+// and `jobs watch` prints them too: at a voxel size given near formula (1)'s (0.035 for 20k
+// points on the unit sphere), noise 0.05 scatters the points over more than a voxel. By default
+// the client plans the voxel for the noise, as --local does, sends that size, and prints the
+// note saying so itself (the server, given a size, has nothing to say).
 TEST_F(EndToEndTest, ScatteredCloudsWarningIsPrintedByTheClient) {
   StartServer();
   const std::string cloud = dir_.File("noisy.ply");
@@ -787,14 +790,25 @@ TEST_F(EndToEndTest, ScatteredCloudsWarningIsPrintedByTheClient) {
                 .exit_code,
             0);
   const CliResult r = Run({"reconstruct", cloud, "-o", dir_.File("noisy_mesh.ply"), "--server",
-                           address_, "--quiet", "--surface", "cuberille"});
+                           address_, "--quiet", "--surface", "cuberille", "--voxel-size", "0.035"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.err.rfind("warning: the points scatter", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.rfind("warning: the points scatter about their surface", 0), 0u) << r.err;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(r.out, m, std::regex("job ([0-9a-f]+):"))) << r.out;
   const CliResult watched = Run({"jobs", "watch", m[1].str(), "--server", address_, "--quiet"});
   ASSERT_EQ(watched.exit_code, 0) << watched.err;
   EXPECT_EQ(watched.err, r.err);
+
+  const CliResult planned = Run({"reconstruct", cloud, "-o", dir_.File("planned.ply"), "--server",
+                                 address_, "--quiet", "--surface", "cuberille"});
+  ASSERT_EQ(planned.exit_code, 0) << planned.err;
+  EXPECT_EQ(planned.err.rfind("warning: the points scatter across their surface", 0), 0u)
+      << planned.err;
+  EXPECT_EQ(std::count(planned.err.begin(), planned.err.end(), '\n'), 1) << planned.err;
+  const CliResult local = Run({"reconstruct", cloud, "-o", dir_.File("local.ply"), "--local",
+                               "--quiet", "--surface", "cuberille"});
+  ASSERT_EQ(local.exit_code, 0) << local.err;
+  EXPECT_EQ(local.err, planned.err);
 }
 
 // Without --memory-budget-bytes a noisy upload must still be refused rather than take the

@@ -4,12 +4,14 @@
 #include <array>
 #include <chrono>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "absl/status/status.h"
 #include "core/base/parallel_tasks.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/gap_refill.h"
+#include "core/engine/guard_band_waves.h"
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/shrink_options.h"
 #include "core/engine/state_planes.h"
@@ -90,39 +92,6 @@ VoxelGrid CoarseGrid(const VoxelGrid& fine, int k) {
   return coarse;
 }
 
-// The class of a coarse voxel after the coarse shrink and refill.
-enum CoarseClass : uint8_t {
-  kCoarseOutside = 0,  // outside the coarse membrane
-  kCoarseBand = 1,     // in the coarse solid, the rest
-  kCoarseCore = 2,     // in the coarse solid, no hard voxel in its 3x3x3 block, at most
-                       // max_open_rays axis rays reaching the outside
-};
-
-// The fine data-region voxels and their coarse voxels: fine (x, y, z) lies in coarse
-// ((x - p) / k + p, ...).
-class FineToCoarse {
- public:
-  FineToCoarse(const VoxelGrid& fine, const VoxelGrid& coarse, int k)
-      : fine_(fine), coarse_(coarse), k_(k) {}
-  int64_t Coarse(const Coord& f) const {
-    return coarse_.Index((f.x - kPad) / k_ + kPad, (f.y - kPad) / k_ + kPad,
-                         (f.z - kPad) / k_ + kPad);
-  }
-  bool InData(const Coord& f) const {
-    for (int d = 0; d < 3; ++d)
-      if (f[d] < kPad || f[d] >= fine_.dim(d) - kPad) return false;
-    return true;
-  }
-
- private:
-  const VoxelGrid& fine_;
-  const VoxelGrid& coarse_;
-  int k_;
-};
-
-constexpr std::array<Coord, 6> kFaceSteps = {Coord{1, 0, 0}, Coord{-1, 0, 0}, Coord{0, 1, 0},
-                                             Coord{0, -1, 0}, Coord{0, 0, 1}, Coord{0, 0, -1}};
-
 // Calls visit(fine coord) for every fine voxel of the data region in coarse voxel (cx, cy, cz).
 template <typename Visit>
 void ForFineOf(const VoxelGrid& fine, int k, int cx, int cy, int cz, Visit visit) {
@@ -130,6 +99,39 @@ void ForFineOf(const VoxelGrid& fine, int k, int cx, int cy, int cz, Visit visit
   for (int z = z0; z < std::min(z0 + k, fine.dim(2) - kPad); ++z)
     for (int y = y0; y < std::min(y0 + k, fine.dim(1) - kPad); ++y)
       for (int x = x0; x < std::min(x0 + k, fine.dim(0) - kPad); ++x) visit(Coord{x, y, z});
+}
+
+// Freezes the fine INSIDE soft voxels of the coarse voxels classed kCoarseCore, a coarse z
+// plane a task on `threads` (each task writes its own fine planes); returns how many.
+int64_t FreezeCore(VoxelGrid& grid, const VoxelGrid& coarse, int k, const Marks& classes,
+                   int threads) {
+  const std::array<int, 3>& cd = coarse.dims();
+  VoxelState* states = grid.mutable_states().data();
+  std::vector<int64_t> counts(static_cast<size_t>(threads), 0);
+  RunTasks(threads, cd[2] - 2 * kPad, [&](int worker, int64_t task) {
+    const int cz = kPad + static_cast<int>(task);
+    const int z1 = std::min(kPad + (cz - kPad + 1) * k, grid.dim(2) - kPad);
+    int64_t count = 0;
+    for (int z = kPad + (cz - kPad) * k; z < z1; ++z) {
+      for (int y = kPad; y < grid.dim(1) - kPad; ++y) {
+        const uint8_t* row_classes = classes.data() + coarse.Index(0, (y - kPad) / k + kPad, cz);
+        VoxelState* row = states + grid.Index(0, y, z);
+        for (int cx = kPad; cx < cd[0] - kPad; ++cx) {
+          if (row_classes[cx] != kCoarseCore) continue;
+          const int x0 = kPad + (cx - kPad) * k, x1 = std::min(x0 + k, grid.dim(0) - kPad);
+          for (int x = x0; x < x1; ++x) {
+            const bool soft = row[x] == kInsideSoft;
+            count += soft;
+            row[x] = soft ? kInsideFrozen : row[x];
+          }
+        }
+      }
+    }
+    counts[static_cast<size_t>(worker)] += count;
+  });
+  int64_t total = 0;
+  for (int64_t c : counts) total += c;
+  return total;
 }
 
 }  // namespace
@@ -181,22 +183,10 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
   }
   if (stats.core_voxels == 0) return stats;
 
-  const std::array<int, 3>& cd = coarse.dims();
-  const auto for_data_coarse = [&](auto visit) {
-    for (int cz = kPad; cz < cd[2] - kPad; ++cz)
-      for (int cy = kPad; cy < cd[1] - kPad; ++cy)
-        for (int cx = kPad; cx < cd[0] - kPad; ++cx) visit(cx, cy, cz);
-  };
   // The core: every fine voxel of it is frozen.
-  for_data_coarse([&](int cx, int cy, int cz) {
-    if (classes[coarse.Index(cx, cy, cz)] != kCoarseCore) return;
-    ForFineOf(grid, k, cx, cy, cz, [&](const Coord& f) {
-      const int64_t i = grid.Index(f);
-      if (grid.at(i) != kInsideSoft) return;
-      grid.set(i, kInsideFrozen);
-      ++stats.frozen_voxels;
-    });
-  });
+  stats.frozen_voxels = FreezeCore(
+      grid, coarse, k, classes,
+      grid.size() >= options.threads_min_voxels ? std::max(options.threads, 1) : 1);
   if (cancel.cancelled()) return cancelled();
 
   // The band between the core and the coarse outside holds the skin's data. Its fine soft
@@ -204,104 +194,29 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
   // waves, from the coarse outside and from the core, the outside's first at each distance
   // (a tie stays soft). The core's wave stops at the skin's data from inside and meets the
   // outside's in the skin's pores; its voxels are frozen.
-  const FineToCoarse map(grid, coarse, k);
-  // The band's fine voxels, and those either wave has reached, one bit each over the grid.
-  FlatBitset band_cells(grid.size()), seen(grid.size());
-  for_data_coarse([&](int cx, int cy, int cz) {
-    if (classes[coarse.Index(cx, cy, cz)] != kCoarseBand) return;
-    ForFineOf(grid, k, cx, cy, cz, [&](const Coord& f) { band_cells.set(grid.Index(f)); });
-  });
-  // The padding is never band: every face neighbour of a band voxel lies in the array.
-  const auto passable = [&](int64_t i) {
-    return band_cells.test(i) && grid.at(i) == kInsideSoft;
-  };
-  // The core's wave stays a voxel off the data: the fine membrane keeps the skin's pores and
-  // its inner face as it would find them without the guard.
-  const auto near_data = [&](int64_t i) {
-    for (int64_t off : grid.neighbour_offsets())
-      if (IsHard(grid.at(i + off))) return true;
-    return false;
-  };
-  const auto mark = [&](int64_t i) {
-    if (seen.test(i)) return false;
-    seen.set(i);
-    return true;
-  };
-  const std::array<int64_t, 3> st = grid.strides();
-  const std::array<int64_t, 6> faces = {st[0], -st[0], st[1], -st[1], st[2], -st[2]};
-  std::vector<int64_t> outside_front, core_front, next;
-  for_data_coarse([&](int cx, int cy, int cz) {
-    if (classes[coarse.Index(cx, cy, cz)] != kCoarseBand) return;
-    bool touches = false;  // a face neighbour outside or in the core
-    for (const Coord& d : kFaceSteps)
-      touches = touches || classes[coarse.Index(cx + d.x, cy + d.y, cz + d.z)] != kCoarseBand;
-    if (!touches) return;
-    ForFineOf(grid, k, cx, cy, cz, [&](const Coord& f) {
-      if (grid.at(f) != kInsideSoft) return;
-      bool out = false, core = false;
-      for (const Coord& d : kFaceSteps) {
-        const Coord g{f.x + d.x, f.y + d.y, f.z + d.z};
-        if (!map.InData(g) || grid.at(g) == kBoundarySoft) {
-          out = true;
-          continue;
-        }
-        out = out || classes[map.Coarse(g)] == kCoarseOutside;
-        core = core || grid.at(g) == kInsideFrozen;
-      }
-      const int64_t i = grid.Index(f);
-      if (out) {
-        mark(i);
-        outside_front.push_back(i);
-      } else if (core) {
-        core_front.push_back(i);
-      }
-    });
-  });
-  // Core seeds a face away from the outside too are the outside's (marked above).
-  next.clear();
-  for (int64_t i : core_front) {
-    if (near_data(i) || !mark(i)) continue;
-    grid.set(i, kInsideFrozen);
-    ++stats.band_frozen;
-    next.push_back(i);
-  }
-  core_front.swap(next);
-  const auto advance = [&](std::vector<int64_t>& front, bool freeze) {
-    next.clear();
-    for (int64_t i : front) {
-      for (int64_t off : faces) {
-        const int64_t j = i + off;
-        if (!passable(j) || seen.test(j) || (freeze && near_data(j))) continue;
-        seen.set(j);
-        if (freeze) {
-          grid.set(j, kInsideFrozen);
-          ++stats.band_frozen;
-        }
-        next.push_back(j);
-      }
-    }
-    front.swap(next);
-  };
-  while (!outside_front.empty() || !core_front.empty()) {
-    if (cancel.cancelled()) return cancelled();
-    advance(outside_front, false);
-    advance(core_front, true);
-  }
+  std::vector<int64_t> band_voxels;
+  for (int64_t i = 0; i < coarse.size(); ++i)
+    if (classes[i] == kCoarseBand) band_voxels.push_back(i);
+  absl::StatusOr<int64_t> band_frozen =
+      FreezeBandByWaves(grid, coarse.dims(), k, classes, band_voxels, cancel);
+  if (!band_frozen.ok()) return band_frozen.status();
+  stats.band_frozen = *band_frozen;
   stats.frozen_voxels += stats.band_frozen;
   if (band != nullptr) {
     band->factor = k;
     band->coarse_dims = coarse.dims();
-    band->coarse_voxels.clear();
-    for (int64_t i = 0; i < coarse.size(); ++i)
-      if (classes[i] == kCoarseBand) band->coarse_voxels.push_back(i);
+    band->coarse_voxels = std::move(band_voxels);
+    band->held = true;
   }
   stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
 
-int64_t ReleaseGuardedBand(VoxelGrid& grid, const GuardedBand& band) {
+int64_t ReleaseGuardedBand(VoxelGrid& grid, GuardedBand& band) {
   int64_t released = 0;
+  if (!band.held) return 0;
+  band.held = false;
   const std::array<int, 3>& cd = band.coarse_dims;
   for (int64_t c : band.coarse_voxels) {
     const int cx = static_cast<int>(c % cd[0]), cy = static_cast<int>(c / cd[0] % cd[1]),

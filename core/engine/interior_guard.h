@@ -45,6 +45,9 @@ struct GuardedBand {
   int factor = 0;
   std::array<int, 3> coarse_dims{};
   std::vector<int64_t> coarse_voxels;  // indices in the coarse grid, increasing
+  // Whether the grid holds the band frozen: ReleaseGuardedBand clears it, and a shrink that
+  // restores a grid saved before the release sets it again.
+  bool held = false;
 };
 
 struct InteriorGuardStats {
@@ -80,8 +83,9 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
 // Turns the band's frozen INSIDE voxels back to INSIDE soft (a chain freezes boundary voxels
 // only, so these are the guard's), leaving the core frozen: from the plate size
 // InteriorGuardOptions::band_release_below down, the plates that reach the skin work there as
-// they would without the guard. Idempotent. Returns how many voxels it released.
-int64_t ReleaseGuardedBand(VoxelGrid& grid, const GuardedBand& band);
+// they would without the guard. Does nothing unless band.held, which it clears. Returns how
+// many voxels it released.
+int64_t ReleaseGuardedBand(VoxelGrid& grid, GuardedBand& band);
 
 // After the generations: every voxel still INSIDE and frozen is one GuardInteriors froze (a
 // chain freezes boundary voxels only, and a boundary voxel never turns inside again); they

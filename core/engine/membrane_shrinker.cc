@@ -174,8 +174,7 @@ ChainOptions MembraneShrinker::ChainOptionsFor(size_t g, TunnelRules rules) cons
 absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
                                              std::vector<GenerationStats>& rows) {
   const Clock::time_point t0 = Clock::now();
-  if (!guarded_band_.coarse_voxels.empty() &&
-      sizes_[g] < options_.interior_guard.band_release_below) {
+  if (guarded_band_.held && sizes_[g] < options_.interior_guard.band_release_below) {
     ReleaseGuardedBand(grid_, guarded_band_);
   }
   GenerationStats stats;
@@ -256,12 +255,14 @@ absl::Status MembraneShrinker::RunChains(const ChainOptions& chain, GenerationSt
 
 bool MembraneShrinker::Save(ShrinkCheckpoint& to) const {
   to.counts = counts_;
+  to.band_held = guarded_band_.held;
   return to.states.Encode(grid_.states(), cancel_);
 }
 
 bool MembraneShrinker::Restore(const ShrinkCheckpoint& from) {
   if (!from.states.Decode(absl::MakeSpan(grid_.mutable_states()), cancel_)) return false;
   counts_ = from.counts;
+  guarded_band_.held = from.band_held;
   return true;
 }
 

@@ -115,6 +115,7 @@ absl::StatusOr<ShrinkResult> ShrinkMembrane(VoxelGrid& grid, const ShrinkOptions
 struct ShrinkCheckpoint {
   CompactStates states;
   StateCounts counts;
+  bool band_held = false;  // the interior guard's band frozen in `states`
 };
 
 // The guard sizes a generation runs with: the options' or the handle retry's strict ones

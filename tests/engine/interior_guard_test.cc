@@ -152,6 +152,30 @@ TEST(InteriorGuard, LeavesATorusHoleFree) {
   EXPECT_EQ(outside_tube, 0);
 }
 
+// The band is released once: the release turns its frozen voxels soft and clears `held`, and
+// a second call (the next generation below band_release_below) leaves the grid alone.
+TEST(InteriorGuard, ReleasesTheBandOnce) {
+  VoxelGrid grid = GridOf(SphereScan(100000, 0));
+  GuardedBand band;
+  absl::StatusOr<InteriorGuardStats> stats =
+      GuardInteriors(grid, GuardOn(), CancelToken::Never(), &band);
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  ASSERT_GT(stats->band_frozen, 0);
+  EXPECT_TRUE(band.held);
+  EXPECT_EQ(ReleaseGuardedBand(grid, band), stats->band_frozen);
+  EXPECT_FALSE(band.held);
+  // A voxel frozen again in the band (as a chain would freeze one) stays as it is.
+  const int64_t c = band.coarse_voxels[band.coarse_voxels.size() / 2];
+  const int cd0 = band.coarse_dims[0], cd1 = band.coarse_dims[1];
+  const int p = VoxelGrid::kPadding, k = band.factor;
+  const int64_t fine = grid.Index(p + (static_cast<int>(c % cd0) - p) * k,
+                                  p + (static_cast<int>(c / cd0 % cd1) - p) * k,
+                                  p + (static_cast<int>(c / (int64_t{cd0} * cd1)) - p) * k);
+  grid.set(fine, kInsideFrozen);
+  EXPECT_EQ(ReleaseGuardedBand(grid, band), 0);
+  EXPECT_EQ(grid.at(fine), kInsideFrozen);
+}
+
 TEST(InteriorGuard, LeavesSmallGridsAlone) {
   VoxelGrid grid = GridOf(SphereScan(200000, 0));
   const VoxelStates before = grid.states();

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
 #include <cstring>
-#include <deque>
+#include <utility>
 #include <vector>
 
-#include "absl/container/flat_hash_map.h"
 #include "absl/status/status.h"
 #include "core/base/parallel_tasks.h"
 #include "core/engine/flat_bitset.h"
@@ -26,6 +26,67 @@ constexpr size_t kMaxVisited = 200000;
 // cloud keeping a worker busy for hours. (The floods that find dead components visit each
 // voxel once at most, outside this count.)
 constexpr int64_t kMaxVisitsPerVoxel = 4;
+
+// The parent links of one breadth-first search, voxel -> the voxel it was reached from: an
+// open-addressing table reused from search to search and cleared through its list of used
+// slots. The searches are many (one per inside hard voxel: 24k on the 3M-point bunny scan at
+// its noise-aware voxel) and each may see kMaxVisited voxels, where a hash map allocated per
+// search spent a third of the whole run in its inserts and lookups.
+class ParentLinks {
+ public:
+  size_t size() const { return used_.size(); }
+  void Clear() {
+    for (const size_t slot : used_) keys_[slot] = kEmpty;
+    used_.clear();
+  }
+  bool Contains(int64_t voxel) const { return keys_[Find(voxel)] == voxel; }
+  // `voxel` (>= 0) must not be in the table yet.
+  void Insert(int64_t voxel, int64_t parent) {
+    if (2 * (used_.size() + 1) > keys_.size()) Grow();
+    const size_t slot = Find(voxel);
+    keys_[slot] = voxel;
+    parents_[slot] = parent;
+    used_.push_back(slot);
+  }
+  // The parent of `voxel`, which must be in the table.
+  int64_t Parent(int64_t voxel) const { return parents_[Find(voxel)]; }
+  template <typename F>
+  void ForEachVoxel(F f) const {
+    for (const size_t slot : used_) f(keys_[slot]);
+  }
+
+ private:
+  static constexpr int64_t kEmpty = -1;  // voxel indices are >= 0
+  // The slot holding `voxel`, or the empty slot where it would go (linear probing).
+  size_t Find(int64_t voxel) const {
+    const size_t mask = keys_.size() - 1;
+    size_t slot = static_cast<size_t>((static_cast<uint64_t>(voxel) * 0x9E3779B97F4A7C15ull) >>
+                                      shift_) & mask;
+    while (keys_[slot] != kEmpty && keys_[slot] != voxel) slot = (slot + 1) & mask;
+    return slot;
+  }
+  void Grow() {
+    std::vector<int64_t> keys(2 * keys_.size(), kEmpty);
+    std::vector<int64_t> parents(keys.size());
+    std::vector<size_t> used;
+    used.reserve(used_.size());
+    std::swap(keys, keys_);
+    std::swap(parents, parents_);
+    shift_ = 64 - std::countr_zero(keys_.size());
+    for (const size_t old : used_) {
+      const size_t slot = Find(keys[old]);
+      keys_[slot] = keys[old];
+      parents_[slot] = parents[old];
+      used.push_back(slot);
+    }
+    used_ = std::move(used);
+  }
+  static constexpr int kFirstBits = 10;
+  std::vector<int64_t> keys_ = std::vector<int64_t>(size_t{1} << kFirstBits, kEmpty);
+  std::vector<int64_t> parents_ = std::vector<int64_t>(size_t{1} << kFirstBits);
+  std::vector<size_t> used_;
+  int shift_ = 64 - kFirstBits;  // the hash's top bits index the table
+};
 
 bool HasOutsideFaceNeighbour(const VoxelState* s, int64_t i, const std::array<int64_t, 3>& st) {
   for (int d = 0; d < 3; ++d)
@@ -76,6 +137,8 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
     flooded.EnsureSize(nv);
   }
   int64_t visits_left = kMaxVisitsPerVoxel * nv;
+  ParentLinks parent;
+  std::vector<std::pair<int64_t, int>> queue;  // the search's voxels and depths, in order
   std::vector<int64_t> stack;
   std::vector<int64_t> component;
   // Floods the soft component of `start` (not yet dead or flooded) to its end, however far,
@@ -109,27 +172,27 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
     if (visits_left <= 0) break;
     const VoxelState* s = grid.states().data();
     // Breadth-first search through soft non-outside voxels; parent links give the path.
-    absl::flat_hash_map<int64_t, int64_t> parent;
-    std::deque<std::pair<int64_t, int>> queue;
-    parent[target] = -1;
+    parent.Clear();
+    queue.clear();
+    parent.Insert(target, -1);
     queue.emplace_back(target, 0);
+    size_t head = 0;
     int64_t exit = -1;
     bool truncated = false;  // by max_path or kMaxVisited: the search did not see it all
-    while (!queue.empty() && exit < 0) {
+    while (head < queue.size() && exit < 0) {
       if (parent.size() >= kMaxVisited) {
         truncated = true;
         break;
       }
-      const auto [i, depth] = queue.front();
-      queue.pop_front();
+      const auto [i, depth] = queue[head++];
       if (depth >= max_path) {
         truncated = true;
         continue;
       }
       for (int64_t step : steps) {
         const int64_t j = i + step;
-        if (IsOutside(s[j]) || IsHard(s[j]) || dead.test(j) || parent.contains(j)) continue;
-        parent[j] = i;
+        if (IsOutside(s[j]) || IsHard(s[j]) || dead.test(j) || parent.Contains(j)) continue;
+        parent.Insert(j, i);
         if (HasOutsideFaceNeighbour(s, j, st)) {
           exit = j;
           break;
@@ -141,8 +204,9 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
     if (exit < 0) {
       if (!truncated) {
         // Seen whole and no way out: the components it reached are dead.
-        for (const auto& [i, from] : parent)
+        parent.ForEachVoxel([&](int64_t i) {
           if (i != target) dead.set(i);
+        });
       } else {
         // Cut short: find out once for each component whether it leads out at all.
         for (int64_t step : steps) {
@@ -154,7 +218,7 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
       continue;
     }
     // Carve from the outside end inwards while each voxel is simple.
-    for (int64_t i = exit; i != target; i = parent[i]) {
+    for (int64_t i = exit; i != target; i = parent.Parent(i)) {
       const uint32_t object = NeighbourhoodMask(grid, i, [](VoxelState v) { return !IsOutside(v); });
       if (!IsSimple(object)) break;
       CarveToOutside(grid, i);

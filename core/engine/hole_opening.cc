@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/parallel_tasks.h"
 #include "core/engine/incursion_test.h"
 #include "core/engine/plug_wall_core.h"
 #include "core/engine/post_process.h"
@@ -230,7 +231,7 @@ class PlugFinder {
 absl::StatusOr<HoleOpeningStats> OpenPluggedHoles(VoxelGrid& grid,
                                                   const HoleOpeningOptions& options,
                                                   const HardVoxelPoints* points,
-                                                  const CancelToken& cancel) {
+                                                  const CancelToken& cancel, int threads) {
   HoleOpeningStats stats;
   if (!options.enabled || points == nullptr) return stats;
   const auto start = std::chrono::steady_clock::now();
@@ -245,64 +246,107 @@ absl::StatusOr<HoleOpeningStats> OpenPluggedHoles(VoxelGrid& grid,
   std::optional<TopologyCounts> topology;
   std::vector<std::pair<int64_t, VoxelState>> undo;
   Plug plug;
-  for (int z = 1; z + 1 < grid.dim(2); ++z) {
-    if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled");
-    for (int y = 1; y + 1 < grid.dim(1); ++y) {
-      const int64_t row = grid.Index(0, y, z);
-      for (int x = 1; x + 1 < grid.dim(0); ++x) {
-        const int64_t i = row + x;
-        // Eight voxels at a time where none is a boundary voxel (nearly everywhere; a carve
-        // changes only voxels around the one being tested, which are read after it).
-        if (x + 8 <= grid.dim(0) - 1 && !AnyBoundary8(s + i)) {
-          x += 7;
-          continue;
-        }
-        if (!IsBoundary(s[i]) || IsHard(s[i])) continue;
-        for (const Coord& dir : kDirections) {
-          if (stats.opened + stats.refused >= options.max_openings) return done();
-          if (!finder.Walk(i, dir, plug) || !finder.Surrounded(plug)) continue;
-          const int64_t mid = plug.path[(plug.path.size() - 1) / 2];
-          if (options.wall_core_depth > 0 &&
-              PlugInsideWallCore(grid, mid, plug.dir, options.ring_radius,
-                                 options.wall_core_depth)) {
-            ++stats.wall_cores;
-            continue;
-          }
-          if (OutsideJoinedInCube(grid, mid, plug.before, plug.after, options.join_radius))
-            continue;
-          if (!topology) topology = Counts(ComputeVoxelTopology(grid));
-          // Counted around the plug, in the join test's cube: the same answer as the whole
-          // grid's count (a carve changes chi only at its own corners; with no cavities, a plug
-          // open to the outside makes none), which is taken only when the plug's shell is not
-          // known to stay one inside the cube.
-          const CarveTopologyChange local =
-              CountCarveLocally(grid, plug.path, options.join_radius);
-          undo.clear();
-          for (int64_t p : plug.path)
-            for (int64_t offset : grid.block_offsets()) undo.emplace_back(p + offset, s[p + offset]);
-          for (int64_t p : plug.path) CarveToOutside(grid, p);
-          TopologyCounts after = *topology;
-          if (local.shells == CarveTopologyChange::Shells::kRemoved) {
-            --after.shells;
-          } else if (local.shells == CarveTopologyChange::Shells::kKept && topology->cavities == 0 &&
-                     local.touches_outside) {
-            after.genus -= local.euler_change;
-          } else {
-            after = Counts(ComputeVoxelTopology(grid));
-            ++stats.whole_grid_counts;
-          }
-          if (after.shells == topology->shells && after.cavities == topology->cavities &&
-              after.genus == topology->genus + 1) {
-            ++stats.opened;
-            stats.carved_voxels += static_cast<int64_t>(plug.path.size());
-            topology = after;
-          } else {
-            ++stats.refused;
-            for (auto it = undo.rbegin(); it != undo.rend(); ++it) s[it->first] = it->second;
-          }
-          if (!IsBoundary(s[i]) || IsHard(s[i])) break;
-        }
+  // The plugs from boundary voxel i, in direction order; false when max_openings is reached.
+  const auto visit = [&](int64_t i) {
+    for (const Coord& dir : kDirections) {
+      if (stats.opened + stats.refused >= options.max_openings) return false;
+      if (!finder.Walk(i, dir, plug) || !finder.Surrounded(plug)) continue;
+      const int64_t mid = plug.path[(plug.path.size() - 1) / 2];
+      if (options.wall_core_depth > 0 &&
+          PlugInsideWallCore(grid, mid, plug.dir, options.ring_radius,
+                             options.wall_core_depth)) {
+        ++stats.wall_cores;
+        continue;
       }
+      if (OutsideJoinedInCube(grid, mid, plug.before, plug.after, options.join_radius))
+        continue;
+      if (!topology) topology = Counts(ComputeVoxelTopology(grid));
+      // Counted around the plug, in the join test's cube: the same answer as the whole
+      // grid's count (a carve changes chi only at its own corners; with no cavities, a plug
+      // open to the outside makes none), which is taken only when the plug's shell is not
+      // known to stay one inside the cube.
+      const CarveTopologyChange local = CountCarveLocally(grid, plug.path, options.join_radius);
+      undo.clear();
+      for (int64_t p : plug.path)
+        for (int64_t offset : grid.block_offsets()) undo.emplace_back(p + offset, s[p + offset]);
+      for (int64_t p : plug.path) CarveToOutside(grid, p);
+      TopologyCounts after = *topology;
+      if (local.shells == CarveTopologyChange::Shells::kRemoved) {
+        --after.shells;
+      } else if (local.shells == CarveTopologyChange::Shells::kKept && topology->cavities == 0 &&
+                 local.touches_outside) {
+        after.genus -= local.euler_change;
+      } else {
+        after = Counts(ComputeVoxelTopology(grid));
+        ++stats.whole_grid_counts;
+      }
+      if (after.shells == topology->shells && after.cavities == topology->cavities &&
+          after.genus == topology->genus + 1) {
+        ++stats.opened;
+        stats.carved_voxels += static_cast<int64_t>(plug.path.size());
+        topology = after;
+      } else {
+        ++stats.refused;
+        for (auto it = undo.rbegin(); it != undo.rend(); ++it) s[it->first] = it->second;
+      }
+      if (!IsBoundary(s[i]) || IsHard(s[i])) break;
+    }
+    return true;
+  };
+  // Until the first carve the grid is as it was, and a voxel none of whose staircases passes
+  // Walk and Surrounded does nothing: those voxels are found first, a z plane a task on
+  // `threads`, and visited in index order. From the first carve on (opened or refused: the
+  // grid it reads may differ) every boundary voxel after it is visited, one at a time.
+  std::vector<std::vector<int64_t>> candidates(static_cast<size_t>(std::max(grid.dim(2), 2)));
+  const auto scan_row = [&](int64_t row, int x, auto on_voxel) {
+    for (; x + 1 < grid.dim(0); ++x) {
+      const int64_t i = row + x;
+      // Eight voxels at a time where none is a boundary voxel (nearly everywhere; a carve
+      // changes only voxels around the one being tested, which are read after it).
+      if (x + 8 <= grid.dim(0) - 1 && !AnyBoundary8(s + i)) {
+        x += 7;
+        continue;
+      }
+      if (!IsBoundary(s[i]) || IsHard(s[i])) continue;
+      if (!on_voxel(i)) return false;
+    }
+    return true;
+  };
+  RunTasks(std::max(threads, 1), grid.dim(2) - 2, [&](int, int64_t task) {
+    const int z = static_cast<int>(task) + 1;
+    Plug trial;
+    if (cancel.cancelled()) return;
+    for (int y = 1; y + 1 < grid.dim(1); ++y) {
+      scan_row(grid.Index(0, y, z), 1, [&](int64_t i) {
+        for (const Coord& dir : kDirections) {
+          if (finder.Walk(i, dir, trial) && finder.Surrounded(trial)) {
+            candidates[static_cast<size_t>(z)].push_back(i);
+            break;
+          }
+        }
+        return true;
+      });
+    }
+  });
+  if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled");
+  int64_t carved_after = -1;  // the voxel after the first carve
+  for (const std::vector<int64_t>& plane : candidates) {
+    for (int64_t i : plane) {
+      if (!visit(i)) return done();
+      if (stats.opened + stats.refused > 0) {
+        carved_after = i + 1;
+        break;
+      }
+    }
+    if (carved_after >= 0) break;
+  }
+  if (carved_after < 0) return done();
+  const Coord from = grid.CoordOf(carved_after);
+  for (int z = std::max(from.z, 1); z + 1 < grid.dim(2); ++z) {
+    if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled");
+    for (int y = z == from.z ? std::max(from.y, 1) : 1; y + 1 < grid.dim(1); ++y) {
+      const int x = z == from.z && y == from.y ? std::max(from.x, 1) : 1;
+      if (!scan_row(grid.Index(0, y, z), x, visit)) return done();
     }
   }
   return done();

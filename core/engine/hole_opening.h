@@ -88,12 +88,14 @@ struct HoleOpeningStats {
 // exactly one handle and changes no shell or cavity count (the grid counted once by
 // ComputeVoxelTopology, each carve around its plug by CountCarveLocally, or over the grid again
 // where that cannot tell);
-// otherwise it is restored. The invariants still hold after it. Cancelled when `cancel` fires
-// (checked between slices; the grid is then valid with the plugs opened so far).
+// otherwise it is restored. The invariants still hold after it. The search for plugs runs on
+// `threads` (>= 1) until the first carve; the result is the same for any thread count.
+// Cancelled when `cancel` fires (checked between slices; the grid is then valid with the plugs
+// opened so far).
 absl::StatusOr<HoleOpeningStats> OpenPluggedHoles(VoxelGrid& grid,
                                                   const HoleOpeningOptions& options,
                                                   const HardVoxelPoints* points,
-                                                  const CancelToken& cancel);
+                                                  const CancelToken& cancel, int threads = 1);
 
 }  // namespace membrane
 

@@ -121,7 +121,8 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
   }
   {
     absl::StatusOr<HoleOpeningStats> holes =
-        OpenPluggedHoles(grid_, options_.holes, points_ ? &*points_ : nullptr, cancel_);
+        OpenPluggedHoles(grid_, options_.holes, points_ ? &*points_ : nullptr, cancel_,
+                         word_threads_);
     if (!holes.ok()) return holes.status();
     result.holes = *holes;
   }

@@ -95,6 +95,25 @@ void ExpectKeptClosed(VoxelGrid& grid, const HardVoxelPoints& index,
   EXPECT_EQ(grid.states(), before);
 }
 
+// The search for plugs runs on the threads until the first carve, and the scan after it goes on
+// from there: the same carves, statistics and grid on 1 and 3 threads.
+TEST(HoleOpeningTest, OpensTheSamePlugsOnAnyThreadCount) {
+  const std::vector<Point3f> points = SlabPoints(10, 30, /*hole_wall=*/true);
+  VoxelGrid one = Membrane(PluggedSlab, points), three = Membrane(PluggedSlab, points);
+  const HardVoxelPoints index(one, points);
+  absl::StatusOr<HoleOpeningStats> a =
+      OpenPluggedHoles(one, HoleOpeningOptions(), &index, CancelToken::Never(), 1);
+  absl::StatusOr<HoleOpeningStats> b =
+      OpenPluggedHoles(three, HoleOpeningOptions(), &index, CancelToken::Never(), 3);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(a->opened, 1);
+  EXPECT_EQ(b->opened, a->opened);
+  EXPECT_EQ(b->refused, a->refused);
+  EXPECT_EQ(b->wall_cores, a->wall_cores);
+  EXPECT_EQ(b->carved_voxels, a->carved_voxels);
+  EXPECT_TRUE(one.states() == three.states());
+}
+
 // A slab 20 voxels thick pierced by a hole 6 voxels wide, closed at its waist by a plug 4 voxels
 // thick (soft: no data inside the hole): the hole's wall is data all around, facing the plug.
 TEST(HoleOpeningTest, OpensAPlugRimmedByTheHolesWall) {

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <vector>
+
+#include "core/base/parallel_tasks.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -69,34 +72,76 @@ void CompactStates::EncodeChunk(const VoxelState* s, int64_t count) {
   chunks_.push_back(chunk);
 }
 
-bool CompactStates::Encode(absl::Span<const VoxelState> states, const CancelToken& cancel) {
-  size_ = static_cast<int64_t>(states.size());
-  chunks_.clear();
-  runs_.clear();
-  raw_.clear();
-  for (int64_t begin = 0, c = 0; begin < size_; begin += kChunk, ++c) {
-    if (c % kChunksPerPoll == 0 && cancel.cancelled()) return false;
-    EncodeChunk(states.data() + begin, std::min(kChunk, size_ - begin));
+bool CompactStates::EncodeChunks(absl::Span<const VoxelState> states, int64_t first,
+                                 int64_t end, const CancelToken& cancel) {
+  const int64_t size = static_cast<int64_t>(states.size());
+  for (int64_t c = first; c < end; ++c) {
+    if ((c - first) % kChunksPerPoll == 0 && cancel.cancelled()) return false;
+    const int64_t begin = c * kChunk;
+    EncodeChunk(states.data() + begin, std::min(kChunk, size - begin));
   }
   return true;
 }
 
-bool CompactStates::Decode(absl::Span<VoxelState> states, const CancelToken& cancel) const {
-  VoxelState* to = states.data();
-  for (size_t c = 0; c < chunks_.size(); ++c) {
-    if (static_cast<int64_t>(c) % kChunksPerPoll == 0 && cancel.cancelled()) return false;
-    const Chunk& chunk = chunks_[c];
-    VoxelState* dst = to + static_cast<int64_t>(c) * kChunk;
-    if (chunk.raw) {
-      std::memcpy(dst, raw_.data() + chunk.begin, static_cast<size_t>(chunk.count));
-      continue;
+bool CompactStates::Encode(absl::Span<const VoxelState> states, const CancelToken& cancel,
+                           int threads) {
+  size_ = static_cast<int64_t>(states.size());
+  chunks_.clear();
+  runs_.clear();
+  raw_.clear();
+  const int64_t chunks = (size_ + kChunk - 1) / kChunk;
+  // A few ranges a thread, so that a range of long runs and one of bytes even out.
+  const int64_t parts = threads <= 1 ? 1 : std::min<int64_t>(chunks, 4 * int64_t{threads});
+  if (parts <= 1) return EncodeChunks(states, 0, chunks, cancel);
+  std::vector<CompactStates> encoded(static_cast<size_t>(parts));
+  std::vector<char> done(static_cast<size_t>(parts), 0);
+  RunTasks(threads, parts, [&](int, int64_t part) {
+    CompactStates& e = encoded[static_cast<size_t>(part)];
+    e.size_ = size_;
+    done[static_cast<size_t>(part)] =
+        e.EncodeChunks(states, chunks * part / parts, chunks * (part + 1) / parts, cancel);
+  });
+  for (CompactStates& e : encoded) {
+    if (!done[static_cast<size_t>(&e - encoded.data())]) return false;
+    for (Chunk chunk : e.chunks_) {
+      chunk.begin += static_cast<int64_t>(chunk.raw ? raw_.size() : runs_.size());
+      chunks_.push_back(chunk);
     }
-    for (int32_t r = 0; r < chunk.count; ++r) {
-      const uint32_t run = runs_[static_cast<size_t>(chunk.begin + r)];
-      std::memset(dst, RunState(run), static_cast<size_t>(RunLength(run)));
-      dst += RunLength(run);
-    }
+    // The joined chunks' begins were taken before their part's runs and bytes go in.
+    runs_.insert(runs_.end(), e.runs_.begin(), e.runs_.end());
+    raw_.insert(raw_.end(), e.raw_.begin(), e.raw_.end());
+    e = CompactStates();
   }
+  return true;
+}
+
+bool CompactStates::Decode(absl::Span<VoxelState> states, const CancelToken& cancel,
+                           int threads) const {
+  VoxelState* to = states.data();
+  const int64_t chunks = static_cast<int64_t>(chunks_.size());
+  const int64_t parts = threads <= 1 ? 1 : std::min<int64_t>(chunks, 4 * int64_t{threads});
+  std::vector<char> done(static_cast<size_t>(std::max<int64_t>(parts, 1)), 1);
+  RunTasks(std::max(threads, 1), parts, [&](int, int64_t part) {
+    for (int64_t c = chunks * part / parts; c < chunks * (part + 1) / parts; ++c) {
+      if (c % kChunksPerPoll == 0 && cancel.cancelled()) {
+        done[static_cast<size_t>(part)] = 0;
+        return;
+      }
+      const Chunk& chunk = chunks_[static_cast<size_t>(c)];
+      VoxelState* dst = to + c * kChunk;
+      if (chunk.raw) {
+        std::memcpy(dst, raw_.data() + chunk.begin, static_cast<size_t>(chunk.count));
+        continue;
+      }
+      for (int32_t r = 0; r < chunk.count; ++r) {
+        const uint32_t run = runs_[static_cast<size_t>(chunk.begin + r)];
+        std::memset(dst, RunState(run), static_cast<size_t>(RunLength(run)));
+        dst += RunLength(run);
+      }
+    }
+  });
+  for (char d : done)
+    if (!d) return false;
   return true;
 }
 

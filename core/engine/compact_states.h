@@ -27,11 +27,14 @@ class CompactStates {
 
   // Makes this a copy of `states`, reusing its buffers. Polls `cancel` between slices of
   // 16 MB: false when it fired (this is then unusable until the next successful Encode).
-  bool Encode(absl::Span<const VoxelState> states, const CancelToken& cancel);
+  // Runs on `threads` (>= 1), a range of chunks a task, each range's runs and bytes then
+  // joined in order: the same copy for any thread count.
+  bool Encode(absl::Span<const VoxelState> states, const CancelToken& cancel, int threads = 1);
 
   // Writes the copy into `states`, which must have size() elements. Polls `cancel` as Encode
-  // does: false when it fired (`states` is then partly written).
-  bool Decode(absl::Span<VoxelState> states, const CancelToken& cancel) const;
+  // does: false when it fired (`states` is then partly written). Runs on `threads` (>= 1), a
+  // range of chunks a task.
+  bool Decode(absl::Span<VoxelState> states, const CancelToken& cancel, int threads = 1) const;
 
   // `plane` becomes size() bits, bit i set when voxel i of the copy is outside.
   void OutsidePlane(FlatBitset& plane) const;
@@ -55,6 +58,10 @@ class CompactStates {
   static int64_t RunLength(uint32_t run) { return run >> 8; }
 
   void EncodeChunk(const VoxelState* s, int64_t count);
+  // Encodes chunks [first, end) of `states` after those already held; false when `cancel`
+  // fired.
+  bool EncodeChunks(absl::Span<const VoxelState> states, int64_t first, int64_t end,
+                    const CancelToken& cancel);
 
   int64_t size_ = 0;
   std::vector<Chunk> chunks_;

@@ -257,11 +257,13 @@ absl::Status MembraneShrinker::RunChains(const ChainOptions& chain, GenerationSt
 bool MembraneShrinker::Save(ShrinkCheckpoint& to) const {
   to.counts = counts_;
   to.band_held = guarded_band_.held;
-  return to.states.Encode(grid_.states(), cancel_);
+  return to.states.Encode(grid_.states(), cancel_, word_threads_);
 }
 
 bool MembraneShrinker::Restore(const ShrinkCheckpoint& from) {
-  if (!from.states.Decode(absl::MakeSpan(grid_.mutable_states()), cancel_)) return false;
+  if (!from.states.Decode(absl::MakeSpan(grid_.mutable_states()), cancel_, word_threads_)) {
+    return false;
+  }
   counts_ = from.counts;
   guarded_band_.held = from.band_held;
   return true;

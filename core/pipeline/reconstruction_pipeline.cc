@@ -149,11 +149,13 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   const std::array<double, 3> grid_origin = grid.origin();
   const double grid_voxel_size = grid.voxel_size();
   CompactStates membrane_runs;
-  if (!membrane_runs.Encode(grid.states(), cancel)) return StopIfCancelled(cancel, last);
+  if (!membrane_runs.Encode(grid.states(), cancel, options.threads)) {
+    return StopIfCancelled(cancel, last);
+  }
   for (;;) {
     if (grid.size() == 0) {
       grid = VoxelGrid(grid_dims, grid_origin, grid_voxel_size);
-      if (!membrane_runs.Decode(absl::MakeSpan(grid.mutable_states()), cancel)) {
+      if (!membrane_runs.Decode(absl::MakeSpan(grid.mutable_states()), cancel, options.threads)) {
         return StopIfCancelled(cancel, last);
       }
     }

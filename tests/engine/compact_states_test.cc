@@ -1,5 +1,6 @@
 #include "core/engine/compact_states.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -39,6 +40,26 @@ TEST(CompactStates, DecodesToTheStatesEncoded) {
   std::vector<VoxelState> decoded(states.size(), 0x42);
   ASSERT_TRUE(copy.Decode(absl::MakeSpan(decoded), CancelToken::Never()));
   EXPECT_EQ(decoded, states);
+}
+
+// Encoded a range of chunks a task and joined, decoded a range a task: the same runs, bytes
+// and states as on one thread (a part of runs, one of bytes, a partial last chunk).
+TEST(CompactStates, TheSameCopyOnAnyThreadCount) {
+  const std::vector<VoxelState> states = ShrunkLikeStates();
+  CompactStates one, three;
+  ASSERT_TRUE(one.Encode(states, CancelToken::Never(), 1));
+  ASSERT_TRUE(three.Encode(states, CancelToken::Never(), 3));
+  EXPECT_EQ(three.encoded_bytes(), one.encoded_bytes());
+  EXPECT_EQ(three.size(), one.size());
+  for (const CompactStates* copy : {&one, &three}) {
+    std::vector<VoxelState> decoded(states.size(), 0x42);
+    ASSERT_TRUE(copy->Decode(absl::MakeSpan(decoded), CancelToken::Never(), 3));
+    EXPECT_EQ(decoded, states);
+  }
+  FlatBitset a, b;
+  one.OutsidePlane(a);
+  three.OutsidePlane(b);
+  EXPECT_TRUE(std::equal(a.words(), a.words() + (a.bits() + 63) / 64, b.words()));
 }
 
 TEST(CompactStates, RunsTakeLessRoomThanTheBytes) {

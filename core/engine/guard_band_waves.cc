@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "absl/status/status.h"
+#include "core/base/parallel_tasks.h"
 
 namespace membrane {
 namespace {
@@ -147,7 +148,7 @@ using Front = std::vector<std::pair<int32_t, uint64_t>>;
 absl::StatusOr<int64_t> FreezeBandByWaves(VoxelGrid& grid, const std::array<int, 3>& coarse_dims,
                                           int k, const std::vector<uint8_t>& classes,
                                           const std::vector<int64_t>& band_voxels,
-                                          const CancelToken& cancel) {
+                                          const CancelToken& cancel, int threads) {
   const Bricks bricks(k);
   const BrickVoxels voxels(grid, coarse_dims, k, bricks.full());
   const int64_t cx = 1, cy = coarse_dims[0], cz = cy * coarse_dims[1];
@@ -162,10 +163,21 @@ absl::StatusOr<int64_t> FreezeBandByWaves(VoxelGrid& grid, const std::array<int,
   // `near`: NearHard, read when the core's wave first comes to a brick.
   std::vector<uint64_t> avail(bands), acc(bands), near(bands);
   std::vector<uint8_t> near_read(bands, 0);
-  for (int32_t i = 0; i < bands; ++i) {
-    uint64_t frozen;
-    voxels.Read(band_voxels[i], avail[i], acc[i], frozen);
-  }
+  // The bricks' reads and the waves' first step run a range of bricks a task: each task
+  // writes only its own bricks' words (the freezes wait until every task is done, so no task
+  // reads a state another writes).
+  const int64_t ranges = std::min<int64_t>(bands, 16 * int64_t{std::max(threads, 1)});
+  const auto range_of = [&](int64_t task) {
+    return std::pair<int32_t, int32_t>(static_cast<int32_t>(bands * task / ranges),
+                                       static_cast<int32_t>(bands * (task + 1) / ranges));
+  };
+  RunTasks(threads, ranges, [&](int, int64_t task) {
+    const auto [first, end] = range_of(task);
+    for (int32_t i = first; i < end; ++i) {
+      uint64_t frozen;
+      voxels.Read(band_voxels[i], avail[i], acc[i], frozen);
+    }
+  });
   const auto off_data = [&](int32_t i, uint64_t w) {
     if (!near_read[i]) {
       near[i] = voxels.NearHard(band_voxels[i]);
@@ -174,15 +186,18 @@ absl::StatusOr<int64_t> FreezeBandByWaves(VoxelGrid& grid, const std::array<int,
     return w & ~near[i];
   };
   int64_t frozen_count = 0;
-  const auto freeze = [&](int32_t i, uint64_t w) {
+  // Freezes brick i's bits w; returns how many.
+  const auto freeze_bits = [&](int32_t i, uint64_t w) {
     const int64_t base = voxels.Base(band_voxels[i]);
-    frozen_count += __builtin_popcountll(w);
+    const int64_t count = __builtin_popcountll(w);
     while (w != 0) {
       const int bit = __builtin_ctzll(w);
       w &= w - 1;
       grid.set(base + voxels.Offset(bit), kInsideFrozen);
     }
+    return count;
   };
+  const auto freeze = [&](int32_t i, uint64_t w) { frozen_count += freeze_bits(i, w); };
 
   // The first step of both waves, from their sources into each band brick: the outside's
   // from the open bits of the brick and its neighbours (every bit of an outside coarse voxel),
@@ -191,33 +206,44 @@ absl::StatusOr<int64_t> FreezeBandByWaves(VoxelGrid& grid, const std::array<int,
   // The band's face neighbours of each band brick (-1: none), so that a step reads no more
   // of the coarse grid.
   std::vector<std::array<int32_t, kDirections>> neighbours(bands);
-  for (int32_t i = 0; i < bands; ++i) {
-    const int64_t t = band_voxels[i];
-    uint64_t open = bricks.Within(acc[i]), from_core = 0;
-    for (int dir = 0; dir < kDirections; ++dir) {
-      const int64_t n = t + steps[dir];
-      neighbours[i][dir] = slot[n];
-      uint64_t n_open, n_frozen = 0;
-      if (slot[n] >= 0) {
-        n_open = acc[slot[n]];
-      } else if (classes[n] == kCoarseOutside) {
-        n_open = bricks.full();
-      } else {
-        uint64_t soft;
-        voxels.Read(n, soft, n_open, n_frozen);
+  std::vector<Front> outside_of(static_cast<size_t>(ranges)), core_of(static_cast<size_t>(ranges));
+  RunTasks(threads, ranges, [&](int, int64_t task) {
+    const auto [first, end] = range_of(task);
+    for (int32_t i = first; i < end; ++i) {
+      const int64_t t = band_voxels[i];
+      uint64_t open = bricks.Within(acc[i]), from_core = 0;
+      for (int dir = 0; dir < kDirections; ++dir) {
+        const int64_t n = t + steps[dir];
+        neighbours[i][dir] = slot[n];
+        uint64_t n_open, n_frozen = 0;
+        if (slot[n] >= 0) {
+          n_open = acc[slot[n]];
+        } else if (classes[n] == kCoarseOutside) {
+          n_open = bricks.full();
+        } else {
+          uint64_t soft;
+          voxels.Read(n, soft, n_open, n_frozen);
+        }
+        open |= bricks.Push(n_open, Opposite(dir));
+        from_core |= bricks.Push(n_frozen, Opposite(dir));
       }
-      open |= bricks.Push(n_open, Opposite(dir));
-      from_core |= bricks.Push(n_frozen, Opposite(dir));
+      const uint64_t o = open & avail[i];
+      const uint64_t c =
+          from_core & avail[i] & ~o ? off_data(i, from_core & avail[i] & ~o) : 0;
+      avail[i] &= ~(o | c);
+      if (o != 0) outside_of[task].emplace_back(i, o);
+      if (c != 0) core_of[task].emplace_back(i, c);
     }
-    const uint64_t o = open & avail[i];
-    const uint64_t c = from_core & avail[i] & ~o ? off_data(i, from_core & avail[i] & ~o) : 0;
-    avail[i] &= ~(o | c);
-    if (o != 0) outside.emplace_back(i, o);
-    if (c != 0) {
-      freeze(i, c);
-      core.emplace_back(i, c);
-    }
+  });
+  for (int64_t task = 0; task < ranges; ++task) {
+    outside.insert(outside.end(), outside_of[task].begin(), outside_of[task].end());
+    core.insert(core.end(), core_of[task].begin(), core_of[task].end());
   }
+  std::vector<int64_t> core_frozen(static_cast<size_t>(ranges), 0);
+  RunTasks(threads, ranges, [&](int, int64_t task) {
+    for (const auto& [i, w] : core_of[task]) core_frozen[task] += freeze_bits(i, w);
+  });
+  for (int64_t f : core_frozen) frozen_count += f;
   std::fill(acc.begin(), acc.end(), 0);
   slot = std::vector<int32_t>();
 

@@ -26,15 +26,16 @@ constexpr int kPad = VoxelGrid::kPadding;
 using Marks = std::vector<uint8_t>;
 
 // For every voxel, how many of its 6 axis rays reach an outside voxel before a hard one (the
-// array border counts as outside): 0 to 6.
-Marks OpenRays(const VoxelGrid& grid) {
+// array border counts as outside): 0 to 6. An axis's lines run on `threads`, a plane of
+// lines a task.
+Marks OpenRays(const VoxelGrid& grid, int threads) {
   const std::array<int, 3>& dims = grid.dims();
   const std::array<int64_t, 3> strides = grid.strides();
   Marks open(grid.size(), 0);
   for (int axis = 0; axis < 3; ++axis) {
     const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
     const int n = dims[axis];
-    for (int j = 0; j < dims[a2]; ++j) {
+    RunTasks(threads, dims[a2], [&](int, int64_t j) {
       for (int i = 0; i < dims[a1]; ++i) {
         const int64_t base = i * strides[a1] + j * strides[a2];
         // Walking against the ray, `open_ahead` is what the ray from the voxel meets first.
@@ -49,15 +50,15 @@ Marks OpenRays(const VoxelGrid& grid) {
           }
         }
       }
-    }
+    });
   }
   return open;
 }
 
 // The grid `k` times coarser over the same data region, as Voxelize() leaves a grid: padding
 // outside, the data region inside with its outer layer boundary, a voxel hard when any of its
-// fine voxels is.
-VoxelGrid CoarseGrid(const VoxelGrid& fine, int k) {
+// fine voxels is. A coarse z plane a task on `threads` (its fine planes are its own).
+VoxelGrid CoarseGrid(const VoxelGrid& fine, int k, int threads) {
   std::array<int, 3> dims;
   std::array<double, 3> origin;
   const double l = fine.voxel_size();
@@ -66,29 +67,34 @@ VoxelGrid CoarseGrid(const VoxelGrid& fine, int k) {
     origin[d] = fine.origin()[d] + kPad * l - kPad * k * l;
   }
   VoxelGrid coarse(dims, origin, k * l, VoxelGrid::Unset{});
-  for (int z = 0; z < dims[2]; ++z) WriteInitialPlane(z, coarse);
   // Before the first generation a data voxel's state has bit 1 set exactly when it is hard:
   // eight voxels at a time are skipped when none has.
   constexpr uint64_t kHardBits = 0x0202020202020202ull;
   const int64_t row = fine.dim(0) - 2 * kPad;
-  for (int z = kPad; z < fine.dim(2) - kPad; ++z) {
-    for (int y = kPad; y < fine.dim(1) - kPad; ++y) {
-      const VoxelState* states = fine.states().data() + fine.Index(kPad, y, z);
-      for (int64_t x = 0; x < row; x += 8) {
-        if (x + 8 <= row) {
-          uint64_t word;
-          std::memcpy(&word, states + x, 8);
-          if ((word & kHardBits) == 0) continue;
-        }
-        for (int64_t i = x; i < std::min(row, x + 8); ++i) {
-          if (!IsHard(states[i])) continue;
-          const int64_t c = coarse.Index(static_cast<int>(i / k) + kPad, (y - kPad) / k + kPad,
-                                         (z - kPad) / k + kPad);
-          coarse.set(c, IsBoundary(coarse.at(c)) ? kBoundaryHard : kInsideHard);
+  RunTasks(threads, dims[2], [&](int, int64_t task) {
+    const int cz = static_cast<int>(task);
+    WriteInitialPlane(cz, coarse);
+    if (cz < kPad || cz >= dims[2] - kPad) return;
+    const int z1 = std::min(kPad + (cz - kPad + 1) * k, fine.dim(2) - kPad);
+    for (int z = kPad + (cz - kPad) * k; z < z1; ++z) {
+      for (int y = kPad; y < fine.dim(1) - kPad; ++y) {
+        const VoxelState* states = fine.states().data() + fine.Index(kPad, y, z);
+        for (int64_t x = 0; x < row; x += 8) {
+          if (x + 8 <= row) {
+            uint64_t word;
+            std::memcpy(&word, states + x, 8);
+            if ((word & kHardBits) == 0) continue;
+          }
+          for (int64_t i = x; i < std::min(row, x + 8); ++i) {
+            if (!IsHard(states[i])) continue;
+            const int64_t c = coarse.Index(static_cast<int>(i / k) + kPad, (y - kPad) / k + kPad,
+                                           cz);
+            coarse.set(c, IsBoundary(coarse.at(c)) ? kBoundaryHard : kInsideHard);
+          }
         }
       }
     }
-  }
+  });
   return coarse;
 }
 
@@ -152,7 +158,10 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
 
   // The coarse membrane, refilled where it carved through data gaps; no dents (they would cut
   // paths into the solid that the fine membrane has no reason to follow).
-  VoxelGrid coarse = CoarseGrid(grid, k);
+  // The fine grid's passes run on the shrink's threads where its own passes do.
+  const int threads =
+      grid.size() >= options.threads_min_voxels ? std::max(options.threads, 1) : 1;
+  VoxelGrid coarse = CoarseGrid(grid, k, threads);
   ShrinkOptions coarse_options = options;
   coarse_options.connect_inside_hard = false;
   absl::StatusOr<ShrinkResult> shrunk = ShrinkMembrane(coarse, {}, coarse_options, {}, cancel);
@@ -168,7 +177,7 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
     const int64_t strides[3] = {st[0], st[1], st[2]};
     near_hard.Dilate26(strides, scratch);
   }
-  const Marks open_rays = OpenRays(coarse);
+  const Marks open_rays = OpenRays(coarse, threads);
   Marks classes(coarse.size());
   for (int64_t i = 0; i < coarse.size(); ++i) {
     const VoxelState c = coarse.at(i);
@@ -184,9 +193,7 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
   if (stats.core_voxels == 0) return stats;
 
   // The core: every fine voxel of it is frozen.
-  stats.frozen_voxels = FreezeCore(
-      grid, coarse, k, classes,
-      grid.size() >= options.threads_min_voxels ? std::max(options.threads, 1) : 1);
+  stats.frozen_voxels = FreezeCore(grid, coarse, k, classes, threads);
   if (cancel.cancelled()) return cancelled();
 
   // The band between the core and the coarse outside holds the skin's data. Its fine soft
@@ -198,7 +205,7 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
   for (int64_t i = 0; i < coarse.size(); ++i)
     if (classes[i] == kCoarseBand) band_voxels.push_back(i);
   absl::StatusOr<int64_t> band_frozen =
-      FreezeBandByWaves(grid, coarse.dims(), k, classes, band_voxels, cancel);
+      FreezeBandByWaves(grid, coarse.dims(), k, classes, band_voxels, cancel, threads);
   if (!band_frozen.ok()) return band_frozen.status();
   stats.band_frozen = *band_frozen;
   stats.frozen_voxels += stats.band_frozen;

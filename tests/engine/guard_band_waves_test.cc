@@ -1,7 +1,7 @@
 // The interior guard's band waves on bricks freeze exactly the voxels of two breadth-first
 // waves run a voxel at a time (the outside's first at each distance, the core's kept a voxel
 // off the hard ones): random grids and coarse classes, every brick size, data regions that
-// end partway through a coarse voxel.
+// end partway through a coarse voxel, on 1 and 3 threads.
 #include "core/engine/guard_band_waves.h"
 
 #include <gtest/gtest.h>
@@ -153,13 +153,16 @@ TEST(GuardBandWavesTest, FreezeWhatVoxelByVoxelWavesFreeze) {
       const std::array<int, 3> data = {9 * k + static_cast<int>(seed) % k, 7 * k + 1,
                                        8 * k - 1};
       Case a = RandomCase(data, k, hard, seed * 7 + k);
-      Case b = RandomCase(data, k, hard, seed * 7 + k);
       const int64_t expected = ReferenceWaves(a, k);
-      absl::StatusOr<int64_t> frozen =
-          FreezeBandByWaves(b.grid, b.coarse_dims, k, b.classes, b.band, CancelToken::Never());
-      ASSERT_TRUE(frozen.ok()) << frozen.status();
-      EXPECT_EQ(*frozen, expected) << "k " << k << " seed " << seed;
-      EXPECT_TRUE(a.grid.states() == b.grid.states()) << "k " << k << " seed " << seed;
+      for (int threads : {1, 3}) {
+        Case b = RandomCase(data, k, hard, seed * 7 + k);
+        absl::StatusOr<int64_t> frozen = FreezeBandByWaves(b.grid, b.coarse_dims, k, b.classes,
+                                                           b.band, CancelToken::Never(), threads);
+        ASSERT_TRUE(frozen.ok()) << frozen.status();
+        EXPECT_EQ(*frozen, expected) << "k " << k << " seed " << seed << " threads " << threads;
+        EXPECT_TRUE(a.grid.states() == b.grid.states())
+            << "k " << k << " seed " << seed << " threads " << threads;
+      }
       cases += expected > 0;
     }
   }

@@ -1,6 +1,7 @@
 #include "core/engine/guard_band_waves.h"
 
 #include <algorithm>
+#include <atomic>
 #include <utility>
 
 #include "absl/status/status.h"
@@ -197,12 +198,11 @@ absl::StatusOr<int64_t> FreezeBandByWaves(VoxelGrid& grid, const std::array<int,
     }
     return count;
   };
-  const auto freeze = [&](int32_t i, uint64_t w) { frozen_count += freeze_bits(i, w); };
 
   // The first step of both waves, from their sources into each band brick: the outside's
   // from the open bits of the brick and its neighbours (every bit of an outside coarse voxel),
   // the core's from its frozen neighbours.
-  Front outside, core, next;
+  Front outside, core;
   // The band's face neighbours of each band brick (-1: none), so that a step reads no more
   // of the coarse grid.
   std::vector<std::array<int32_t, kDirections>> neighbours(bands);
@@ -247,35 +247,62 @@ absl::StatusOr<int64_t> FreezeBandByWaves(VoxelGrid& grid, const std::array<int,
   std::fill(acc.begin(), acc.end(), 0);
   slot = std::vector<int32_t>();
 
-  std::vector<int32_t> touched;
-  const auto reach = [&](int32_t i, uint64_t w) {
-    w &= avail[i];
-    if (w == 0) return;
-    if (acc[i] == 0) touched.push_back(i);
-    acc[i] |= w;
-  };
+  // A step: the bits each front brick reaches in itself and its neighbours are or-ed into
+  // `acc` (atomically where the front is split between tasks), the brick whose `acc` was zero
+  // listing it as touched; then each touched brick's bits become the next front (the core's
+  // off the data, frozen once every task has read the grid). The sets reached do not depend
+  // on the order, so any thread count gives the same voxels.
+  constexpr size_t kMinSplitFront = 4096;
+  std::vector<std::vector<int32_t>> touched_of;
+  std::vector<Front> next_of;
   const auto advance = [&](Front& front, bool is_core) {
-    touched.clear();
-    for (const auto& [i, w] : front) {
-      reach(i, bricks.Within(w));
-      const std::array<int32_t, kDirections>& around = neighbours[i];
-      for (int dir = 0; dir < kDirections; ++dir) {
-        if (around[dir] < 0) continue;
-        const uint64_t p = bricks.Push(w, dir);
-        if (p != 0) reach(around[dir], p);
+    const int64_t parts =
+        front.size() < kMinSplitFront ? 1 : std::min<int64_t>(16 * int64_t{threads},
+                                                             static_cast<int64_t>(front.size()));
+    touched_of.assign(static_cast<size_t>(parts), {});
+    next_of.assign(static_cast<size_t>(parts), {});
+    const int64_t size = static_cast<int64_t>(front.size());
+    RunTasks(parts > 1 ? threads : 1, parts, [&](int, int64_t part) {
+      std::vector<int32_t>& touched = touched_of[static_cast<size_t>(part)];
+      const auto reach = [&](int32_t i, uint64_t w) {
+        w &= avail[i];
+        if (w == 0) return;
+        if (std::atomic_ref<uint64_t>(acc[i]).fetch_or(w, std::memory_order_relaxed) == 0) {
+          touched.push_back(i);
+        }
+      };
+      for (int64_t e = size * part / parts; e < size * (part + 1) / parts; ++e) {
+        const auto& [i, w] = front[static_cast<size_t>(e)];
+        reach(i, bricks.Within(w));
+        const std::array<int32_t, kDirections>& around = neighbours[i];
+        for (int dir = 0; dir < kDirections; ++dir) {
+          if (around[dir] < 0) continue;
+          const uint64_t p = bricks.Push(w, dir);
+          if (p != 0) reach(around[dir], p);
+        }
       }
-    }
-    next.clear();
-    for (int32_t i : touched) {
-      uint64_t w = acc[i];
-      acc[i] = 0;
-      if (is_core) w = off_data(i, w);
-      if (w == 0) continue;
-      avail[i] &= ~w;
-      if (is_core) freeze(i, w);
-      next.emplace_back(i, w);
-    }
-    front.swap(next);
+    });
+    RunTasks(parts > 1 ? threads : 1, parts, [&](int, int64_t part) {
+      Front& reached = next_of[static_cast<size_t>(part)];
+      for (int32_t i : touched_of[static_cast<size_t>(part)]) {
+        uint64_t w = acc[i];
+        acc[i] = 0;
+        if (is_core) w = off_data(i, w);
+        if (w == 0) continue;
+        avail[i] &= ~w;
+        reached.emplace_back(i, w);
+      }
+    });
+    front.clear();
+    for (const Front& reached : next_of) front.insert(front.end(), reached.begin(), reached.end());
+    if (!is_core) return;
+    std::vector<int64_t> counts(static_cast<size_t>(parts), 0);
+    RunTasks(parts > 1 ? threads : 1, parts, [&](int, int64_t part) {
+      for (const auto& [i, w] : next_of[static_cast<size_t>(part)]) {
+        counts[static_cast<size_t>(part)] += freeze_bits(i, w);
+      }
+    });
+    for (int64_t c : counts) frozen_count += c;
   };
   while (!outside.empty() || !core.empty()) {
     if (cancel.cancelled()) {

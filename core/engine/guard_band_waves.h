@@ -34,8 +34,8 @@ enum CoarseClass : uint8_t {
 // a voxel with a hard voxel among its 26 neighbours (so the fine membrane finds the skin's
 // pores and inner face as it would without the guard). The voxels the core's wave reaches
 // become INSIDE frozen. Returns how many, or Cancelled when `cancel` fires (the grid then
-// holds part of them). The bricks' reads and the waves' first step run on `threads` (>= 1);
-// the result is the same for any thread count.
+// holds part of them). The bricks' reads and the waves' steps run on `threads` (>= 1); the
+// result is the same for any thread count.
 absl::StatusOr<int64_t> FreezeBandByWaves(VoxelGrid& grid, const std::array<int, 3>& coarse_dims,
                                           int k, const std::vector<uint8_t>& classes,
                                           const std::vector<int64_t>& band_voxels,

@@ -170,5 +170,22 @@ TEST(GuardBandWavesTest, FreezeWhatVoxelByVoxelWavesFreeze) {
   EXPECT_GE(cases, 12);
 }
 
+// Fronts of thousands of coarse voxels, split between tasks: the same voxels on 1 and 3
+// threads as a voxel at a time.
+TEST(GuardBandWavesTest, SplitFrontsFreezeTheSameVoxels) {
+  const std::array<int, 3> data = {4 * 40 + 1, 4 * 38 + 3, 4 * 36};
+  Case a = RandomCase(data, 4, 0.02, 99);
+  const int64_t expected = ReferenceWaves(a, 4);
+  EXPECT_GT(expected, 0);
+  for (int threads : {1, 3}) {
+    Case b = RandomCase(data, 4, 0.02, 99);
+    absl::StatusOr<int64_t> frozen = FreezeBandByWaves(b.grid, b.coarse_dims, 4, b.classes,
+                                                       b.band, CancelToken::Never(), threads);
+    ASSERT_TRUE(frozen.ok()) << frozen.status();
+    EXPECT_EQ(*frozen, expected) << "threads " << threads;
+    EXPECT_TRUE(a.grid.states() == b.grid.states()) << "threads " << threads;
+  }
+}
+
 }  // namespace
 }  // namespace membrane

@@ -24,7 +24,9 @@ struct BridgingResult {
 // body diagonal; in each, the first of the other six in index order that is (26,6)-simple
 // (IsSimple of its 3x3x3 object mask) and not on the array border becomes kBoundarySoft.
 // Stops early after a scan that finds no contact. Shells and genus of the solid never change.
-BridgingResult BridgeDiagonalContacts(VoxelGrid& grid, int max_scans = 3);
+// A scan's search runs on `threads` (>= 1) until its first bridge: the same bridges for any
+// thread count.
+BridgingResult BridgeDiagonalContacts(VoxelGrid& grid, int max_scans = 3, int threads = 1);
 
 }  // namespace membrane
 

@@ -55,7 +55,8 @@ absl::StatusOr<TriangleMesh> SmoothSurface(VoxelGrid&& membrane,
   prepare.Add(1);
   if (cancel.cancelled()) return absl::CancelledError("surface cancelled");
   if (options.bridging_scans > 0) {
-    const BridgingResult bridging = BridgeDiagonalContacts(grid, options.bridging_scans);
+    const BridgingResult bridging =
+        BridgeDiagonalContacts(grid, options.bridging_scans, options.fit_options.threads);
     s.bridges = bridging.added;
     s.corner_contacts_left = bridging.remaining;
   }

@@ -185,4 +185,8 @@ double NoiseAwareVoxelSize(double formula_size, const PointNoise& noise) {
   return std::max(formula_size, noise.sigma / kVoxelNoiseShare);
 }
 
+bool VoxelRaisedForNoise(double formula_size, double voxel_size) {
+  return formula_size > 0 && voxel_size > formula_size;
+}
+
 }  // namespace membrane

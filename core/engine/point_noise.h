@@ -50,6 +50,10 @@ PointNoise MeasurePointNoise(absl::Span<const Point3f> points, const Box3d& boun
 // `noise`: the larger of formula_size and noise.sigma / kVoxelNoiseShare.
 double NoiseAwareVoxelSize(double formula_size, const PointNoise& noise);
 
+// Whether the noise chose `voxel_size`: a formula-(1) size was computed (`formula_size` > 0; a
+// run given its size records 0) and the voxel is coarser than it.
+bool VoxelRaisedForNoise(double formula_size, double voxel_size);
+
 }  // namespace membrane
 
 #endif  // MEMBRANE_CORE_ENGINE_POINT_NOISE_H_

@@ -1,13 +1,12 @@
 #include "core/pipeline/noise_voxel_note.h"
 
 #include "absl/strings/str_format.h"
+#include "core/engine/point_noise.h"
 
 namespace membrane {
 
 std::optional<std::string> NoiseVoxelNote(const PlannedGrid& plan) {
-  if (plan.formula_voxel_size <= 0 || plan.voxel_size <= plan.formula_voxel_size) {
-    return std::nullopt;
-  }
+  if (!VoxelRaisedForNoise(plan.formula_voxel_size, plan.voxel_size)) return std::nullopt;
   return absl::StrFormat(
       "the points scatter across their surface by %.3g (%.2g of formula (1)'s voxel %.3g): the "
       "voxel size is %.3g, %.3g times formula (1)'s, so that the membrane closes over the "

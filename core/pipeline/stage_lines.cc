@@ -5,6 +5,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
+#include "core/engine/point_noise.h"
 
 namespace membrane {
 namespace {
@@ -40,7 +41,7 @@ std::string PassesAfterGenerations(const ReconstructionReport& r) {
 
 // ", formula (1) L0 raised for the points' noise of S" when the noise chose the voxel size.
 std::string NoiseRaisedText(const ReconstructionReport& r) {
-  if (r.formula_voxel_size <= 0 || r.voxel_size <= r.formula_voxel_size) return "";
+  if (!VoxelRaisedForNoise(r.formula_voxel_size, r.voxel_size)) return "";
   return absl::StrFormat(", formula (1)'s %.6g raised for the points' noise of %.3g",
                          r.formula_voxel_size, r.point_noise);
 }

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "absl/strings/str_format.h"
+#include "core/engine/point_noise.h"
 #include "core/mesh/mesh_check.h"
 #include "core/pipeline/stopwatch.h"
 
@@ -44,7 +45,7 @@ absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
 // volume read as noise several formula-(1) voxels deep.
 absl::Status EmptySurfaceError(const ReconstructionReport& report) {
   const std::string noise =
-      report.voxel_size > report.formula_voxel_size && report.formula_voxel_size > 0
+      VoxelRaisedForNoise(report.formula_voxel_size, report.voxel_size)
           ? absl::StrFormat(
                 " (the size of the points' scatter across their surface, %g, where formula "
                 "(1) gives %g: do they sample a surface?)",

@@ -125,5 +125,12 @@ TEST(PointNoiseTest, TheVoxelGrowsOnlyPastTheNoiseShare) {
       3.0);
 }
 
+TEST(PointNoiseTest, ARaisedVoxelIsOneOverAComputedFormulaOneSize) {
+  EXPECT_TRUE(VoxelRaisedForNoise(1.0, 1.5));
+  EXPECT_FALSE(VoxelRaisedForNoise(1.0, 1.0));
+  // A given size records no formula-(1) size.
+  EXPECT_FALSE(VoxelRaisedForNoise(0.0, 1.5));
+}
+
 }  // namespace
 }  // namespace membrane

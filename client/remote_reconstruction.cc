@@ -21,6 +21,7 @@
 #include "client/std_streams.h"
 #include "client/upload_plan.h"
 #include "core/io/mesh_io.h"
+#include "core/pipeline/grid_box.h"
 #include "core/pipeline/stopwatch.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
 #include "proto/crc32c.h"
@@ -128,6 +129,17 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   if (!encoded.ok()) {
     return absl::Status(encoded.status().code(),
                         absl::StrCat(InputName(params.input), ": ", encoded.status().message()));
+  }
+  // The server plans its grid on the cloud's box, not on the quantized points' (which can be
+  // a plane shorter), when its check of the points against the box will pass.
+  if (plan.box && encoded->max_position_error <= plan.voxel_size / kGridBoxStepsPerVoxel) {
+    v1::GridBox& box = *upload.parameters.mutable_grid_box();
+    box.set_min_x(plan.box->min[0]);
+    box.set_min_y(plan.box->min[1]);
+    box.set_min_z(plan.box->min[2]);
+    box.set_max_x(plan.box->max[0]);
+    box.set_max_y(plan.box->max[1]);
+    box.set_max_z(plan.box->max[2]);
   }
   outcome.raw_bytes = cloud->points.size() * sizeof(Point3f);
   outcome.upload_bytes = encoded->bytes.size();

@@ -16,6 +16,7 @@ UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size) {
   if (!grid.ok()) return plan;
   plan.voxel_size = grid->voxel_size;
   plan.noise_note = NoiseVoxelNote(*grid);
+  plan.box = grid->bounds;
   const auto extent = grid->bounds.Extent();
   const double range = std::max({extent[0], extent[1], extent[2]});
   // Draco's step is range / (2^bits - 1).

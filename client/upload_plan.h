@@ -10,12 +10,14 @@
 #include <string>
 
 #include "core/geometry/point_cloud.h"
+#include "core/pipeline/grid_box.h"
 
 namespace membrane::client {
 
 // The upload's grid step is at most 1/kStepsPerVoxel of the voxel: each coordinate moves by at
-// most 1/16 of a voxel.
-inline constexpr int kStepsPerVoxel = 8;
+// most 1/16 of a voxel, well within what the server allows between the points and the box the
+// client sends (grid_box.h).
+inline constexpr int kStepsPerVoxel = kGridBoxStepsPerVoxel;
 // The default bits (contracts.md's --quantization), kept wherever they are fine enough.
 inline constexpr int kDefaultUploadBits = 11;
 
@@ -24,12 +26,15 @@ struct UploadPlan {
   int bits = kDefaultUploadBits;
   // NoiseVoxelNote of the plan: the server gets the size as given and says nothing of it.
   std::optional<std::string> noise_note;
+  // The box the voxel was planned on (CheckedBounds of the cloud as read), for the server to
+  // plan its grid on (Parameters.grid_box); none when voxel_size is 0.
+  std::optional<Box3d> box;
 };
 
 // For `cloud` and the voxel size asked for (0: the default, as PlanGrid plans Voxelize's):
-// that voxel size, and the fewest bits from kDefaultUploadBits up (at most 30) whose step over
-// the cloud's largest side is at most voxel / kStepsPerVoxel. A degenerate cloud (no points,
-// coplanar, ...) gives voxel_size 0 and the default bits.
+// that voxel size, its box, and the fewest bits from kDefaultUploadBits up (at most 30) whose
+// step over the cloud's largest side is at most voxel / kStepsPerVoxel. A degenerate cloud (no
+// points, coplanar, ...) gives voxel_size 0, no box and the default bits.
 UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size);
 
 }  // namespace membrane::client

@@ -7,6 +7,7 @@
 #include "absl/strings/str_format.h"
 #include "core/engine/plate_schedule.h"
 #include "core/mesh/mesh_decimation.h"
+#include "core/pipeline/grid_box.h"
 #include "core/io/coordinate_shift.h"
 #include "server/client_text.h"
 
@@ -56,6 +57,13 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
   JobSettings settings;
   for (int k = 0; k < p.origin_size(); ++k) settings.origin[k] = p.origin(k);
   ReconstructionOptions& r = settings.reconstruction;
+  if (p.has_grid_box()) {
+    const v1::GridBox& b = p.grid_box();
+    const Box3d box = {{b.min_x(), b.min_y(), b.min_z()}, {b.max_x(), b.max_y(), b.max_z()}};
+    // Whether it holds the points is known once they are decoded (PlanGrid).
+    if (absl::Status s = CheckGridBox(box); !s.ok()) return s;
+    r.grid_box = box;
+  }
   r.voxelize.voxel_size = p.voxel_size();
   r.voxelize.voxel_budget = p.voxel_budget() > 0 ? p.voxel_budget() : server_voxel_budget;
   r.shrink.initial_plate = p.initial_plate();

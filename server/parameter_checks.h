@@ -22,8 +22,9 @@ struct JobSettings {
 // `server_voxel_budget` (0: no cap; the job's own budget, 0 or up to 1e12, holds alone).
 // InvalidArgument naming the field and its allowed range for the
 // first value out of range, e.g. "initial_plate 200000 is out of range [0, 100000]", or for an
-// origin of other than 0 or 3 finite values of magnitude up to 2^40. A schedule or surface
-// named wrongly is quoted as ClientText (bounded and escaped).
+// origin of other than 0 or 3 finite values of magnitude up to 2^40, or for a grid_box that
+// is not finite or whose min is not below its max on some axis (CheckGridBox). A schedule or
+// surface named wrongly is quoted as ClientText (bounded and escaped).
 absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& parameters,
                                             int64_t server_voxel_budget);
 

@@ -7,6 +7,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
 #include "core/engine/voxel_grid.h"
+#include "core/pipeline/grid_box.h"
 #include "core/pipeline/machine_memory.h"
 
 namespace membrane {
@@ -73,12 +74,18 @@ int64_t Bytes(const StageCost& cost, int64_t voxels, int64_t points, int64_t mem
 }  // namespace
 
 absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize,
-                                     const CancelToken& cancel) {
-  absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points, cancel);
+                                     const CancelToken& cancel,
+                                     const std::optional<Box3d>& grid_box) {
+  if (grid_box) {
+    if (absl::Status s = CheckGridBox(*grid_box); !s.ok()) return s;
+  }
+  absl::StatusOr<Box3d> points_bounds = CheckedBounds(cloud.points, cancel);
   if (cancel.cancelled()) {
     return absl::CancelledError("reconstruction cancelled while planning the grid");
   }
-  if (!bounds.ok()) return bounds.status();
+  if (!points_bounds.ok()) return points_bounds.status();
+  // Everything below reads the grid's box, which is the points' own unless one is given.
+  const Box3d* bounds = grid_box ? &*grid_box : &*points_bounds;
   PlannedGrid plan;
   plan.bounds = *bounds;
   plan.voxel_size = voxelize.voxel_size;
@@ -98,6 +105,12 @@ absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOpti
     // The count or the noise stopped short: the size means nothing.
     if (cancel.cancelled()) {
       return absl::CancelledError("reconstruction cancelled while planning the grid");
+    }
+  }
+  if (grid_box) {
+    if (absl::Status s = CheckGridBoxHoldsPoints(*grid_box, *points_bounds, plan.voxel_size);
+        !s.ok()) {
+      return s;
     }
   }
   double voxels = 1;

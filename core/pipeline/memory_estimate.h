@@ -8,6 +8,7 @@
 #define MEMBRANE_CORE_PIPELINE_MEMORY_ESTIMATE_H_
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -26,7 +27,7 @@ inline constexpr double kNoiseBoxVoxels = 4;
 // The grid Voxelize will allocate for `cloud` with `voxelize`, computed the same way before
 // anything is allocated.
 struct PlannedGrid {
-  Box3d bounds;           // CheckedBounds of the points
+  Box3d bounds;           // CheckedBounds of the points, or the grid box PlanGrid was given
   // voxelize.voxel_size when > 0, else NoiseAwareVoxelSize of formula (1)'s and the noise
   // (model units).
   double voxel_size = 0;
@@ -49,8 +50,14 @@ struct PlannedGrid {
 // that formula (1) does not count the points again nor Voxelize check them again.
 // Cancelled when `cancel` fires during the point check or the count (CheckedBounds and
 // DistinctPointCount ask it) or the noise's pass.
+// With `grid_box` (grid_box.h), the grid is planned on that box instead of the points' own:
+// `bounds` is the box, formula (1) and the noise read it, and the points are still checked;
+// InvalidArgument (CheckGridBox's, CheckGridBoxHoldsPoints' message) for a box that is not
+// finite, is flat or inverted, or does not hold the points within 1/kGridBoxStepsPerVoxel of
+// the planned voxel.
 absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOptions& voxelize,
-                                     const CancelToken& cancel = CancelToken::Never());
+                                     const CancelToken& cancel = CancelToken::Never(),
+                                     const std::optional<Box3d>& grid_box = std::nullopt);
 
 // The most a planned grid may need whatever the run's gate admits: ResourceExhausted "voxel size
 // L gives a grid of V voxels: with the P points it needs about B, more than the M of memory

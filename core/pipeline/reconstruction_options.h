@@ -3,9 +3,11 @@
 #define MEMBRANE_CORE_PIPELINE_RECONSTRUCTION_OPTIONS_H_
 
 #include <cstdint>
+#include <optional>
 
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/voxelization.h"
+#include "core/geometry/point_cloud.h"
 #include "core/pipeline/surface_builder.h"
 #include "core/pipeline/thread_limits.h"
 
@@ -14,6 +16,10 @@ namespace membrane {
 struct ReconstructionOptions {
   // voxel_size 0: formula (1)'s, which the pipeline computes once when it plans the grid.
   VoxelizeOptions voxelize;
+  // The box the grid is planned on instead of the points' own (grid_box.h): the box of the
+  // cloud as its owner read it, when the points are a quantized copy (membraned's uploads).
+  // The points must lie within 1/kGridBoxStepsPerVoxel of the voxel outside it.
+  std::optional<Box3d> grid_box;
   ShrinkOptions shrink;
   bool relax = true;
   SurfaceKind surface = SurfaceKind::kSmooth;

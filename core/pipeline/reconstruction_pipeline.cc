@@ -98,7 +98,7 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   // neither counts (formula (1)) nor checks the points again.
   VoxelizeOptions voxelize = options.voxelize;
   voxelize.threads = options.threads;
-  absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, voxelize, cancel);
+  absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, voxelize, cancel, options.grid_box);
   if (!plan.ok()) return with_context(plan.status());
   // The gate first: its message names the limit the caller can change. The ceiling then
   // catches what a gate without a limit admits.

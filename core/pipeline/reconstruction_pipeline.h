@@ -42,8 +42,9 @@ struct PipelineAdapters {
 //
 // Errors: the adapters' statuses as they are. The pipeline's own, with `errors` added
 // (WithErrorContext): InvalidArgument for options out of range, a degenerate cloud (no
-// points, all equal, coplanar), a cloud that gives no surface or a face target below what its
-// surface's topology needs; ResourceExhausted for a grid
+// points, all equal, coplanar), an options.grid_box that is not finite, flat, inverted or
+// does not hold the points (PlanGrid), a cloud that gives no surface or a face target below
+// what its surface's topology needs; ResourceExhausted for a grid
 // over options.voxelize.voxel_budget or whose estimate is over options.memory_ceiling_bytes
 // (CheckMemoryCeiling); Cancelled "reconstruction cancelled after STAGE" when
 // `cancel` fires. The token is polled within the source, the gate, the shrink, the

@@ -65,6 +65,22 @@ TEST(UploadPlan, DefaultVoxelIsThePipelinesWithItsNoiseNote) {
   EXPECT_NE(plan.noise_note->find("scatter across their surface"), std::string::npos);
 }
 
+// The server plans its grid on the box the client read (Parameters.grid_box): the cloud's own.
+TEST(UploadPlan, BoxIsTheCloudsOwnAndNoneForADegenerateCloud) {
+  const PointCloud cloud = Sphere(8000);
+  const absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
+  ASSERT_TRUE(bounds.ok());
+  for (const double voxel : {0.0, 0.1}) {
+    const UploadPlan plan = PlanUpload(cloud, voxel);
+    ASSERT_TRUE(plan.box.has_value());
+    EXPECT_EQ(plan.box->min, bounds->min);
+    EXPECT_EQ(plan.box->max, bounds->max);
+  }
+  PointCloud flat;
+  for (int i = 0; i < 100; ++i) flat.points.push_back({static_cast<float>(i % 10), 0, i / 10.0f});
+  EXPECT_FALSE(PlanUpload(flat, 0).box.has_value());
+}
+
 TEST(UploadPlan, KeepsTheRequestedVoxel) {
   EXPECT_DOUBLE_EQ(PlanUpload(Lattice(10, 1.0f), 0.25).voxel_size, 0.25);
 }

@@ -15,6 +15,8 @@
 #include <grpcpp/create_channel.h>
 #include <gtest/gtest.h>
 
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "absl/time/clock.h"
 #include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
@@ -23,6 +25,7 @@
 #include "membrane/v1/reconstruction.grpc.pb.h"
 #include "proto/crc32c.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/plane_edge_cloud.h"
 #include "tests/support/survey_cloud.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/server/draco_upload.h"
@@ -202,6 +205,46 @@ TEST_F(EndToEndTest, DefaultUploadGetsLocalsGridWhenQuantizationMergesPoints) {
                 .exit_code,
             0);
   EXPECT_EQ(GridOf(ReadText(dir_.File("remote.json"))), GridOf(ReadText(dir_.File("local.json"))));
+}
+
+// Every "genus" array of a statistics JSON (the membrane's, the mesh's), in order.
+std::string GenusOf(const std::string& json) {
+  std::string genus;
+  const std::regex array("\"genus\": \\[[^\\]]*\\]");
+  for (auto it = std::sregex_iterator(json.begin(), json.end(), array);
+       it != std::sregex_iterator(); ++it) {
+    genus += it->str() + " ";
+  }
+  return genus.empty() ? "no genus in: " + json.substr(0, 200) : genus;
+}
+
+// The 11-bit upload of this cloud has a box a plane shorter or longer than the cloud's at this
+// voxel (Draco moves the extreme points by up to half a step): the client sends the cloud's
+// box (Parameters.grid_box), and the server's grid and genus are --local's.
+TEST_F(EndToEndTest, QuantizedUploadGetsLocalsGridThroughTheCloudsBox) {
+  StartServer();
+  const PlaneEdgeCloud c = MakePlaneEdgeCloud(10000);
+  ASSERT_NE(c.data_dims, c.quantized_data_dims);
+  const std::string cloud = dir_.File("edge.ply");
+  ASSERT_TRUE(WritePointCloud(c.cloud, cloud).ok());
+  const std::string voxel = absl::StrFormat("%.17g", c.voxel_size);
+  const CliResult remote =
+      Run({"reconstruct", cloud, "-o", dir_.File("remote.ply"), "--server", address_,
+           "--voxel-size", voxel, "--stats-json", dir_.File("remote.json")});
+  ASSERT_EQ(remote.exit_code, 0) << remote.err;
+  EXPECT_NE(remote.err.find(absl::StrCat(c.bits, "-bit positions")), std::string::npos)
+      << remote.err;
+  const CliResult local = Run({"reconstruct", cloud, "-o", dir_.File("local.ply"), "--local",
+                               "--voxel-size", voxel, "--stats-json", dir_.File("local.json")});
+  ASSERT_EQ(local.exit_code, 0) << local.err;
+  const std::string remote_json = ReadText(dir_.File("remote.json"));
+  const std::string local_json = ReadText(dir_.File("local.json"));
+  EXPECT_EQ(GridOf(remote_json), GridOf(local_json));
+  EXPECT_NE(remote_json.find(absl::StrCat("\"data_grid\": [", c.data_dims[0], ", ",
+                                          c.data_dims[1], ", ", c.data_dims[2], "]")),
+            std::string::npos)
+      << remote_json;
+  EXPECT_EQ(GenusOf(remote_json), GenusOf(local_json));
 }
 
 // A dense cloud is sent with enough bits for its voxel: 400k sphere points make a 258^3 grid,

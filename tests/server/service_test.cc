@@ -1,4 +1,5 @@
 // Every call of membrane.v1.Reconstruction against an in-process server over a real channel.
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <chrono>
@@ -6,9 +7,11 @@
 #include <ctime>
 #include <thread>
 
+#include <gmock/gmock.h>
 #include <grpcpp/create_channel.h>
 #include <gtest/gtest.h>
 
+#include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "core/io/draco_codec.h"
 #include "core/mesh/mesh_check.h"
@@ -20,10 +23,13 @@
 #include "server/job_runner.h"
 #include "tests/server/http_get.h"
 #include "tests/server/service_fixture.h"
+#include "tests/support/plane_edge_cloud.h"
 #include "tests/support/scratch_dir.h"
 
 namespace membrane::testing {
 namespace {
+
+using ::testing::HasSubstr;
 
 // Waits (at most `seconds`) until GetJob reports a finished job; returns its last state.
 v1::Job WaitUntilDone(v1::Reconstruction::Stub& stub, const std::string& id, double seconds) {
@@ -245,6 +251,84 @@ TEST_F(ServiceTest, OriginIsKeptInTheStatisticsAndTheJob) {
   const v1::Job job = WaitUntilDone(*stub_, id, 10);
   ASSERT_EQ(job.parameters().origin_size(), 3);
   EXPECT_EQ(job.parameters().origin(1), 4123457.0);
+}
+
+// "[a, b, c]" as the statistics JSON writes an integer array.
+std::string JsonDims(const std::array<int, 3>& dims) {
+  return absl::StrCat("[", dims[0], ", ", dims[1], ", ", dims[2], "]");
+}
+
+// The statistics JSON of a call's result, or empty.
+std::string ResultStatistics(const CallResult& r) {
+  for (const v1::JobEvent& e : r.events) {
+    if (e.has_result()) return e.result().statistics_json();
+  }
+  return "";
+}
+
+v1::GridBox GridBoxOf(const Box3d& box) {
+  v1::GridBox b;
+  b.set_min_x(box.min[0]);
+  b.set_min_y(box.min[1]);
+  b.set_min_z(box.min[2]);
+  b.set_max_x(box.max[0]);
+  b.set_max_y(box.max[1]);
+  b.set_max_z(box.max[2]);
+  return b;
+}
+
+// An 11-bit upload whose own box is a plane shorter or longer than its cloud's: with the
+// cloud's box in Parameters.grid_box, the job's grid is the cloud's; without, the upload's own.
+TEST_F(ServiceTest, GridBoxGivesAQuantizedUploadItsCloudsGrid) {
+  StartServer();
+  const PlaneEdgeCloud c = MakePlaneEdgeCloud(10000);
+  DracoOptions draco;
+  draco.position_quantization_bits = c.bits;
+  absl::StatusOr<DracoEncoding> upload = EncodeDracoPointCloud(c.cloud, draco);
+  ASSERT_TRUE(upload.ok()) << upload.status();
+  v1::Parameters p;
+  p.set_voxel_size(c.voxel_size);
+  const CallResult own = Reconstruct(upload->bytes, p);
+  ASSERT_TRUE(own.status.ok()) << own.status.error_message();
+  EXPECT_THAT(ResultStatistics(own),
+              HasSubstr("\"data_grid\": " + JsonDims(c.quantized_data_dims)));
+  *p.mutable_grid_box() = GridBoxOf(c.box);
+  const CallResult boxed = Reconstruct(upload->bytes, p);
+  ASSERT_TRUE(boxed.status.ok()) << boxed.status.error_message();
+  EXPECT_THAT(ResultStatistics(boxed), HasSubstr("\"data_grid\": " + JsonDims(c.data_dims)));
+  EXPECT_THAT(ResultStatistics(boxed), HasSubstr("\"genus\": [0]"));
+  const v1::Job job = WaitUntilDone(*stub_, boxed.JobId(), 10);
+  EXPECT_EQ(job.parameters().grid_box().max_z(), c.box.max[2]);
+}
+
+// A box that is not finite or is inverted is refused before the job is accepted; one that does
+// not hold the decoded points within 1/8 voxel fails the job; each names grid_box.
+TEST_F(ServiceTest, BadGridBoxIsInvalidArgumentNamingTheField) {
+  StartServer();
+  const std::string upload = DracoCloud("sphere", 2000);
+  const Box3d sphere = {{-1.01, -1.01, -1.01}, {1.01, 1.01, 1.01}};
+  v1::Parameters p;
+  p.set_voxel_size(0.1);
+  *p.mutable_grid_box() = GridBoxOf(sphere);
+  p.mutable_grid_box()->set_max_y(std::nan(""));
+  const CallResult nan = Reconstruct(upload, p);
+  EXPECT_EQ(nan.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(nan.status.error_message(), HasSubstr("grid_box y: max nan is not finite"));
+  EXPECT_TRUE(nan.events.empty());
+
+  *p.mutable_grid_box() = GridBoxOf(sphere);
+  p.mutable_grid_box()->set_min_x(2);
+  const CallResult inverted = Reconstruct(upload, p);
+  EXPECT_EQ(inverted.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(inverted.status.error_message(), HasSubstr("grid_box x: min 2 is not below max"));
+
+  *p.mutable_grid_box() = GridBoxOf(sphere);
+  p.mutable_grid_box()->set_max_z(0.5);  // the sphere's top half outside
+  const CallResult outside = Reconstruct(upload, p);
+  EXPECT_EQ(outside.FinalState(), v1::FAILED);
+  EXPECT_EQ(outside.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(outside.status.error_message(),
+              HasSubstr("grid_box does not contain the points: their z max"));
 }
 
 TEST_F(ServiceTest, GetJobAndListJobsShowAFinishedJobAndItsResultIsFetchableAgain) {

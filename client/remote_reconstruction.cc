@@ -20,6 +20,7 @@
 #include "client/rpc_errors.h"
 #include "client/std_streams.h"
 #include "client/upload_plan.h"
+#include "client/voxel_keeping_snap.h"
 #include "core/io/mesh_io.h"
 #include "core/pipeline/grid_box.h"
 #include "core/pipeline/stopwatch.h"
@@ -125,14 +126,23 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   if (params.adapt_upload_bits && draco.position_quantization_bits > 0) {
     draco.position_quantization_bits = std::max(draco.position_quantization_bits, plan.bits);
   }
+  // Each point stays in its voxel of the planned grid, so that the server's hard voxels are
+  // --local's; the cloud is not needed as read after this.
+  std::optional<VoxelKeepingSnap> snap;
+  if (plan.box) {
+    snap = SnapKeepingVoxels(cloud->points, *plan.box, plan.voxel_size,
+                             draco.position_quantization_bits);
+    if (snap) draco.box = snap->grid.box;
+  }
   absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, draco);
   if (!encoded.ok()) {
     return absl::Status(encoded.status().code(),
                         absl::StrCat(InputName(params.input), ": ", encoded.status().message()));
   }
+  const double position_error = snap ? snap->max_error : encoded->max_position_error;
   // The server plans its grid on the cloud's box, not on the quantized points' (which can be
   // a plane shorter), when its check of the points against the box will pass.
-  if (plan.box && encoded->max_position_error <= plan.voxel_size / kGridBoxStepsPerVoxel) {
+  if (plan.box && position_error <= plan.voxel_size / kGridBoxStepsPerVoxel) {
     v1::GridBox& box = *upload.parameters.mutable_grid_box();
     box.set_min_x(plan.box->min[0]);
     box.set_min_y(plan.box->min[1]);
@@ -146,8 +156,9 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   const std::string positions =
       draco.position_quantization_bits == 0
           ? std::string("lossless positions")
-          : absl::StrFormat("%d-bit positions, each coordinate within %.3g of the file's",
-                            draco.position_quantization_bits, encoded->max_position_error);
+          : absl::StrFormat("%d-bit positions, each coordinate within %.3g of the file's%s",
+                            draco.position_quantization_bits, position_error,
+                            snap ? " and in its voxel" : "");
   const std::string dropped_note =
       dropped > 0 ? absl::StrCat(" (", DroppedPointsNote(dropped), ")") : std::string();
   progress.Finish(absl::StrFormat(

@@ -6,6 +6,7 @@
 #include "absl/status/statusor.h"
 #include "core/pipeline/memory_estimate.h"
 #include "core/pipeline/noise_voxel_note.h"
+#include "core/geometry/position_grid.h"
 
 namespace membrane::client {
 
@@ -17,9 +18,10 @@ UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size) {
   plan.voxel_size = grid->voxel_size;
   plan.noise_note = NoiseVoxelNote(*grid);
   plan.box = grid->bounds;
-  const auto extent = grid->bounds.Extent();
-  const double range = std::max({extent[0], extent[1], extent[2]});
-  // Draco's step is range / (2^bits - 1).
+  // Draco's step is range / (2^bits - 1), over the box the upload is quantized in: the
+  // cloud's, widened for Draco's option text (GridOverBox, as SnapKeepingVoxels takes it).
+  const double range =
+      GridOverBox(plan.bits, grid->bounds.min, grid->bounds.max, 0.0).box.range;
   const double steps = range / plan.voxel_size * kStepsPerVoxel;
   while (plan.bits < 30 && std::ldexp(1.0, plan.bits) - 1 < steps) ++plan.bits;
   return plan;

@@ -15,7 +15,7 @@
 namespace membrane::client {
 
 // The upload's grid step is at most 1/kStepsPerVoxel of the voxel: each coordinate moves by at
-// most 1/16 of a voxel, well within what the server allows between the points and the box the
+// most a step (SnapKeepingVoxels), what the server allows between the points and the box the
 // client sends (grid_box.h).
 inline constexpr int kStepsPerVoxel = kGridBoxStepsPerVoxel;
 // The default bits (contracts.md's --quantization), kept wherever they are fine enough.

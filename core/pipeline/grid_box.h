@@ -4,7 +4,7 @@
 // one `membrane reconstruct --local` plans on that cloud. Quantization moves the extreme points
 // by up to half a step, and a box one voxel face away from a side of the data region then
 // loses or gains a plane (docs/pipeline-decisions.md, "The grid of an upload is planned on the
-// client's box").
+// client's box, and its points keep their voxels").
 #ifndef MEMBRANE_CORE_PIPELINE_GRID_BOX_H_
 #define MEMBRANE_CORE_PIPELINE_GRID_BOX_H_
 
@@ -14,8 +14,8 @@
 namespace membrane {
 
 // The points may lie outside a given box by at most voxel_size / kGridBoxStepsPerVoxel on any
-// side: the step of an upload planned so that each coordinate moves by at most half of it
-// (client/upload_plan.h), twice the error such an upload can have.
+// side: the largest step of an upload planned by client/upload_plan.h, the most its
+// voxel-keeping snap moves a coordinate (client/voxel_keeping_snap.h).
 inline constexpr int kGridBoxStepsPerVoxel = 8;
 
 // OK when every coordinate of `box` is finite and min < max on each axis; otherwise

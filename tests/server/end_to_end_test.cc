@@ -220,7 +220,8 @@ std::string GenusOf(const std::string& json) {
 
 // The 11-bit upload of this cloud has a box a plane shorter or longer than the cloud's at this
 // voxel (Draco moves the extreme points by up to half a step): the client sends the cloud's
-// box (Parameters.grid_box), and the server's grid and genus are --local's.
+// box (Parameters.grid_box) and keeps each point in its voxel (SnapKeepingVoxels), and the
+// server's grid, hard voxels and genus are --local's.
 TEST_F(EndToEndTest, QuantizedUploadGetsLocalsGridThroughTheCloudsBox) {
   StartServer();
   const PlaneEdgeCloud c = MakePlaneEdgeCloud(10000);
@@ -245,6 +246,12 @@ TEST_F(EndToEndTest, QuantizedUploadGetsLocalsGridThroughTheCloudsBox) {
             std::string::npos)
       << remote_json;
   EXPECT_EQ(GenusOf(remote_json), GenusOf(local_json));
+  const std::regex hard("\"hard_voxels\": \\d+");
+  std::smatch remote_hard, local_hard;
+  ASSERT_TRUE(std::regex_search(remote_json, remote_hard, hard)) << remote_json;
+  ASSERT_TRUE(std::regex_search(local_json, local_hard, hard)) << local_json;
+  EXPECT_EQ(remote_hard.str(), local_hard.str());
+  EXPECT_NE(remote.err.find("of the file's and in its voxel"), std::string::npos) << remote.err;
 }
 
 // A dense cloud is sent with enough bits for its voxel: 400k sphere points make a 258^3 grid,

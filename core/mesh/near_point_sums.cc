@@ -28,10 +28,30 @@ bool AnyLane(V4i mask) {
   return (half[0] | half[1]) != 0;
 }
 
-}  // namespace
+// The points' counts: one a lane inside (kWeighted false), or the sum of the stored weights
+// of the lanes inside (a grid of cell means, whose weights are their points' counts).
+template <bool kWeighted>
+struct LaneCounts {
+  V4i ones = {0, 0, 0, 0};
+  V4f weights = SplatV4f(0);
+  // Adds the lanes of `inside` (-1 inside, 0 outside); `w` the lanes' stored weights.
+  void Add(V4i inside, V4f w) {
+    if constexpr (kWeighted) {
+      weights += std::bit_cast<V4f>(std::bit_cast<V4i>(w) & inside);
+    } else {
+      ones -= inside;
+    }
+  }
+  // The counts are whole numbers under 2^24 in each lane: float sums them exactly.
+  int Total() const {
+    if constexpr (kWeighted) return static_cast<int>(Sum(weights));
+    return ones[0] + ones[1] + ones[2] + ones[3];
+  }
+};
 
-NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
-                                const NearPointWeights& weights) {
+template <bool kWeighted>
+NearPointResult WeighNear(const PointRowGrid& grid, double radius,
+                          const NearPointWeights& weights) {
   const V4f ox = SplatV4f(weights.origin[0]), oy = SplatV4f(weights.origin[1]),
             oz = SplatV4f(weights.origin[2]);
   const V4f nx = SplatV4f(weights.normal[0]), ny = SplatV4f(weights.normal[1]),
@@ -43,10 +63,11 @@ NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
   const V4f zero = SplatV4f(0);
   V4f sw = zero, sx = zero, sy = zero, sz = zero;
   V4f sxx = zero, sxy = zero, sxz = zero, syy = zero, syz = zero, szz = zero;
-  V4i count = {0, 0, 0, 0};
+  LaneCounts<kWeighted> count;
   const float* xs = grid.xs();
   const float* ys = grid.ys();
   const float* zs = grid.zs();
+  [[maybe_unused]] const float* ws = grid.ws();
   const Vec3d centre{weights.origin[0], weights.origin[1], weights.origin[2]};
   grid.ForEachRun(centre, radius, [&](uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; i += kLanes) {
@@ -56,9 +77,15 @@ NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
       // -1 in the lanes that hold a point of this run within the radius, 0 elsewhere.
       const V4i inside = (d2 <= r2) & (lane < static_cast<int32_t>(end - i));
       if (!AnyLane(inside)) continue;  // see WeighNearPointsInFrame
-      const V4f w = std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(d2 * a + dn * dn * b_minus_a)) &
-                                       inside);
-      count -= inside;
+      V4f w = std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(d2 * a + dn * dn * b_minus_a)) &
+                                 inside);
+      if constexpr (kWeighted) {
+        const V4f c = Load(ws + i);
+        w *= c;
+        count.Add(inside, c);
+      } else {
+        count.Add(inside, zero);
+      }
       sw += w;
       const V4f wx = w * dx, wy = w * dy, wz = w * dz;
       sx += wx;
@@ -73,15 +100,16 @@ NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
     }
   });
   NearPointResult out;
-  out.count = count[0] + count[1] + count[2] + count[3];
+  out.count = count.Total();
   out.acc = PlaneFitAccumulator::FromSums(
       Sum(sw), {Sum(sx), Sum(sy), Sum(sz)},
       {Sum(sxx), Sum(sxy), Sum(sxz), Sum(syy), Sum(syz), Sum(szz)});
   return out;
 }
 
-HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
-                                       const FrameWeights& weights) {
+template <bool kWeighted>
+HeightFieldSums WeighInFrame(const PointRowGrid& grid, double radius,
+                             const FrameWeights& weights) {
   const V4f ox = SplatV4f(weights.origin[0]), oy = SplatV4f(weights.origin[1]),
             oz = SplatV4f(weights.origin[2]);
   V4f ax[3][3];
@@ -95,10 +123,11 @@ HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
   V4f m[15], hm[6], shh = zero;
   for (V4f& x : m) x = zero;
   for (V4f& x : hm) x = zero;
-  V4i count = {0, 0, 0, 0};
+  LaneCounts<kWeighted> count;
   const float* xs = grid.xs();
   const float* ys = grid.ys();
   const float* zs = grid.zs();
+  [[maybe_unused]] const float* ws = grid.ws();
   const Vec3d centre{weights.origin[0], weights.origin[1], weights.origin[2]};
   grid.ForEachRun(centre, radius, [&](uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; i += kLanes) {
@@ -113,9 +142,14 @@ HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
       // every sum's bits as they are: a masked lane adds a zero, and a lane's sum, never -0
       // (it starts at +0 and round-to-nearest cancels to +0), is unchanged by adding one.
       if (!AnyLane(inside)) continue;
-      const V4f w =
-          std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(t2 * a + h2 * b)) & inside);
-      count -= inside;
+      V4f w = std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(t2 * a + h2 * b)) & inside);
+      if constexpr (kWeighted) {
+        const V4f c = Load(ws + i);
+        w *= c;
+        count.Add(inside, c);
+      } else {
+        count.Add(inside, zero);
+      }
       const V4f wu = w * u, wv = w * v, wuu = w * uu, wvv = w * vv, wuv = w * uv, wh = w * h;
       m[0] += w;
       m[1] += wu;
@@ -142,11 +176,25 @@ HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
     }
   });
   HeightFieldSums out;
-  out.count = count[0] + count[1] + count[2] + count[3];
+  out.count = count.Total();
   for (int k = 0; k < 15; ++k) out.uv[k] = Sum(m[k]);
   for (int k = 0; k < 6; ++k) out.huv[k] = Sum(hm[k]);
   out.hh = Sum(shh);
   return out;
+}
+
+}  // namespace
+
+NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
+                                const NearPointWeights& weights) {
+  return grid.ws() != nullptr ? WeighNear<true>(grid, radius, weights)
+                              : WeighNear<false>(grid, radius, weights);
+}
+
+HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
+                                       const FrameWeights& weights) {
+  return grid.ws() != nullptr ? WeighInFrame<true>(grid, radius, weights)
+                              : WeighInFrame<false>(grid, radius, weights);
 }
 
 }  // namespace membrane

@@ -33,7 +33,9 @@ struct NearPointResult {
 
 // Over the points of `grid` that ForEachRun(origin, radius) lists, those with |d|^2 <= radius2,
 // weighted w = exp(-(|d|^2 - (d.n)^2) inv_2s2 - (d.n)^2 inv_2n2): the accumulated plane sums
-// (in float, returned in double) and their count.
+// (in float, returned in double) and their count. A grid with weights (ws(): cell means and
+// their point counts, point_cell_means.h) multiplies each w by the stored weight, and counts
+// the stored weights.
 NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
                                 const NearPointWeights& weights);
 
@@ -50,7 +52,8 @@ struct FrameWeights {
 
 // Over the points that ForEachRun(origin, radius) lists (radius in model units), those with
 // u^2 + v^2 + h^2 <= radius2, weighted w = exp(-(u^2 + v^2) inv_2s2 - h^2 inv_2n2): the height
-// field sums of height_quadric.h (in float, returned in double) and their count.
+// field sums of height_quadric.h (in float, returned in double) and their count; a grid with
+// weights as WeighNearPoints weighs them.
 HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
                                        const FrameWeights& weights);
 

@@ -14,6 +14,7 @@
 #include "core/mesh/fan_embedding.h"
 #include "core/mesh/near_point_sums.h"
 #include "core/mesh/plane_fit.h"
+#include "core/mesh/point_cell_means.h"
 #include "core/mesh/point_row_grid.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/triangle_intersection.h"
@@ -43,6 +44,12 @@ struct FitIndexes {
 
 FitIndexes BuildIndexes(const TriangleMesh& mesh, double voxel_size,
                         absl::Span<const Point3f> points, const FitOptions& options) {
+  // A dense cloud's means are a pass over every point: on the run's threads, before the two
+  // indexes that then read the few means.
+  std::optional<PointCellMeans> merged;
+  if (static_cast<double>(points.size()) >=
+      options.dense_points_per_vertex * static_cast<double>(mesh.vertices.size()))
+    merged.emplace(MeanPerCell(points, options.mean_cell * voxel_size, options.threads));
   std::optional<MeshFans> fans;
   std::optional<PointRowGrid> grid;
   RunTasks(options.threads, 2, [&](int, int64_t task) {
@@ -51,7 +58,12 @@ FitIndexes BuildIndexes(const TriangleMesh& mesh, double voxel_size,
     } else {
       // Cells of half the search radius: a query reads 5x5 rows of 5 cells, a box little
       // larger than its ball.
-      grid.emplace(points, 0.5 * options.search_radius * voxel_size);
+      const double cell = 0.5 * options.search_radius * voxel_size;
+      if (merged) {
+        grid.emplace(merged->means, cell, 1, PointRowGrid::Limits(), merged->counts);
+      } else {
+        grid.emplace(points, cell);
+      }
     }
   });
   return FitIndexes{*std::move(fans), *std::move(grid)};
@@ -100,6 +112,8 @@ class Fitter {
     dirty_.assign(nf, 0);
     AssignSlabs();
   }
+
+  int64_t weighed_points() const { return static_cast<int64_t>(points_.num_points()); }
 
   // `progress`: the rounds count the vertices of the slabs as they are fitted (rounds times
   // every vertex) up to 85% of it, the final search the rest.
@@ -589,6 +603,7 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
       !(o.quadric_limits.max_centroid_offset >= 0) ||
       !(o.quadric_limits.max_curvature >= 0) || !(o.umbrella_step >= 0 && o.umbrella_step <= 1) ||
       !(o.sparse_radius >= 0) || !(o.sparse_sigma > 0) || !(o.max_offset >= 0) ||
+      !(o.dense_points_per_vertex >= 0) || !(o.mean_cell > 0) ||
       !(o.min_move >= 0) || o.output_grid.bits < 0 || o.output_grid.bits > 30 ||
       !(o.output_grid.box.range > 0) || !std::isfinite(o.output_grid.box.range))
     return absl::InvalidArgumentError(
@@ -599,7 +614,9 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
                      o.quadric_limits.min_tangent_spread, ", ",
                      o.quadric_limits.max_centroid_offset, ", ", o.quadric_limits.max_slope, ", ",
                      o.quadric_limits.max_curvature, ", sparse_radius ", o.sparse_radius,
-                     ", sparse_sigma ", o.sparse_sigma, ", umbrella_step ", o.umbrella_step,
+                     ", sparse_sigma ", o.sparse_sigma, ", dense_points_per_vertex ",
+                     o.dense_points_per_vertex, ", mean_cell ", o.mean_cell,
+                     ", umbrella_step ", o.umbrella_step,
                      ", max_offset ", o.max_offset, ", min_move ", o.min_move,
                      ", output grid bits ", o.output_grid.bits, " range ", o.output_grid.box.range));
   return absl::OkStatus();
@@ -623,6 +640,7 @@ absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
         "fallback has ", fallback->size(), " positions for ", mesh.vertices.size(), " vertices"));
   Fitter fitter(mesh, voxel_size, BuildIndexes(mesh, voxel_size, points, options), options,
                 fallback);
+  stats.weighed_points = fitter.weighed_points();
   if (absl::Status s = fitter.Run(cancel, progress, stats); !s.ok()) return s;
   return stats;
 }

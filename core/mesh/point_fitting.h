@@ -40,6 +40,12 @@ struct FitOptions {
   // sparse_sigma (0: no second try).
   double sparse_radius = 4.0;
   double sparse_sigma = 2.0;
+  // A dense cloud (at least dense_points_per_vertex points per mesh vertex: a scan at a voxel
+  // its noise raised) is weighed as the means of its points per cell of mean_cell voxels, each
+  // weighted by its count (point_cell_means.h), so that the fit's cost follows the faces and
+  // not the points. Infinity: every point always.
+  double dense_points_per_vertex = 4;
+  double mean_cell = 0.75;
   double umbrella_step = 0.5;  // fraction of the way to the 1-ring mean
   double max_offset = 1.5;     // a vertex never moves farther from its surface-nets position
   double min_move = 1e-3;      // smaller moves are not worth a check
@@ -60,6 +66,8 @@ struct FitStats {
   int64_t refused = 0;            // targets not taken even at 1/4 of the way
   int64_t backed_off = 0;         // moves kept at 1/2 or 1/4 of the way
   int64_t repaired_vertices = 0;  // vertex moves toward the fallback (input crossings)
+  // The points the fit weighed: the cloud's, or a dense cloud's cell means.
+  int64_t weighed_points = 0;
   // True when the final search started from every face (a fallback or a quantizing grid):
   // `crossings` is then every pair of faces of the returned mesh that intersect, as
   // FindIntersectingFaces() lists them (sorted, as (lower, higher) face index), so a mesh
@@ -78,15 +86,16 @@ struct FitStats {
 // quadric of the points near the vertex, in the frame of its normal, above or below it
 // (options.quadric, >= quadric_min_points of them and within the limits; with fewer, the same from
 // the points within sparse_radius), else the projection on their weighted PCA plane (>= min_points
-// of them), else an umbrella step; the target is clamped to max_offset from the vertex's input
-// position; the move is tried at 1, 1/2, 1/4 of the way and taken at the first where every triangle
-// of the vertex keeps a non-zero area and a positive dot product with its input normal, and no two
-// of them overlap. The last pass ends with an intersection search around the faces the passes
-// moved, on the float32 positions that are written, on output_grid (so it is also recipe step 6's
-// rounding check, and the check of the encoding's quantization): the moved vertices of every
-// crossing pair back off through 1/2, 1/4 of the way, then to where they started, until nothing
-// crosses. Checking once at the end instead of once per move costs one linear search instead of a
-// grid query per vertex, and gives the same guarantee. The result does not depend on
+// of them), else an umbrella step (a dense cloud's points weighed as their cell means, each
+// counting its points: options.dense_points_per_vertex); the target is clamped to max_offset from
+// the vertex's input position; the move is tried at 1, 1/2, 1/4 of the way and taken at the first
+// where every triangle of the vertex keeps a non-zero area and a positive dot product with its
+// input normal, and no two of them overlap. The last pass ends with an intersection search around
+// the faces the passes moved, on the float32 positions that are written, on output_grid (so it is
+// also recipe step 6's rounding check, and the check of the encoding's quantization): the moved
+// vertices of every crossing pair back off through 1/2, 1/4 of the way, then to where they started,
+// until nothing crosses. Checking once at the end instead of once per move costs one linear search
+// instead of a grid query per vertex, and gives the same guarantee. The result does not depend on
 // options.threads.
 // `fallback`, if not null, holds one position per vertex at which the mesh is known free of
 // self-intersections (SurfaceNetsBeforeRepair's); the input may then cross itself: that

@@ -22,7 +22,7 @@ using Unfilled = std::vector<T, UnfilledAllocator<T>>;
 }  // namespace
 
 PointRowGrid::PointRowGrid(absl::Span<const Point3f> points, double cell, int threads,
-                           const Limits& limits)
+                           const Limits& limits, absl::Span<const float> weights)
     : cell_(cell) {
   if (points.empty()) return;
   const int64_t n = static_cast<int64_t>(points.size());
@@ -189,6 +189,8 @@ PointRowGrid::PointRowGrid(absl::Span<const Point3f> points, double cell, int th
   x_.resize(n + kTail);
   y_.resize(n + kTail);
   z_.resize(n + kTail);
+  const bool weighted = !weights.empty();
+  if (weighted) w_.resize(n + kTail);
   RunTasks(threads, point_tasks, [&](int, int64_t t) {
     const int64_t end = std::min(n, (t + 1) * kBlockPoints);
     for (int64_t s = t * kBlockPoints; s < end; ++s) {
@@ -196,9 +198,13 @@ PointRowGrid::PointRowGrid(absl::Span<const Point3f> points, double cell, int th
       x_[s] = p[0];
       y_[s] = p[1];
       z_[s] = p[2];
+      if (weighted) w_[s] = weights[order[s]];
     }
   });
-  for (size_t s = num_points_; s < num_points_ + kTail; ++s) x_[s] = y_[s] = z_[s] = kPadding;
+  for (size_t s = num_points_; s < num_points_ + kTail; ++s) {
+    x_[s] = y_[s] = z_[s] = kPadding;
+    if (weighted) w_[s] = 0;
+  }
 }
 
 // A sparse cloud in a large box: the points sorted by (row key, x), stable, on one thread (a
@@ -241,7 +247,7 @@ size_t PointRowGrid::bytes() const {
   return cells_.capacity() * sizeof(Cell) + row_table_.capacity() * sizeof(uint32_t) +
          start_.capacity() * sizeof(uint32_t) +
          row_key_.capacity() * sizeof(uint64_t) + row_first_cell_.capacity() * sizeof(uint32_t) +
-         3 * x_.capacity() * sizeof(float);
+         3 * x_.capacity() * sizeof(float) + w_.capacity() * sizeof(float);
 }
 
 }  // namespace membrane

@@ -52,9 +52,10 @@ class PointRowGrid {
   // max(16 points, 2^21) cells (and 2^31 - 1 along each axis); fewer than 2^32 points. The
   // layout is the first of kDense, kRowTable, kSparseRows within `limits`. The build runs on
   // `threads` (<= 1: the calling thread); the index is the same for any thread count, and the
-  // points' order and a query's runs are the same in every layout.
+  // points' order and a query's runs are the same in every layout. `weights`, empty or one per
+  // point, are stored beside the points (ws()).
   PointRowGrid(absl::Span<const Point3f> points, double cell, int threads = 1,
-               const Limits& limits = Limits());
+               const Limits& limits = Limits(), absl::Span<const float> weights = {});
 
   // Calls fn(const Point3f&, double squared_distance) for every point within `radius` of
   // `centre` (model units), in storage order.
@@ -127,10 +128,26 @@ class PointRowGrid {
     }
   }
 
+  // Calls fn(uint32_t begin, uint32_t end) for the run of stored points of every occupied
+  // cell, in storage order.
+  template <typename Fn>
+  void ForEachCell(Fn fn) const {
+    if (num_points_ == 0) return;
+    if (layout_ == Layout::kDense) {
+      // An empty cell's offset is the next occupied cell's, so the runs of empty cells are empty.
+      for (size_t c = 0; c + 1 < start_.size(); ++c)
+        if (start_[c] < start_[c + 1]) fn(start_[c], start_[c + 1]);
+      return;
+    }
+    for (size_t c = 0; c + 1 < cells_.size(); ++c) fn(cells_[c].start, cells_[c + 1].start);
+  }
+
   // The stored coordinates, num_points() + kTail entries each.
   const float* xs() const { return x_.data(); }
   const float* ys() const { return y_.data(); }
   const float* zs() const { return z_.data(); }
+  // The stored weights in the same order, then kTail zeros; null when none were given.
+  const float* ws() const { return w_.empty() ? nullptr : w_.data(); }
   size_t num_points() const { return num_points_; }
   // The cell size used.
   double cell() const { return cell_; }
@@ -213,6 +230,7 @@ class PointRowGrid {
   template <typename T>
   using BigVector = std::vector<T, UnfilledAllocator<T>>;
   BigVector<float> x_, y_, z_;  // the points in cell order, then kTail paddings
+  BigVector<float> w_;          // their weights, then kTail zeros (empty: none given)
 };
 
 }  // namespace membrane

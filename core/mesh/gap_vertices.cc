@@ -48,9 +48,15 @@ absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
       const Vec3d c = ToVec3d(mesh.vertices[v]);
       grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t stop) {
         for (uint32_t i = begin; i < stop; ++i) {
+          // Past last_bin the count is not needed, and a point some vertex already covers
+          // stays covered: on a dense cloud most of a vertex's points are then one byte read.
+          const bool count = near < last_bin;
+          if (!count && (!collect_remote ||
+                         std::atomic_ref<char>(covered[i]).load(std::memory_order_relaxed)))
+            continue;
           const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
           if (dx * dx + dy * dy + dz * dz <= r2) {
-            ++near;
+            near += count;
             if (collect_remote)
               std::atomic_ref<char>(covered[i]).store(1, std::memory_order_relaxed);
           }

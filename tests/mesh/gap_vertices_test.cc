@@ -1,11 +1,13 @@
 // The hole caps' gap search (core/mesh/gap_vertices.h) and the caps built on it: the same
-// flags, counts, remote points and caps on any thread count.
+// flags, counts, remote points and caps on any thread count, and on a dense cloud.
 #include "core/mesh/gap_vertices.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "core/mesh/hole_caps.h"
+#include "core/mesh/point_row_grid.h"
 #include "core/mesh/smooth_surface.h"
 #include "gtest/gtest.h"
 #include "tests/mesh/cloud_surface.h"
@@ -75,6 +77,50 @@ TEST(GapVertices, TheSameOnAnyThreadCount) {
     EXPECT_EQ(many->count, one->count) << threads;
     EXPECT_EQ(many->histogram, one->histogram) << threads;
     EXPECT_EQ(many->remote, one->remote) << threads;
+  }
+}
+
+TEST(GapVertices, ADenseCloudGivesWhatEveryPointAgainstEveryBallGives) {
+  // Ten times the points the membrane was made from (16 a vertex): the search skips the
+  // points a vertex need not read (its count past the last bin, points already covered), so
+  // it is held against a count of every point in every vertex's ball.
+  const NetsOfCloud nets = Nets(SphereWithHoleAndBuriedPoints(20000, 300));
+  const PointCloud dense = SphereWithHoleAndBuriedPoints(200000, 3000);
+  const double radius = 2 * nets.voxel_size;
+  const int last_bin = 6;
+  const PointRowGrid grid(dense.points, radius);
+  std::vector<char> covered(grid.num_points(), 0), gap;
+  std::vector<int64_t> histogram(last_bin + 1, 0);
+  int64_t count = 0;
+  for (const Point3f& v : nets.mesh.vertices) {
+    int near = 0;
+    const Vec3d c = ToVec3d(v);
+    grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t end) {
+      for (uint32_t i = begin; i < end; ++i) {
+        const double dx = grid.xs()[i] - c[0], dy = grid.ys()[i] - c[1],
+                     dz = grid.zs()[i] - c[2];
+        if (dx * dx + dy * dy + dz * dz <= radius * radius) {
+          ++near;
+          covered[i] = 1;
+        }
+      }
+    });
+    gap.push_back(near == 0);
+    count += near == 0;
+    if (near > 0) ++histogram[std::min(near, last_bin)];
+  }
+  std::vector<Point3f> remote;
+  for (size_t i = 0; i < grid.num_points(); ++i)
+    if (!covered[i]) remote.push_back({grid.xs()[i], grid.ys()[i], grid.zs()[i]});
+  EXPECT_GE(remote.size(), 3000u);
+  for (const int threads : {1, 3}) {
+    absl::StatusOr<GapVertices> found = FindGapVertices(nets.mesh, dense.points, radius, last_bin,
+                                                        true, 1, threads, CancelToken::Never());
+    ASSERT_TRUE(found.ok()) << found.status();
+    EXPECT_EQ(found->gap, gap) << threads;
+    EXPECT_EQ(found->count, count) << threads;
+    EXPECT_EQ(found->histogram, histogram) << threads;
+    EXPECT_EQ(found->remote, remote) << threads;
   }
 }
 

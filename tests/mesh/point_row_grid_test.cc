@@ -246,5 +246,41 @@ TEST(PointRowGrid, OnePointAndOneCell) {
   }
 }
 
+TEST(PointRowGrid, LongRowsKeepTheirPointsInCellThenInputOrder) {
+  // Rows of thousands of points over thousands of cells (sorted by counting) and rows of 200
+  // points spread over thousands of cells (sorted by merging), each point's input index
+  // stored as its weight: the stored order is by cell (z, y, x), then by input index, on 1
+  // and 3 threads, in the dense and the row-table layouts.
+  std::mt19937 rng(14);
+  std::uniform_int_distribution<int> near(0, 7), far(0, 4000), yz(0, 2);
+  std::vector<Point3f> points;
+  std::vector<float> index;
+  for (int i = 0; i < 30000; ++i) {
+    const bool spread = i % 10 == 0;
+    points.push_back({(spread ? far(rng) : near(rng)) + 0.5f, yz(rng) + 0.5f, yz(rng) + 0.5f});
+    index.push_back(static_cast<float>(i));
+  }
+  for (int i = 0; i < 600; ++i) {
+    points.push_back({far(rng) + 0.5f, 5.5f + i % 3, 5.5f});
+    index.push_back(static_cast<float>(points.size() - 1));
+  }
+  for (const PointRowGrid::Limits& limits :
+       {PointRowGrid::Limits{}, PointRowGrid::Limits{.max_dense_cells = 0}})
+    for (int threads : {1, 3}) {
+      const PointRowGrid grid(points, 1.0, threads, limits, index);
+      ASSERT_EQ(grid.cell(), 1.0);
+      std::array<int64_t, 4> last = {-1, -1, -1, -1};
+      for (size_t s = 0; s < grid.num_points(); ++s) {
+        // Cells of 1 from the box's low corner (0.5 on every axis): the floor of each coordinate.
+        const std::array<int64_t, 4> key = {static_cast<int64_t>(grid.zs()[s]),
+                                            static_cast<int64_t>(grid.ys()[s]),
+                                            static_cast<int64_t>(grid.xs()[s]),
+                                            static_cast<int64_t>(grid.ws()[s])};
+        ASSERT_LT(last, key) << "slot " << s << ", " << threads << " threads";
+        last = key;
+      }
+    }
+}
+
 }  // namespace
 }  // namespace membrane

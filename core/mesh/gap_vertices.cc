@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <optional>
 
 #include "absl/status/status.h"
 #include "core/base/parallel_tasks.h"
 #include "core/geometry/vec3.h"
-#include "core/mesh/point_row_grid.h"
 
 namespace membrane {
 namespace {
@@ -21,13 +21,16 @@ absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
                                             absl::Span<const Point3f> points, double radius,
                                             int last_bin, bool collect_remote,
                                             int64_t remote_min_count, int threads,
-                                            const CancelToken& cancel) {
+                                            const CancelToken& cancel,
+                                            const PointRowGrid* shared) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   GapVertices out;
   out.gap.assign(nv, 0);
   out.histogram.assign(last_bin + 1, 0);
   const double r2 = radius * radius;
-  const PointRowGrid grid(points, radius, threads);
+  std::optional<PointRowGrid> own;
+  if (shared == nullptr) own.emplace(points, radius, threads);
+  const PointRowGrid& grid = shared != nullptr ? *shared : *own;
   // A point is marked by whichever vertex sees it first; every mark writes the same 1, so the
   // union does not depend on the order (relaxed atomic bytes: plain stores on x86).
   std::vector<char> covered(collect_remote ? grid.num_points() : 0, 0);

@@ -11,6 +11,7 @@
 #include "core/base/cancel_token.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/mesh/point_row_grid.h"
 
 namespace membrane {
 
@@ -31,12 +32,15 @@ struct GapVertices {
 // `remote_min_count` vertices are gaps, the remote points (a caller with fewer gaps has no use
 // for them: a mesh without holes holds no list of its points). The
 // vertices are split into blocks over `threads` (<= 1: the calling thread); the result is the
-// same for any thread count. Errors: Cancelled when `cancel` fired.
+// same for any thread count. `grid`, if not null, is the PointRowGrid of `points` with cells of
+// `radius` (built with any thread count), read instead of building one. Errors: Cancelled when
+// `cancel` fired.
 absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
                                             absl::Span<const Point3f> points, double radius,
                                             int last_bin, bool collect_remote,
                                             int64_t remote_min_count, int threads,
-                                            const CancelToken& cancel);
+                                            const CancelToken& cancel,
+                                            const PointRowGrid* grid = nullptr);
 
 }  // namespace membrane
 

@@ -851,7 +851,8 @@ std::vector<std::vector<int32_t>> Components(const Rows& nb, const std::vector<c
 
 absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,
                       const HoleCapOptions& options, HoleCapStats* stats,
-                      const CancelToken& cancel, int threads) {
+                      const CancelToken& cancel, int threads,
+                      const PointRowGrid* points_grid) {
   if (absl::Status s = Validate(voxel_size, options); !s.ok()) return s;
   HoleCapStats local;
   HoleCapStats& st = stats ? *stats : local;
@@ -865,7 +866,8 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   // The points with no vertex within gap_radius: buried in the solid or left outside it.
   absl::StatusOr<GapVertices> found =
       FindGapVertices(mesh, points, options.gap_radius * l, options.min_median_points,
-                      options.anchor_remote_points, options.min_gap_vertices, threads, cancel);
+                      options.anchor_remote_points, options.min_gap_vertices, threads, cancel,
+                      points_grid);
   if (!found.ok()) return found.status();
   const std::vector<char>& gap = found->gap;
   const int64_t count = found->count;

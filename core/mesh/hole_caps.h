@@ -12,6 +12,7 @@
 #include "core/base/cancel_token.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/mesh/point_row_grid.h"
 
 namespace membrane {
 
@@ -234,11 +235,14 @@ struct HoleCapStats {
 // genus; crossings are those of the input or none.
 // The gap search runs on `threads` (<= 1: the calling thread), the rest on the calling
 // thread; the result depends only on the input, not on `threads`. `stats` may be null.
+// `points_grid`, if not null, is the PointRowGrid of `points` with cells of gap_radius voxels,
+// which the gap search then reads instead of building it.
 // Errors: InvalidArgument for a bad voxel size or options out of range; Cancelled when
 // `cancel` fired (the mesh is then as it came in).
 absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,
                       const HoleCapOptions& options = {}, HoleCapStats* stats = nullptr,
-                      const CancelToken& cancel = CancelToken::Never(), int threads = 1);
+                      const CancelToken& cancel = CancelToken::Never(), int threads = 1,
+                      const PointRowGrid* points_grid = nullptr);
 
 }  // namespace membrane
 

@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "absl/types/span.h"
 #include "core/geometry/point_cloud.h"
+#include "core/mesh/point_row_grid.h"
 
 namespace membrane {
 
@@ -17,12 +17,13 @@ struct PointCellMeans {
   std::vector<float> counts;   // the points of each (exact integers)
 };
 
-// Input: `points` (fewer than 2^32), `cell` > 0 in model units. Output: per occupied cell of a
-// PointRowGrid of `points` with that cell size (grown as PointRowGrid grows it for a huge box),
-// in its storage order, the mean of the cell's points (summed in double, in their stable
-// order, rounded to float) and their count. A cell holding one point gives that point itself.
-// The build runs on `threads` (<= 1: the calling thread); the result does not depend on it.
-PointCellMeans MeanPerCell(absl::Span<const Point3f> points, double cell, int threads);
+// Input: `grid` an index of the points; `split` in [1, 8]. Output: per occupied sub-cell (each
+// of the grid's cells cut into split^3 cubes of edge grid.cell() / split), in the grid's cell
+// order and within a cell in (z, y, x) order of its sub-cells, the mean of the sub-cell's
+// points (summed in double in their stored order, rounded to float) and their count. A sub-cell
+// holding one point gives that point itself. A point on a sub-cell wall goes to the sub-cell
+// its coordinates' rounding gives, within its own cell.
+PointCellMeans MeanPerSubCell(const PointRowGrid& grid, int split);
 
 }  // namespace membrane
 

@@ -43,13 +43,18 @@ struct FitIndexes {
 };
 
 FitIndexes BuildIndexes(const TriangleMesh& mesh, double voxel_size,
-                        absl::Span<const Point3f> points, const FitOptions& options) {
-  // A dense cloud's means are a pass over every point: on the run's threads, before the two
-  // indexes that then read the few means.
+                        absl::Span<const Point3f> points, const FitOptions& options,
+                        std::optional<PointRowGrid> points_grid) {
+  // A dense cloud's means come from an index of every point (the caller's when given, else
+  // built on the run's threads), before the two indexes that then read the few means.
   std::optional<PointCellMeans> merged;
   if (static_cast<double>(points.size()) >=
-      options.dense_points_per_vertex * static_cast<double>(mesh.vertices.size()))
-    merged.emplace(MeanPerCell(points, options.mean_cell * voxel_size, options.threads));
+      options.dense_points_per_vertex * static_cast<double>(mesh.vertices.size())) {
+    if (!points_grid) points_grid.emplace(points, options.search_radius * voxel_size,
+                                          options.threads);
+    merged.emplace(MeanPerSubCell(*points_grid, options.mean_split));
+  }
+  points_grid.reset();
   std::optional<MeshFans> fans;
   std::optional<PointRowGrid> grid;
   RunTasks(options.threads, 2, [&](int, int64_t task) {
@@ -603,7 +608,7 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
       !(o.quadric_limits.max_centroid_offset >= 0) ||
       !(o.quadric_limits.max_curvature >= 0) || !(o.umbrella_step >= 0 && o.umbrella_step <= 1) ||
       !(o.sparse_radius >= 0) || !(o.sparse_sigma > 0) || !(o.max_offset >= 0) ||
-      !(o.dense_points_per_vertex >= 0) || !(o.mean_cell > 0) ||
+      !(o.dense_points_per_vertex >= 0) || o.mean_split < 1 || o.mean_split > 8 ||
       !(o.min_move >= 0) || o.output_grid.bits < 0 || o.output_grid.bits > 30 ||
       !(o.output_grid.box.range > 0) || !std::isfinite(o.output_grid.box.range))
     return absl::InvalidArgumentError(
@@ -615,7 +620,7 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
                      o.quadric_limits.max_centroid_offset, ", ", o.quadric_limits.max_slope, ", ",
                      o.quadric_limits.max_curvature, ", sparse_radius ", o.sparse_radius,
                      ", sparse_sigma ", o.sparse_sigma, ", dense_points_per_vertex ",
-                     o.dense_points_per_vertex, ", mean_cell ", o.mean_cell,
+                     o.dense_points_per_vertex, ", mean_split ", o.mean_split,
                      ", umbrella_step ", o.umbrella_step,
                      ", max_offset ", o.max_offset, ", min_move ", o.min_move,
                      ", output grid bits ", o.output_grid.bits, " range ", o.output_grid.box.range));
@@ -628,7 +633,8 @@ absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
                                      absl::Span<const Point3f> points, const FitOptions& options,
                                      const CancelToken& cancel,
                                      const std::vector<Point3f>* fallback,
-                                     ProgressRange progress) {
+                                     ProgressRange progress,
+                                     std::optional<PointRowGrid> points_grid) {
   if (absl::Status s = ValidateOptions(voxel_size, options); !s.ok()) return s;
   FitStats stats;
   if (mesh.faces.empty()) {
@@ -638,7 +644,8 @@ absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
   if (fallback != nullptr && fallback->size() != mesh.vertices.size())
     return absl::InvalidArgumentError(absl::StrCat(
         "fallback has ", fallback->size(), " positions for ", mesh.vertices.size(), " vertices"));
-  Fitter fitter(mesh, voxel_size, BuildIndexes(mesh, voxel_size, points, options), options,
+  Fitter fitter(mesh, voxel_size,
+                BuildIndexes(mesh, voxel_size, points, options, std::move(points_grid)), options,
                 fallback);
   stats.weighed_points = fitter.weighed_points();
   if (absl::Status s = fitter.Run(cancel, progress, stats); !s.ok()) return s;

@@ -6,6 +6,7 @@
 #define MEMBRANE_CORE_MESH_POINT_FITTING_H_
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "core/geometry/position_grid.h"
 #include "core/geometry/triangle_mesh.h"
 #include "core/mesh/height_quadric.h"
+#include "core/mesh/point_row_grid.h"
 
 namespace membrane {
 
@@ -41,11 +43,12 @@ struct FitOptions {
   double sparse_radius = 4.0;
   double sparse_sigma = 2.0;
   // A dense cloud (at least dense_points_per_vertex points per mesh vertex: a scan at a voxel
-  // its noise raised) is weighed as the means of its points per cell of mean_cell voxels, each
-  // weighted by its count (point_cell_means.h), so that the fit's cost follows the faces and
-  // not the points. Infinity: every point always.
+  // its noise raised) is weighed as the means of its points per cell of search_radius /
+  // mean_split voxels, each weighted by its count (point_cell_means.h: the cells of an index
+  // of search_radius, the caps' gap search's, cut mean_split times along each axis), so that
+  // the fit's cost follows the faces and not the points. Infinity: every point always.
   double dense_points_per_vertex = 4;
-  double mean_cell = 0.75;
+  int mean_split = 3;
   double umbrella_step = 0.5;  // fraction of the way to the 1-ring mean
   double max_offset = 1.5;     // a vertex never moves farther from its surface-nets position
   double min_move = 1e-3;      // smaller moves are not worth a check
@@ -109,7 +112,9 @@ struct FitStats {
 // grid is too coarse for any repair (the caller's mesh check tells); every vertex within
 // max_offset * voxel_size of its input position, plus half a grid step per axis.
 // `progress` counts the vertices the rounds fit, then the final search, and reaches its end
-// when the fit does.
+// when the fit does. `points_grid`, if given, is the PointRowGrid of `points` with cells of
+// search_radius voxels (the caps' gap search's), from which a dense cloud's means are taken
+// instead of building it; it is released before the rounds.
 // Errors: InvalidArgument for a non-positive voxel size, options out of range or a fallback of
 // the wrong size; Cancelled when `cancel` fired (the mesh then holds the last verified state:
 // every move is undone).
@@ -118,7 +123,8 @@ absl::StatusOr<FitStats> FitToPoints(TriangleMesh& mesh, double voxel_size,
                                      const FitOptions& options = {},
                                      const CancelToken& cancel = CancelToken::Never(),
                                      const std::vector<Point3f>* fallback = nullptr,
-                                     ProgressRange progress = ProgressRange());
+                                     ProgressRange progress = ProgressRange(),
+                                     std::optional<PointRowGrid> points_grid = std::nullopt);
 
 }  // namespace membrane
 

@@ -151,6 +151,14 @@ class PointRowGrid {
   size_t num_points() const { return num_points_; }
   // The cell size used.
   double cell() const { return cell_; }
+  // The low corner of cell (0, 0, 0): the points' box's.
+  const std::array<double, 3>& origin() const { return lo_; }
+  // The cell the build filed `p` in (its coordinates clamped to the box).
+  std::array<int64_t, 3> CellCoords(const Point3f& p) const {
+    std::array<int64_t, 3> c;
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp<int64_t>(CellOf(p[k], k), 0, dims_[k] - 1);
+    return c;
+  }
   // The memory the index holds, in bytes.
   size_t bytes() const;
 

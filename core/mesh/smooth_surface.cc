@@ -1,12 +1,14 @@
 #include "core/mesh/smooth_surface.h"
 
 #include <chrono>
+#include <optional>
 #include <utility>
 
 #include "absl/status/status.h"
 #include "core/mesh/cave_filling.h"
 #include "core/mesh/diagonal_bridging.h"
 #include "core/mesh/loose_sheets.h"
+#include "core/mesh/point_row_grid.h"
 #include "core/mesh/surface_nets.h"
 
 namespace membrane {
@@ -81,18 +83,28 @@ absl::StatusOr<TriangleMesh> SmoothSurface(VoxelGrid&& membrane,
   progress.Part(kPrepareShare, kNetsEnd).Done();
 
   start = std::chrono::steady_clock::now();
+  // One index of the points, cells of the gap radius, for the caps' gap search and, with the
+  // fit's search radius the same, a dense cloud's means in the fit: each was a pass over every
+  // point.
+  const int threads = options.fit_options.threads;
+  std::optional<PointRowGrid> points_grid;
+  if (options.hole_caps.enabled && options.hole_caps.gap_radius > 0 && !points.empty() &&
+      !nets.mesh.vertices.empty())
+    points_grid.emplace(points, options.hole_caps.gap_radius * voxel_size, threads);
   // Before the fit: the fit then pulls the caps' rims onto the data and smooths the caps; its
   // final search covers the caps too.
-  if (absl::Status capped = CapHoles(nets.mesh, voxel_size, points, options.hole_caps,
-                                     &s.caps, cancel, options.fit_options.threads);
+  if (absl::Status capped =
+          CapHoles(nets.mesh, voxel_size, points, options.hole_caps, &s.caps, cancel, threads,
+                   points_grid ? &*points_grid : nullptr);
       !capped.ok())
     return capped;
   s.cap_seconds = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
+  if (options.hole_caps.gap_radius != options.fit_options.search_radius) points_grid.reset();
   absl::StatusOr<FitStats> fit = FitToPoints(nets.mesh, voxel_size, points,
                                              options.fit_options, cancel, &nets.fallback,
-                                             progress.Part(kNetsEnd, 1));
+                                             progress.Part(kNetsEnd, 1), std::move(points_grid));
   if (!fit.ok()) return fit.status();
   s.fit = *fit;
   s.fit_seconds = SecondsSince(start);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <map>
+#include <utility>
 #include <random>
 #include <vector>
 
@@ -68,9 +70,10 @@ TEST(PointCellMeans, CountsEveryPointOnceAndKeepsLonePoints) {
   std::uniform_real_distribution<float> u(0, 1);
   std::vector<Point3f> points(5000);
   for (Point3f& p : points) p = {u(rng), u(rng), 0.05f * u(rng)};
-  // One point alone, far from the others: its cell's mean is itself.
+  // One point alone, far from the others: its sub-cell's mean is itself.
   points.push_back({3.1f, 2.7f, 1.3f});
-  const PointCellMeans m = MeanPerCell(points, 0.1, 1);
+  const PointRowGrid grid(points, 0.3);
+  const PointCellMeans m = MeanPerSubCell(grid, 3);
   ASSERT_EQ(m.means.size(), m.counts.size());
   double total = 0;
   for (float c : m.counts) {
@@ -86,11 +89,43 @@ TEST(PointCellMeans, CountsEveryPointOnceAndKeepsLonePoints) {
   EXPECT_EQ(lone, 1);
 }
 
+TEST(PointCellMeans, EachSubCellsPointsGiveItsMean) {
+  // Sub-cells of 0.1 in cells of 0.3, against the points grouped by the sub-cell of the box's
+  // corner that holds them, summed in input order (a cell stores its points in that order).
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> u(0, 1);
+  std::vector<Point3f> points(20000);
+  for (Point3f& p : points) p = {u(rng), u(rng), 0.3f * u(rng)};
+  const PointRowGrid grid(points, 0.3);
+  ASSERT_EQ(grid.cell(), 0.3);
+  std::map<std::array<int64_t, 3>, std::pair<std::array<double, 3>, int>> groups;
+  for (const Point3f& p : points) {
+    std::array<int64_t, 3> key;
+    for (int k = 0; k < 3; ++k)
+      key[k] = static_cast<int64_t>(std::floor((p[k] - grid.origin()[k]) * (3 / 0.3)));
+    auto& [sum, count] = groups[key];
+    for (int k = 0; k < 3; ++k) sum[k] += p[k];
+    ++count;
+  }
+  std::vector<std::pair<Point3f, float>> want, got;
+  for (const auto& [key, group] : groups) {
+    const double n = group.second;
+    want.push_back({{static_cast<float>(group.first[0] / n), static_cast<float>(group.first[1] / n),
+                     static_cast<float>(group.first[2] / n)},
+                    static_cast<float>(n)});
+  }
+  const PointCellMeans m = MeanPerSubCell(grid, 3);
+  for (size_t i = 0; i < m.means.size(); ++i) got.push_back({m.means[i], m.counts[i]});
+  std::sort(want.begin(), want.end());
+  std::sort(got.begin(), got.end());
+  EXPECT_EQ(got, want);
+}
+
 TEST(PointCellMeans, TheSameMeansOnAnyThreadCount) {
   const NoisySphere s(100000, 0.15);
-  const PointCellMeans one = MeanPerCell(s.points, 0.4 * s.kVoxel, 1);
+  const PointCellMeans one = MeanPerSubCell(PointRowGrid(s.points, 2 * s.kVoxel, 1), 3);
   for (int threads : {2, 3}) {
-    const PointCellMeans more = MeanPerCell(s.points, 0.4 * s.kVoxel, threads);
+    const PointCellMeans more = MeanPerSubCell(PointRowGrid(s.points, 2 * s.kVoxel, threads), 3);
     EXPECT_TRUE(more.means == one.means) << threads;
     EXPECT_TRUE(more.counts == one.counts) << threads;
   }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
+#include <cstdint>
 #include <optional>
 
 #include "absl/status/status.h"
@@ -31,9 +33,16 @@ absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
   std::optional<PointRowGrid> own;
   if (shared == nullptr) own.emplace(points, radius, threads);
   const PointRowGrid& grid = shared != nullptr ? *shared : *own;
-  // A point is marked by whichever vertex sees it first; every mark writes the same 1, so the
-  // union does not depend on the order (relaxed atomic bytes: plain stores on x86).
-  std::vector<char> covered(collect_remote ? grid.num_points() : 0, 0);
+  // A bit a point, set by whichever vertex sees it first (an atomic or): the union does not
+  // depend on the order. Bits, so that a vertex passes over 64 points some vertex already
+  // covered with one load.
+  std::vector<std::atomic<uint64_t>> covered(collect_remote ? (grid.num_points() + 63) / 64 : 0);
+  const auto mark = [&](uint64_t i) {
+    std::atomic<uint64_t>& word = covered[i >> 6];
+    const uint64_t bit = uint64_t{1} << (i & 63);
+    if ((word.load(std::memory_order_relaxed) & bit) == 0)
+      word.fetch_or(bit, std::memory_order_relaxed);
+  };
   const float* px = grid.xs();
   const float* py = grid.ys();
   const float* pz = grid.zs();
@@ -49,20 +58,31 @@ absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
     for (int64_t v = task * kBlockVertices; v < end; ++v) {
       int near = 0;
       const Vec3d c = ToVec3d(mesh.vertices[v]);
+      const auto inside = [&](uint64_t i) {
+        const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
+        return dx * dx + dy * dy + dz * dz <= r2;
+      };
       grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t stop) {
-        for (uint32_t i = begin; i < stop; ++i) {
-          // Past last_bin the count is not needed, and a point some vertex already covers
-          // stays covered: on a dense cloud most of a vertex's points are then one byte read.
-          const bool count = near < last_bin;
-          if (!count && (!collect_remote ||
-                         std::atomic_ref<char>(covered[i]).load(std::memory_order_relaxed)))
-            continue;
-          const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
-          if (dx * dx + dy * dy + dz * dz <= r2) {
-            near += count;
-            if (collect_remote)
-              std::atomic_ref<char>(covered[i]).store(1, std::memory_order_relaxed);
+        uint64_t i = begin;
+        for (; i < stop && near < last_bin; ++i)
+          if (inside(i)) {
+            ++near;
+            if (collect_remote) mark(i);
           }
+        if (!collect_remote) return;
+        // Past last_bin the count is not needed, and a covered point stays covered: only the
+        // points no vertex has covered yet are weighed, found a word of bits at a time (on a
+        // dense cloud most of a vertex's points are covered by its neighbours).
+        while (i < stop) {
+          const uint64_t open = ~covered[i >> 6].load(std::memory_order_relaxed) >> (i & 63);
+          if (open == 0) {
+            i = (i | 63) + 1;
+            continue;
+          }
+          i += static_cast<uint64_t>(std::countr_zero(open));
+          if (i >= stop) break;
+          if (inside(i)) mark(i);
+          ++i;
         }
       });
       out.gap[v] = near == 0;
@@ -77,7 +97,8 @@ absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
   }
   if (collect_remote && out.count >= remote_min_count)
     for (size_t i = 0; i < grid.num_points(); ++i)
-      if (!covered[i]) out.remote.push_back(Point3f{px[i], py[i], pz[i]});
+      if (((covered[i >> 6].load(std::memory_order_relaxed) >> (i & 63)) & 1) == 0)
+        out.remote.push_back(Point3f{px[i], py[i], pz[i]});
   return out;
 }
 

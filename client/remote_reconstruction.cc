@@ -121,6 +121,11 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   }
   const UploadPlan plan = PlanUpload(*cloud, params.parameters.voxel_size());
   if (plan.voxel_size > 0) upload.parameters.set_voxel_size(plan.voxel_size);
+  if (plan.voxel_plan) {
+    v1::VoxelPlan& sent = *upload.parameters.mutable_voxel_plan();
+    sent.set_formula_voxel_size(plan.voxel_plan->formula_voxel_size);
+    sent.set_point_noise(plan.voxel_plan->point_noise);
+  }
   upload.noise_note = plan.noise_note;
   DracoOptions draco = params.upload;
   if (params.adapt_upload_bits && draco.position_quantization_bits > 0) {

@@ -18,6 +18,9 @@ UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size) {
   plan.voxel_size = grid->voxel_size;
   plan.noise_note = NoiseVoxelNote(*grid);
   plan.box = grid->bounds;
+  if (grid->formula_voxel_size > 0) {
+    plan.voxel_plan = VoxelPlanNote{grid->formula_voxel_size, grid->noise.sigma};
+  }
   // Draco's step is range / (2^bits - 1), over the box the upload is quantized in: the
   // cloud's, widened for Draco's option text (GridOverBox, as SnapKeepingVoxels takes it).
   const double range =

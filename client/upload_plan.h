@@ -11,6 +11,7 @@
 
 #include "core/geometry/point_cloud.h"
 #include "core/pipeline/grid_box.h"
+#include "core/pipeline/reconstruction_options.h"
 
 namespace membrane::client {
 
@@ -29,6 +30,9 @@ struct UploadPlan {
   // The box the voxel was planned on (CheckedBounds of the cloud as read), for the server to
   // plan its grid on (Parameters.grid_box); none when voxel_size is 0.
   std::optional<Box3d> box;
+  // When the voxel was the default: formula (1)'s size and the points' noise it was planned
+  // from, for the server to report and treat the voxel as --local does (Parameters.voxel_plan).
+  std::optional<VoxelPlanNote> voxel_plan;
 };
 
 // For `cloud` and the voxel size asked for (0: the default, as PlanGrid plans Voxelize's):

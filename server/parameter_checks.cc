@@ -64,6 +64,23 @@ absl::StatusOr<JobSettings> CheckParameters(const v1::Parameters& p, int64_t ser
     if (absl::Status s = CheckGridBox(box); !s.ok()) return s;
     r.grid_box = box;
   }
+  if (p.has_voxel_plan()) {
+    const v1::VoxelPlan& plan = p.voxel_plan();
+    if (!(p.voxel_size() > 0)) {
+      return absl::InvalidArgumentError(
+          "voxel_plan needs the voxel_size it planned: voxel_size is 0 (the server's default)");
+    }
+    if (!std::isfinite(plan.formula_voxel_size()) || !(plan.formula_voxel_size() > 0)) {
+      return absl::InvalidArgumentError(
+          absl::StrFormat("voxel_plan formula_voxel_size %g is out of range: finite, > 0",
+                          plan.formula_voxel_size()));
+    }
+    if (!std::isfinite(plan.point_noise()) || !(plan.point_noise() >= 0)) {
+      return absl::InvalidArgumentError(absl::StrFormat(
+          "voxel_plan point_noise %g is out of range: finite, >= 0", plan.point_noise()));
+    }
+    r.voxel_plan = VoxelPlanNote{plan.formula_voxel_size(), plan.point_noise()};
+  }
   r.voxelize.voxel_size = p.voxel_size();
   r.voxelize.voxel_budget = p.voxel_budget() > 0 ? p.voxel_budget() : server_voxel_budget;
   r.shrink.initial_plate = p.initial_plate();

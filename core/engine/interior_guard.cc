@@ -13,6 +13,7 @@
 #include "core/engine/gap_refill.h"
 #include "core/engine/guard_band_waves.h"
 #include "core/engine/membrane_shrinker.h"
+#include "core/engine/point_gap_split.h"
 #include "core/engine/shrink_options.h"
 #include "core/engine/state_planes.h"
 #include "core/engine/voxelization.h"
@@ -142,6 +143,13 @@ int64_t FreezeCore(VoxelGrid& grid, const VoxelGrid& coarse, int k, const Marks&
 
 }  // namespace
 
+InteriorGuardOptions DenseScanGuard(InteriorGuardOptions options) {
+  options.min_coarse_axis = std::min(options.min_coarse_axis, kDenseScanMinCoarseAxis);
+  options.band_release_below = std::min(options.band_release_below, kDenseScanBandReleaseBelow);
+  options.one_piece_only = true;
+  return options;
+}
+
 absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkOptions& options,
                                                   const CancelToken& cancel, GuardedBand* band) {
   const auto start = std::chrono::steady_clock::now();
@@ -155,6 +163,12 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
   const auto cancelled = [] {
     return absl::CancelledError("reconstruction cancelled while guarding interiors");
   };
+  if (o.one_piece_only) {
+    absl::StatusOr<DataPieces> pieces =
+        FindDataPieces(grid, nullptr, 0, options.separation.min_piece_fraction, cancel);
+    if (!pieces.ok()) return pieces.status();
+    if (pieces->count >= 2) return stats;
+  }
 
   // The coarse membrane, refilled where it carved through data gaps; no dents (they would cut
   // paths into the solid that the fine membrane has no reason to follow).

@@ -38,7 +38,31 @@ struct InteriorGuardOptions {
   // The band is released before the first generation whose plate is below this size
   // (ReleaseGuardedBand); 0: kept to the end of the generations.
   int band_release_below = 5;
+  // The guard runs only where the data are one piece (FindDataPieces: fewer than two
+  // 26-components of hard voxels holding ShrinkOptions::separation.min_piece_fraction of them
+  // each). The coarse grid joins pieces fewer than `factor` voxels apart, and its membrane,
+  // kept out of their gaps, holds the space between them as an interior.
+  bool one_piece_only = false;
 };
+
+// On a grid whose voxel the points' noise chose (point_noise.h, VoxelRaisedForNoise) the scan
+// is dense for its voxel whatever the grid's width: dense scans get grids 250-350 voxels wide
+// at 1M to 50M points, under the 4 x 96 at which min_coarse_axis lets the guard run, and their
+// plates hollow the interior through the unscanned base as formula (1)'s do at 700k points.
+// Such a grid is guarded from this coarse width (128 fine voxels). Not lower: the coarse
+// membrane of a 254-voxel grid would run a guard of its own on a grid 16 voxels wide, too
+// coarse to hold anything (the 1M bunny: genus [2] where 32 gives [0]).
+inline constexpr int kDenseScanMinCoarseAxis = 32;
+// ... and its band is held through the plates of 3: a dense scan's skin is thick and fuzzy, and
+// the plates of 5 and 3 that meet its inner side from a hollow made through the base cut
+// handles into it (the bunny's 1M and 3M scans, docs/engine-decisions.md).
+inline constexpr int kDenseScanBandReleaseBelow = 3;
+
+// `options` for a grid whose voxel the points' noise chose: min_coarse_axis at most
+// kDenseScanMinCoarseAxis, band_release_below at most kDenseScanBandReleaseBelow,
+// one_piece_only (objects 5 voxels apart, cow-spot-belt's, are held apart by 1.25 coarse
+// voxels), the rest (enabled included) as given.
+InteriorGuardOptions DenseScanGuard(InteriorGuardOptions options);
 
 // The coarse voxels of the band GuardInteriors froze, to release them later.
 struct GuardedBand {
@@ -73,7 +97,8 @@ struct InteriorGuardStats {
 //     coarse outside does, never a voxel next to a hard one (so the skin and its pores are
 //     left as they are).
 // Does nothing when the guard is off, the coarse grid's longest axis is under
-// min_coarse_axis or the coarse solid has no core.
+// min_coarse_axis, the data are two pieces or more under one_piece_only, or the coarse solid
+// has no core.
 // Errors: Cancelled when `cancel` fires (the shrink is then abandoned; the grid may hold part
 // of the frozen voxels); the coarse shrink's.
 absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkOptions& options,

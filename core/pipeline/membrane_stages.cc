@@ -4,8 +4,10 @@
 #include <string>
 #include <utility>
 
+#include "core/engine/interior_guard.h"
 #include "core/engine/plate_schedule.h"
 #include "core/engine/point_density.h"
+#include "core/engine/point_noise.h"
 #include "core/mesh/relaxation.h"
 #include "core/pipeline/scatter_warning.h"
 #include "core/pipeline/stopwatch.h"
@@ -53,6 +55,9 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
   // The shrink's word passes share the run's threads (docs/design.md, "Threads").
   ShrinkOptions shrink = options.shrink;
   shrink.threads = options.threads;
+  if (VoxelRaisedForNoise(report.formula_voxel_size, report.voxel_size)) {
+    shrink.interior_guard = DenseScanGuard(shrink.interior_guard);
+  }
   absl::StatusOr<ShrinkResult> result =
       ShrinkMembrane(grid, cloud.points, shrink, on_generation, cancel);
   if (!result.ok()) return result.status();

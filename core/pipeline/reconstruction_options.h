@@ -13,6 +13,14 @@
 
 namespace membrane {
 
+// How a given voxel size was chosen on the cloud as its owner read it (PlanGrid's
+// formula_voxel_size and noise.sigma), for a run on a quantized copy of it (membraned's
+// uploads), so that the run reports and treats the voxel as the owner's own run would.
+struct VoxelPlanNote {
+  double formula_voxel_size = 0;  // > 0
+  double point_noise = 0;         // >= 0
+};
+
 struct ReconstructionOptions {
   // voxel_size 0: formula (1)'s, which the pipeline computes once when it plans the grid.
   VoxelizeOptions voxelize;
@@ -20,6 +28,11 @@ struct ReconstructionOptions {
   // cloud as its owner read it, when the points are a quantized copy (membraned's uploads).
   // The points must lie within 1/kGridBoxStepsPerVoxel of the voxel outside it.
   std::optional<Box3d> grid_box;
+  // With voxelize.voxel_size > 0: how that size was planned (Parameters.voxel_plan). The
+  // report's formula_voxel_size and point_noise are these, and a size over formula_voxel_size
+  // is the noise's (VoxelRaisedForNoise: the shrink guards the interior as a dense scan's).
+  // Ignored when the size is left to the run, which plans it itself.
+  std::optional<VoxelPlanNote> voxel_plan;
   ShrinkOptions shrink;
   bool relax = true;
   SurfaceKind surface = SurfaceKind::kSmooth;

@@ -109,6 +109,10 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   voxelize.voxel_size = plan->voxel_size;
   report.formula_voxel_size = plan->formula_voxel_size;
   report.point_noise = plan->noise.sigma;
+  if (options.voxel_plan && options.voxelize.voxel_size > 0) {
+    report.formula_voxel_size = options.voxel_plan->formula_voxel_size;
+    report.point_noise = options.voxel_plan->point_noise;
+  }
   if (std::optional<std::string> note = NoiseVoxelNote(*plan)) {
     report.warnings.push_back(*std::move(note));
   }

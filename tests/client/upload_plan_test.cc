@@ -63,6 +63,19 @@ TEST(UploadPlan, DefaultVoxelIsThePipelinesWithItsNoiseNote) {
   EXPECT_GT(plan.voxel_size, grid->formula_voxel_size);
   ASSERT_TRUE(plan.noise_note.has_value());
   EXPECT_NE(plan.noise_note->find("scatter across their surface"), std::string::npos);
+  // How it was chosen goes with it (Parameters.voxel_plan), for the server to run as --local.
+  ASSERT_TRUE(plan.voxel_plan.has_value());
+  EXPECT_EQ(plan.voxel_plan->formula_voxel_size, grid->formula_voxel_size);
+  EXPECT_EQ(plan.voxel_plan->point_noise, grid->noise.sigma);
+}
+
+// A default voxel carries its plan even where it is formula (1)'s; a given one carries none.
+TEST(UploadPlan, VoxelPlanOnlyForTheDefaultVoxel) {
+  const PointCloud cloud = Sphere(8000);
+  const UploadPlan chosen = PlanUpload(cloud, 0);
+  ASSERT_TRUE(chosen.voxel_plan.has_value());
+  EXPECT_EQ(chosen.voxel_plan->formula_voxel_size, chosen.voxel_size);
+  EXPECT_FALSE(PlanUpload(cloud, 0.1).voxel_plan.has_value());
 }
 
 // The server plans its grid on the box the client read (Parameters.grid_box): the cloud's own.

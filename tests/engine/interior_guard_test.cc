@@ -1,7 +1,7 @@
 // The interior guard: a closed sphere's frozen voxels all lie inside it and hold its interior;
 // a sphere scanned with range noise and a wide hole keeps its interior through the generations
 // (the plates that get through the hole do not hollow it), a torus keeps its hole free of
-// frozen voxels, and small grids are left alone.
+// frozen voxels, small grids are left alone, and so are data of two pieces when asked.
 #include "core/engine/interior_guard.h"
 
 #include <gtest/gtest.h>
@@ -186,6 +186,32 @@ TEST(InteriorGuard, LeavesSmallGridsAlone) {
   EXPECT_EQ(stats->levels, 0);
   EXPECT_EQ(stats->frozen_voxels, 0);
   EXPECT_TRUE(grid.states() == before);
+}
+
+// Under one_piece_only (DenseScanGuard's), data of two pieces are left alone: the coarse grid
+// would join two objects 5 voxels apart and hold the space between them. One piece is guarded.
+TEST(InteriorGuard, OnePieceOnlyLeavesTwoObjectsAlone) {
+  const std::vector<Point3f> sphere = SphereScan(100000, 0);
+  std::vector<Point3f> pair;
+  const float offset = static_cast<float>(1 + 2.5 * kVoxel);  // surfaces 5 voxels apart
+  for (const Point3f& p : sphere) {
+    pair.push_back({p[0] - offset, p[1], p[2]});
+    pair.push_back({p[0] + offset, p[1], p[2]});
+  }
+  ShrinkOptions o = GuardOn();
+  o.interior_guard.one_piece_only = true;
+  VoxelGrid two = GridOf(pair);
+  const VoxelStates before = two.states();
+  absl::StatusOr<InteriorGuardStats> left = GuardInteriors(two, o, CancelToken::Never());
+  ASSERT_TRUE(left.ok()) << left.status();
+  EXPECT_EQ(left->levels, 0);
+  EXPECT_TRUE(two.states() == before);
+
+  VoxelGrid one = GridOf(sphere);
+  absl::StatusOr<InteriorGuardStats> guarded = GuardInteriors(one, o, CancelToken::Never());
+  ASSERT_TRUE(guarded.ok()) << guarded.status();
+  EXPECT_EQ(guarded->levels, 1);
+  EXPECT_GT(guarded->frozen_voxels, 0);
 }
 
 TEST(InteriorGuard, RefusesAFactorOutOfRange) {

@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "core/pipeline/grid_box.h"
-#include "core/pipeline/in_memory_ends.h"
 #include "core/pipeline/memory_estimate.h"
-#include "core/pipeline/reconstruction_pipeline.h"
+#include "core/pipeline/reconstruction_options.h"
+#include "tests/support/in_memory_run.h"
 #include "tests/support/plane_edge_cloud.h"
 
 namespace membrane::testing {
@@ -84,15 +84,10 @@ TEST(GridBox, PlanGridPlansOnTheGivenBox) {
 
 absl::StatusOr<ReconstructionReport> Reconstruct(const PointCloud& cloud, double voxel_size,
                                                  const std::optional<Box3d>& box) {
-  InMemoryCloudSource source(cloud);
-  NoResourceLimit gate;
-  InMemoryMeshSink sink;
-  NullReconstructionObserver observer;
   ReconstructionOptions options;
   options.voxelize.voxel_size = voxel_size;
   options.grid_box = box;
-  return RunReconstruction(options, {source, gate, sink, observer}, ErrorContext{},
-                           CancelToken::Never());
+  return ReconstructInMemory(cloud, options);
 }
 
 // The quantized copy's own box is a plane shorter or longer; with the cloud's box its grid is

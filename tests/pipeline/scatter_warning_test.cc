@@ -7,10 +7,10 @@
 
 #include "core/engine/point_density.h"
 #include "core/engine/voxelization.h"
-#include "core/pipeline/in_memory_ends.h"
-#include "core/pipeline/reconstruction_pipeline.h"
+#include "core/pipeline/reconstruction_options.h"
 #include "core/pipeline/scatter_warning.h"
 #include "core/synth/synthesize.h"
+#include "tests/support/in_memory_run.h"
 #include "tests/support/uniform_noise.h"
 
 namespace membrane::testing {
@@ -27,13 +27,7 @@ ReconstructionReport Reconstruct(const PointCloud& cloud, double voxel_size) {
   ReconstructionOptions options;
   options.voxelize.voxel_size = voxel_size;
   options.surface = SurfaceKind::kCuberille;
-  InMemoryCloudSource source(cloud);
-  NoResourceLimit gate;
-  InMemoryMeshSink sink;
-  NullReconstructionObserver observer;
-  absl::StatusOr<ReconstructionReport> r =
-      RunReconstruction(options, {source, gate, sink, observer}, ErrorContext{},
-                        CancelToken::Never());
+  absl::StatusOr<ReconstructionReport> r = ReconstructInMemory(cloud, options);
   EXPECT_TRUE(r.ok()) << r.status();
   return r.value_or(ReconstructionReport{});
 }

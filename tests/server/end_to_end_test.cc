@@ -218,6 +218,44 @@ std::string GenusOf(const std::string& json) {
   return genus.empty() ? "no genus in: " + json.substr(0, 200) : genus;
 }
 
+// The statistics' value of `key` (a number), as text.
+std::string NumberOf(const std::string& json, const std::string& key) {
+  std::smatch m;
+  if (!std::regex_search(json, m, std::regex("\"" + key + "\": [-0-9.e+]+"))) {
+    return "no " + key + " in: " + json.substr(0, 200);
+  }
+  return m.str();
+}
+
+// A dense scan whose noise raises the default voxel: the client plans it on the cloud as read
+// and sends how (Parameters.voxel_plan), so that the server reports the same formula-(1) size
+// and noise and guards the interior as --local does (DenseScanGuard: the grid is far under the
+// guard's own width).
+TEST_F(EndToEndTest, NoiseRaisedVoxelIsGuardedThroughTheServerAsLocally) {
+  StartServer();
+  const std::string cloud = dir_.File("noisy.ply");
+  ASSERT_EQ(Run({"synth", "sphere", "-o", cloud, "--points", "400000", "--noise", "0.002",
+                 "--holes", "2", "--seed", "3"})
+                .exit_code,
+            0);
+  const CliResult remote = Run({"reconstruct", cloud, "-o", dir_.File("remote.ply"), "--server",
+                                address_, "--stats-json", dir_.File("remote.json")});
+  ASSERT_EQ(remote.exit_code, 0) << remote.err;
+  EXPECT_NE(remote.err.find("so that the membrane closes over the surface"), std::string::npos)
+      << remote.err;
+  const CliResult local = Run({"reconstruct", cloud, "-o", dir_.File("local.ply"), "--local",
+                               "--stats-json", dir_.File("local.json")});
+  ASSERT_EQ(local.exit_code, 0) << local.err;
+  const std::string remote_json = ReadText(dir_.File("remote.json"));
+  const std::string local_json = ReadText(dir_.File("local.json"));
+  EXPECT_EQ(GridOf(remote_json), GridOf(local_json));
+  for (const std::string key : {"formula_voxel_size", "point_noise", "frozen_voxels"}) {
+    EXPECT_EQ(NumberOf(remote_json, key), NumberOf(local_json, key));
+  }
+  EXPECT_EQ(NumberOf(local_json, "levels"), "\"levels\": 1");
+  EXPECT_EQ(GenusOf(remote_json), GenusOf(local_json));
+}
+
 // The 11-bit upload of this cloud has a box a plane shorter or longer than the cloud's at this
 // voxel (Draco moves the extreme points by up to half a step): the client sends the cloud's
 // box (Parameters.grid_box) and keeps each point in its voxel (SnapKeepingVoxels), and the

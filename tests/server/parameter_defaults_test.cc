@@ -1,5 +1,6 @@
 // Parameters a client leaves unset get the server's defaults, and 0 set explicitly means 0:
 // a client written from the .proto alone gets the mesh `membrane reconstruct` would.
+#include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -63,6 +64,40 @@ TEST(ParameterChecks, UnsetQuantizationFollowsTheVoxelAndSetQuantizationStands) 
   absl::StatusOr<server::JobSettings> lossless = server::CheckParameters(ply, 0);
   ASSERT_TRUE(lossless.ok()) << lossless.status();
   EXPECT_EQ(lossless->reconstruction.output_quantization_bits, 0);
+}
+
+// A client's voxel plan reaches the run as given; one without a voxel size, or with a formula
+// size or noise out of range, is INVALID_ARGUMENT naming voxel_plan.
+TEST(ParameterChecks, VoxelPlanIsPassedOnAndCheckedByField) {
+  v1::Parameters p;
+  p.set_voxel_size(0.02);
+  p.mutable_voxel_plan()->set_formula_voxel_size(0.01);
+  p.mutable_voxel_plan()->set_point_noise(0.003);
+  absl::StatusOr<server::JobSettings> planned = server::CheckParameters(p, 0);
+  ASSERT_TRUE(planned.ok()) << planned.status();
+  ASSERT_TRUE(planned->reconstruction.voxel_plan.has_value());
+  EXPECT_EQ(planned->reconstruction.voxel_plan->formula_voxel_size, 0.01);
+  EXPECT_EQ(planned->reconstruction.voxel_plan->point_noise, 0.003);
+  EXPECT_FALSE(server::CheckParameters(v1::Parameters(), 0)->reconstruction.voxel_plan);
+
+  auto message_of = [](const v1::Parameters& bad) {
+    absl::StatusOr<server::JobSettings> s = server::CheckParameters(bad, 0);
+    EXPECT_EQ(s.status().code(), absl::StatusCode::kInvalidArgument);
+    return std::string(s.status().message());
+  };
+  v1::Parameters no_size = p;
+  no_size.set_voxel_size(0);
+  EXPECT_EQ(message_of(no_size),
+            "voxel_plan needs the voxel_size it planned: voxel_size is 0 (the server's default)");
+  v1::Parameters zero = p;
+  zero.mutable_voxel_plan()->set_formula_voxel_size(0);
+  EXPECT_EQ(message_of(zero), "voxel_plan formula_voxel_size 0 is out of range: finite, > 0");
+  v1::Parameters nan = p;
+  nan.mutable_voxel_plan()->set_point_noise(std::nan(""));
+  EXPECT_EQ(message_of(nan), "voxel_plan point_noise nan is out of range: finite, >= 0");
+  v1::Parameters negative = p;
+  negative.mutable_voxel_plan()->set_point_noise(-1);
+  EXPECT_EQ(message_of(negative), "voxel_plan point_noise -1 is out of range: finite, >= 0");
 }
 
 }  // namespace

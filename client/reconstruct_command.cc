@@ -105,8 +105,8 @@ void DefineFlags(CLI::App& app, ReconstructFlags& f) {
   app.add_option("--quantization", f.quantization,
                  "Draco position bits of the cloud sent to --server and of .drc output, [0, 30]; "
                  "0 = lossless; when not given, the cloud sent gets more bits where its voxel "
-                 "needs them (a step of at most 1/8 voxel), and so does the mesh on grids over "
-                 "about 800 voxels wide (a step of at most 0.4 voxel)")
+                 "needs them (a step of at most 1/8 voxel), and so does the mesh (a step of at "
+                 "most 1/32 voxel: 13 bits on the grids of 100k-point clouds)")
       ->capture_default_str()
       ->each([&f](const std::string&) { f.quantization_given = true; });
   app.add_option("--compression-level", f.compression_level,

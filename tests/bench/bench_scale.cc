@@ -4,8 +4,8 @@
 // per input point and per output face, and the ratio of the stage's figure (per point up to
 // the shrink, per face after) to the first (smallest) count's; then each count's peak RSS.
 // The output bits are those `membrane reconstruct` and membraned choose when none are asked:
-// 11, or more on a grid so wide that an 11-bit step would exceed kMaxOutputStepVoxels (12 at
-// 4M and 10M points). `--bits` fixes them: on a grid too wide for them the fit's snapped
+// the fewest from 11 whose step is within kMaxOutputStepVoxels (13 at 100k points, 16 at
+// 10M). `--bits` fixes them: on a grid too wide for them the fit's snapped
 // vertices cross by the thousands and the surface's cost per face grows with the repairs, not
 // with the cloud. CPU time, because these machines are shared: a loaded machine stretches the
 // wall time, not the CPU time. The check runs beside the encode, so its CPU time holds the

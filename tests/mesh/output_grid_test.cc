@@ -23,10 +23,10 @@ TEST(OutputBitsForVoxel, RaisesTheBitsUntilTheStepIsWithinItsShareOfTheVoxel) {
           << width << " voxels, " << bits << " bits";
     }
   }
-  // Measured on the grids of the torus: 100k points (134 voxels) and 1M (413) keep 11 bits,
-  // 10M (1295) gets 12.
-  EXPECT_EQ(OutputBitsForVoxel(GridOfWidth(413, 0.0016), 11), 11);
-  EXPECT_EQ(OutputBitsForVoxel(GridOfWidth(1295, 0.0016), 11), 12);
+  // On the grids of the torus: 100k points (134 voxels) get 13 bits, 1M (413) 14, 10M (1295) 16.
+  EXPECT_EQ(OutputBitsForVoxel(GridOfWidth(134, 0.0016), 11), 13);
+  EXPECT_EQ(OutputBitsForVoxel(GridOfWidth(413, 0.0016), 11), 14);
+  EXPECT_EQ(OutputBitsForVoxel(GridOfWidth(1295, 0.0016), 11), 16);
 }
 
 TEST(OutputBitsForVoxel, KeepsLosslessAndStopsAtThirtyBits) {

@@ -42,6 +42,18 @@ struct LaneCounts {
       ones -= inside;
     }
   }
+  // Counts the lanes of `inside` and returns the weights `w` of points ws[i..i+3], each times
+  // the point's stored weight when the grid holds cell means (its points' count).
+  V4f Weigh(V4f w, V4i inside, [[maybe_unused]] const float* ws, [[maybe_unused]] uint32_t i) {
+    if constexpr (kWeighted) {
+      const V4f c = Load(ws + i);
+      Add(inside, c);
+      return w * c;
+    } else {
+      Add(inside, SplatV4f(0));
+      return w;
+    }
+  }
   // The counts are whole numbers under 2^24 in each lane: float sums them exactly.
   int Total() const {
     if constexpr (kWeighted) return static_cast<int>(Sum(weights));
@@ -67,7 +79,7 @@ NearPointResult WeighNear(const PointRowGrid& grid, double radius,
   const float* xs = grid.xs();
   const float* ys = grid.ys();
   const float* zs = grid.zs();
-  [[maybe_unused]] const float* ws = grid.ws();
+  const float* ws = grid.ws();
   const Vec3d centre{weights.origin[0], weights.origin[1], weights.origin[2]};
   grid.ForEachRun(centre, radius, [&](uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; i += kLanes) {
@@ -77,15 +89,9 @@ NearPointResult WeighNear(const PointRowGrid& grid, double radius,
       // -1 in the lanes that hold a point of this run within the radius, 0 elsewhere.
       const V4i inside = (d2 <= r2) & (lane < static_cast<int32_t>(end - i));
       if (!AnyLane(inside)) continue;  // see WeighNearPointsInFrame
-      V4f w = std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(d2 * a + dn * dn * b_minus_a)) &
-                                 inside);
-      if constexpr (kWeighted) {
-        const V4f c = Load(ws + i);
-        w *= c;
-        count.Add(inside, c);
-      } else {
-        count.Add(inside, zero);
-      }
+      const V4f w = count.Weigh(
+          std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(d2 * a + dn * dn * b_minus_a)) & inside),
+          inside, ws, i);
       sw += w;
       const V4f wx = w * dx, wy = w * dy, wz = w * dz;
       sx += wx;
@@ -127,7 +133,7 @@ HeightFieldSums WeighInFrame(const PointRowGrid& grid, double radius,
   const float* xs = grid.xs();
   const float* ys = grid.ys();
   const float* zs = grid.zs();
-  [[maybe_unused]] const float* ws = grid.ws();
+  const float* ws = grid.ws();
   const Vec3d centre{weights.origin[0], weights.origin[1], weights.origin[2]};
   grid.ForEachRun(centre, radius, [&](uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; i += kLanes) {
@@ -142,14 +148,8 @@ HeightFieldSums WeighInFrame(const PointRowGrid& grid, double radius,
       // every sum's bits as they are: a masked lane adds a zero, and a lane's sum, never -0
       // (it starts at +0 and round-to-nearest cancels to +0), is unchanged by adding one.
       if (!AnyLane(inside)) continue;
-      V4f w = std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(t2 * a + h2 * b)) & inside);
-      if constexpr (kWeighted) {
-        const V4f c = Load(ws + i);
-        w *= c;
-        count.Add(inside, c);
-      } else {
-        count.Add(inside, zero);
-      }
+      const V4f w = count.Weigh(
+          std::bit_cast<V4f>(std::bit_cast<V4i>(ExpNeg4(t2 * a + h2 * b)) & inside), inside, ws, i);
       const V4f wu = w * u, wv = w * v, wuu = w * uu, wvv = w * vv, wuv = w * uv, wh = w * h;
       m[0] += w;
       m[1] += wu;

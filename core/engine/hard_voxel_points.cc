@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "core/base/split_sort.h"
-#include "core/engine/covariance_eigen.h"
 #include "core/engine/point_density.h"
+#include "core/geometry/symmetric_eigen3.h"
 
 namespace membrane {
 
@@ -107,14 +108,17 @@ double HardVoxelPoints::PlaneSpread(const VoxelGrid& grid, const Coord& lo, cons
                                     int min_points) const {
   Moments m;
   if (!BoxMoments(grid, lo, hi, m) || m.n < min_points) return -1;
-  return std::sqrt(std::max(0.0, SmallestEigenvalue(m.cov)));
+  return std::sqrt(std::max(0.0, SymmetricEigenvalues(m.cov).smallest));
 }
 
 bool HardVoxelPoints::PlaneNormal(const VoxelGrid& grid, const Coord& lo, const Coord& hi,
                                   std::array<double, 3>& normal, int min_points) const {
   Moments m;
   if (!BoxMoments(grid, lo, hi, m) || m.n < min_points) return false;
-  return SmallestEigenvector(m.cov, normal);
+  const std::optional<Vec3d> found = EigenvectorOf(m.cov, SymmetricEigenvalues(m.cov).smallest);
+  if (!found) return false;
+  normal = *found;
+  return true;
 }
 
 double HardVoxelPoints::NearestDistance(const VoxelGrid& grid, const Coord& c, int radius) const {

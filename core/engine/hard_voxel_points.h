@@ -37,7 +37,8 @@ class HardVoxelPoints {
 
   // The unit normal of the points' best-fitting plane in the box [lo, hi] (as PlaneSpread):
   // the eigenvector of the smallest eigenvalue of their covariance, its sign arbitrary. False
-  // when the box holds fewer than `min_points` points.
+  // when the box holds fewer than `min_points` points, or that eigenvector is not a line
+  // (the two smallest spreads equal).
   bool PlaneNormal(const VoxelGrid& grid, const Coord& lo, const Coord& hi,
                    std::array<double, 3>& normal, int min_points = 4) const;
 

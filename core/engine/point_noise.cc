@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
-#include "core/engine/covariance_eigen.h"
+#include "core/geometry/cholesky_solve.h"
+#include "core/geometry/symmetric_eigen3.h"
 
 namespace membrane {
 namespace {
@@ -16,6 +17,9 @@ namespace {
 constexpr int kMinBoxPoints = 12;
 constexpr int kMaxBoxPoints = 256;
 constexpr int kQuadricTerms = 6;
+// A pivot of the quadric's normal equations below this fraction of their largest diagonal
+// entry: the points do not pin a quadric down (a strip, a line).
+constexpr double kMinPivot = 1e-9;
 constexpr int64_t kCancelStride = 65536;
 
 using Cell = std::array<int64_t, 3>;
@@ -25,42 +29,6 @@ Cell CellOf(const Vec& p, const Box3d& bounds, double cell) {
   Cell c;
   for (int d = 0; d < 3; ++d) c[d] = static_cast<int64_t>(std::floor((p[d] - bounds.min[d]) / cell));
   return c;
-}
-
-double Dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-Vec Cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-// Solves the symmetric system a x = b in place (Gaussian elimination with partial pivoting).
-// False when a pivot is below `tiny` times the largest diagonal entry: the points do not pin a
-// quadric down (a strip, a line).
-bool Solve(std::array<std::array<double, kQuadricTerms>, kQuadricTerms>& a,
-           std::array<double, kQuadricTerms>& b) {
-  double scale = 0;
-  for (int i = 0; i < kQuadricTerms; ++i) scale = std::max(scale, std::abs(a[i][i]));
-  const double tiny = 1e-9 * scale;
-  for (int col = 0; col < kQuadricTerms; ++col) {
-    int pivot = col;
-    for (int r = col + 1; r < kQuadricTerms; ++r) {
-      if (std::abs(a[r][col]) > std::abs(a[pivot][col])) pivot = r;
-    }
-    if (!(std::abs(a[pivot][col]) > tiny)) return false;
-    std::swap(a[pivot], a[col]);
-    std::swap(b[pivot], b[col]);
-    for (int r = col + 1; r < kQuadricTerms; ++r) {
-      const double f = a[r][col] / a[col][col];
-      for (int k = col; k < kQuadricTerms; ++k) a[r][k] -= f * a[col][k];
-      b[r] -= f * b[col];
-    }
-  }
-  for (int col = kQuadricTerms - 1; col >= 0; --col) {
-    double s = b[col];
-    for (int k = col + 1; k < kQuadricTerms; ++k) s -= a[col][k] * b[k];
-    b[col] = s / a[col][col];
-  }
-  return true;
 }
 
 // The residual of the height quadric over the best plane of `q` (coordinates relative to the
@@ -82,8 +50,9 @@ std::optional<double> QuadricResidual(const std::vector<Vec>& q) {
     cov[4] += r[1] * r[2];
     cov[5] += r[2] * r[2];
   }
-  Vec normal;
-  if (!SmallestEigenvector(cov, normal)) return std::nullopt;
+  const std::optional<Vec> found = EigenvectorOf(cov, SymmetricEigenvalues(cov).smallest);
+  if (!found) return std::nullopt;
+  const Vec& normal = *found;
   // A tangent: the normal crossed with the axis it leans on least.
   int least = 0;
   for (int d = 1; d < 3; ++d) {
@@ -96,7 +65,7 @@ std::optional<double> QuadricResidual(const std::vector<Vec>& q) {
   for (double& x : t1) x /= len;
   const Vec t2 = Cross(normal, t1);
 
-  std::array<std::array<double, kQuadricTerms>, kQuadricTerms> ata{};
+  SquareMatrix<kQuadricTerms> ata{};
   std::array<double, kQuadricTerms> atw{};
   std::vector<std::array<double, kQuadricTerms + 1>> rows;
   rows.reserve(q.size());
@@ -110,7 +79,9 @@ std::optional<double> QuadricResidual(const std::vector<Vec>& q) {
     }
     rows.push_back({1, u, v, u * u, u * v, v * v, w});
   }
-  if (!Solve(ata, atw)) return std::nullopt;
+  double largest = 0;
+  for (int i = 0; i < kQuadricTerms; ++i) largest = std::max(largest, ata[i][i]);
+  if (!CholeskySolve(ata, atw, 0, kMinPivot * largest)) return std::nullopt;
   double ssr = 0;
   for (const auto& row : rows) {
     double fit = 0;

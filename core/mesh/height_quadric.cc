@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/geometry/cholesky_solve.h"
+
 namespace membrane {
 namespace {
 
 // The basis 1, u, v, u^2, uv, v^2 as powers (i, j) of u^i v^j.
 constexpr int kPowU[6] = {0, 1, 0, 2, 1, 0};
 constexpr int kPowV[6] = {0, 0, 1, 0, 1, 2};
-// A Cholesky pivot below this fraction of its diagonal entry: the normal equations do not
+// A pivot of the normal equations below this fraction of its diagonal entry: they do not
 // determine that coefficient.
 constexpr double kMinPivot = 1e-7;
 
@@ -40,39 +42,16 @@ std::optional<HeightQuadric> FitHeightQuadric(const HeightFieldSums& s,
   if (!(mu * mu + mv * mv <= limits.max_centroid_offset * limits.max_centroid_offset * spread2))
     return std::nullopt;
 
-  // Normal equations M x = r, M[p][q] = sum w phi_p phi_q, r[p] = sum w h phi_p; solved by
-  // Cholesky in place.
-  double m[6][6], r[6];
+  // Normal equations M x = r, M[p][q] = sum w phi_p phi_q, r[p] = sum w h phi_p.
+  SquareMatrix<6> m;
+  HeightQuadric q;
+  std::array<double, 6>& r = q.coefficients;
   for (int p = 0; p < 6; ++p) {
-    for (int q = 0; q < 6; ++q)
-      m[p][q] = s.uv[HeightFieldSums::Index(kPowU[p] + kPowU[q], kPowV[p] + kPowV[q])];
+    for (int k = 0; k < 6; ++k)
+      m[p][k] = s.uv[HeightFieldSums::Index(kPowU[p] + kPowU[k], kPowV[p] + kPowV[k])];
     r[p] = s.huv[HeightFieldSums::Index(kPowU[p], kPowV[p])];
   }
-  for (int k = 0; k < 6; ++k) {
-    const double diagonal = m[k][k];
-    double d = diagonal;
-    for (int j = 0; j < k; ++j) d -= m[k][j] * m[k][j];
-    if (!(d > kMinPivot * diagonal)) return std::nullopt;
-    const double l = std::sqrt(d);
-    m[k][k] = l;
-    for (int i = k + 1; i < 6; ++i) {
-      double x = m[i][k];
-      for (int j = 0; j < k; ++j) x -= m[i][j] * m[k][j];
-      m[i][k] = x / l;
-    }
-  }
-  double y[6];
-  for (int i = 0; i < 6; ++i) {
-    double x = r[i];
-    for (int j = 0; j < i; ++j) x -= m[i][j] * y[j];
-    y[i] = x / m[i][i];
-  }
-  HeightQuadric q;
-  for (int i = 5; i >= 0; --i) {
-    double x = y[i];
-    for (int j = i + 1; j < 6; ++j) x -= m[j][i] * q.coefficients[j];
-    q.coefficients[i] = x / m[i][i];
-  }
+  if (!CholeskySolve(m, r, kMinPivot)) return std::nullopt;
   const auto& c = q.coefficients;
   if (!std::isfinite(c[0])) return std::nullopt;
   if (c[1] * c[1] + c[2] * c[2] > limits.max_slope * limits.max_slope) return std::nullopt;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/types/span.h"
 #include "core/base/parallel_tasks.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/local_topology.h"
@@ -234,25 +235,15 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
 
 namespace {
 
-// Tries to join the boundary voxel `centre` to the boundary voxel at `offset` (an edge or
-// corner neighbour) by a face path that steps one axis at a time in the order `order`.
-// On success the voxels of the path are appended to `written` (those it left as they were too).
-bool TryBridgePath(VoxelGrid& grid, int64_t centre, const int offset[3], const int order[3],
+// Makes the voxels of `path` (at most 3, each face-adjacent to the one before) boundary, in
+// order: an inside voxel becomes BOUNDARY, an outside one FROZEN BOUNDARY only when
+// (26,6)-simple at its turn and not on the array border. On failure the path is put back as it
+// was; on success its voxels are appended to `written` (those it left as they were too).
+bool TryBridgePath(VoxelGrid& grid, absl::Span<const int64_t> path,
                    std::vector<int64_t>& written) {
-  const auto st = grid.strides();
   VoxelState* s = grid.mutable_states().data();
-  int64_t path[2];
-  int steps = 0;
-  int64_t at = centre;
-  int taken = 0;
-  for (int k = 0; k < 3; ++k) {
-    const int a = order[k];
-    if (offset[a] == 0) continue;
-    at += offset[a] * st[a];
-    if (++taken < (offset[0] != 0) + (offset[1] != 0) + (offset[2] != 0)) path[steps++] = at;
-  }
-  VoxelState before[2];
-  for (int k = 0; k < steps; ++k) {
+  VoxelState before[3];
+  for (size_t k = 0; k < path.size(); ++k) {
     const int64_t v = path[k];
     before[k] = s[v];
     if (IsBoundary(s[v])) continue;
@@ -262,13 +253,58 @@ bool TryBridgePath(VoxelGrid& grid, int64_t centre, const int offset[3], const i
     }
     const uint32_t object = NeighbourhoodMask(grid, v, [](VoxelState x) { return !IsOutside(x); });
     if (grid.OnArrayBorder(grid.CoordOf(v)) || !IsSimple(object)) {
-      for (int j = k - 1; j >= 0; --j) s[path[j]] = before[j];
+      for (size_t j = k; j-- > 0;) s[path[j]] = before[j];
       return false;
     }
     s[v] = kBoundaryFrozen;
   }
-  for (int k = 0; k < steps; ++k) written.push_back(path[k]);
+  written.insert(written.end(), path.begin(), path.end());
   return true;
+}
+
+// Tries to join the boundary voxel `centre` to the boundary voxel at `offset` (an edge or
+// corner neighbour) by a face path inside their 3x3x3 block: first the shortest ones, one or
+// two voxels stepping one axis at a time in each order; then, for an edge neighbour, the
+// detours of three voxels that step off the contact's plane along its third axis, cross the
+// edge there and step back. A shortest path's voxel can touch a third boundary voxel of the
+// block that the contact's two reach only through the rest of the membrane, so that it would
+// close a loop and is not simple (a strand of hard voxels hanging by an edge between two
+// others); a detour on the strand's other side need not touch it.
+bool TryBridge(VoxelGrid& grid, int64_t centre, const int offset[3],
+               std::vector<int64_t>& written) {
+  static constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                                        {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  const auto st = grid.strides();
+  const int axes = (offset[0] != 0) + (offset[1] != 0) + (offset[2] != 0);
+  int64_t path[3];
+  for (const auto& order : kOrders) {
+    int steps = 0;
+    int64_t at = centre;
+    for (int k = 0; k < 3; ++k) {
+      const int a = order[k];
+      if (offset[a] == 0) continue;
+      at += offset[a] * st[a];
+      if (steps + 1 < axes) path[steps++] = at;
+    }
+    if (TryBridgePath(grid, absl::MakeConstSpan(path, static_cast<size_t>(steps)), written)) {
+      return true;
+    }
+  }
+  if (axes != 2) return false;
+  const int off_axis = offset[0] == 0 ? 0 : offset[1] == 0 ? 1 : 2;
+  const int a = off_axis == 0 ? 1 : 0;
+  const int b = off_axis == 2 ? 1 : 2;
+  for (const int side : {-1, 1}) {
+    const int64_t out = side * st[off_axis];
+    for (const int64_t first : {offset[a] * st[a], offset[b] * st[b]}) {
+      const int64_t second = offset[a] * st[a] + offset[b] * st[b] - first;
+      path[0] = centre + out;
+      path[1] = path[0] + first;
+      path[2] = path[1] + second;
+      if (TryBridgePath(grid, absl::MakeConstSpan(path, 3), written)) return true;
+    }
+  }
+  return false;
 }
 
 // Sets in `plane` every voxel within Chebyshev distance 2 of voxel v (inside the array).
@@ -284,8 +320,6 @@ void MarkNear(const VoxelGrid& grid, int64_t v, FlatBitset& plane) {
 }  // namespace
 
 int64_t BridgeMembraneContacts(VoxelGrid& grid, int threads) {
-  static constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
-                                        {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   const auto& d = grid.dims();
   const VoxelState* s = grid.states().data();
   // Bridges from boundary voxel i until none is missing or none can be made; the voxels
@@ -302,12 +336,7 @@ int64_t BridgeMembraneContacts(VoxelGrid& grid, int threads) {
       for (uint32_t m = missing; m != 0 && !bridged; m &= m - 1) {
         const int b = std::countr_zero(m);
         const int offset[3] = {b % 3 - 1, (b / 3) % 3 - 1, b / 9 - 1};
-        for (const auto& order : kOrders) {
-          if (TryBridgePath(grid, i, offset, order, written)) {
-            bridged = true;
-            break;
-          }
-        }
+        bridged = TryBridge(grid, i, offset, written);
       }
       if (!bridged) break;
       changed = true;

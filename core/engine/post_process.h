@@ -42,9 +42,10 @@ absl::StatusOr<PostProcessStats> ConnectInsideHardVoxels(VoxelGrid& grid,
 // Makes the membrane of each shell 6-connected (section 4.1: a DM is face-connected). The
 // (26,6) shrink may leave two boundary voxels touching only along an edge or at a corner (a
 // hard voxel of a sparse region whose last soft face neighbour a plate removed). Each such
-// contact gets a face-connected path of one or two voxels inside the 3x3x3 block: an inside
-// voxel becomes BOUNDARY, an outside one FROZEN BOUNDARY only when (26,6)-simple, so neither
-// the shells nor the genus change. Returns the number of voxels changed. The grid is read for
+// contact gets a face-connected path inside the 3x3x3 block: one or two voxels, or, for an edge
+// contact whose one-voxel paths are not simple, a detour of three off the contact's plane. An
+// inside voxel becomes BOUNDARY, an outside one FROZEN BOUNDARY only when (26,6)-simple, so
+// neither the shells nor the genus change. Returns the number of voxels changed. The grid is read for
 // contacts on `threads` (>= 1) and bridged on the calling thread, in voxel order: the same
 // grid for any count.
 int64_t BridgeMembraneContacts(VoxelGrid& grid, int threads = 1);

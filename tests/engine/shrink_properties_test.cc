@@ -9,7 +9,9 @@
 
 #include "core/engine/membrane_invariants.h"
 #include "core/engine/membrane_shrinker.h"
+#include "core/engine/local_topology.h"
 #include "core/engine/post_process.h"
+#include "core/engine/voxel_topology.h"
 #include "core/engine/voxelization.h"
 #include "core/synth/cube_pinholes.h"
 #include "gmock/gmock.h"
@@ -211,6 +213,42 @@ TEST(ShrinkPostProcess, BridgingJoinsEveryEdgeContactOfAStaircase) {
     EXPECT_TRUE(IsBoundary(grid.at(Coord{x + 1, x, 5})) || IsBoundary(grid.at(Coord{x, x + 1, 5})))
         << "contact at x = " << x;
   }
+  EXPECT_EQ(BridgeMembraneContacts(grid), 0);  // idempotent
+}
+
+TEST(ShrinkPostProcess, BridgingDetoursWhereTheShortestPathsWouldCloseLoops) {
+  // A strand of two hard voxels hangs by an edge from a hair of the skin, between two other
+  // hairs (the configuration a guarded dense scan left): each voxel of the contact's two
+  // shortest paths also touches one of those hairs, which the strand reaches only through the
+  // skin, so it is not simple. A detour of three voxels on the strand's far side joins the
+  // membrane with the shells and genus as they were.
+  VoxelGrid grid({12, 12, 12}, {0.0, 0.0, 0.0}, 1.0, OutsideState(0));
+  for (int z = 1; z <= 10; ++z)  // the body: y 7 to 10, its faces the skin
+    for (int y = 7; y <= 10; ++y)
+      for (int x = 1; x <= 10; ++x) {
+        const bool face = x == 1 || x == 10 || y == 7 || y == 10 || z == 1 || z == 10;
+        grid.set(Coord{x, y, z}, face ? kBoundaryFrozen : kInsideSoft);
+      }
+  const Coord hard[] = {{4, 5, 4}, {4, 5, 5},             // the strand
+                        {5, 5, 6}, {5, 5, 7}, {5, 6, 7},  // the hair it hangs from
+                        {6, 6, 4},                        // a hair beside (5, 5, 5)
+                        {3, 4, 7}, {3, 5, 7}, {3, 6, 7}}; // a hair beside (4, 5, 6)
+  for (const Coord& c : hard) grid.set(c, kBoundaryHard);
+  const VoxelTopology before = ComputeVoxelTopology(grid);
+  ASSERT_EQ(before.shells, 1);
+  EXPECT_THAT(CheckMembraneInvariants(grid, {}).message(),
+              HasSubstr("shells whose membrane is not 6-connected"));
+  for (const Coord& c : {Coord{5, 5, 5}, Coord{4, 5, 6}}) {
+    EXPECT_FALSE(IsSimple(NeighbourhoodMask(grid, grid.Index(c.x, c.y, c.z),
+                                            [](VoxelState v) { return !IsOutside(v); })))
+        << c.x << "," << c.y << "," << c.z;
+  }
+  EXPECT_EQ(BridgeMembraneContacts(grid), 3);
+  EXPECT_TRUE(CheckMembraneInvariants(grid, {}).ok()) << CheckMembraneInvariants(grid, {});
+  const VoxelTopology after = ComputeVoxelTopology(grid);
+  EXPECT_EQ(after.shells, before.shells);
+  EXPECT_EQ(after.genus, before.genus);
+  EXPECT_EQ(after.cavities, 0);
   EXPECT_EQ(BridgeMembraneContacts(grid), 0);  // idempotent
 }
 

@@ -7,10 +7,12 @@
 #include <vector>
 
 #include "core/engine/interior_guard.h"
+#include "core/engine/shrink_options.h"
 #include "core/engine/point_noise.h"
 #include "core/pipeline/reconstruction_options.h"
 #include "core/synth/synthesize.h"
 #include "tests/support/in_memory_run.h"
+#include "tests/support/shrink_fixture.h"
 
 namespace membrane::testing {
 namespace {
@@ -66,6 +68,15 @@ TEST(DenseScanGuard, GuardsANoiseRaisedGridAndNotTheSameSizeGiven) {
   EXPECT_EQ(raised.membrane.genus, std::vector<int>{0});
   EXPECT_TRUE(raised.mesh.closed);
   EXPECT_EQ(raised.mesh.nonmanifold_vertices, 0);
+  // The guarded shrink's own contract: the membrane invariants, each shell's membrane
+  // 6-connected among them, whatever hard voxels the band's late release leaves hanging.
+  ShrinkOptions guarded;
+  guarded.interior_guard = DenseScanGuard(guarded.interior_guard);
+  guarded.threads = 2;
+  const absl::StatusOr<ShrinkRun> shrunk = ShrinkCloud(cloud, 0, guarded, raised.voxel_size);
+  ASSERT_TRUE(shrunk.ok()) << shrunk.status();
+  EXPECT_GT(shrunk->result.interior_guard.frozen_voxels, 0);
+  EXPECT_TRUE(shrunk->invariants.ok()) << shrunk->Describe();
 
   const ReconstructionReport given = Reconstruct(cloud, raised.voxel_size);
   EXPECT_EQ(given.data_grid, raised.data_grid);

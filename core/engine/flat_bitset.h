@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/engine/huge_page_allocator.h"
+#include "core/engine/arena_allocator.h"
 
 namespace membrane {
 

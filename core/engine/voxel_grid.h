@@ -44,9 +44,7 @@ constexpr bool IsFaceStep(int k) {
 }
 
 // std::allocator with the states left unset by the vector's constructor (unset_construct.h),
-// so that the voxelization writes them first on several threads. Plain pages (no huge-page
-// advice, unlike UnfilledAllocator): fresh huge pages fault several times slower than 4 KB
-// ones on the shared VM (tests/bench/2026-12-04-scale-serial.txt).
+// so that the voxelization writes them first on several threads.
 template <typename T>
 using UnsetAllocator = UnsetConstruct<std::allocator<T>>;
 

@@ -32,7 +32,7 @@ class WorkPlanes {
   // Frees every plane (the steps after the generations need none); Ensure makes them again.
   void Release();
 
-  // Planes cut from one huge-page arena (PlaneArena); more are allocated on their own.
+  // Planes cut from one arena (PlaneArena); more are allocated on their own.
   static constexpr int kArenaPlanes = 8;
 
   // Plane i < the largest count ensured so far.

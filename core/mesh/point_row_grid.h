@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "absl/types/span.h"
-#include "core/engine/huge_page_allocator.h"
+#include "core/engine/arena_allocator.h"
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/vec3.h"
 

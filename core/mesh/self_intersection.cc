@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "core/base/parallel_tasks.h"
-#include "core/engine/huge_page_allocator.h"
+#include "core/engine/arena_allocator.h"
 #include "core/mesh/triangle_intersection.h"
 
 namespace membrane {

@@ -36,7 +36,7 @@ int64_t FillCaves(VoxelGrid& grid, int threads) {
       FlatBitset scratch(grid.size());
       BoxFilterBits(d, /*erode=*/true, deep, scratch, threads);
     }
-    near_exterior = FloodFromBorder(d, deep);
+    near_exterior = FloodFromBorder(d, deep, threads);
   }
   {
     FlatBitset scratch(grid.size());

@@ -26,8 +26,9 @@ namespace membrane {
 // Returns the number of voxels filled. Shells and genus of the solid never change.
 // Cost: O(voxels / 64) words for steps 1-2 (the masks are bits: two of grid size at a time, a
 // quarter byte a voxel) and one read of the states, then O(cave voxels) per pass.
-// `threads` (<= 1: the calling thread) share step 1's box filters and step 2, plane by plane;
-// the flood and step 3 run on the calling thread. The grid is the same for any count.
+// `threads` (<= 1: the calling thread) share step 1's box filters, its flood (on large grids,
+// as slabs of z planes) and step 2, plane by plane; step 3 runs on the calling thread. The grid
+// is the same for any count.
 int64_t FillCaves(VoxelGrid& grid, int threads = 1);
 
 }  // namespace membrane

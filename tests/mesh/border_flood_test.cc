@@ -103,5 +103,51 @@ TEST(BorderFlood, EqualsAPlainFloodOnRandomGridsWithCaves) {
   EXPECT_GT(reached_total, 1000);
 }
 
+// The slabs' flood against the one-thread flood: the same bits on 1 and 3 threads, for one
+// slab, a few, and one a plane (every run that crosses a plane crosses a slab face), on random
+// grids down to 3 voxels a side; and FloodFromBorder's own threaded path on a grid large
+// enough to take it.
+TEST(BorderFlood, SlabsGiveTheOneThreadFloodsBits) {
+  std::mt19937 rng(22);
+  int64_t caves = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::uniform_int_distribution<int> side(3, trial < 160 ? 20 : 70);
+    const std::array<int, 3> n = {side(rng), side(rng), side(rng)};
+    const double fill = std::uniform_real_distribution<double>(0.2, 0.95)(rng);
+    const std::vector<char> open = RandomGridWithCaves(n, fill, rng);
+    const int64_t count = static_cast<int64_t>(open.size());
+    FlatBitset bits(count);
+    for (int64_t i = 0; i < count; ++i)
+      if (open[i]) bits.set(i);
+    const FlatBitset serial = FloodFromBorder(n, bits, 1);
+    for (int64_t i = 0; i < count; ++i) caves += open[i] && !serial.test(i);
+    for (int threads : {1, 3})
+      for (int slabs : {1, 2, 5, n[2]}) {
+        const FlatBitset slabbed = FloodFromBorderOnSlabs(n, bits, threads, slabs);
+        ASSERT_EQ(slabbed.word_count(), serial.word_count());
+        for (size_t w = 0; w < serial.word_count(); ++w)
+          ASSERT_EQ(slabbed.words()[w], serial.words()[w])
+              << "trial " << trial << " dims " << n[0] << "x" << n[1] << "x" << n[2] << " threads "
+              << threads << " slabs " << slabs << " word " << w;
+      }
+  }
+  EXPECT_GT(caves, 1000);
+
+  // 2^24 voxels and more: FloodFromBorder's threads take slabs.
+  const std::array<int, 3> n = {260, 255, 261};
+  const std::vector<char> open = RandomGridWithCaves(n, 0.9, rng);
+  const int64_t count = static_cast<int64_t>(open.size());
+  ASSERT_GE(count, int64_t{1} << 24);
+  FlatBitset bits(count);
+  for (int64_t i = 0; i < count; ++i)
+    if (open[i]) bits.set(i);
+  const FlatBitset serial = FloodFromBorder(n, bits, 1);
+  const FlatBitset threaded = FloodFromBorder(n, bits, 3);
+  for (size_t w = 0; w < serial.word_count(); ++w) ASSERT_EQ(threaded.words()[w], serial.words()[w]) << w;
+  int64_t reached = serial.Count(), open_count = bits.Count();
+  EXPECT_GT(reached, count / 2);
+  EXPECT_LT(reached, open_count);
+}
+
 }  // namespace
 }  // namespace membrane

@@ -17,9 +17,14 @@ namespace membrane {
 // Effect: every 26-component of non-outside voxels that holds no inside voxel becomes
 // OutsideState(0). Components with an inside voxel are untouched.
 // Returns the number of voxels removed. O(voxels). `threads` (<= 1: the calling thread) share
-// the scan of the grid, plane by plane; the flood runs on the calling thread. The grid is the
-// same for any count.
+// the scan of the grid, plane by plane, and on large grids (2^24 voxels and 16 planes or more)
+// the flood, as slabs of z planes. The grid is the same for any count.
 int64_t RemoveLooseSheets(VoxelGrid& grid, int threads = 1);
+
+// The same, the flood cut into `slabs` slabs of the inner z planes (clamped to [1, planes])
+// on `threads` threads whatever the grid's size: RemoveLooseSheets' threaded path, callable on
+// small grids and many slabs (tests).
+int64_t RemoveLooseSheetsOnSlabs(VoxelGrid& grid, int threads, int slabs);
 
 }  // namespace membrane
 

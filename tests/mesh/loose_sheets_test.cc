@@ -1,5 +1,8 @@
 #include "core/mesh/loose_sheets.h"
 
+#include <array>
+#include <cstdint>
+#include <random>
 #include <vector>
 
 #include "core/engine/voxel_topology.h"
@@ -62,6 +65,56 @@ TEST(LooseSheets, SameGridForAnyThreadCount) {
     EXPECT_EQ(removed[k], removed[0]) << "threads " << k + 1;
     EXPECT_TRUE(cleaned[k].states() == cleaned[0].states()) << "threads " << k + 1;
   }
+}
+
+// Random boundary voxels (sheets and strands that cross many planes, some touching a random
+// inside voxel) in grids down to 3 voxels a side: the slabs' flood on 1 and 3 threads, for one
+// slab, a few and one a plane, gives the one-thread flood's grid; and RemoveLooseSheets' own
+// threaded path on a grid large enough to take it.
+TEST(LooseSheets, SlabsGiveTheOneThreadFloodsGrid) {
+  std::mt19937 rng(23);
+  auto random_grid = [&](const std::array<int, 3>& n) {
+    VoxelGrid g(n, {0, 0, 0}, 1.0, OutsideState(0));
+    const double boundary = std::uniform_real_distribution<double>(0.03, 0.3)(rng);
+    const double inside = std::uniform_real_distribution<double>(0.0, 0.01)(rng);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int z = 1; z < n[2] - 1; ++z)
+      for (int y = 1; y < n[1] - 1; ++y)
+        for (int x = 1; x < n[0] - 1; ++x) {
+          const double r = u(rng);
+          if (r < inside) g.set(Coord{x, y, z}, kInsideSoft);
+          else if (r < inside + boundary) g.set(Coord{x, y, z}, kBoundaryFrozen);
+        }
+    return g;
+  };
+  int64_t removed_total = 0, kept_total = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    std::uniform_int_distribution<int> side(3, trial < 120 ? 20 : 60);
+    const std::array<int, 3> n = {side(rng), side(rng), side(rng)};
+    const VoxelGrid shape = random_grid(n);
+    VoxelGrid serial = shape;
+    const int64_t removed = RemoveLooseSheets(serial, 1);
+    removed_total += removed;
+    for (int64_t i = 0; i < serial.size(); ++i) kept_total += IsBoundary(serial.at(i));
+    for (int threads : {1, 3})
+      for (int slabs : {1, 2, 5, n[2]}) {
+        VoxelGrid g = shape;
+        ASSERT_EQ(RemoveLooseSheetsOnSlabs(g, threads, slabs), removed)
+            << "trial " << trial << " threads " << threads << " slabs " << slabs;
+        ASSERT_TRUE(g.states() == serial.states())
+            << "trial " << trial << " threads " << threads << " slabs " << slabs;
+      }
+  }
+  EXPECT_GT(removed_total, 1000);
+  EXPECT_GT(kept_total, 1000);
+
+  const std::array<int, 3> n = {256, 256, 257};
+  const VoxelGrid shape = random_grid(n);
+  ASSERT_GE(shape.size(), int64_t{1} << 24);
+  VoxelGrid serial = shape, threaded = shape;
+  const int64_t removed = RemoveLooseSheets(serial, 1);
+  EXPECT_EQ(RemoveLooseSheets(threaded, 3), removed);
+  EXPECT_TRUE(threaded.states() == serial.states());
 }
 
 }  // namespace

@@ -75,13 +75,6 @@ double Diagonal(const TriangleMesh& mesh) {
   return std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
 }
 
-// CPU seconds of this thread: the machine is shared, and wall time follows its load.
-double ThreadCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
 double PeakRssMb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -93,10 +86,10 @@ bool Run(const std::string& name, const TriangleMesh& mesh, const PositionGrid& 
          int64_t target) {
   const MeshReport before = CheckMesh(mesh, CancelToken::Never(), 2);
   TriangleMesh decimated = mesh;
-  const double start = Now(), cpu_start = ThreadCpuSeconds();
+  const double start = Now(), cpu_start = ClockSeconds(CLOCK_THREAD_CPUTIME_ID);
   absl::StatusOr<DecimationStats> stats =
       DecimateMesh(decimated, {.target_faces = target, .grid = grid});
-  const double seconds = Now() - start, cpu = ThreadCpuSeconds() - cpu_start;
+  const double seconds = Now() - start, cpu = ClockSeconds(CLOCK_THREAD_CPUTIME_ID) - cpu_start;
   if (!stats.ok()) {
     std::printf("%-28s FAILED: %s\n", name.c_str(), std::string(stats.status().message()).c_str());
     return false;

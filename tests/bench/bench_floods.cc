@@ -24,12 +24,6 @@
 namespace membrane::bench {
 namespace {
 
-double CpuNow(clockid_t clock) {
-  timespec t;
-  clock_gettime(clock, &t);
-  return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
 // Open: outside a torus of major radius 0.3 n and minor radius 0.12 n about the array's
 // centre, and inside 8 balls of radius 0.04 n on its core circle.
 FlatBitset TorusOutside(int n) {
@@ -79,12 +73,12 @@ int Main(int argc, char** argv) {
   bool same = true;
   for (int r = 0; r < repeats; ++r)
     for (size_t k = 0; k < thread_counts.size(); ++k) {
-      const double w0 = Now(), c0 = CpuNow(CLOCK_PROCESS_CPUTIME_ID),
-                   t0 = CpuNow(CLOCK_THREAD_CPUTIME_ID);
+      const double w0 = Now(), c0 = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID),
+                   t0 = ClockSeconds(CLOCK_THREAD_CPUTIME_ID);
       FlatBitset reached = FloodFromBorder(dims, open, thread_counts[k]);
       wall[k].push_back(Now() - w0);
-      cpu[k].push_back(CpuNow(CLOCK_PROCESS_CPUTIME_ID) - c0);
-      caller[k].push_back(CpuNow(CLOCK_THREAD_CPUTIME_ID) - t0);
+      cpu[k].push_back(ClockSeconds(CLOCK_PROCESS_CPUTIME_ID) - c0);
+      caller[k].push_back(ClockSeconds(CLOCK_THREAD_CPUTIME_ID) - t0);
       if (first.bits() == 0) {
         first = std::move(reached);
       } else if (std::memcmp(first.words(), reached.words(), first.word_count() * 8) != 0) {

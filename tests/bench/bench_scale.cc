@@ -91,20 +91,15 @@ bool ParseArgs(int argc, char** argv, Options& o) {
   return true;
 }
 
-// CPU seconds of the whole process (every thread).
-double CpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 // The process's CPU seconds per stage; a stage run twice (the float32 retry) counts both.
 class CpuObserver : public ReconstructionObserver {
  public:
-  void StageStarted(PipelineStage, const ReconstructionReport&) override { start_ = CpuSeconds(); }
+  void StageStarted(PipelineStage, const ReconstructionReport&) override {
+    start_ = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
+  }
   void GenerationFinished(const GenerationStats&, int) override {}
   void StageFinished(PipelineStage stage, double, const ReconstructionReport&) override {
-    seconds[static_cast<int>(stage)] += CpuSeconds() - start_;
+    seconds[static_cast<int>(stage)] += ClockSeconds(CLOCK_PROCESS_CPUTIME_ID) - start_;
   }
   double seconds[kStages] = {};
 
@@ -135,7 +130,7 @@ Row RunOne(const Options& o, int64_t points) {
   NoResourceLimit gate;
   DracoMeshSink sink(/*compression_level=*/7);  // the .drc default
   CpuObserver observer;
-  const double cpu_start = CpuSeconds();
+  const double cpu_start = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
   absl::StatusOr<ReconstructionReport> report = RunReconstruction(
       options, {source, gate, sink, observer}, ErrorContext{}, CancelToken::Never());
   if (!report.ok()) {
@@ -144,7 +139,7 @@ Row RunOne(const Options& o, int64_t points) {
     return row;
   }
   const ReconstructionReport& r = *report;
-  row.cpu = CpuSeconds() - cpu_start;
+  row.cpu = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID) - cpu_start;
   row.faces = r.mesh.faces;
   row.voxel_size = r.voxel_size;
   for (int k = 0; k < 3; ++k) row.grid[k] = r.grid[k];

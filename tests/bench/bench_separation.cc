@@ -30,15 +30,10 @@
 
 namespace membrane {
 namespace {
+using bench::ClockSeconds;
 using bench::LoadAverage;
 using bench::Median;
 using bench::SubsampleForGridSide;
-
-double ThreadCpu() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 uintmax_t FileSize(const std::string& path) {
   std::error_code ec;
@@ -135,10 +130,10 @@ int Run(int argc, char** argv) {
   bool same = true;
   for (int r = 0; r < repeat; ++r) {
     VoxelGrid copy = grid;
-    const double c0 = ThreadCpu();
+    const double c0 = ClockSeconds(CLOCK_THREAD_CPUTIME_ID);
     absl::StatusOr<PieceSeparationStats> s =
         SeparateDataPieces(copy, PieceSeparationOptions{}, CancelToken::Never(), &points);
-    const double c1 = ThreadCpu();
+    const double c1 = ClockSeconds(CLOCK_THREAD_CPUTIME_ID);
     if (!s.ok()) {
       std::fprintf(stderr, "%s\n", s.status().ToString().c_str());
       return 1;

@@ -363,12 +363,6 @@ std::string Thousands(int64_t v) {
   return v < 0 ? "-" + out : out;
 }
 
-double ProcessCpu() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
 int64_t PeakRssKb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -436,10 +430,10 @@ Summary RunModel(const BenchOptions& o, const Model& m, bool open3d_available,
     vox = std::move(*v);
     hard = vox->hard_voxels;
     const double w0 = Now();
-    const double c0 = ProcessCpu();
+    const double c0 = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
     absl::StatusOr<ShrinkResult> result =
         ShrinkMembrane(vox->grid, cloud->points, o.shrink, {}, CancelToken::Never());
-    const double c1 = ProcessCpu();
+    const double c1 = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
     const double w1 = Now();
     if (!result.ok()) return fail(result.status(), "shrink");
     walls.push_back(w1 - w0);

@@ -4,6 +4,7 @@
 #define MEMBRANE_TESTS_BENCH_BENCH_UTIL_H_
 
 #include <cstdint>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,10 @@ double Median(std::vector<double> v);
 
 // Seconds on the steady clock, for differences only.
 double Now();
+
+// Seconds on `clock` (CLOCK_PROCESS_CPUTIME_ID, CLOCK_THREAD_CPUTIME_ID, ...), for differences
+// only: the machines are shared, and CPU seconds do not follow their load as wall seconds do.
+double ClockSeconds(clockid_t clock);
 
 // The 1, 5 and 15 minute load averages of /proc/loadavg, space separated ("" when unreadable),
 // printed beside every figure: these machines are shared.

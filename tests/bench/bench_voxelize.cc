@@ -24,12 +24,6 @@
 namespace membrane::bench {
 namespace {
 
-double CpuNow(clockid_t clock) {
-  timespec t;
-  clock_gettime(clock, &t);
-  return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
 // On a loaded machine a second thread rarely finds a free core, and the wall time hides what
 // the threads share; the calling thread's own CPU time is the longest path whatever the load.
 struct Times {
@@ -41,9 +35,9 @@ struct Times {
 // Process CPU seconds of `run`.
 template <typename Run>
 double CpuOf(const Run& run) {
-  const double c = CpuNow(CLOCK_PROCESS_CPUTIME_ID);
+  const double c = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
   run();
-  return CpuNow(CLOCK_PROCESS_CPUTIME_ID) - c;
+  return ClockSeconds(CLOCK_PROCESS_CPUTIME_ID) - c;
 }
 
 int Run(int argc, char** argv) {
@@ -108,12 +102,13 @@ int Run(int argc, char** argv) {
         DistinctPointCount(cloud->points, threads[k]);
         times[k].count_wall.push_back(Now() - w);
         w = Now();
-        const double c = CpuNow(CLOCK_PROCESS_CPUTIME_ID), t = CpuNow(CLOCK_THREAD_CPUTIME_ID);
+        const double c = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
+        const double t = ClockSeconds(CLOCK_THREAD_CPUTIME_ID);
         absl::StatusOr<Voxelization> v =
             Voxelize(cloud->points, VoxelizeOptions{.threads = threads[k]});
         times[k].wall.push_back(Now() - w);
-        times[k].cpu.push_back(CpuNow(CLOCK_PROCESS_CPUTIME_ID) - c);
-        times[k].caller_cpu.push_back(CpuNow(CLOCK_THREAD_CPUTIME_ID) - t);
+        times[k].cpu.push_back(ClockSeconds(CLOCK_PROCESS_CPUTIME_ID) - c);
+        times[k].caller_cpu.push_back(ClockSeconds(CLOCK_THREAD_CPUTIME_ID) - t);
         if (!v.ok()) {
           std::fprintf(stderr, "%s\n", std::string(v.status().message()).c_str());
           return 2;

@@ -45,6 +45,14 @@ std::vector<char> ReferenceFlood(const std::array<int, 3>& n, const std::vector<
   return reached;
 }
 
+// The open voxels of `open` (one byte a voxel) as bits.
+FlatBitset OpenBits(const std::vector<char>& open) {
+  FlatBitset bits(static_cast<int64_t>(open.size()));
+  for (size_t i = 0; i < open.size(); ++i)
+    if (open[i]) bits.set(static_cast<int64_t>(i));
+  return bits;
+}
+
 // A random grid: open voxels with probability `fill`, then closed-walled boxes whose insides
 // are open (caves unless a random gap in a wall lets the flood in).
 std::vector<char> RandomGridWithCaves(const std::array<int, 3>& n, double fill, std::mt19937& rng) {
@@ -81,9 +89,7 @@ TEST(BorderFlood, EqualsAPlainFloodOnRandomGridsWithCaves) {
     const double fill = std::uniform_real_distribution<double>(0.2, 0.95)(rng);
     const std::vector<char> open = RandomGridWithCaves(n, fill, rng);
     const int64_t count = static_cast<int64_t>(open.size());
-    FlatBitset bits(count);
-    for (int64_t i = 0; i < count; ++i)
-      if (open[i]) bits.set(i);
+    const FlatBitset bits = OpenBits(open);
     const FlatBitset reached = FloodFromBorder(n, bits);
     std::vector<char> got(open.size());
     for (int64_t i = 0; i < count; ++i) got[i] = reached.test(i) ? 1 : 0;
@@ -116,9 +122,7 @@ TEST(BorderFlood, SlabsGiveTheOneThreadFloodsBits) {
     const double fill = std::uniform_real_distribution<double>(0.2, 0.95)(rng);
     const std::vector<char> open = RandomGridWithCaves(n, fill, rng);
     const int64_t count = static_cast<int64_t>(open.size());
-    FlatBitset bits(count);
-    for (int64_t i = 0; i < count; ++i)
-      if (open[i]) bits.set(i);
+    const FlatBitset bits = OpenBits(open);
     const FlatBitset serial = FloodFromBorder(n, bits, 1);
     for (int64_t i = 0; i < count; ++i) caves += open[i] && !serial.test(i);
     for (int threads : {1, 3})
@@ -138,9 +142,7 @@ TEST(BorderFlood, SlabsGiveTheOneThreadFloodsBits) {
   const std::vector<char> open = RandomGridWithCaves(n, 0.9, rng);
   const int64_t count = static_cast<int64_t>(open.size());
   ASSERT_GE(count, int64_t{1} << 24);
-  FlatBitset bits(count);
-  for (int64_t i = 0; i < count; ++i)
-    if (open[i]) bits.set(i);
+  const FlatBitset bits = OpenBits(open);
   const FlatBitset serial = FloodFromBorder(n, bits, 1);
   const FlatBitset threaded = FloodFromBorder(n, bits, 3);
   for (size_t w = 0; w < serial.word_count(); ++w) ASSERT_EQ(threaded.words()[w], serial.words()[w]) << w;

@@ -4,7 +4,7 @@
 // page reporting) memory the process has not written yet, or freed a few seconds ago, is
 // backed by the host on its first write, and a fresh 2 MB page faults at 0.25 GB/s against
 // 1.8 GB/s for 4 KB pages (tests/bench/2026-12-05-page-size.txt). Blocks of a page and more
-// start on a cache line, as the arena's blocks do.
+// start on a cache line, as the arena's blocks do (PlaneArena::kBlockAlignment).
 #ifndef MEMBRANE_CORE_ENGINE_ARENA_ALLOCATOR_H_
 #define MEMBRANE_CORE_ENGINE_ARENA_ALLOCATOR_H_
 
@@ -18,7 +18,6 @@
 namespace membrane {
 
 inline constexpr std::size_t kAlignedBlockBytes = 4096;  // a page
-inline constexpr std::size_t kCacheLineBytes = 64;
 
 template <typename T>
 struct ArenaAllocator {
@@ -41,7 +40,7 @@ struct ArenaAllocator {
       if (void* p = arena_->Take(bytes)) return static_cast<T*>(p);
     }
     if (bytes < kAlignedBlockBytes) return static_cast<T*>(::operator new(bytes));
-    return static_cast<T*>(::operator new(bytes, std::align_val_t{kCacheLineBytes}));
+    return static_cast<T*>(::operator new(bytes, std::align_val_t{PlaneArena::kBlockAlignment}));
   }
   void deallocate(T* p, std::size_t count) {
     if (arena_ != nullptr && arena_->Owns(p)) return;  // freed with the arena
@@ -49,7 +48,7 @@ struct ArenaAllocator {
     if (bytes < kAlignedBlockBytes) {
       ::operator delete(p);
     } else {
-      ::operator delete(p, std::align_val_t{kCacheLineBytes});
+      ::operator delete(p, std::align_val_t{PlaneArena::kBlockAlignment});
     }
   }
   // Equal when they share the arena (or both have none): only then may one free the

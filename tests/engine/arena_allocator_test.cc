@@ -12,7 +12,7 @@ namespace {
 
 TEST(ArenaAllocator, LargeBlocksAreAlignedToACacheLine) {
   std::vector<uint64_t, ArenaAllocator<uint64_t>> plane(3 * kAlignedBlockBytes / 8 + 5, 0);
-  EXPECT_EQ(reinterpret_cast<uintptr_t>(plane.data()) % kCacheLineBytes, 0u);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(plane.data()) % PlaneArena::kBlockAlignment, 0u);
   plane.back() = 7;
   EXPECT_EQ(plane.back(), 7u);
   EXPECT_EQ(plane.front(), 0u);

@@ -120,6 +120,18 @@ RgbImage RenderMeshViews(const TriangleMesh& mesh, const MeshViewOptions& option
         sy[k] = n / 2.0 - scale * Dot(p[k], view.up);
         sz[k] = Dot(p[k], view.toward);
       }
+      // The pixels whose centre (x + 0.5, y + 0.5) lies in the face's box. Most faces of a big
+      // mesh hold none: they are skipped before their normal and shade are computed.
+      const int x0 =
+          std::max(0, static_cast<int>(std::ceil(std::min({sx[0], sx[1], sx[2]}) - 0.5)));
+      const int x1 =
+          std::min(n - 1, static_cast<int>(std::floor(std::max({sx[0], sx[1], sx[2]}) - 0.5)));
+      if (x0 > x1) continue;
+      const int y0 =
+          std::max(0, static_cast<int>(std::ceil(std::min({sy[0], sy[1], sy[2]}) - 0.5)));
+      const int y1 =
+          std::min(n - 1, static_cast<int>(std::floor(std::max({sy[0], sy[1], sy[2]}) - 0.5)));
+      if (y0 > y1) continue;
       const double area = (sx[1] - sx[0]) * (sy[2] - sy[0]) - (sx[2] - sx[0]) * (sy[1] - sy[0]);
       if (area == 0) continue;
       V3 normal = Cross(Sub(p[1], p[0]), Sub(p[2], p[0]));
@@ -129,10 +141,6 @@ RgbImage RenderMeshViews(const TriangleMesh& mesh, const MeshViewOptions& option
       const double lambert = std::abs(Dot(normal, light)) / length;
       const uint32_t colour =
           Shade(kShellColours[shells[f] % kShellColours.size()], 0.3 + 0.7 * lambert);
-      const int x0 = std::max(0, static_cast<int>(std::floor(std::min({sx[0], sx[1], sx[2]}))));
-      const int x1 = std::min(n - 1, static_cast<int>(std::ceil(std::max({sx[0], sx[1], sx[2]}))));
-      const int y0 = std::max(0, static_cast<int>(std::floor(std::min({sy[0], sy[1], sy[2]}))));
-      const int y1 = std::min(n - 1, static_cast<int>(std::ceil(std::max({sy[0], sy[1], sy[2]}))));
       for (int y = y0; y <= y1; ++y) {
         const double py = y + 0.5;
         for (int x = x0; x <= x1; ++x) {

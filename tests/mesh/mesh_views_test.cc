@@ -80,6 +80,29 @@ TEST(MeshViews, ShellsHaveTheirOwnColoursAndTheNearestFaceWins) {
   EXPECT_EQ(Dominant(around), Dominant(kShellColours[0]));  // blue
 }
 
+TEST(MeshViews, FacesSmallerThanAPixelLeaveNoHoles) {
+  // A torus about z of 160,000 faces, most of them holding no pixel centre: seen from above it
+  // is the annulus between radii 0.7 and 1.3, every pixel centre inside it covered and every
+  // one outside left as background (a pixel and a half of margin for the polygon's facets).
+  const RgbImage image = RenderMeshViews(TorusMesh(400, 200, 1.0f, 0.3f), {kN, kBackground});
+  const double scale = 0.9 * kN / 2.6;  // pixels a unit: the box's largest side is 2.6
+  const double margin = 1.5 / scale;
+  int inside = 0;
+  for (int y = 0; y < kN; ++y) {
+    for (int x = 0; x < kN; ++x) {
+      const double d = std::hypot(x + 0.5 - kN / 2.0, y + 0.5 - kN / 2.0) / scale;
+      const uint32_t pixel = image.At(2 * kN + x, y);
+      if (d > 0.7 + margin && d < 1.3 - margin) {
+        ++inside;
+        EXPECT_NE(pixel, kBackground) << "hole at (" << x << ", " << y << ")";
+      } else if (d < 0.7 - margin || d > 1.3 + margin) {
+        EXPECT_EQ(pixel, kBackground) << "drawn at (" << x << ", " << y << ")";
+      }
+    }
+  }
+  EXPECT_GT(inside, 1000);
+}
+
 TEST(MeshViews, NothingToDrawGivesTheBackground) {
   TriangleMesh bad;
   bad.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};

@@ -18,8 +18,9 @@ inline constexpr int kPreviewViewPixels = 160;
 // errors.
 absl::StatusOr<std::string> PreviewPng(const TriangleMesh& mesh);
 
-// A MeshSink that passes the mesh on to `inner` and draws its preview (PreviewPng) once
-// `inner` took it. Like any sink it only reads the mesh.
+// A MeshSink that passes the mesh on to `inner` and draws its preview (PreviewPng) on a thread
+// beside inner's write (after it when no thread can be started). The preview is kept only when
+// `inner` took the mesh. Like any sink it only reads the mesh.
 class PreviewSink : public MeshSink {
  public:
   // `inner` (not owned) must outlive the sink.

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstring>
 #include <utility>
 #include <vector>
 
 #include "absl/status/status.h"
 #include "core/base/parallel_tasks.h"
+#include "core/engine/coarse_grid.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/gap_refill.h"
 #include "core/engine/guard_band_waves.h"
@@ -54,49 +54,6 @@ Marks OpenRays(const VoxelGrid& grid, int threads) {
     });
   }
   return open;
-}
-
-// The grid `k` times coarser over the same data region, as Voxelize() leaves a grid: padding
-// outside, the data region inside with its outer layer boundary, a voxel hard when any of its
-// fine voxels is. A coarse z plane a task on `threads` (its fine planes are its own).
-VoxelGrid CoarseGrid(const VoxelGrid& fine, int k, int threads) {
-  std::array<int, 3> dims;
-  std::array<double, 3> origin;
-  const double l = fine.voxel_size();
-  for (int d = 0; d < 3; ++d) {
-    dims[d] = (fine.dim(d) - 2 * kPad + k - 1) / k + 2 * kPad;
-    origin[d] = fine.origin()[d] + kPad * l - kPad * k * l;
-  }
-  VoxelGrid coarse(dims, origin, k * l, VoxelGrid::Unset{});
-  // Before the first generation a data voxel's state has bit 1 set exactly when it is hard:
-  // eight voxels at a time are skipped when none has.
-  constexpr uint64_t kHardBits = 0x0202020202020202ull;
-  const int64_t row = fine.dim(0) - 2 * kPad;
-  RunTasks(threads, dims[2], [&](int, int64_t task) {
-    const int cz = static_cast<int>(task);
-    WriteInitialPlane(cz, coarse);
-    if (cz < kPad || cz >= dims[2] - kPad) return;
-    const int z1 = std::min(kPad + (cz - kPad + 1) * k, fine.dim(2) - kPad);
-    for (int z = kPad + (cz - kPad) * k; z < z1; ++z) {
-      for (int y = kPad; y < fine.dim(1) - kPad; ++y) {
-        const VoxelState* states = fine.states().data() + fine.Index(kPad, y, z);
-        for (int64_t x = 0; x < row; x += 8) {
-          if (x + 8 <= row) {
-            uint64_t word;
-            std::memcpy(&word, states + x, 8);
-            if ((word & kHardBits) == 0) continue;
-          }
-          for (int64_t i = x; i < std::min(row, x + 8); ++i) {
-            if (!IsHard(states[i])) continue;
-            const int64_t c = coarse.Index(static_cast<int>(i / k) + kPad, (y - kPad) / k + kPad,
-                                           cz);
-            coarse.set(c, IsBoundary(coarse.at(c)) ? kBoundaryHard : kInsideHard);
-          }
-        }
-      }
-    }
-  });
-  return coarse;
 }
 
 // Calls visit(fine coord) for every fine voxel of the data region in coarse voxel (cx, cy, cz).

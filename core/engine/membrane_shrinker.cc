@@ -9,6 +9,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/types/span.h"
 #include "core/engine/closed_form_generation.h"
+#include "core/engine/coarse_plates.h"
 #include "core/engine/gap_refill.h"
 #include "core/engine/hole_opening.h"
 #include "core/engine/handle_retry.h"
@@ -82,14 +83,28 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
     if (!guard.ok()) return guard.status();
     result.interior_guard = *guard;
   }
-  counts_ = CountStates(grid_.states(), word_threads_);
+  // The big plates on the coarser grid: the grid's generations start after them.
+  const size_t first =
+      CoarseGenerationCount(grid_.size(), sizes_, options_, retry_from_);
+  if (first > 0) {
+    const Clock::time_point t0 = Clock::now();
+    absl::StatusOr<int64_t> lifted = RunCoarsePlates(grid_, options_, sizes_, labels_, first,
+                                                     cancel_, on_generation,
+                                                     result.generations);
+    if (!lifted.ok()) return lifted.status();
+    result.coarse_plates.factor = options_.coarse_plates.factor;
+    result.coarse_plates.generations = static_cast<int>(first);
+    result.coarse_plates.lifted_voxels = *lifted;
+    result.coarse_plates.seconds = SecondsSince(t0);
+  }
+  Recount();
   // The strict rules decide as the default ones do until the first removal they would refuse
   // (a loose tunnel): the handle retry starts at the generation that made it, from the grid
   // as it was before that generation.
   ShrinkCheckpoint retry_start;  // the grid before generation retry_at
   size_t retry_at = retry_from_;
   bool loose = false;
-  for (size_t g = 0; g < sizes_.size(); ++g) {
+  for (size_t g = first; g < sizes_.size(); ++g) {
     if (g >= retry_from_ && !loose) {
       if (!Save(retry_start)) return HandleRetryCancelled();
       retry_at = g;
@@ -159,6 +174,8 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
   result.seconds = SecondsSince(start);
   return result;
 }
+
+void MembraneShrinker::Recount() { counts_ = CountStates(grid_.states(), word_threads_); }
 
 ChainOptions MembraneShrinker::ChainOptionsFor(size_t g, TunnelRules rules) const {
   ChainOptions chain;

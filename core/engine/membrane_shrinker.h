@@ -68,13 +68,25 @@ struct GenerationStats {
   int64_t closed_form_checks = 0;    // incursion and guard tests after it
   bool closed_form_voxelwise = false;  // its result was applied voxel by voxel (few new voxels)
   int64_t new_outside = 0;           // voxels the generation turned outside
+  // The grid that ran it: 1 the shrink's own, k the grid k times coarser (coarse_plates.h),
+  // whose voxels the counters above count.
+  int level = 1;
   double seconds = 0.0;
+};
+
+// The generations run on a coarser grid (ShrinkOptions::coarse_plates, coarse_plates.h).
+struct CoarsePlatesStats {
+  int factor = 0;             // 0: none ran there
+  int generations = 0;        // the first ones
+  int64_t lifted_voxels = 0;  // voxels of the grid the lift turned outside
+  double seconds = 0.0;       // the coarse grid, its generations and the lift
 };
 
 struct ShrinkResult {
   std::vector<GenerationStats> generations;
   int64_t preshrink_outside_voxels = 0;
   InteriorGuardStats interior_guard;
+  CoarsePlatesStats coarse_plates;
   PostProcessStats post_process;
   HandleRetry handle_retry;
   PieceSeparationStats separation;
@@ -93,8 +105,9 @@ using GenerationCallback = std::function<void(const GenerationStats&)>;
 // hard voxel, held during the shrink) when either is on.
 // `generations` holds the rows of the generations kept: after a kept handle retry, the retry's
 // rows (handle_retry set) replace the first run's from HandleRetry::from_generation on.
-// `on_generation` sees every first-run row as it finishes, then, when a retry is kept, the
-// retry's rows, each replacing the earlier row of the same generation.
+// Generations run on a coarser grid (ShrinkOptions::coarse_plates) have rows of their own,
+// with their level. `on_generation` sees every first-run row as it finishes, then, when a
+// retry is kept, the retry's rows, each replacing the earlier row of the same generation.
 // After success the membrane invariants hold (CheckMembraneInvariants) and `grid` holds the
 // final DMS. `on_generation` may be empty. Cancelled when `cancel` fires (within
 // milliseconds; `grid` is then a valid but unfinished DMS); InvalidArgument for bad options.
@@ -138,7 +151,9 @@ class MembraneShrinker {
   MembraneShrinker& operator=(const MembraneShrinker&) = delete;
 
   // The whole shrink, as ShrinkMembrane states it: the silhouette pre-shrink (when enabled),
-  // every generation, the handle retry (handle_retry.h), the section 7 post-process.
+  // the interior guard, the leading big plates on a coarser grid where options.coarse_plates
+  // applies (coarse_plates.h), every other generation, the handle retry (handle_retry.h), the
+  // section 7 post-process.
   absl::StatusOr<ShrinkResult> Run(const GenerationCallback& on_generation);
 
   // Generation g (0-based) with the guard sizes of `rules`: its closed form where that applies
@@ -158,6 +173,13 @@ class MembraneShrinker {
   const ShrinkOptions& options() const { return options_; }
   const CancelToken& cancel() const { return cancel_; }
   size_t generations() const { return sizes_.size(); }
+  int plate_size(size_t g) const { return sizes_[g]; }
+  int label(size_t g) const { return labels_[g]; }
+
+  // Counts the grid's states again, as the next generation's row starts from: Run does before
+  // the first generation; a caller that runs generations itself, or changes the grid between
+  // them, calls it first.
+  void Recount();
 
  private:
   // The chains of generation g under `rules`: plate size, label, rules and guard sizes.

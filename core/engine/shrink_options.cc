@@ -40,6 +40,18 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "interior_guard.factor %d is out of range [2, 4]", o.interior_guard.factor));
   }
+  if (o.coarse_plates.min_voxels < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "coarse_plates.min_voxels %d must be >= 0 (0 = never)", o.coarse_plates.min_voxels));
+  }
+  if (o.coarse_plates.factor < 2 || o.coarse_plates.factor > 4) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "coarse_plates.factor %d is out of range [2, 4]", o.coarse_plates.factor));
+  }
+  if (o.coarse_plates.min_plate < 8) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "coarse_plates.min_plate %d must be >= 8", o.coarse_plates.min_plate));
+  }
   if (o.interior_guard.min_coarse_axis < 1) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "interior_guard.min_coarse_axis %d must be >= 1", o.interior_guard.min_coarse_axis));

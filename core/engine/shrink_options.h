@@ -33,6 +33,18 @@ struct HandleRetryOptions {
   double max_hard_rim = 0.75;
 };
 
+// The big plates on a coarser grid (docs/engine-decisions.md, "Big plates on a coarser grid",
+// coarse_plates.h): on a grid of at least min_voxels voxels, the leading generations whose
+// plate is at least min_plate run with plates ceil(n / factor) on the grid `factor` times
+// coarser, whose outside is then lifted to the grid; the rest run on the grid. Only with the
+// halving schedule and no silhouette pre-shrink; never for the generations from the handle
+// retry's first or the guarded band's release on.
+struct CoarsePlatesOptions {
+  int64_t min_voxels = int64_t{1} << 30;  // 0: never
+  int factor = 4;                          // 2..4
+  int min_plate = 41;                      // >= 8
+};
+
 struct ShrinkOptions {
   PlateSchedule schedule = PlateSchedule::kHalving;
   int initial_plate = 0;            // 0: from the grid (Algorithm 1)
@@ -52,6 +64,7 @@ struct ShrinkOptions {
   PieceSeparationOptions separation;  // pieces of data joined by the shrink (piece_separation.h)
   HoleOpeningOptions holes;         // plugged holes opened from the data (hole_opening.h)
   InteriorGuardOptions interior_guard;  // the interior held by a coarser membrane (interior_guard.h)
+  CoarsePlatesOptions coarse_plates;    // the big plates on a coarser grid (coarse_plates.h)
   // Threads of the word passes of the closed form and the place finder and of the state
   // counts (1..256; ReconstructionOptions::threads): split by the grid, the same DMS for any
   // count. Grids under threads_min_voxels keep them on the calling thread: their passes take

@@ -62,6 +62,7 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
       ShrinkMembrane(grid, cloud.points, shrink, on_generation, cancel);
   if (!result.ok()) return result.status();
   report.interior_guard = result->interior_guard;
+  report.coarse_plates = result->coarse_plates;
   report.generations = std::move(result->generations);
   report.post_process = result->post_process;
   report.handle_retry = result->handle_retry;

@@ -79,6 +79,7 @@ struct ReconstructionReport {
   int threads = 1;                           // ReconstructionOptions::threads
   int planned_generations = 0;               // plate sizes of the schedule, known before shrinking
   InteriorGuardStats interior_guard;  // ShrinkResult::interior_guard, before the generations
+  CoarsePlatesStats coarse_plates;    // ShrinkResult::coarse_plates, the first generations
   std::vector<GenerationStats> generations;  // one per plate size, the last has plate size 1
   PostProcessStats post_process;
   HandleRetry handle_retry;    // ShrinkResult::handle_retry

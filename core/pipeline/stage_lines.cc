@@ -60,9 +60,11 @@ std::string StageStartedLine(PipelineStage stage, const ReconstructionReport& re
 std::string GenerationLine(const GenerationStats& g, int planned_generations) {
   return absl::StrFormat(
       "shrink: generation %d/%d, plate size %d: %d soft voxels, %d started contractions, "
-      "%d backtrackings, %.3f s%s",
+      "%d backtrackings, %.3f s%s%s",
       g.generation, planned_generations, g.plate_size, g.soft_voxels, g.started_contractions,
-      g.backtrackings, g.seconds, g.handle_retry ? " (handle retry, kept)" : "");
+      g.backtrackings, g.seconds,
+      g.level > 1 ? absl::StrFormat(" (on the grid %d times coarser)", g.level) : "",
+      g.handle_retry ? " (handle retry, kept)" : "");
 }
 
 std::string StageFinishedLine(PipelineStage stage, const ReconstructionReport& r) {

@@ -23,7 +23,7 @@ std::string GenerationJson(const GenerationStats& g) {
                       ", \"contractions\": ", g.contractions,
                       ", \"undone_contractions\": ", g.undone_contractions,
                       ", \"guard_refusals\": ", g.guard_refusals,
-                      ", \"depth_refusals\": ", g.depth_refusals, ", \"passes\": ", g.passes, "}");
+                      ", \"depth_refusals\": ", g.depth_refusals, ", \"passes\": ", g.passes, ", \"level\": ", g.level, "}");
 }
 
 std::string GenerationsJson(const std::vector<GenerationStats>& generations) {
@@ -88,6 +88,12 @@ std::string InteriorGuardJson(const InteriorGuardStats& g) {
                       ", \"band_frozen\": ", g.band_frozen,
                       ", \"released_voxels\": ", g.released_voxels,
                       ", \"seconds\": ", JsonNumber(g.seconds), "}");
+}
+
+std::string CoarsePlatesJson(const CoarsePlatesStats& c) {
+  return absl::StrCat("{\"factor\": ", c.factor, ", \"generations\": ", c.generations,
+                      ", \"lifted_voxels\": ", c.lifted_voxels,
+                      ", \"seconds\": ", JsonNumber(c.seconds), "}");
 }
 
 std::string RelaxationJson(const RelaxationStats& r) {
@@ -195,6 +201,7 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"hole_opening\": ", HoleOpeningJson(r.hole_opening),
       ",\n  \"gap_refill\": ", GapRefillJson(r.gap_refill),
       ",\n  \"interior_guard\": ", InteriorGuardJson(r.interior_guard),
+      ",\n  \"coarse_plates\": ", CoarsePlatesJson(r.coarse_plates),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
       ",\n  \"hole_caps\": ", HoleCapsJson(r.hole_caps),
       ",\n  \"quantization\": ", QuantizationJson(r.quantization),

@@ -19,7 +19,8 @@ namespace membrane {
 //   mesh {vertices, faces, closed, manifold, oriented, shells, genus [per shell]},
 //   seconds {decode, voxelize, shrink, relax, surface, encode, total}, peak_rss_bytes.
 // Extra keys: data_grid (grid without padding), schedule, surface, relaxed; per generation
-// generation, contractions, undone_contractions, guard_refusals, depth_refusals, passes;
+// generation, contractions, undone_contractions, guard_refusals, depth_refusals, passes,
+// level (1, or the factor of the coarser grid that ran it);
 // post_process {inside_hard_before, inside_hard_after, carved_voxels, bridge_voxels};
 // handle_retry {ran, kept, from_generation, loose_tunnels, shells_before, genus_before,
 // shells_after, genus_after, web_voxels, web_hard_rim, seconds} (HandleRetry);
@@ -32,6 +33,8 @@ namespace membrane {
 // gap_refill {refilled_voxels, pocket_voxels, loops_closed} (GapRefillStats);
 // interior_guard {levels, core_voxels, frozen_voxels, band_frozen, released_voxels, seconds}
 // (InteriorGuardStats; levels 0: no coarse membrane was built);
+// coarse_plates {factor, generations, lifted_voxels, seconds} (CoarsePlatesStats; factor 0:
+// every generation ran on the grid);
 // relaxation {phase1_moves, phase1_added, phase2_moves, phase2_uncovered, not_simple};
 // membrane.inside_frozen_voxels and membrane.genus; mesh.self_intersections and
 // mesh.positive_volume; seconds.check. Non-finite reals are written as null.

@@ -63,6 +63,7 @@ constexpr char kUsage[] =
     "usage: bench_shrink [--quick] [--models a,b,c,d|NAME,...] [--repeat R] [--shared DIR]\n"
     "                    [--python PATH] [--open3d-threads N] [--open3d-timeout S]\n"
     "                    [--no-open3d] [--retry T,S,W] [--threads N] [--voxelwise-ratio R]\n"
+    "                    [--coarse-plates V,P]\n"
     "  --quick           small sizes only, R=1, no open3d (the ctest smoke)\n"
     "  --models LIST     a|real, b|scaling, c|million, d|tall, e|small, f|big (4M and 10M\n"
     "                    points, only when named), or any part of a\n"
@@ -80,7 +81,10 @@ constexpr char kUsage[] =
     "                    CPU seconds are the whole process's)\n"
     "  --voxelwise-ratio R  a closed form adding at most one voxel per R of the grid is\n"
     "                    applied voxel by voxel (ShrinkOptions::closed_form_voxelwise_ratio;\n"
-    "                    default 256; 0 = always by planes)\n";
+    "                    default 256; 0 = always by planes)\n"
+    "  --coarse-plates V,P  on grids of at least V voxels the plates of P and more run on the\n"
+    "                    grid 4 times coarser (ShrinkOptions::coarse_plates; default 2^30,41;\n"
+    "                    V = 0: never)\n";
 
 std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
   BenchOptions o;
@@ -124,6 +128,15 @@ std::optional<BenchOptions> ParseArgs(int argc, char** argv) {
       auto v = value();
       if (!v || !absl::SimpleAtoi(*v, &o.shrink.closed_form_voxelwise_ratio) ||
           o.shrink.closed_form_voxelwise_ratio < 0) {
+        return std::nullopt;
+      }
+    } else if (arg == "--coarse-plates") {
+      auto v = value();
+      std::vector<std::string> f;
+      if (v) f = absl::StrSplit(*v, ',');
+      if (f.size() != 2 || !absl::SimpleAtoi(f[0], &o.shrink.coarse_plates.min_voxels) ||
+          !absl::SimpleAtoi(f[1], &o.shrink.coarse_plates.min_plate) ||
+          !ValidateShrinkOptions(o.shrink).ok()) {
         return std::nullopt;
       }
     } else if (arg == "--shared") {
@@ -460,17 +473,23 @@ Summary RunModel(const BenchOptions& o, const Model& m, bool open3d_available,
   std::printf("grid %dx%dx%d with padding (%s voxels), voxel %.6g, points %s, hard voxels %s\n",
               d[0], d[1], d[2], Thousands(s.voxels).c_str(), voxel_size,
               Thousands(s.points).c_str(), Thousands(hard).c_str());
-  std::printf("%4s %5s %12s %10s %11s %13s %12s %7s %6s %6s %9s\n", "gen", "plate",
-              "soft voxels", "started", "backtracks", "contractions", "undone", "passes",
-              "local", "rounds", "seconds");
+  std::printf("%4s %5s %5s %12s %10s %11s %13s %12s %7s %6s %6s %9s\n", "gen", "plate",
+              "level", "soft voxels", "started", "backtracks", "contractions", "undone",
+              "passes", "local", "rounds", "seconds");
   double generation_sum = 0.0;
   for (const GenerationStats& g : res.generations) {
-    std::printf("%4d %5d %12s %10s %11s %13s %12s %7d %6d %6d %9.3f\n", g.generation,
-                g.plate_size, Thousands(g.soft_voxels).c_str(),
+    std::printf("%4d %5d %5d %12s %10s %11s %13s %12s %7d %6d %6d %9.3f\n", g.generation,
+                g.plate_size, g.level, Thousands(g.soft_voxels).c_str(),
                 Thousands(g.started_contractions).c_str(), Thousands(g.backtrackings).c_str(),
                 Thousands(g.contractions).c_str(), Thousands(g.undone_contractions).c_str(),
                 g.passes, g.local_passes, g.closed_form_rounds, g.seconds);
     generation_sum += g.seconds;
+  }
+  if (res.coarse_plates.generations > 0) {
+    std::printf("coarse plates: generations 1-%d on the grid %d times coarser, %s voxels "
+                "lifted, %.3f s with the coarse grid and the lift\n",
+                res.coarse_plates.generations, res.coarse_plates.factor,
+                Thousands(res.coarse_plates.lifted_voxels).c_str(), res.coarse_plates.seconds);
   }
   std::printf("shrink: median %.3f s wall, %.3f s CPU over R=%d (wall runs %s); %.1f ns/voxel "
               "wall, %.1f CPU; generations %.3f s + rest (post-process, handle retry %.3f s: %s) "

@@ -83,19 +83,15 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
     if (!guard.ok()) return guard.status();
     result.interior_guard = *guard;
   }
-  // The big plates on the coarser grid: the grid's generations start after them.
-  const size_t first =
-      CoarseGenerationCount(grid_.size(), sizes_, options_, retry_from_);
-  if (first > 0) {
-    const Clock::time_point t0 = Clock::now();
-    absl::StatusOr<int64_t> lifted = RunCoarsePlates(grid_, options_, sizes_, labels_, first,
-                                                     cancel_, on_generation,
-                                                     result.generations);
-    if (!lifted.ok()) return lifted.status();
-    result.coarse_plates.factor = options_.coarse_plates.factor;
-    result.coarse_plates.generations = static_cast<int>(first);
-    result.coarse_plates.lifted_voxels = *lifted;
-    result.coarse_plates.seconds = SecondsSince(t0);
+  // The big plates on the coarser grid: the grid's generations go on after them.
+  size_t first = 0;
+  if (const size_t count = CoarseGenerationCount(grid_.size(), sizes_, options_, retry_from_);
+      count > 0) {
+    absl::StatusOr<CoarsePlatesStats> coarse = RunCoarsePlates(
+        grid_, options_, sizes_, labels_, count, cancel_, on_generation, result.generations);
+    if (!coarse.ok()) return coarse.status();
+    result.coarse_plates = *coarse;
+    first = static_cast<size_t>(coarse->generations);
   }
   Recount();
   // The strict rules decide as the default ones do until the first removal they would refuse
@@ -191,6 +187,17 @@ ChainOptions MembraneShrinker::ChainOptionsFor(size_t g, TunnelRules rules) cons
 
 absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
                                              std::vector<GenerationStats>& rows) {
+  absl::StatusOr<bool> ran = Generation(g, rules, /*chains=*/true, rows);
+  return ran.ok() ? absl::OkStatus() : ran.status();
+}
+
+absl::StatusOr<bool> MembraneShrinker::RunClosedFormOnly(size_t g,
+                                                         std::vector<GenerationStats>& rows) {
+  return Generation(g, TunnelRules::kDefault, /*chains=*/false, rows);
+}
+
+absl::StatusOr<bool> MembraneShrinker::Generation(size_t g, TunnelRules rules, bool chains,
+                                                  std::vector<GenerationStats>& rows) {
   const Clock::time_point t0 = Clock::now();
   if (guarded_band_.held && sizes_[g] < options_.interior_guard.band_release_below) {
     ReleaseGuardedBand(grid_, guarded_band_);
@@ -220,6 +227,8 @@ absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
       stats.loose_tunnels = 1;
   }
   if (!done) {
+    // A refused closed form has restored the grid.
+    if (!chains) return false;
     if (absl::Status s = RunChains(chain, stats); !s.ok()) return s;
   }
   const StateCounts after = CountStates(grid_.states(), word_threads_);
@@ -227,7 +236,7 @@ absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
   counts_ = after;
   stats.seconds = SecondsSince(t0);
   rows.push_back(stats);
-  return absl::OkStatus();
+  return true;
 }
 
 // A pass ends when no plate fits anywhere: every plate that fits now but did not at the last

@@ -91,34 +91,48 @@ TEST(CoarsePlates, LiftKeepsTheMembraneInvariants) {
       VoxelGrid copy = grid;
       std::vector<GenerationStats> rows;
       int calls = 0;
-      absl::StatusOr<int64_t> lifted = RunCoarsePlates(
+      absl::StatusOr<CoarsePlatesStats> coarse = RunCoarsePlates(
           copy, options, sizes, labels, count, CancelToken::Never(),
           [&calls](const GenerationStats&) { ++calls; }, rows);
-      ASSERT_TRUE(lifted.ok()) << lifted.status();
-      EXPECT_GT(*lifted, 0);
-      ASSERT_EQ(rows.size(), count);
-      EXPECT_EQ(calls, static_cast<int>(count));
-      for (size_t g = 0; g < count; ++g) {
+      ASSERT_TRUE(coarse.ok()) << coarse.status();
+      const size_t ran = static_cast<size_t>(coarse->generations);
+      ASSERT_GE(ran, 1u);
+      ASSERT_LE(ran, count);
+      EXPECT_EQ(coarse->factor, options.coarse_plates.factor);
+      EXPECT_GT(coarse->lifted_voxels, 0);
+      ASSERT_EQ(rows.size(), ran);
+      EXPECT_EQ(calls, static_cast<int>(ran));
+      for (size_t g = 0; g < ran; ++g) {
         EXPECT_EQ(rows[g].generation, static_cast<int>(g) + 1);
         EXPECT_EQ(rows[g].plate_size, sizes[g]);
         EXPECT_EQ(rows[g].level, options.coarse_plates.factor);
+        EXPECT_TRUE(rows[g].closed_form);
       }
       InvariantOptions io;
       io.require_property3 = false;
       io.expected_hard_voxels = voxels.hard_voxels;
       EXPECT_TRUE(CheckMembraneInvariants(copy, io).ok()) << CheckMembraneInvariants(copy, io);
-      // Every lifted voxel carries the label of a generation that ran on the coarse grid.
-      int64_t outside_in_data = 0;
+      // Every lifted voxel carries the label of a generation that ran on the coarse grid, and
+      // the boundary is exactly the voxels left with an outside 26-neighbour.
+      int64_t outside_in_data = 0, boundary_apart = 0;
       for (int z = VoxelGrid::kPadding; z < copy.dim(2) - VoxelGrid::kPadding; ++z)
         for (int y = VoxelGrid::kPadding; y < copy.dim(1) - VoxelGrid::kPadding; ++y)
           for (int x = VoxelGrid::kPadding; x < copy.dim(0) - VoxelGrid::kPadding; ++x) {
-            const VoxelState s = copy.at(copy.Index(x, y, z));
+            const int64_t i = copy.Index(x, y, z);
+            const VoxelState s = copy.at(i);
+            if (IsBoundary(s)) {
+              bool touches = false;
+              for (int64_t offset : copy.neighbour_offsets())
+                touches = touches || IsOutside(copy.at(i + offset));
+              boundary_apart += !touches;
+            }
             if (!IsOutside(s)) continue;
             ++outside_in_data;
             EXPECT_GE(GenerationLabel(s), labels[0]);
-            EXPECT_LE(GenerationLabel(s), labels[count - 1]);
+            EXPECT_LE(GenerationLabel(s), labels[ran - 1]);
           }
-      EXPECT_EQ(outside_in_data, *lifted);
+      EXPECT_EQ(outside_in_data, coarse->lifted_voxels);
+      EXPECT_EQ(boundary_apart, 0);
     }
   }
 }
@@ -138,13 +152,15 @@ TEST(CoarsePlates, ShrinkGoesOnToTheShapesTopology) {
     ASSERT_EQ(rows.size(), sizes.size());
     const CoarsePlatesStats& c = run->result.coarse_plates;
     EXPECT_EQ(c.factor, 4);
-    EXPECT_GE(c.generations, 3);
+    EXPECT_GE(c.generations, 1);
     EXPECT_GT(c.lifted_voxels, 0);
     for (size_t g = 0; g < rows.size(); ++g) {
       EXPECT_EQ(rows[g].generation, static_cast<int>(g) + 1);
       EXPECT_EQ(rows[g].plate_size, sizes[g]);
       EXPECT_EQ(rows[g].level, static_cast<int>(g) < c.generations ? 4 : 1) << g;
-      EXPECT_EQ(sizes[g] >= 8, static_cast<int>(g) < c.generations) << g;
+      if (static_cast<int>(g) < c.generations) {
+        EXPECT_GE(sizes[g], 8) << g;
+      }
     }
   }
 }

@@ -19,6 +19,9 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
 
 #include "core/engine/voxel_grid.h"
@@ -30,6 +33,31 @@ namespace membrane {
 inline Vec3d LatticePosition(const Coord& c) {
   return {static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)};
 }
+
+// std::allocator whose containers' resize(n) leaves the new elements as allocated, for the
+// boundary's arrays: the join of ExtractVoxelBoundaryOnSlabs sizes them, then writes every
+// element on the threads before any is read, so that each thread takes the page faults of
+// what it writes (a value-initializing resize filled them on the calling thread). The
+// elements are aggregates of integers, implicit-lifetime types: the allocation gives them
+// their lifetime.
+template <typename T>
+struct BoundaryAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = BoundaryAllocator<U>;
+  };
+  BoundaryAllocator() = default;
+  template <typename U>
+  BoundaryAllocator(const BoundaryAllocator<U>&) {}
+  template <typename U>
+  void construct(U*) {}
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <typename T>
+using BoundaryArray = std::vector<T, BoundaryAllocator<T>>;
 
 // Lattice corner (x, y, z) sits at model position origin + (x, y, z) * voxel_size, the lowest
 // corner of voxel (x, y, z). The 8 voxels around it are its octants: octant o has bit k set when
@@ -63,9 +91,9 @@ struct VoxelBoundary {
   };
 
   // Vertex ids: [0, fan_vertices.size()) are fan vertices, then midpoints in order.
-  std::vector<FanVertex> fan_vertices;
-  std::vector<EdgeMidpoint> midpoints;
-  std::vector<Quad> quads;
+  BoundaryArray<FanVertex> fan_vertices;
+  BoundaryArray<EdgeMidpoint> midpoints;
+  BoundaryArray<Quad> quads;
   // Lattice corners where two solid voxels meet only at that corner.
   int64_t corner_contacts = 0;
 
@@ -79,9 +107,18 @@ struct VoxelBoundary {
 // and edge midpoints as described above. Any placement of the vertices near their lattice
 // corner (resp. cell) gives a closed, edge- and vertex-manifold mesh whose quads are oriented
 // outward; its shells and genus are those of the (26,6) solid wherever `corner_contacts` is 0.
-// Cost: O(voxels) scan, layer by layer on `threads` threads, plus O(quads) hash look-ups on
-// the calling thread; the result is the same for any thread count.
+// Cost: O(voxels) scan plus O(quads) work. With 2 threads or more, on grids of 2^24 voxels and
+// more, both run on slabs of z layers on the threads (ExtractVoxelBoundaryOnSlabs); otherwise
+// the scan runs layer by layer on the threads and the quads are made on the calling thread.
+// The result is the same for any thread count.
 VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid, int threads = 1);
+
+// ExtractVoxelBoundary's pass on `slabs` slabs of z layers (clamped to 1 .. one a layer) on
+// `threads` threads, whatever the grid's size: each slab numbers the quads, fan vertices and
+// midpoints it makes as the one-thread pass does, taking the corners and midpoints of its lowest
+// lattice plane that the layer below makes from the slab below; the slabs are then joined in
+// order with their ids offset. The same result as the one-thread pass.
+VoxelBoundary ExtractVoxelBoundaryOnSlabs(const VoxelGrid& grid, int threads, int slabs);
 
 // The lattice corners of `quad`, in the order of quad.corners.
 std::array<Coord, 4> QuadCornerCoords(const VoxelBoundary::Quad& quad);

@@ -62,7 +62,8 @@ class CuberilleBuilder {
         }
       }
       if (plain) {
-        SplitQuadFlatter({polygon[0], polygon[1], polygon[2], polygon[3]}, positions_, triangles_);
+        SplitQuadFlatter({polygon[0], polygon[1], polygon[2], polygon[3]}, positions_.data(),
+                         triangles_);
       } else {
         SplitPolygonFan(polygon, apex < 0 ? 0 : apex, triangles_);
       }

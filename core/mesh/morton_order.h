@@ -17,7 +17,9 @@ namespace membrane {
 // e.g. the voxel size. `companion`, if not null, holds one value per vertex and is permuted
 // with the vertices. Output: the same mesh (same geometry, same faces up to renumbering, each
 // face's vertex order kept, so orientation is unchanged). The keys are made and sorted in two
-// halves on `threads` (<= 1: the calling thread), then merged: the same order on any count.
+// halves on `threads` (<= 1: the calling thread), then merged; with 2^16 vertices or more the
+// permutation and the faces' counting sort run on ranges on the threads: the same order on
+// any count.
 void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companion = nullptr,
                  int threads = 1);
 

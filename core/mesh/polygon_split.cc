@@ -10,7 +10,7 @@ double CosineBetween(const Vec3d& a, const Vec3d& b) {
 
 }  // namespace
 
-void SplitQuadFlatter(const std::array<int32_t, 4>& q, const std::vector<Vec3d>& p,
+void SplitQuadFlatter(const std::array<int32_t, 4>& q, const Vec3d* p,
                       std::vector<std::array<int32_t, 3>>& triangles) {
   const Vec3d& a = p[q[0]];
   const Vec3d& b = p[q[1]];

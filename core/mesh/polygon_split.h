@@ -16,7 +16,7 @@ namespace membrane {
 // split along the diagonal whose two triangles are the flatter pair (larger cosine between
 // their normals): the other diagonal would fold the quad along its crease.
 // `positions` is indexed by vertex id.
-void SplitQuadFlatter(const std::array<int32_t, 4>& quad, const std::vector<Vec3d>& positions,
+void SplitQuadFlatter(const std::array<int32_t, 4>& quad, const Vec3d* positions,
                       std::vector<std::array<int32_t, 3>>& triangles);
 
 // Appends the fan triangulation of `polygon` (counter-clockwise, at least 3 vertices) from

@@ -40,8 +40,8 @@ TriangleMesh SurfaceNets(const VoxelGrid& grid, SurfaceNetsStats* stats = nullpt
 // SurfaceNets() without its crossing repair: the mesh as placed (which may cross itself in the
 // rare configurations above) and, per vertex, the embedded fallback position. For a caller that
 // searches the whole mesh for crossings anyway (FitToPoints in SmoothSurface), so the search
-// runs once instead of twice. The voxel boundary's scan and the Morton order's sort run on
-// `threads` threads (the same mesh for any count).
+// runs once instead of twice. The voxel boundary, the placement, the triangulation and the
+// Morton order run on `threads` threads (the same mesh for any count).
 struct UnrepairedSurfaceNets {
   TriangleMesh mesh;
   std::vector<Point3f> fallback;

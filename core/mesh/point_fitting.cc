@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "core/base/parallel_tasks.h"
+#include "core/engine/arena_allocator.h"
 #include "core/geometry/vec3.h"
 #include "core/mesh/fan_embedding.h"
 #include "core/mesh/near_point_sums.h"
@@ -18,6 +20,7 @@
 #include "core/mesh/point_row_grid.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/triangle_intersection.h"
+#include "core/mesh/vertex_stars.h"
 
 namespace membrane {
 namespace {
@@ -34,6 +37,13 @@ constexpr double kRoundsShare = 0.85;
 // input positions are less than 2 voxels apart along any axis: with slabs of 4, a vertex's ring
 // lies in its own slab or the next ones (checked, not assumed).
 constexpr double kSlabVoxels = 4;
+// The set-up's passes over vertices and faces run on ranges on the threads from this many items.
+constexpr int64_t kMinRangeItems = int64_t{1} << 16;
+
+// The fit's per-vertex and per-face arrays: left unset when made, written first on the
+// set-up's ranges.
+template <typename T>
+using Unfilled = std::vector<T, UnfilledAllocator<T>>;
 
 // The fit's two indexes, the mesh's vertex rings and the points' grid: each is a pass of its
 // own over one input, so they are built side by side.
@@ -88,32 +98,42 @@ class Fitter {
         points_(std::move(indexes.points)) {
     const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
     const int32_t nf = static_cast<int32_t>(mesh.faces.size());
-    star_start_.assign(nv + 1, 0);
-    for (const auto& f : mesh.faces)
-      for (int32_t v : f) ++star_start_[v + 1];
-    for (int32_t v = 0; v < nv; ++v) star_start_[v + 1] += star_start_[v];
-    star_.resize(star_start_[nv]);
-    std::vector<int32_t> fill(star_start_.begin(), star_start_.end() - 1);
+    const int threads = options.threads;
+    VertexStars stars = FacesAroundVertices(mesh.faces, nv, threads);
+    star_start_ = std::move(stars.start);
+    star_ = std::move(stars.faces);
+    // The per-item passes below on ranges on the threads, each range writing its own items
+    // first (their page faults with them).
     rest_normal_.resize(nf);
-    for (int32_t f = 0; f < nf; ++f) {
-      for (int32_t v : mesh.faces[f]) star_[fill[v]++] = f;
-      const Triangle3d t = Tri(f);
+    ForRanges(nf, [&](int64_t f) {
+      const Triangle3d t = Tri(static_cast<int32_t>(f));
       rest_normal_[f] = TriangleNormal(t[0], t[1], t[2]);
-    }
+    });
     // Snapped after the input normals are taken: a face the grid flattens or flips is then
     // refused by FaceOk like any other, and its vertices can only move out of it.
-    for (Point3f& p : mesh.vertices) p = grid_.Snap(p);
-    if (fallback_ != nullptr) repair_level_.assign(nv, 0);
+    if (fallback_ != nullptr) repair_level_.resize(nv);
+    changed_at_.resize(nv);
+    settled_at_.resize(nv);
+    level_.resize(nv);
+    in_round_.resize(nv);
+    backed_off_.resize(nv);
+    start_.resize(nv);
+    target_.resize(nv);
+    ForRanges(nv, [&](int64_t v) {
+      Point3f& p = mesh.vertices[v];
+      p = grid_.Snap(p);
+      if (fallback_ != nullptr) repair_level_[v] = 0;
+      changed_at_[v] = 0;
+      settled_at_[v] = -1;
+      level_[v] = 0;
+      in_round_[v] = 0;
+      backed_off_[v] = 0;
+      start_[v] = Point3f{};
+      target_[v] = Vec3d{};
+    });
     // "Non-zero area": twice the area above a tiny fraction of a voxel face, so that no later
     // float32 rounding can flip a sliver.
     min_double_area_ = 1e-6 * l_ * l_;
-    changed_at_.assign(nv, 0);
-    settled_at_.assign(nv, -1);
-    level_.assign(nv, 0);
-    in_round_.assign(nv, 0);
-    backed_off_.assign(nv, 0);
-    start_.resize(nv);
-    target_.resize(nv);
     dirty_.assign(nf, 0);
     AssignSlabs();
   }
@@ -163,44 +183,105 @@ class Fitter {
     std::vector<Triangle3d> new_tri;  // scratch of StarOk
   };
 
+  // The set-up's ranges of n items: 4 a thread with threads > 1 and kMinRangeItems items or
+  // more, else one.
+  int64_t NumRanges(int64_t n) const {
+    const int threads = options_.threads;
+    return threads > 1 && n >= kMinRangeItems ? 4 * int64_t{threads} : 1;
+  }
+  // Calls range(r, begin, end) for the NumRanges(n) ranges of [0, n) on the threads.
+  template <typename Range>
+  void ForEachRange(int64_t n, Range range) const {
+    const int64_t ranges = NumRanges(n);
+    RunTasks(options_.threads, ranges,
+             [&](int, int64_t r) { range(r, r * n / ranges, (r + 1) * n / ranges); });
+  }
+  // Calls item(i) for every i in [0, n), each from one range.
+  template <typename Item>
+  void ForRanges(int64_t n, Item item) const {
+    ForEachRange(n, [&](int64_t, int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) item(i);
+    });
+  }
+
   // Slabs across the longest axis of the input, by input position, each listing its vertices in
   // index order. The rounds fit the even slabs, then the odd ones: two slabs of one parity are
   // never neighbours, and every read and write of fitting a vertex stays within its ring, so
   // the slabs of a phase are independent and the result is the same for any thread count.
   // Should a face span more than two slabs (never seen), everything is one slab.
+  // The vertices are counted and placed per range of vertices on the threads, in the one-range
+  // order.
   void AssignSlabs() {
     const int32_t nv = static_cast<int32_t>(rest_.size());
+    const int64_t nf = static_cast<int64_t>(mesh_.faces.size());
+    const int64_t ranges = NumRanges(nv);
+    std::vector<std::array<float, 3>> range_lo(static_cast<size_t>(ranges), rest_[0]);
+    std::vector<std::array<float, 3>> range_hi(static_cast<size_t>(ranges), rest_[0]);
+    ForEachRange(nv, [&](int64_t r, int64_t begin, int64_t end) {
+      std::array<float, 3>& lo = range_lo[r];
+      std::array<float, 3>& hi = range_hi[r];
+      for (int64_t v = begin; v < end; ++v)
+        for (int k = 0; k < 3; ++k) {
+          lo[k] = std::min(lo[k], rest_[v][k]);
+          hi[k] = std::max(hi[k], rest_[v][k]);
+        }
+    });
     std::array<float, 3> lo = rest_[0], hi = rest_[0];
-    for (const Point3f& p : rest_)
+    for (int64_t r = 0; r < ranges; ++r)
       for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], p[k]);
-        hi[k] = std::max(hi[k], p[k]);
+        lo[k] = std::min(lo[k], range_lo[r][k]);
+        hi[k] = std::max(hi[k], range_hi[r][k]);
       }
     int axis = 0;
     for (int k = 1; k < 3; ++k)
       if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
     const double thickness = kSlabVoxels * l_;
-    std::vector<int32_t> slab(nv);
-    int32_t slabs = 1;
-    for (int32_t v = 0; v < nv; ++v) {
-      const double t = std::floor((static_cast<double>(rest_[v][axis]) - lo[axis]) / thickness);
-      slab[v] = static_cast<int32_t>(std::clamp(t, 0.0, 1e6));
-      slabs = std::max(slabs, slab[v] + 1);
-    }
-    for (const auto& f : mesh_.faces) {
-      const auto [a, b] = std::minmax({slab[f[0]], slab[f[1]], slab[f[2]]});
-      if (b - a > 1) {
-        std::fill(slab.begin(), slab.end(), 0);
-        slabs = 1;
-        break;
+    Unfilled<int32_t> slab(nv);
+    std::vector<int32_t> range_slabs(static_cast<size_t>(ranges), 1);
+    ForEachRange(nv, [&](int64_t r, int64_t begin, int64_t end) {
+      for (int64_t v = begin; v < end; ++v) {
+        const double t = std::floor((static_cast<double>(rest_[v][axis]) - lo[axis]) / thickness);
+        slab[v] = static_cast<int32_t>(std::clamp(t, 0.0, 1e6));
+        range_slabs[r] = std::max(range_slabs[r], slab[v] + 1);
+      }
+    });
+    int32_t slabs = *std::max_element(range_slabs.begin(), range_slabs.end());
+    std::vector<char> range_spans(static_cast<size_t>(NumRanges(nf)), 0);
+    ForEachRange(nf, [&](int64_t r, int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end && !range_spans[r]; ++i) {
+        const auto& f = mesh_.faces[i];
+        const auto [a, b] = std::minmax({slab[f[0]], slab[f[1]], slab[f[2]]});
+        range_spans[r] = b - a > 1;
+      }
+    });
+    const bool one_slab =
+        std::find(range_spans.begin(), range_spans.end(), 1) != range_spans.end();
+    if (one_slab) slabs = 1;
+    // Vertices by slab, stably: each range counts its vertices per slab; a range's vertices of
+    // a slab go after those of earlier slabs and of earlier ranges in the same slab.
+    std::vector<std::vector<int32_t>> count(static_cast<size_t>(ranges));
+    ForEachRange(nv, [&](int64_t r, int64_t begin, int64_t end) {
+      std::vector<int32_t>& c = count[r];
+      c.assign(slabs, 0);
+      for (int64_t v = begin; v < end; ++v) ++c[one_slab ? 0 : slab[v]];
+    });
+    slab_start_.assign(slabs + 1, 0);
+    int32_t next = 0;
+    for (int32_t k = 0; k < slabs; ++k) {
+      slab_start_[k] = next;
+      for (auto& c : count) {
+        const int32_t here = c[k];
+        c[k] = next;
+        next += here;
       }
     }
-    slab_start_.assign(slabs + 1, 0);
-    for (int32_t v = 0; v < nv; ++v) ++slab_start_[slab[v] + 1];
-    for (int32_t k = 0; k < slabs; ++k) slab_start_[k + 1] += slab_start_[k];
+    slab_start_[slabs] = next;
     slab_vertices_.resize(nv);
-    std::vector<int32_t> fill(slab_start_.begin(), slab_start_.end() - 1);
-    for (int32_t v = 0; v < nv; ++v) slab_vertices_[fill[slab[v]]++] = v;
+    ForEachRange(nv, [&](int64_t r, int64_t begin, int64_t end) {
+      std::vector<int32_t>& c = count[r];
+      for (int64_t v = begin; v < end; ++v)
+        slab_vertices_[c[one_slab ? 0 : slab[v]]++] = static_cast<int32_t>(v);
+    });
   }
 
   // Fits the slabs of one parity in one round, side by side on options_.threads. Returns false
@@ -573,30 +654,31 @@ class Fitter {
   // Input positions (the clamp's centre); they move only when repaired toward the fallback.
   std::vector<Point3f> rest_;
   const MeshFans fans_;
-  std::vector<uint8_t> repair_level_;
+  Unfilled<uint8_t> repair_level_;
   const PointRowGrid points_;
-  std::vector<int32_t> star_start_, star_;
-  std::vector<Vec3d> rest_normal_;
+  StarArray star_start_, star_;
+  Unfilled<Vec3d> rest_normal_;
   double min_double_area_ = 0;
   // Move clock: changed_at_[v] = clock value of v's last change; settled_at_[v] = clock value
   // when v last found its target already reached or refused (-1: not settled). Each slab of a
   // phase counts from clock_ on its own (a vertex's ring is in its slab or in slabs of the
   // other parity, fitted in another phase); clock_ then moves past them all.
   int64_t clock_ = 0;
-  std::vector<int64_t> changed_at_, settled_at_;
+  Unfilled<int64_t> changed_at_, settled_at_;
   // The moved vertices: position before their first move, last applied position, back-off
   // level in the final check, and whether the last move was taken short of its target.
   std::vector<int32_t> moved_;
-  std::vector<char> in_round_, backed_off_;
-  std::vector<Point3f> start_;
-  std::vector<Vec3d> target_;  // last applied position
-  std::vector<int> level_;
+  Unfilled<char> in_round_, backed_off_;
+  Unfilled<Point3f> start_;
+  Unfilled<Vec3d> target_;  // last applied position
+  Unfilled<int> level_;
   std::vector<char> dirty_;
   // Boxes of runs of faces, for the searches around dirty faces: each search marks the faces
   // around every vertex changed since the last one, as FaceBlockBoxes requires.
   FaceBlockBoxes blocks_;
   // The slabs' vertices, slab by slab (AssignSlabs).
-  std::vector<int32_t> slab_start_, slab_vertices_;
+  std::vector<int32_t> slab_start_;
+  Unfilled<int32_t> slab_vertices_;
 };
 
 absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {

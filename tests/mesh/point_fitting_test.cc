@@ -380,6 +380,28 @@ TEST(PointFitting, FacesLongerThanASlabFitAsOneSlabOnAnyThreadCount) {
   EXPECT_EQ(r.self_intersections, 0);
 }
 
+TEST(PointFitting, SetUpOnRangesGivesTheSameFit) {
+  // 2^16 vertices and more: the fit's set-up (the vertices' stars, the snap, the slabs) runs
+  // on ranges on the threads; bit for bit the one-thread fit.
+  const UnrepairedSurfaceNets nets = SurfaceNetsBeforeRepair(BallGrid(150, 68.3));
+  ASSERT_GE(nets.mesh.vertices.size(), size_t{1} << 16);
+  std::vector<TriangleMesh> meshes;
+  std::vector<FitStats> stats;
+  for (int threads : {1, 3}) {
+    TriangleMesh m = nets.mesh;
+    FitOptions options;
+    options.threads = threads;
+    const absl::StatusOr<FitStats> st = FitToPoints(m, 1.0, {}, options);
+    ASSERT_TRUE(st.ok()) << st.status();
+    meshes.push_back(std::move(m));
+    stats.push_back(*st);
+  }
+  EXPECT_GT(stats[0].moves, 1000);
+  EXPECT_EQ(stats[1].moves, stats[0].moves);
+  EXPECT_EQ(meshes[1].faces, meshes[0].faces);
+  EXPECT_TRUE(meshes[1].vertices == meshes[0].vertices);
+}
+
 TEST(PointFitting, StopsWhenCancelledMidwayOnSeveralThreads) {
   // A ball of about 80k vertices fitted on 4 threads (the calling thread's share takes about
   // 0.1 s of its CPU time), cancelled after 5 ms of it (between phases or inside one, where

@@ -63,30 +63,27 @@ absl::StatusOr<CoarsePlatesStats> RunCoarsePlates(VoxelGrid& grid, const ShrinkO
   }
   std::array<int, kMaxGenerationLabel + 1> fine_labels{};
   shrinker.Recount();
-  size_t ran = 0;
-  for (; ran < count; ++ran) {
+  for (size_t g = 0; g < count; ++g) {
     // Halving commutes with the division: ceil(ceil(n / 2) / k) = ceil(ceil(n / k) / 2).
-    if (shrinker.plate_size(ran) != (sizes[ran] + k - 1) / k) {
+    if (shrinker.plate_size(g) != (sizes[g] + k - 1) / k) {
       return absl::InternalError(absl::StrFormat(
-          "coarse generation %d has plate %d, not ceil(%d / %d)", ran + 1,
-          shrinker.plate_size(ran), sizes[ran], k));
+          "coarse generation %d has plate %d, not ceil(%d / %d)", g + 1,
+          shrinker.plate_size(g), sizes[g], k));
     }
-    fine_labels[static_cast<size_t>(shrinker.label(ran))] = labels[ran];
-    absl::StatusOr<bool> closed = shrinker.RunClosedFormOnly(ran, rows);
-    if (!closed.ok()) return closed.status();
-    if (!*closed) break;
+    fine_labels[static_cast<size_t>(shrinker.label(g))] = labels[g];
+    if (absl::Status s = shrinker.RunGeneration(g, TunnelRules::kDefault, rows); !s.ok()) {
+      return s;
+    }
     GenerationStats& row = rows.back();
-    row.generation = static_cast<int>(ran) + 1;
-    row.plate_size = sizes[ran];
+    row.generation = static_cast<int>(g) + 1;
+    row.plate_size = sizes[g];
     row.level = k;
     if (on_generation) on_generation(row);
   }
-  if (ran > 0) {
-    if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled in the lift");
-    stats.factor = k;
-    stats.generations = static_cast<int>(ran);
-    stats.lifted_voxels = LiftCoarseOutside(grid, coarse, k, fine_labels, threads);
-  }
+  if (cancel.cancelled()) return absl::CancelledError("reconstruction cancelled in the lift");
+  stats.factor = k;
+  stats.generations = static_cast<int>(count);
+  stats.lifted_voxels = LiftCoarseOutside(grid, coarse, k, fine_labels, threads);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }

@@ -36,15 +36,14 @@ size_t CoarseGenerationCount(int64_t grid_voxels, absl::Span<const int> sizes,
 // `labels` its generations' plate sizes and labels; count <= CoarseGenerationCount's.
 // Builds the grid k = coarse_plates.factor times coarser (CoarseGrid) and runs its generations
 // of plates ceil(sizes[g] / k), g < count, with `options` less the interior guard, the handle
-// retry and the silhouette pre-shrink, each by its closed form alone, up to the first whose
-// closed form does not apply or is refused (chains there would freeze start plates that the
-// grid's own chains would not). Appends a row per generation run to `rows` (generation and
-// plate_size the grid's, level k, the counters the coarse grid's) and passes each to
-// `on_generation` (may be empty) as it ends. Then lifts the coarse outside to `grid`
-// (LiftCoarseOutside). Returns the generations run there (the grid's go on from the next) and
-// the voxels lifted, factor k (0 and the grid untouched when the first was refused). After it
-// the membrane invariants hold but Property 3. Cancelled when `cancel` fires (the grid is then
-// as before the lift); Internal if the coarse plates are not ceil(sizes[g] / k).
+// retry and the silhouette pre-shrink (closed forms where they hold, chains elsewhere).
+// Appends a row per generation to `rows` (generation and plate_size the grid's, level k, the
+// counters the coarse grid's) and passes each to `on_generation` (may be empty) as it ends.
+// Then lifts the coarse outside to `grid` (LiftCoarseOutside). Returns the generations run
+// there (`count`; the grid's go on from the next), the voxels lifted and factor k (all 0 when
+// count is). After it the membrane invariants hold but Property 3. Cancelled when `cancel`
+// fires (the grid is then as before the lift); Internal if the coarse plates are not
+// ceil(sizes[g] / k).
 absl::StatusOr<CoarsePlatesStats> RunCoarsePlates(VoxelGrid& grid, const ShrinkOptions& options,
                                                   absl::Span<const int> sizes,
                                                   absl::Span<const int> labels, size_t count,

@@ -187,17 +187,6 @@ ChainOptions MembraneShrinker::ChainOptionsFor(size_t g, TunnelRules rules) cons
 
 absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
                                              std::vector<GenerationStats>& rows) {
-  absl::StatusOr<bool> ran = Generation(g, rules, /*chains=*/true, rows);
-  return ran.ok() ? absl::OkStatus() : ran.status();
-}
-
-absl::StatusOr<bool> MembraneShrinker::RunClosedFormOnly(size_t g,
-                                                         std::vector<GenerationStats>& rows) {
-  return Generation(g, TunnelRules::kDefault, /*chains=*/false, rows);
-}
-
-absl::StatusOr<bool> MembraneShrinker::Generation(size_t g, TunnelRules rules, bool chains,
-                                                  std::vector<GenerationStats>& rows) {
   const Clock::time_point t0 = Clock::now();
   if (guarded_band_.held && sizes_[g] < options_.interior_guard.band_release_below) {
     ReleaseGuardedBand(grid_, guarded_band_);
@@ -227,8 +216,6 @@ absl::StatusOr<bool> MembraneShrinker::Generation(size_t g, TunnelRules rules, b
       stats.loose_tunnels = 1;
   }
   if (!done) {
-    // A refused closed form has restored the grid.
-    if (!chains) return false;
     if (absl::Status s = RunChains(chain, stats); !s.ok()) return s;
   }
   const StateCounts after = CountStates(grid_.states(), word_threads_);
@@ -236,7 +223,7 @@ absl::StatusOr<bool> MembraneShrinker::Generation(size_t g, TunnelRules rules, b
   counts_ = after;
   stats.seconds = SecondsSince(t0);
   rows.push_back(stats);
-  return true;
+  return absl::OkStatus();
 }
 
 // A pass ends when no plate fits anywhere: every plate that fits now but did not at the last

@@ -163,12 +163,6 @@ class MembraneShrinker {
   // Cancelled when the token fires (the grid is then a valid but unfinished DMS).
   absl::Status RunGeneration(size_t g, TunnelRules rules, std::vector<GenerationStats>& rows);
 
-  // Generation g under the default rules by its closed form alone: true, its row appended,
-  // when the closed form applies and holds; false when it does not apply or is refused (the
-  // grid, the guarded band's release aside, the counts and `rows` are then as they were).
-  // Cancelled as RunGeneration.
-  absl::StatusOr<bool> RunClosedFormOnly(size_t g, std::vector<GenerationStats>& rows);
-
   // `to` becomes a copy of the grid's states and their counts; the grid's states and counts
   // become `from`. Both poll the token between slices of the copy: false when it fired (the shrink
   // is then abandoned, a half-copied grid with it). `from` must be a copy of this grid.
@@ -188,10 +182,6 @@ class MembraneShrinker {
   void Recount();
 
  private:
-  // RunGeneration, or RunClosedFormOnly without `chains`: false when the chains were needed
-  // and not allowed.
-  absl::StatusOr<bool> Generation(size_t g, TunnelRules rules, bool chains,
-                                  std::vector<GenerationStats>& rows);
   // The chains of generation g under `rules`: plate size, label, rules and guard sizes.
   ChainOptions ChainOptionsFor(size_t g, TunnelRules rules) const;
   // Snapshots of every fitting plate, then a chain from each candidate, until a pass changes

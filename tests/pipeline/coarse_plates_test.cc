@@ -96,8 +96,7 @@ TEST(CoarsePlates, LiftKeepsTheMembraneInvariants) {
           [&calls](const GenerationStats&) { ++calls; }, rows);
       ASSERT_TRUE(coarse.ok()) << coarse.status();
       const size_t ran = static_cast<size_t>(coarse->generations);
-      ASSERT_GE(ran, 1u);
-      ASSERT_LE(ran, count);
+      ASSERT_EQ(ran, count);
       EXPECT_EQ(coarse->factor, options.coarse_plates.factor);
       EXPECT_GT(coarse->lifted_voxels, 0);
       ASSERT_EQ(rows.size(), ran);
@@ -106,7 +105,6 @@ TEST(CoarsePlates, LiftKeepsTheMembraneInvariants) {
         EXPECT_EQ(rows[g].generation, static_cast<int>(g) + 1);
         EXPECT_EQ(rows[g].plate_size, sizes[g]);
         EXPECT_EQ(rows[g].level, options.coarse_plates.factor);
-        EXPECT_TRUE(rows[g].closed_form);
       }
       InvariantOptions io;
       io.require_property3 = false;
@@ -152,15 +150,13 @@ TEST(CoarsePlates, ShrinkGoesOnToTheShapesTopology) {
     ASSERT_EQ(rows.size(), sizes.size());
     const CoarsePlatesStats& c = run->result.coarse_plates;
     EXPECT_EQ(c.factor, 4);
-    EXPECT_GE(c.generations, 1);
+    EXPECT_GE(c.generations, 3);
     EXPECT_GT(c.lifted_voxels, 0);
     for (size_t g = 0; g < rows.size(); ++g) {
       EXPECT_EQ(rows[g].generation, static_cast<int>(g) + 1);
       EXPECT_EQ(rows[g].plate_size, sizes[g]);
       EXPECT_EQ(rows[g].level, static_cast<int>(g) < c.generations ? 4 : 1) << g;
-      if (static_cast<int>(g) < c.generations) {
-        EXPECT_GE(sizes[g], 8) << g;
-      }
+      EXPECT_EQ(sizes[g] >= 8, static_cast<int>(g) < c.generations) << g;
     }
   }
 }

@@ -27,8 +27,8 @@ class PreviewSink : public MeshSink {
   explicit PreviewSink(MeshSink& inner) : inner_(inner) {}
 
   absl::Status CheckOrigin(const Origin3d& origin) override { return inner_.CheckOrigin(origin); }
-  // inner's Write; then the preview of `mesh` replaces any earlier one. A preview that cannot
-  // be drawn leaves none, without failing the run.
+  // inner's Write, the preview drawn beside it; when inner took the mesh, its preview replaces
+  // any earlier one. A preview that cannot be drawn leaves none, without failing the run.
   absl::Status Write(const TriangleMesh& mesh, const PositionGrid& grid) override;
 
   // The PNG of the last mesh written; empty when none.

@@ -5,6 +5,7 @@
 #include <optional>
 #include <utility>
 
+#include "core/base/parallel_tasks.h"
 #include "core/base/split_sort.h"
 #include "core/engine/point_density.h"
 #include "core/geometry/symmetric_eigen3.h"
@@ -46,22 +47,38 @@ HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f
     }
     return std::pair<int64_t, uint32_t>{grid.Index(c), static_cast<uint32_t>(i)};
   });
-  size_t voxels = 0;
-  for (size_t k = 0; k < order.size(); ++k) voxels += k == 0 || order[k].first != order[k - 1].first;
-  voxels_.reserve(voxels);
-  starts_.reserve(voxels + 1);
-  positions_.reserve(order.size());
-  for (size_t k = 0; k < order.size(); ++k) {
-    if (k == 0 || order[k].first != order[k - 1].first) {
-      voxels_.push_back(order[k].first);
-      starts_.push_back(static_cast<uint32_t>(k));
+  // The index is filled on the run's threads, in spans of `order`: each span counts the voxels
+  // it starts, then writes them at the count of the spans before it. The points are read at
+  // random (a 10M-point cloud's order is its file's), which one thread pays in cache misses.
+  const size_t n = order.size();
+  const int64_t spans = threads > 1 && n >= kMinSplitItems ? 8 * int64_t{threads} : 1;
+  auto span_begin = [&](int64_t t) { return n * static_cast<size_t>(t) / static_cast<size_t>(spans); };
+  auto starts_voxel = [&](size_t k) { return k == 0 || order[k].first != order[k - 1].first; };
+  std::vector<size_t> first_voxel(static_cast<size_t>(spans) + 1, 0);
+  RunTasks(threads, spans, [&](int, int64_t t) {
+    size_t count = 0;
+    for (size_t k = span_begin(t); k < span_begin(t + 1); ++k) count += starts_voxel(k);
+    first_voxel[static_cast<size_t>(t) + 1] = count;
+  });
+  for (size_t t = 1; t < first_voxel.size(); ++t) first_voxel[t] += first_voxel[t - 1];
+  voxels_.resize(first_voxel.back());
+  starts_.resize(first_voxel.back() + 1);
+  positions_.resize(n);
+  RunTasks(threads, spans, [&](int, int64_t t) {
+    size_t v = first_voxel[static_cast<size_t>(t)];
+    for (size_t k = span_begin(t); k < span_begin(t + 1); ++k) {
+      if (starts_voxel(k)) {
+        voxels_[v] = order[k].first;
+        starts_[v] = static_cast<uint32_t>(k);
+        ++v;
+      }
+      const Point3f& p = points[order[k].second];
+      positions_[k] = {static_cast<float>((p[0] - origin[0]) * inv),
+                       static_cast<float>((p[1] - origin[1]) * inv),
+                       static_cast<float>((p[2] - origin[2]) * inv)};
     }
-    const Point3f& p = points[order[k].second];
-    positions_.push_back({static_cast<float>((p[0] - origin[0]) * inv),
-                          static_cast<float>((p[1] - origin[1]) * inv),
-                          static_cast<float>((p[2] - origin[2]) * inv)});
-  }
-  starts_.push_back(static_cast<uint32_t>(order.size()));
+  });
+  starts_.back() = static_cast<uint32_t>(n);
 }
 
 template <typename F>

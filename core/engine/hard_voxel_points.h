@@ -79,9 +79,12 @@ class HardVoxelPoints {
   template <typename F>
   void ForEachPoint(const VoxelGrid& grid, const Coord& a, const Coord& b, F f) const;
 
-  std::vector<int64_t> voxels_;                 // grid indices holding points, ascending
-  std::vector<uint32_t> starts_;                // voxel k's points: [starts_[k], starts_[k+1])
-  std::vector<std::array<float, 3>> positions_; // in voxels from the grid's origin
+  // Sized unset: the constructor writes every element on the run's threads.
+  template <typename T>
+  using Array = std::vector<T, UnsetAllocator<T>>;
+  Array<int64_t> voxels_;                 // grid indices holding points, ascending
+  Array<uint32_t> starts_;                // voxel k's points: [starts_[k], starts_[k+1])
+  Array<std::array<float, 3>> positions_; // in voxels from the grid's origin
 };
 
 }  // namespace membrane

@@ -11,23 +11,36 @@
 
 #include <memory>
 #include <new>
+#include <type_traits>
 #include <utility>
 
 namespace membrane {
 
-template <typename Base>
+// With `kSkipMemberInitializers`, a new element is not even default-initialized: for
+// aggregates whose members have default initializers (which default-initialization would
+// write) and that the caller writes whole before reading. Such elements must be
+// implicit-lifetime types (aggregates, trivially destructible): the allocation gives them
+// their lifetime.
+template <typename Base, bool kSkipMemberInitializers = false>
 struct UnsetConstruct : Base {
   using Base::Base;
   UnsetConstruct() = default;
   template <typename Other>
-  UnsetConstruct(const UnsetConstruct<Other>& other) : Base(static_cast<const Other&>(other)) {}
+  UnsetConstruct(const UnsetConstruct<Other, kSkipMemberInitializers>& other)
+      : Base(static_cast<const Other&>(other)) {}
   template <typename U>
   struct rebind {
-    using other = UnsetConstruct<typename std::allocator_traits<Base>::template rebind_alloc<U>>;
+    using other = UnsetConstruct<typename std::allocator_traits<Base>::template rebind_alloc<U>,
+                                 kSkipMemberInitializers>;
   };
   template <typename U>
   void construct(U* p) {
-    ::new (static_cast<void*>(p)) U;
+    if constexpr (kSkipMemberInitializers) {
+      static_assert(std::is_aggregate_v<U> && std::is_trivially_destructible_v<U>,
+                    "only implicit-lifetime aggregates may be left uninitialized");
+    } else {
+      ::new (static_cast<void*>(p)) U;
+    }
   }
   template <typename U, typename... Args>
   void construct(U* p, Args&&... args) {

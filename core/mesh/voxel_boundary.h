@@ -20,10 +20,10 @@
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <new>
 #include <utility>
 #include <vector>
 
+#include "core/engine/unset_construct.h"
 #include "core/engine/voxel_grid.h"
 #include "core/geometry/vec3.h"
 
@@ -34,30 +34,12 @@ inline Vec3d LatticePosition(const Coord& c) {
   return {static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)};
 }
 
-// std::allocator whose containers' resize(n) leaves the new elements as allocated, for the
-// boundary's arrays: the join of ExtractVoxelBoundaryOnSlabs sizes them, then writes every
+// The boundary's arrays: the join of ExtractVoxelBoundaryOnSlabs sizes them, then writes every
 // element on the threads before any is read, so that each thread takes the page faults of
-// what it writes (a value-initializing resize filled them on the calling thread). The
-// elements are aggregates of integers, implicit-lifetime types: the allocation gives them
-// their lifetime.
+// what it writes (a value-initializing resize filled them on the calling thread, and the
+// elements' member initializers would still be written there).
 template <typename T>
-struct BoundaryAllocator : std::allocator<T> {
-  template <typename U>
-  struct rebind {
-    using other = BoundaryAllocator<U>;
-  };
-  BoundaryAllocator() = default;
-  template <typename U>
-  BoundaryAllocator(const BoundaryAllocator<U>&) {}
-  template <typename U>
-  void construct(U*) {}
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-template <typename T>
-using BoundaryArray = std::vector<T, BoundaryAllocator<T>>;
+using BoundaryArray = std::vector<T, UnsetConstruct<std::allocator<T>, true>>;
 
 // Lattice corner (x, y, z) sits at model position origin + (x, y, z) * voxel_size, the lowest
 // corner of voxel (x, y, z). The 8 voxels around it are its octants: octant o has bit k set when

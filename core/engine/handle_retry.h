@@ -4,7 +4,7 @@
 //
 // Below the guard's tunnel size the chains may open tunnels away from the data that mitosis
 // needs (two spheres split this way); most close again before the end, but on a torus-like
-// scan some survive as handles across missing data; the wall notches of the n = 2 and 3 plates
+// scan some survive as handles across missing data; the wall notches of the n = 2 to 4 plates
 // do the same to webs between thin parts that come close. The retry runs the
 // generations again from the first one that made a removal the strict sizes refuse, from the
 // grid as it was before it, with those tunnels allowed only from the strict sizes, and keeps

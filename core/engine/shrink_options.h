@@ -28,8 +28,11 @@ namespace membrane {
 struct HandleRetryOptions {
   bool enabled = true;
   int tunnel_min_plate = 7;
-  int short_loop_min_plate = 4;
-  int wall_notch_min_plate = 4;
+  // 5, the default guard's tunnel size: below it the strict rules open no tunnel at all, so a
+  // handle the plates of 4 notched into a web across missing data is retried as those of 2
+  // and 3 are (tests/bench/2026-12-05-dense-genus.txt).
+  int short_loop_min_plate = 5;
+  int wall_notch_min_plate = 5;
   double max_hard_rim = 0.75;
 };
 

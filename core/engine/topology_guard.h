@@ -27,7 +27,7 @@ struct GuardOptions {
   // short_loop_min_plate and wall_notch_min_plate (0 = off) would refuse. They never change
   // the answer.
   bool classify_strict = false;
-  GuardSizes strict{.tunnel_min_plate = 7, .short_loop_min_plate = 4, .wall_notch_min_plate = 4};
+  GuardSizes strict{.tunnel_min_plate = 7, .short_loop_min_plate = 5, .wall_notch_min_plate = 5};
 };
 
 enum class GuardVerdict : uint8_t {

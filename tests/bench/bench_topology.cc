@@ -41,7 +41,8 @@ namespace {
 
 constexpr char kUsage[] =
     "usage: bench_topology [--factors 1,1.25,1.5,2] [--models NAME,...] [--no-synthetic]\n"
-    "                      [--no-real] [--locate] [--retry T,S,W] [--thick-wall-run K]\n"
+    "                      [--no-real] [--locate] [--genus-per-generation] [--retry T,S,W]\n"
+    "                      [--thick-wall-run K]\n"
     "                      [--thick-wall-detour R] [--thin-part-spread S] [--depth-bound D]\n"
     "                      [--rerun-thin K] [--no-retry] [--strict-only] [--no-close-cut-loops]\n"
     "                      [--no-hole-opening] [--wall-core-depth D] [--far-steps F]\n"
@@ -54,6 +55,7 @@ constexpr char kUsage[] =
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
     "  --locate         print where the handles and merges of every miss are\n"
+    "  --genus-per-generation  print the solid's shells and genus after every generation\n"
     "  --retry T,S,W    the handle retry's tunnel, short-loop and wall-notch plate sizes\n"
     "                   (ShrinkOptions::retry; 0 = none of that kind)\n"
     "  --thick-wall-run K  the thick-wall incursion test's longest hard run (1 = the\n"
@@ -109,6 +111,7 @@ struct Options {
   bool synthetic = true;
   bool real = true;
   bool locate = false;
+  bool genus_per_generation = false;  // the solid's topology after every generation
   int rerun_thin = 0;  // 0: no rerun
   int data_genus = -1;  // -1: not printed; else the hard voxels' growth in steps
   int reference_points = 0;  // > 0: also run a dense sample of each model's reference mesh
@@ -214,6 +217,8 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       o.real = false;
     } else if (arg == "--locate") {
       o.locate = true;
+    } else if (arg == "--genus-per-generation") {
+      o.genus_per_generation = true;
     } else {
       return false;
     }
@@ -535,9 +540,24 @@ bool RunOne(const Options& o, const std::string& name, double factor, const Poin
     }
     absl::StrAppend(&data_note, "; each piece alone: ", absl::StrJoin(per_piece, "; "));
   }
+  // --genus-per-generation: which generation made a handle (the count costs a pass over the
+  // grid, so the row's time then includes it).
+  VoxelGrid& shrinking = vox->grid;
+  GenerationCallback per_generation;
+  if (o.genus_per_generation) {
+    per_generation = [&shrinking](const GenerationStats& g) {
+      const VoxelTopology t = ComputeVoxelTopology(shrinking);
+      std::printf("    generation %2d (plate %3d%s%s): %lld new outside, %lld loose tunnels, "
+                  "%d shells, genus %d, cavities %d\n",
+                  g.generation, g.plate_size, g.closed_form ? ", closed form" : "",
+                  g.handle_retry ? ", retry" : "", static_cast<long long>(g.new_outside),
+                  static_cast<long long>(g.loose_tunnels), t.shells, TotalGenus(t), t.cavities);
+      std::fflush(stdout);
+    };
+  }
   double t0 = Now();
   absl::StatusOr<ShrinkResult> result =
-      ShrinkMembrane(vox->grid, cloud.points, o.shrink, {}, CancelToken::Never());
+      ShrinkMembrane(vox->grid, cloud.points, o.shrink, per_generation, CancelToken::Never());
   double seconds = Now() - t0;
   ++tally.runs;
   if (!result.ok()) {

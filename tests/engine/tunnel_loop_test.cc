@@ -107,9 +107,9 @@ TEST(TunnelLoop, GuardAllowsANotchAlongAWallWhenOneGenerationIsOnBothSides) {
   EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
 }
 
-// The handle retry's strict sizes open wall notches only from n = 4: with classify_strict, a
-// notch the guard allows at n = 2 or 3 is told apart as loose, and one the strict sizes allow
-// is not.
+// The handle retry's strict sizes open wall notches only from n = 5: with classify_strict, a
+// notch the guard allows at n = 2, 3 or 4 is told apart as loose, and one the strict sizes
+// allow is not.
 TEST(TunnelLoop, ANotchTheStrictSizesRefuseIsLoose) {
   VoxelGrid g = Sheet(4, 17);
   for (int x = 4; x <= 6; ++x) g.set(Coord{x, kMid + 1, kMid}, kBoundaryHard);
@@ -118,9 +118,11 @@ TEST(TunnelLoop, ANotchTheStrictSizesRefuseIsLoose) {
   o.plate_size = 2;
   EXPECT_EQ(ClassifyRemoval(g, v, o), GuardVerdict::kAllowed);
   o.classify_strict = true;
-  EXPECT_EQ(o.strict.wall_notch_min_plate, 4);
+  EXPECT_EQ(o.strict.wall_notch_min_plate, 5);
   EXPECT_EQ(ClassifyRemoval(g, v, o), GuardVerdict::kAllowedLoosely);
   o.plate_size = 3;
+  EXPECT_EQ(ClassifyRemoval(g, v, o), GuardVerdict::kAllowedLoosely);
+  o.plate_size = 4;
   EXPECT_EQ(ClassifyRemoval(g, v, o), GuardVerdict::kAllowedLoosely);
   o.plate_size = 2;
   o.strict.wall_notch_min_plate = 2;

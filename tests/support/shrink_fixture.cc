@@ -18,6 +18,28 @@ std::string ShrinkRun::Describe() const {
                       " invariants=", invariants.ToString());
 }
 
+int ShrinkRun::RetryFromPlate() const {
+  const int g = result.handle_retry.from_generation;
+  return g > 0 ? result.generations[g - 1].plate_size : 0;
+}
+
+std::string ShrinkRun::DescribeRetry() const {
+  const HandleRetry& r = result.handle_retry;
+  return absl::StrCat(Describe(), "; retry from generation ", r.from_generation, " (plate ",
+                      RetryFromPlate(), "): genus ", r.genus_before, " -> ", r.genus_after, ", ",
+                      r.kept ? "kept" : "not kept");
+}
+
+std::string RetryMissOfWebs(const ShrinkRun& run, int plate) {
+  std::vector<std::string> misses;
+  if (!run.invariants.ok()) misses.push_back("invariants broken");
+  if (!run.result.handle_retry.kept) misses.push_back("retry not kept");
+  if (run.RetryFromPlate() != plate) misses.push_back(absl::StrCat("retry not from plate ", plate));
+  if (TotalGenus(run.topology) > 0) misses.push_back("handles left");
+  if (misses.empty()) return "";
+  return absl::StrCat(run.DescribeRetry(), ": ", absl::StrJoin(misses, ", "));
+}
+
 absl::StatusOr<ShrinkRun> ShrinkCloud(const PointCloud& cloud, double factor,
                                       const ShrinkOptions& options, double voxel_size) {
   absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);

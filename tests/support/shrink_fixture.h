@@ -20,12 +20,20 @@ struct ShrinkRun {
   VoxelTopology topology;
   absl::Status invariants;
   std::string Describe() const;  // "shells=1 genus=[0] grid=..x..x.. invariants=OK"
+  // The plate of the generation the handle retry started from (0: none qualified).
+  int RetryFromPlate() const;
+  // Describe(), then "; retry from generation G (plate n): genus a -> b, kept" (or "not kept").
+  std::string DescribeRetry() const;
 };
 
 // Voxelizes `points` at `factor` x the formula-(1) voxel size (or exactly `voxel_size` when it
 // is > 0), shrinks with `options`, and computes topology and invariants.
 absl::StatusOr<ShrinkRun> ShrinkCloud(const PointCloud& cloud, double factor,
                                       const ShrinkOptions& options = {}, double voxel_size = 0);
+
+// Empty when `run`'s invariants hold, its handle retry started at the generation of plate
+// `plate` and was kept, and no shell has a handle; else DescribeRetry() and what differs.
+std::string RetryMissOfWebs(const ShrinkRun& run, int plate);
 
 // A cloud of `shape` from membrane_synth; aborts the test binary on a bad shape.
 PointCloud SynthCloud(const std::string& shape, int64_t points, double density_ratio = 1.0,

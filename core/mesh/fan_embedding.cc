@@ -1,7 +1,13 @@
 #include "core/mesh/fan_embedding.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "core/base/parallel_tasks.h"
 
 namespace membrane {
 namespace {
@@ -56,52 +62,89 @@ bool FanIsEmbedded(const Vec3d& centre, absl::Span<const Vec3d> ring) {
   return turns == 1;
 }
 
-MeshFans::MeshFans(const TriangleMesh& mesh) {
-  const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
-  // Per vertex, its faces as (previous, next) neighbour pairs: face (v, a, b) sends a to b.
-  std::vector<int32_t> count(nv + 1, 0);
-  for (const auto& f : mesh.faces)
-    for (int32_t v : f)
-      if (v >= 0 && v < nv) ++count[v + 1];
-  for (int32_t v = 0; v < nv; ++v) count[v + 1] += count[v];
-  std::vector<std::pair<int32_t, int32_t>> step(count[nv]);
-  std::vector<int32_t> fill(count.begin(), count.end() - 1);
+namespace {
+
+// Below this many vertices the fans are walked on the calling thread.
+constexpr int64_t kMinRangeVertices = int64_t{1} << 16;
+
+// The faces of `mesh` whose vertex ids are all in range: the rings read the faces' vertices,
+// never their indices, so the others can be left out.
+std::vector<std::array<int32_t, 3>> FacesInRange(const TriangleMesh& mesh) {
+  const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
+  std::vector<std::array<int32_t, 3>> faces;
+  faces.reserve(mesh.faces.size());
   for (const auto& f : mesh.faces) {
     bool valid = true;
     for (int32_t v : f) valid = valid && v >= 0 && v < nv;
-    if (!valid) continue;
-    for (int k = 0; k < 3; ++k) step[fill[f[k]]++] = {f[(k + 1) % 3], f[(k + 2) % 3]};
+    if (valid) faces.push_back(f);
   }
-  start_.assign(nv + 1, 0);
-  ring_.reserve(step.size());
-  for (int32_t v = 0; v < nv; ++v) {
-    const size_t begin = ring_.size();
-    const int32_t n = count[v + 1] - count[v];
-    const auto* s = step.data() + count[v];
-    // Follow a -> b from the first face; a closed fan visits every face once and comes back.
-    // A neighbour met twice as an `a` (or as a `b`) means two fans glued at the vertex.
-    bool fan = n >= 3;
-    for (int32_t i = 0; fan && i < n; ++i)
-      for (int32_t j = i + 1; fan && j < n; ++j)
-        fan = s[i].first != s[j].first && s[i].second != s[j].second;
-    // The steps are then one-to-one, so the walk can only come back to its start: too early
-    // means more than one cycle.
-    const int32_t start = fan ? s[0].first : -1;
-    int32_t a = start;
-    for (int32_t visited = 0; fan && visited < n; ++visited) {
-      if (visited > 0 && a == start) {
-        fan = false;
-        break;
+  return faces;
+}
+
+}  // namespace
+
+MeshFans::MeshFans(const TriangleMesh& mesh) {
+  const std::vector<std::array<int32_t, 3>> faces = FacesInRange(mesh);
+  WalkFans(faces, FacesAroundVertices(faces, static_cast<int32_t>(mesh.vertices.size()), 1), 1);
+}
+
+MeshFans::MeshFans(const std::vector<std::array<int32_t, 3>>& faces, const VertexStars& stars,
+                   int threads) {
+  WalkFans(faces, stars, threads);
+}
+
+void MeshFans::WalkFans(const std::vector<std::array<int32_t, 3>>& faces,
+                        const VertexStars& stars, int threads) {
+  const int64_t nv = static_cast<int64_t>(stars.start.size()) - 1;
+  start_.resize(static_cast<size_t>(nv));
+  size_.resize(static_cast<size_t>(nv));
+  ring_.resize(stars.faces.size());
+  const int64_t ranges = threads > 1 && nv >= kMinRangeVertices ? 4 * int64_t{threads} : 1;
+  RunTasks(threads, ranges, [&](int, int64_t r) {
+    // Per vertex, its faces as (previous, next) neighbour pairs in the star's order: face
+    // (v, a, b) sends a to b. A face listing v twice is in the star twice, in a row: its second
+    // entry takes v's next corner.
+    std::vector<std::pair<int32_t, int32_t>> s;
+    for (int64_t v = r * nv / ranges; v < (r + 1) * nv / ranges; ++v) {
+      const int32_t first = stars.start[static_cast<size_t>(v)];
+      const int32_t n = stars.start[static_cast<size_t>(v) + 1] - first;
+      s.clear();
+      int corner = -1;
+      for (int32_t i = 0; i < n; ++i) {
+        const int32_t face = stars.faces[static_cast<size_t>(first + i)];
+        const auto& f = faces[static_cast<size_t>(face)];
+        const bool again = i > 0 && stars.faces[static_cast<size_t>(first + i - 1)] == face;
+        int k = again ? corner + 1 : 0;
+        while (f[k] != v) ++k;
+        corner = k;
+        s.push_back({f[(k + 1) % 3], f[(k + 2) % 3]});
       }
-      ring_.push_back(a);
-      int32_t j = 0;
-      while (j < n && s[j].first != a) ++j;
-      fan = j < n;
-      if (fan) a = s[j].second;
+      start_[static_cast<size_t>(v)] = first;
+      int32_t* const ring = ring_.data() + first;
+      // Follow a -> b from the first face; a closed fan visits every face once and comes back.
+      // A neighbour met twice as an `a` (or as a `b`) means two fans glued at the vertex.
+      bool fan = n >= 3;
+      for (int32_t i = 0; fan && i < n; ++i)
+        for (int32_t j = i + 1; fan && j < n; ++j)
+          fan = s[i].first != s[j].first && s[i].second != s[j].second;
+      // The steps are then one-to-one, so the walk can only come back to its start: too early
+      // means more than one cycle.
+      const int32_t start = fan ? s[0].first : -1;
+      int32_t a = start;
+      for (int32_t visited = 0; fan && visited < n; ++visited) {
+        if (visited > 0 && a == start) {
+          fan = false;
+          break;
+        }
+        ring[visited] = a;
+        int32_t j = 0;
+        while (j < n && s[j].first != a) ++j;
+        fan = j < n;
+        if (fan) a = s[j].second;
+      }
+      size_[static_cast<size_t>(v)] = fan && a == start ? n : 0;
     }
-    if (!fan || a != start) ring_.resize(begin);
-    start_[v + 1] = static_cast<int32_t>(ring_.size());
-  }
+  });
 }
 
 }  // namespace membrane

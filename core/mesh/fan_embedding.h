@@ -5,12 +5,14 @@
 #ifndef MEMBRANE_CORE_MESH_FAN_EMBEDDING_H_
 #define MEMBRANE_CORE_MESH_FAN_EMBEDDING_H_
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "absl/types/span.h"
 #include "core/geometry/triangle_mesh.h"
 #include "core/geometry/vec3.h"
+#include "core/mesh/vertex_stars.h"
 
 namespace membrane {
 
@@ -31,12 +33,23 @@ bool FanIsEmbedded(const Vec3d& centre, absl::Span<const Vec3d> ring);
 class MeshFans {
  public:
   explicit MeshFans(const TriangleMesh& mesh);
+  // The same rings of a mesh's `faces`, every vertex id of them in range, from `stars`, their
+  // FacesAroundVertices (for any thread count): ranges of vertices walk their fans on `threads`
+  // (<= 1: the calling thread), from 2^16 vertices on. A vertex's ring depends on its star
+  // alone, so it is the one MeshFans(mesh) gives, for any thread count.
+  MeshFans(const std::vector<std::array<int32_t, 3>>& faces, const VertexStars& stars,
+           int threads);
   absl::Span<const int32_t> ring(int32_t v) const {
-    return absl::MakeConstSpan(ring_.data() + start_[v], start_[v + 1] - start_[v]);
+    return absl::MakeConstSpan(ring_.data() + start_[v], size_[v]);
   }
 
  private:
-  std::vector<int32_t> start_, ring_;
+  void WalkFans(const std::vector<std::array<int32_t, 3>>& faces, const VertexStars& stars,
+                int threads);
+
+  // Vertex v's ring is ring_[start_[v] .. start_[v] + size_[v]), where its star is in the
+  // stars' arrays; size_[v] is 0 when its faces make no single closed fan.
+  StarArray start_, size_, ring_;
 };
 
 }  // namespace membrane

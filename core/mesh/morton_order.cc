@@ -28,6 +28,18 @@ uint64_t Spread(uint64_t v) {
   return v;
 }
 
+// A vertex's Morton code beside its index: the sort compares contiguous items instead of
+// looking the codes up through the indices (half the sort's time). A trivial type, so that its
+// arrays are left unset when made (std::pair's constructor zeroes its members: a serial pass
+// over the keys and again over the merge's buffer). Ordered as the pair (code, vertex).
+struct MortonKey {
+  uint64_t code;
+  int32_t vertex;
+  friend bool operator<(const MortonKey& a, const MortonKey& b) {
+    return a.code != b.code ? a.code < b.code : a.vertex < b.vertex;
+  }
+};
+
 }  // namespace
 
 void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companion,
@@ -56,17 +68,16 @@ void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companio
   std::array<float, 3> lo = mesh.vertices[0];
   for (const auto& l : range_lo)
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], l[k]);
-  // (key, index) side by side: the sort then compares contiguous pairs instead of looking the
-  // keys up through the indices (half the sort's time). Unique pairs, so the order is the same
-  // however the sort is split.
-  std::vector<std::pair<uint64_t, int32_t>> keyed(nv);
+  // Unique (code, vertex) keys, so the order is the same however the sort is split; made on the
+  // halves' threads.
+  Unfilled<MortonKey> keyed(nv);
   MakeAndSortUnique(keyed, threads, [&](size_t v) {
     uint64_t code = 0;
     for (int k = 0; k < 3; ++k) {
       const double c = std::floor((mesh.vertices[v][k] - lo[k]) / cell);
       code |= Spread(static_cast<uint64_t>(std::clamp(c, 0.0, double(0x1fffff)))) << k;
     }
-    return std::pair<uint64_t, int32_t>{code, static_cast<int32_t>(v)};
+    return MortonKey{code, static_cast<int32_t>(v)};
   });
   // The mesh's arrays are rewritten in place from copies: the copies' fresh pages are
   // first written on the ranges, where new arrays of the mesh's own type would be filled (and
@@ -82,13 +93,13 @@ void MortonOrder(TriangleMesh& mesh, double cell, std::vector<Point3f>* companio
   });
   for_ranges(nv, ranges, [&](size_t, size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      const int32_t old = keyed[i].second;
+      const int32_t old = keyed[i].vertex;
       new_id[old] = static_cast<int32_t>(i);
       mesh.vertices[i] = old_vertices[old];
       if (companion != nullptr) (*companion)[i] = old_companion[old];
     }
   });
-  std::vector<std::pair<uint64_t, int32_t>>().swap(keyed);
+  Unfilled<MortonKey>().swap(keyed);
   // Faces by their lowest new vertex, stably: a counting sort, linear where a comparison sort
   // of the faces would take a tenth of the surface nets. Each range of faces counts in its own
   // array; a face's place is the faces of lower vertices, then those of its vertex in earlier

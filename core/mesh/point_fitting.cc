@@ -45,9 +45,10 @@ constexpr int64_t kMinRangeItems = int64_t{1} << 16;
 template <typename T>
 using Unfilled = std::vector<T, UnfilledAllocator<T>>;
 
-// The fit's two indexes, the mesh's vertex rings and the points' grid: each is a pass of its
-// own over one input, so they are built side by side.
+// The fit's indexes: the faces around each vertex, the mesh's vertex rings (walked from those
+// stars) and the points' grid, each built on the run's threads.
 struct FitIndexes {
+  VertexStars stars;
   MeshFans fans;
   PointRowGrid points;
 };
@@ -65,23 +66,17 @@ FitIndexes BuildIndexes(const TriangleMesh& mesh, double voxel_size,
     merged.emplace(MeanPerSubCell(*points_grid, options.mean_split));
   }
   points_grid.reset();
-  std::optional<MeshFans> fans;
-  std::optional<PointRowGrid> grid;
-  RunTasks(options.threads, 2, [&](int, int64_t task) {
-    if (task == 0) {
-      fans.emplace(mesh);
-    } else {
-      // Cells of half the search radius: a query reads 5x5 rows of 5 cells, a box little
-      // larger than its ball.
-      const double cell = 0.5 * options.search_radius * voxel_size;
-      if (merged) {
-        grid.emplace(merged->means, cell, 1, PointRowGrid::Limits(), merged->counts);
-      } else {
-        grid.emplace(points, cell);
-      }
-    }
-  });
-  return FitIndexes{*std::move(fans), *std::move(grid)};
+  const int threads = options.threads;
+  VertexStars stars =
+      FacesAroundVertices(mesh.faces, static_cast<int32_t>(mesh.vertices.size()), threads);
+  MeshFans fans(mesh.faces, stars, threads);
+  // Cells of half the search radius: a query reads 5x5 rows of 5 cells, a box little larger
+  // than its ball.
+  const double cell = 0.5 * options.search_radius * voxel_size;
+  return FitIndexes{std::move(stars), std::move(fans),
+                    merged ? PointRowGrid(merged->means, cell, threads, PointRowGrid::Limits(),
+                                          merged->counts)
+                           : PointRowGrid(points, cell, threads)};
 }
 
 class Fitter {
@@ -93,15 +88,12 @@ class Fitter {
         options_(options),
         fallback_(fallback),
         grid_(options.output_grid),
-        rest_(mesh.vertices),
         fans_(std::move(indexes.fans)),
         points_(std::move(indexes.points)) {
     const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
     const int32_t nf = static_cast<int32_t>(mesh.faces.size());
-    const int threads = options.threads;
-    VertexStars stars = FacesAroundVertices(mesh.faces, nv, threads);
-    star_start_ = std::move(stars.start);
-    star_ = std::move(stars.faces);
+    star_start_ = std::move(indexes.stars.start);
+    star_ = std::move(indexes.stars.faces);
     // The per-item passes below on ranges on the threads, each range writing its own items
     // first (their page faults with them).
     rest_normal_.resize(nf);
@@ -119,8 +111,10 @@ class Fitter {
     backed_off_.resize(nv);
     start_.resize(nv);
     target_.resize(nv);
+    rest_.resize(nv);
     ForRanges(nv, [&](int64_t v) {
       Point3f& p = mesh.vertices[v];
+      rest_[v] = p;
       p = grid_.Snap(p);
       if (fallback_ != nullptr) repair_level_[v] = 0;
       changed_at_[v] = 0;
@@ -539,9 +533,13 @@ class Fitter {
     std::vector<int32_t> changed = moved_;
     std::vector<std::pair<int32_t, int32_t>> pairs, kept;
     for (bool first = true;; first = false) {
-      std::fill(dirty_.begin(), dirty_.end(), first && search_all ? 1 : 0);
-      for (int32_t v : changed)
-        for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) dirty_[star_[i]] = 1;
+      const bool every_face = first && search_all;
+      std::fill(dirty_.begin(), dirty_.end(), every_face ? 1 : 0);
+      // Every face is marked already on a first search of all: the moved vertices' stars (most
+      // of the mesh) need no pass of their own.
+      if (!every_face)
+        for (int32_t v : changed)
+          for (int32_t i = star_start_[v]; i < star_start_[v + 1]; ++i) dirty_[star_[i]] = 1;
       if (search_all) {
         kept.clear();
         for (const auto& p : pairs)
@@ -652,7 +650,7 @@ class Fitter {
   const std::vector<Point3f>* fallback_;
   const PositionGrid grid_;
   // Input positions (the clamp's centre); they move only when repaired toward the fallback.
-  std::vector<Point3f> rest_;
+  Unfilled<Point3f> rest_;
   const MeshFans fans_;
   Unfilled<uint8_t> repair_level_;
   const PointRowGrid points_;

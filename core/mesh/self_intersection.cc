@@ -343,23 +343,34 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFaces(const TriangleMes
   return SearchPairs(mesh, p, threads, cancel, progress);
 }
 
-void FaceBlockBoxes::Update(const TriangleMesh& mesh, const std::vector<char>& dirty) {
+void FaceBlockBoxes::Update(const TriangleMesh& mesh, const std::vector<char>& dirty,
+                            int threads) {
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
   const int32_t blocks = (nf + kFaces - 1) / kFaces;
-  if (faces_ != mesh.faces.size() || boxes_.size() != static_cast<size_t>(blocks)) {
+  const bool all = faces_ != mesh.faces.size() || boxes_.size() != static_cast<size_t>(blocks);
+  if (all) {
     faces_ = mesh.faces.size();
     boxes_.resize(blocks);
-    for (int32_t b = 0; b < blocks; ++b) Remake(mesh, b);
-    return;
   }
-  for (int32_t b = 0; b < blocks; ++b) {
-    const int32_t end = std::min(nf, (b + 1) * kFaces);
-    for (int32_t f = b * kFaces; f < end; ++f)
-      if (dirty[f]) {
+  // Runs of blocks a task: every face is read (its flag, or its box when all are made), a
+  // pass over the whole mesh (15M faces at 10M points) on the fit's last step.
+  constexpr int32_t kBlocksPerTask = 1024;
+  RunTasks(threads, (blocks + kBlocksPerTask - 1) / kBlocksPerTask, [&](int, int64_t task) {
+    const int32_t first = static_cast<int32_t>(task) * kBlocksPerTask;
+    const int32_t last = std::min(blocks, first + kBlocksPerTask);
+    for (int32_t b = first; b < last; ++b) {
+      if (all) {
         Remake(mesh, b);
-        break;
+        continue;
       }
-  }
+      const int32_t end = std::min(nf, (b + 1) * kFaces);
+      for (int32_t f = b * kFaces; f < end; ++f)
+        if (dirty[f]) {
+          Remake(mesh, b);
+          break;
+        }
+    }
+  });
 }
 
 void FaceBlockBoxes::Remake(const TriangleMesh& mesh, int32_t block) {
@@ -386,7 +397,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
                                                                    FaceBlockBoxes* blocks) {
   const int64_t nv = static_cast<int64_t>(mesh.vertices.size());
   const int32_t nf = static_cast<int32_t>(mesh.faces.size());
-  if (blocks != nullptr) blocks->Update(mesh, dirty);
+  if (blocks != nullptr) blocks->Update(mesh, dirty, threads);
   // Boxes of the dirty faces, and the coarse cells they touch (cells twice the largest dirty
   // extent: a face overlapping a dirty box touches one of that box's cells).
   int64_t n_dirty = 0;

@@ -42,8 +42,9 @@ class FaceBlockBoxes {
   // Makes every run's box when the mesh's face count differs from the last call's (or on the
   // first), else remakes the boxes of the runs holding a face marked in `dirty` (one flag per
   // face). Contract: every face whose vertices moved since the last call is marked. Faces with
-  // an index out of range are left out.
-  void Update(const TriangleMesh& mesh, const std::vector<char>& dirty);
+  // an index out of range are left out. Ranges of runs go to `threads` (<= 1: the calling
+  // thread); each run's box is the same for any count.
+  void Update(const TriangleMesh& mesh, const std::vector<char>& dirty, int threads = 1);
 
   int32_t size() const { return static_cast<int32_t>(boxes_.size()); }
   const Box& box(int32_t block) const { return boxes_[block]; }

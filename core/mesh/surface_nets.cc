@@ -87,50 +87,57 @@ Placement Place(const VoxelBoundary& b, int threads) {
   return p;
 }
 
-std::vector<Point3f> ToModel(const VoxelGrid& grid, const Positions& lattice,
-                             int threads) {
+// Writes the model positions of `lattice` into `out`, sized to match.
+void ToModel(const VoxelGrid& grid, const Positions& lattice, int threads,
+             std::vector<Point3f>& out) {
   const double l = grid.voxel_size();
   const auto& o = grid.origin();
   const int64_t n = static_cast<int64_t>(lattice.size());
-  std::vector<Point3f> out(lattice.size());
   ForRanges(threads, n, NumRanges(n, threads), [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       const Vec3d& v = lattice[i];
       out[i] = ToPoint3f({o[0] + v[0] * l, o[1] + v[1] * l, o[2] + v[2] * l});
     }
   });
-  return out;
 }
 
-// The triangles of each quad in quad order: two for a plain quad, split along its flatter
-// diagonal; a fan from the first midpoint for a quad with midpoints. Ranges of quads on the
-// threads, each writing where the triangles before it end.
-std::vector<std::array<int32_t, 3>> Triangulate(const VoxelBoundary& b,
-                                                const Positions& nets, int threads) {
+// The quads' ranges for the triangulation and where each range's triangles start: two for a
+// plain quad, one more for each midpoint; first.back() is the triangle count.
+struct QuadRanges {
+  int64_t ranges = 1;
+  std::vector<int64_t> first;
+};
+
+QuadRanges CountTriangles(const VoxelBoundary& b, int threads) {
   const int64_t nquads = static_cast<int64_t>(b.quads.size());
-  const int64_t ranges = NumRanges(nquads, threads);
-  auto range_of = [&](int64_t r) {
-    return std::pair<int64_t, int64_t>{r * nquads / ranges, (r + 1) * nquads / ranges};
-  };
-  std::vector<int64_t> first(static_cast<size_t>(ranges + 1), 0);
-  RunTasks(threads, ranges, [&](int, int64_t r) {
-    const auto [begin, end] = range_of(r);
+  QuadRanges q;
+  q.ranges = NumRanges(nquads, threads);
+  q.first.assign(static_cast<size_t>(q.ranges + 1), 0);
+  RunTasks(threads, q.ranges, [&](int, int64_t r) {
     int64_t count = 0;
-    for (int64_t q = begin; q < end; ++q) {
+    for (int64_t i = r * nquads / q.ranges; i < (r + 1) * nquads / q.ranges; ++i) {
       count += 2;
-      for (int32_t m : b.quads[static_cast<size_t>(q)].midpoints) count += m >= 0 ? 1 : 0;
+      for (int32_t m : b.quads[static_cast<size_t>(i)].midpoints) count += m >= 0 ? 1 : 0;
     }
-    first[static_cast<size_t>(r) + 1] = count;
+    q.first[static_cast<size_t>(r) + 1] = count;
   });
-  for (int64_t r = 0; r < ranges; ++r) first[r + 1] += first[r];
-  std::vector<std::array<int32_t, 3>> faces(static_cast<size_t>(first[ranges]));
-  RunTasks(threads, ranges, [&](int, int64_t r) {
-    const auto [begin, end] = range_of(r);
-    auto at = faces.begin() + first[r];
+  for (int64_t r = 0; r < q.ranges; ++r) q.first[r + 1] += q.first[r];
+  return q;
+}
+
+// Writes the triangles of each quad into `faces` (sized to the count) in quad order: two for a
+// plain quad, split along its flatter diagonal; a fan from the first midpoint for a quad with
+// midpoints. Ranges of quads on the threads, each writing where the triangles before it end.
+void Triangulate(const VoxelBoundary& b, const Positions& nets, const QuadRanges& q,
+                 int threads, std::vector<std::array<int32_t, 3>>& faces) {
+  const int64_t nquads = static_cast<int64_t>(b.quads.size());
+  RunTasks(threads, q.ranges, [&](int, int64_t r) {
+    const int64_t begin = r * nquads / q.ranges, end = (r + 1) * nquads / q.ranges;
+    auto at = faces.begin() + q.first[static_cast<size_t>(r)];
     std::vector<int32_t> polygon;
     std::vector<std::array<int32_t, 3>> triangles;
-    for (int64_t q = begin; q < end; ++q) {
-      const auto& quad = b.quads[static_cast<size_t>(q)];
+    for (int64_t i = begin; i < end; ++i) {
+      const auto& quad = b.quads[static_cast<size_t>(i)];
       polygon.clear();
       triangles.clear();
       int apex = -1;
@@ -149,7 +156,6 @@ std::vector<std::array<int32_t, 3>> Triangulate(const VoxelBoundary& b,
       at = std::copy(triangles.begin(), triangles.end(), at);
     }
   });
-  return faces;
 }
 
 }  // namespace
@@ -157,12 +163,26 @@ std::vector<std::array<int32_t, 3>> Triangulate(const VoxelBoundary& b,
 UnrepairedSurfaceNets SurfaceNetsBeforeRepair(const VoxelGrid& grid, int threads) {
   const VoxelBoundary b = ExtractVoxelBoundary(grid, threads);
   const Placement p = Place(b, threads);
-  TriangleMesh mesh;
-  mesh.faces = Triangulate(b, p.nets, threads);
-  mesh.vertices = ToModel(grid, p.nets, threads);
-  // Spatial order for everything downstream; the fallback positions travel with their
-  // vertices.
-  UnrepairedSurfaceNets out{std::move(mesh), ToModel(grid, p.safe, threads), b.corner_contacts};
+  const QuadRanges quads = CountTriangles(b, threads);
+  UnrepairedSurfaceNets out;
+  out.corner_contacts = b.corner_contacts;
+  // The mesh's arrays are std::vectors, zeroed when sized: the faces on one thread and the two
+  // position arrays on another (about as many bytes), so that their first writes, the fresh
+  // pages' faults, are split; the ranges then write them.
+  const size_t nv = p.nets.size();
+  RunTasks(threads, 2, [&](int, int64_t task) {
+    if (task == 0) {
+      out.mesh.faces.resize(static_cast<size_t>(quads.first.back()));
+    } else {
+      out.mesh.vertices.resize(nv);
+      out.fallback.resize(nv);
+    }
+  });
+  Triangulate(b, p.nets, quads, threads, out.mesh.faces);
+  ToModel(grid, p.nets, threads, out.mesh.vertices);
+  // The fallback positions travel with their vertices.
+  ToModel(grid, p.safe, threads, out.fallback);
+  // Spatial order for everything downstream.
   MortonOrder(out.mesh, grid.voxel_size(), &out.fallback, threads);
   return out;
 }

@@ -25,7 +25,8 @@ FlatBitset OutsideBits(const VoxelGrid& grid, int threads);
 // first voxel reads the row before it where a voxel beyond the array would be: the result is
 // exact at every voxel off the array border, and at the border voxels too for an erosion of
 // bits set on the whole array border. Bits past the last voxel stay 0. `scratch` must have the
-// size of `bits` (its contents are overwritten). `threads` as for OutsideBits.
+// size of `bits`; its contents are overwritten (every word is written before one is read, so it
+// may be made unset). `threads` as for OutsideBits.
 void BoxFilterBits(const std::array<int, 3>& dims, bool erode, FlatBitset& bits,
                    FlatBitset& scratch, int threads);
 

@@ -173,7 +173,8 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
     // A mesh the check would refuse on this grid is built in float32 at once, without a check
     // and an encoding that would both be done again. Not when decimating: the collapses can
     // remove what is broken.
-    if (!output_grid.lossless() && options.target_faces == 0 && KnownBroken(*surface)) {
+    if (!output_grid.lossless() && options.target_faces == 0 &&
+        KnownBroken(*surface, options.threads)) {
       output_grid = lossless_grid;
       continue;
     }

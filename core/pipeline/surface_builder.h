@@ -48,8 +48,9 @@ struct BuiltSurface {
 // Whether the mesh check is sure to find `surface` broken (self_intersections or
 // degenerate_faces): the build found crossings (the fit's, or the cuberille's around its split
 // vertices), or a face has no area (IsDegenerateFace). false says nothing: only the check can
-// tell.
-bool KnownBroken(const BuiltSurface& surface);
+// tell. The faces are read in blocks on `threads` (<= 1: the calling thread); the answer is the
+// same for any count.
+bool KnownBroken(const BuiltSurface& surface, int threads = 1);
 
 // The closed, manifold, outward surface of `membrane` (a final DMS, its outer layer outside),
 // vertices in model units on `grid` (OutputGrid's; lossless: float32); `cloud` is what the

@@ -1,10 +1,15 @@
 #include "core/mesh/fan_embedding.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "core/mesh/triangle_intersection.h"
+#include "core/mesh/vertex_stars.h"
 #include "gtest/gtest.h"
 #include "tests/mesh/mesh_builders.h"
 
@@ -147,6 +152,82 @@ TEST(FanEmbedding, TwoFansGluedAtAVertexGiveNoRing) {
   const MeshFans fans(m);
   EXPECT_TRUE(fans.ring(0).empty());
   EXPECT_EQ(fans.ring(1).size(), 3u);
+}
+
+// Each vertex's ring walked straight from its faces' steps in face index order (a face listing
+// the vertex twice gives a step for each of its corners): empty when its faces make no single
+// closed fan.
+std::vector<std::vector<int32_t>> RingsWalkedFromFaces(const TriangleMesh& mesh) {
+  std::vector<std::vector<std::pair<int32_t, int32_t>>> steps(mesh.vertices.size());
+  for (const auto& f : mesh.faces)
+    for (int k = 0; k < 3; ++k)
+      steps[static_cast<size_t>(f[k])].push_back({f[(k + 1) % 3], f[(k + 2) % 3]});
+  std::vector<std::vector<int32_t>> rings(mesh.vertices.size());
+  for (size_t v = 0; v < steps.size(); ++v) {
+    const auto& s = steps[v];
+    const size_t n = s.size();
+    bool fan = n >= 3;
+    for (size_t i = 0; fan && i < n; ++i)
+      for (size_t j = i + 1; fan && j < n; ++j)
+        fan = s[i].first != s[j].first && s[i].second != s[j].second;
+    std::vector<int32_t> ring;
+    int32_t a = fan ? s[0].first : -1;
+    for (size_t visited = 0; fan && visited < n; ++visited) {
+      if (visited > 0 && a == s[0].first) fan = false;
+      if (!fan) break;
+      ring.push_back(a);
+      const auto next =
+          std::find_if(s.begin(), s.end(), [&](const auto& step) { return step.first == a; });
+      fan = next != s.end();
+      if (fan) a = next->second;
+    }
+    if (fan && a == s[0].first) rings[v] = std::move(ring);
+  }
+  return rings;
+}
+
+TEST(FanEmbedding, RingsFromStarsOnRangesAreTheWalksFromTheFaces) {
+  // A closed 300 x 250 torus grid (75,000 vertices: ranges on the threads), its faces in a
+  // random order, with a duplicated face, faces listing a vertex twice and a second fan glued
+  // at a vertex; every ring against the walk from the faces, on 1 to 3 threads.
+  constexpr int32_t kRows = 300, kCols = 250;
+  auto id = [&](int32_t r, int32_t c) { return (r % kRows) * kCols + (c % kCols); };
+  TriangleMesh mesh;
+  mesh.vertices.resize(static_cast<size_t>(kRows) * kCols, Point3f{0, 0, 0});
+  for (int32_t r = 0; r < kRows; ++r)
+    for (int32_t c = 0; c < kCols; ++c) {
+      mesh.faces.push_back({id(r, c), id(r + 1, c), id(r + 1, c + 1)});
+      mesh.faces.push_back({id(r, c), id(r + 1, c + 1), id(r, c + 1)});
+    }
+  std::mt19937 rng(3);
+  std::shuffle(mesh.faces.begin(), mesh.faces.end(), rng);
+  mesh.faces.push_back(mesh.faces[10]);
+  mesh.faces.push_back({id(5, 5), id(5, 5), id(5, 6)});
+  mesh.faces.push_back({id(70, 9), id(71, 9), id(70, 9)});
+  mesh.faces.push_back({id(200, 3), id(200, 3), id(200, 3)});
+  mesh.faces.push_back({id(150, 100), id(10, 10), id(20, 20)});
+  mesh.faces.push_back({id(150, 100), id(20, 20), id(30, 30)});
+  mesh.faces.push_back({id(150, 100), id(30, 30), id(10, 10)});
+  const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
+  const std::vector<std::vector<int32_t>> expected = RingsWalkedFromFaces(mesh);
+  int32_t fans = 0;
+  for (const auto& ring : expected) fans += !ring.empty();
+  ASSERT_GT(fans, nv - 40);
+  ASSERT_LT(fans, nv);
+  for (int threads : {1, 2, 3}) {
+    const MeshFans from_stars(mesh.faces, FacesAroundVertices(mesh.faces, nv, threads), threads);
+    for (int32_t v = 0; v < nv; ++v) {
+      const auto ring = from_stars.ring(v);
+      ASSERT_EQ(std::vector<int32_t>(ring.begin(), ring.end()), expected[static_cast<size_t>(v)])
+          << "vertex " << v << ", " << threads << " threads";
+    }
+  }
+  const MeshFans from_mesh(mesh);
+  for (int32_t v = 0; v < nv; ++v) {
+    const auto ring = from_mesh.ring(v);
+    ASSERT_EQ(std::vector<int32_t>(ring.begin(), ring.end()), expected[static_cast<size_t>(v)])
+        << "vertex " << v;
+  }
 }
 
 }  // namespace

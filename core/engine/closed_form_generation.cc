@@ -8,6 +8,7 @@
 
 #include "absl/status/status.h"
 #include "core/engine/closed_form_sweeps.h"
+#include "core/engine/first_failure.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/incursion_test.h"
 #include "core/engine/interior_plane.h"
@@ -31,6 +32,28 @@ void SetStatesOf(const FlatBitset& cells, VoxelState state, VoxelState* s) {
     while (bits != 0) {
       s[64 * static_cast<int64_t>(k) + __builtin_ctzll(bits)] = state;
       bits &= bits - 1;
+    }
+  }
+}
+
+// Spans the closed form's checks are split into: one on one thread or for fewer than 2^12
+// items (a grid of a few hundred thousand voxels, a short list), where starting threads costs
+// more than the checks; otherwise 64 a thread, so that a span after an early refusal stops
+// soon.
+int64_t CheckSpans(int64_t items, int threads) {
+  if (threads <= 1 || items < (int64_t{1} << 12)) return 1;
+  return std::min<int64_t>(items, int64_t{64} * threads);
+}
+
+// Calls visit(i) for the set bits i of `set` in words [words * span / spans, words * (span +
+// 1) / spans), in increasing order, until visit returns false.
+template <typename Visit>
+void ForBitsOfSpan(const FlatBitset& set, int64_t span, int64_t spans, Visit visit) {
+  const int64_t words = static_cast<int64_t>(set.word_count());
+  const uint64_t* w = set.words();
+  for (int64_t k = words * span / spans; k < words * (span + 1) / spans; ++k) {
+    for (uint64_t bits = w[k]; bits != 0; bits &= bits - 1) {
+      if (!visit(k * 64 + __builtin_ctzll(bits))) return;
     }
   }
 }
@@ -152,38 +175,55 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     converted.ForEach([&](int64_t i) { s[i] &= static_cast<VoxelState>(~kBoundaryBit); });
   };
   // Checks: the incursion test where the neighbourhood changed, and the guard on the new
-  // outside voxels next to hard ones, each as if it were the last removal. The cancel token is
-  // polled every few thousand checks: a first generation may check a million voxels.
-  bool cancelled = false;
-  adjacent.ForEach([&](int64_t i) {
-    if (cancelled || outcome.incursions > 0 || !IsHardOrFrozen(s[i])) return;
-    if ((++outcome.checks & 4095) == 0 && cancel.cancelled()) cancelled = true;
-    if (IncursionAt(grid, i, options.rules.thick_wall_run, options.thin_part()))
-      ++outcome.incursions;
-  });
+  // outside voxels next to hard ones, each as if it were the last removal, in increasing
+  // voxel order up to the first refusal. They only read the grid: spans of the candidates run
+  // on the planes' threads, with the counts of the scan in order (first_failure.h).
+  const int threads = planes.threads();
+  const int64_t word_spans = CheckSpans(static_cast<int64_t>(adjacent.word_count()), threads);
+  const FirstFailure incursion = FindFirstFailure(
+      word_spans, threads, cancel,
+      [&](int64_t span, auto visit) {
+        ForBitsOfSpan(adjacent, span, word_spans,
+                      [&](int64_t i) { return !IsHardOrFrozen(s[i]) || visit(i); });
+      },
+      [&](int64_t i) {
+        return IncursionAt(grid, i, options.rules.thick_wall_run, options.thin_part());
+      });
+  outcome.checks = incursion.tested;
+  outcome.incursions = incursion.failed ? 1 : 0;
+  bool cancelled = incursion.cancelled;
   if (!cancelled && outcome.incursions == 0 && options.rules.topology_guard) {
     const GuardOptions& guard = options.guard;
-    auto check = [&](int64_t i) {
-      if (cancelled || outcome.guard_refusals > 0) return;
-      if ((++outcome.checks & 4095) == 0 && cancel.cancelled()) cancelled = true;
-      if (!GuardAllowsRemoval(grid, i, guard)) ++outcome.guard_refusals;
-    };
+    auto refused = [&](int64_t i) { return !GuardAllowsRemoval(grid, i, guard); };
+    FirstFailure refusal;
     if (sparse) {
-      for (int64_t i : fresh_list) {
-        for (int64_t o : neighbours) {
-          if (IsHard(s[i + o])) {
-            check(i);
-            break;
-          }
-        }
-      }
+      // The new outside voxels with a hard 26-neighbour, in the list's (increasing) order.
+      const int64_t items = static_cast<int64_t>(fresh_list.size());
+      const int64_t spans = CheckSpans(items, threads);
+      refusal = FindFirstFailure(
+          spans, threads, cancel,
+          [&](int64_t span, auto visit) {
+            for (int64_t k = items * span / spans; k < items * (span + 1) / spans; ++k) {
+              const int64_t i = fresh_list[static_cast<size_t>(k)];
+              const bool near_hard = std::any_of(neighbours.begin(), neighbours.end(),
+                                                 [&](int64_t o) { return IsHard(s[i + o]); });
+              if (near_hard && !visit(i)) return;
+            }
+          },
+          refused);
     } else {
       FlatBitset& near_hard = ws.near_hard;
       FillStatePlane(grid.states(), StatePredicate::kHard, near_hard);
       near_hard.Dilate26(strides, ws.scratch);
       near_hard.And(fresh);
-      near_hard.ForEach(check);
+      refusal = FindFirstFailure(
+          word_spans, threads, cancel,
+          [&](int64_t span, auto visit) { ForBitsOfSpan(near_hard, span, word_spans, visit); },
+          refused);
     }
+    outcome.checks += refusal.tested;
+    outcome.guard_refusals = refusal.failed ? 1 : 0;
+    cancelled = refusal.cancelled;
   }
   if (cancelled) {
     restore();

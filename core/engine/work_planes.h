@@ -32,6 +32,9 @@ class WorkPlanes {
   // Frees every plane (the steps after the generations need none); Ensure makes them again.
   void Release();
 
+  // The threads the planes' word passes run on (at least 1).
+  int threads() const { return threads_; }
+
   // Planes cut from one arena (PlaneArena); more are allocated on their own.
   static constexpr int kArenaPlanes = 8;
 

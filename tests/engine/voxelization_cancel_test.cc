@@ -50,16 +50,29 @@ TEST(VoxelizationCancel, ACancelInAnyPhaseReturnsCancelledWithinATask) {
   // 100 ms of CPU after the cancel (6-22 ms measured in Release, the grid's release included),
   // or 15% of the whole where that is more: a task is a fixed share of the work, and a
   // sanitizer build, 5 times slower, took 158 ms of its 1.58 s from a cancel at 0.1.
-  const double bound = std::max(0.1, 0.15 * whole);
+  // A run on a machine whose memory other processes are busy with can take 30% less CPU than
+  // the two before it: a cancel meant for 0.7 of the work then lands after the end. A run that
+  // returns Ok measures the whole again and the share is tried again, up to three times; a
+  // voxelization that ignored its token would return Ok every time.
   for (const double share : {0.1, 0.4, 0.7}) {
     SCOPED_TRACE(share);
-    CancelToken cancel;
-    const CancelAfterThreadCpu canceller(cancel, share * whole);
-    const absl::StatusOr<Voxelization> v = Voxelize(points, options, ProgressRange(), cancel);
-    const double latency = canceller.now() - canceller.cancelled_at();
-    ASSERT_EQ(v.status().code(), absl::StatusCode::kCancelled)
-        << v.status() << "; the whole voxelization took " << whole << " CPU s";
-    EXPECT_LT(latency, bound) << "the whole voxelization took " << whole << " CPU s";
+    for (int attempt = 0;; ++attempt) {
+      const double bound = std::max(0.1, 0.15 * whole);
+      CancelToken cancel;
+      const CancelAfterThreadCpu canceller(cancel, share * whole);
+      const double start = canceller.now();
+      const absl::StatusOr<Voxelization> v = Voxelize(points, options, ProgressRange(), cancel);
+      const double end = canceller.now();
+      if (v.ok() && attempt < 3) {
+        whole = std::min(whole, end - start);
+        continue;
+      }
+      const double latency = end - canceller.cancelled_at();
+      ASSERT_EQ(v.status().code(), absl::StatusCode::kCancelled)
+          << v.status() << "; the whole voxelization took " << whole << " CPU s";
+      EXPECT_LT(latency, bound) << "the whole voxelization took " << whole << " CPU s";
+      break;
+    }
   }
 }
 

@@ -1,7 +1,5 @@
 // `membrane`: the command-line client (client/command_line.h), and the Draco decode helper it
 // runs on itself.
-#include <malloc.h>
-
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -10,16 +8,12 @@
 #include "client/command_line.h"
 #include "client/exit_codes.h"
 #include "client/input_files.h"
+#include "client/malloc_policy.h"
 #include "core/io/decode_helper.h"
 
 int main(int argc, char** argv) {
-  // One malloc arena for the process. `reconstruct --local` checks the mesh on a second thread
-  // while it encodes; with an arena of its own that thread would fault in fresh pages instead
-  // of reusing what the earlier stages freed (on rocker-arm-scan the check takes 0.23 s with
-  // one arena and 0.36 s with glibc's default, the whole run 1.05 s and 1.27 s). Two threads
-  // hardly contend for one arena.
-  // The server keeps glibc's default: its workers allocate in parallel.
-  mallopt(M_ARENA_MAX, 1);
+  // Freed memory stays with the process for the next stage (client/malloc_policy.h).
+  membrane::client::UseClientMallocPolicy();
   // Run by ReadInputCloud on itself to decode a Draco file under resource limits.
   if (argc >= 2 && std::string(argv[1]) == membrane::client::kDecodeHelperFlag) {
     return membrane::RunDecodeHelper(std::vector<std::string>(argv + 2, argv + argc));

@@ -51,7 +51,8 @@ constexpr char kUsage[] =
     "                      [--data-genus R]\n"
     "                      [--probe X,Y,Z,R] [--reference N] [--slices X,Y,Z,R]\n"
     "                      [--pocket-rays K] [--pocket-depth D] [--pocket-loops L]\n"
-    "                      [--clearance-samples K] [--passage-sectors P] [--shared DIR]\n"
+    "                      [--clearance-samples K] [--passage-sectors P] [--threads N]\n"
+    "                      [--shared DIR]\n"
     "  --factors LIST   multiples of the formula-(1) voxel size (default 1,1.25,1.5,2)\n"
     "  --models LIST    only clouds and shapes whose name contains one of these\n"
     "  --locate         print where the handles and merges of every miss are\n"
@@ -102,6 +103,8 @@ constexpr char kUsage[] =
     "  --strict-only    every generation under the handle retry's strict guard sizes, no retry\n"
     "  --no-close-cut-loops  the piece separation returns only simple cut voxels\n"
     "                   (PieceSeparationOptions::close_cut_loops false)\n"
+    "  --threads N      the shrink's threads, 1..256 (ShrinkOptions::threads; default 1):\n"
+    "                   the same membrane on any count, sooner on the 1e9-voxel grids\n"
     "  --shared DIR     the shared folder holding data/clouds (default: $MEMBRANE_SHARED_DIR,\n"
     "                   else <repo>/../shared)\n";
 
@@ -149,6 +152,11 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       o.models = absl::StrSplit(argv[++i], ',', absl::SkipEmpty());
     } else if (arg == "--shared" && has_value) {
       o.shared_dir = argv[++i];
+    } else if (arg == "--threads" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.threads) || o.shrink.threads < 1 ||
+          o.shrink.threads > 256) {
+        return false;
+      }
     } else if (arg == "--retry" && has_value) {
       std::vector<std::string> f = absl::StrSplit(argv[++i], ',');
       if (f.size() != 3 || !absl::SimpleAtoi(f[0], &o.shrink.retry.tunnel_min_plate) ||

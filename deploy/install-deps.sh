@@ -21,6 +21,7 @@ BUILD=(
   libpng-dev                 # mesh previews (membrane render, the web console)
 )
 TEST=(
+  ccache                     # run-tests.sh's Release build, whose objects the image's build reads
   libgtest-dev libgmock-dev
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer job
   openssl                    # the TLS test makes its own self-signed certificate
@@ -54,6 +55,8 @@ for s in "${sets[@]}"; do
   esac
 done
 
+# Once each, though a package may be in two sets (ccache).
+mapfile -t PACKAGES < <(printf '%s\n' "${PACKAGES[@]}" | awk '!seen[$0]++')
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -19,8 +19,12 @@
 # image (tagged by a key of how it is made) and the Dockerfile's stages, tagged so that the
 # next run finds their layers (the packages' layer is keyed by the base and
 # deploy/install-deps.sh alone). The compiler cache of the image build is a build cache mount
-# of podman's (deploy/Dockerfile). Removing the directory makes the next run cold: measured on
-# a loaded 2-core machine, debootstrap 6 min, packages 3 min, compiling 10 min of CPU.
+# of podman's (deploy/Dockerfile), kept there too (podman's TMPDIR). Removing the directory
+# makes the next run cold: measured on a loaded 2-core machine, debootstrap 6 min, packages
+# 3 min, compiling 10 min of CPU. The compile is skipped after deploy/run-tests.sh's Release
+# build, which leaves its objects in BUILD_DIR/ccache-store: mounted read-only into the
+# image's build as ccache's second store, with that build's -Werror, so that the same command
+# lines find them there.
 #
 # Skips (exit 0, one line saying why) only where no container can run: not Linux, not root
 # (debootstrap and this rootful podman need root: run it with sudo), or a kernel that
@@ -49,8 +53,10 @@ done
 
 cache="${MEMBRANE_CONTAINER_CACHE:-/var/cache/membrane-container}"
 mkdir -p "$cache"
+# TMPDIR: where buildah keeps the build cache mounts (deploy/Dockerfile's ccache).
 pod() {
-  podman --root "$cache/storage" --runroot "$cache/run" --tmpdir "$cache/tmp" --runtime runc "$@"
+  TMPDIR="$cache/tmp" podman --root "$cache/storage" --runroot "$cache/run" \
+    --tmpdir "$cache/tmp" --runtime runc "$@"
 }
 # One run at a time per cache: runs share its storage and prune it.
 exec 9>"$cache/lock"
@@ -150,17 +156,31 @@ fi
 # The stages are built and tagged one by one: tagged, they and their layers survive the prune
 # at the end, and each build finds them in podman's layer cache. A source tree the image does
 # not see change (.dockerignore: tests, docs) compiles nothing.
+# The Release build's objects, if it left them (else an empty directory stands in, so that the
+# build's arguments, and with them its cached layers, stay the same).
+store="$(pwd)/$build_dir/ccache-store"
+if [ ! -d "$store" ]; then
+  store="$work/no-store"
+  mkdir "$store"
+fi
 build=(build --runtime runc "${limits[@]}" --format docker --pull=never --layers
-       --build-arg "BASE=$base" -f deploy/Dockerfile)
+       --build-arg "BASE=$base" --volume "$store:/ccache-store:ro"
+       --build-arg "CCACHE_SECONDARY_STORAGE=file:///ccache-store|read-only"
+       --build-arg MEMBRANE_WERROR=ON -f deploy/Dockerfile)
 logged build-deps pod "${build[@]}" --target build-deps -t localhost/membrane-build-deps:cache .
 step_done "build stage's packages (deploy/install-deps.sh build)"
 logged runtime pod "${build[@]}" --target runtime -t localhost/membrane-runtime:cache .
 step_done "runtime stage's packages"
 logged build pod "${build[@]}" --target build -t localhost/membrane-build:cache .
 logged image pod "${build[@]}" -t "$image" .
+# ccache --show-stats: the first Hits line counts all, the one under "Remote storage:" those
+# found in the Release build's store.
 hits="$(grep -o 'Hits: *[0-9]* */ *[0-9]*' "$work/build.log" | head -n 1 | tr -s ' ' |
         sed 's/^Hits: //' || true)"
-[ -n "$hits" ] && compiled="compiler cache hits: $hits" || compiled="every layer cached"
+stored="$(sed -n '/Remote storage:/,$s/.*Hits: *\([0-9]*\) .*/\1/p' "$work/build.log" |
+          head -n 1 || true)"
+[ -n "$hits" ] && compiled="compiler cache hits: $hits, ${stored:-0} from $store" ||
+  compiled="every layer cached"
 step_done "image $image built ($compiled)"
 
 user="$(pod image inspect --format '{{.Config.User}}' "$image")"

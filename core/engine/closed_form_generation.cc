@@ -50,12 +50,7 @@ int64_t CheckSpans(int64_t items, int threads) {
 template <typename Visit>
 void ForBitsOfSpan(const FlatBitset& set, int64_t span, int64_t spans, Visit visit) {
   const int64_t words = static_cast<int64_t>(set.word_count());
-  const uint64_t* w = set.words();
-  for (int64_t k = words * span / spans; k < words * (span + 1) / spans; ++k) {
-    for (uint64_t bits = w[k]; bits != 0; bits &= bits - 1) {
-      if (!visit(k * 64 + __builtin_ctzll(bits))) return;
-    }
-  }
+  set.ForEachInWords(words * span / spans, words * (span + 1) / spans, visit);
 }
 
 }  // namespace

@@ -99,13 +99,21 @@ class FlatBitset {
   // Calls f(i) for every set bit i, in increasing order.
   template <typename F>
   void ForEach(F f) const {
-    for (size_t w = 0; w < words_.size(); ++w) {
-      uint64_t bits = words_[w];
-      while (bits != 0) {
-        f(static_cast<int64_t>(w) * 64 + __builtin_ctzll(bits));
-        bits &= bits - 1;
+    ForEachInWords(0, static_cast<int64_t>(words_.size()), [&](int64_t i) {
+      f(i);
+      return true;
+    });
+  }
+  // Calls visit(i) for the set bits i of words [begin, end), in increasing order, until visit
+  // returns false; returns false when it stopped so.
+  template <typename Visit>
+  bool ForEachInWords(int64_t begin, int64_t end, Visit visit) const {
+    for (int64_t w = begin; w < end; ++w) {
+      for (uint64_t bits = words_[static_cast<size_t>(w)]; bits != 0; bits &= bits - 1) {
+        if (!visit(w * 64 + __builtin_ctzll(bits))) return false;
       }
     }
+    return true;
   }
 
   // Erosion by a run of n along stride s, anchored at the lowest cell:

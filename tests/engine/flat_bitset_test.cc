@@ -1,5 +1,6 @@
 #include "core/engine/flat_bitset.h"
 
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -185,6 +186,30 @@ TEST(FlatBitsetOrChanged, ReportsOnlyNewBits) {
   EXPECT_TRUE(a.test(299));
   EXPECT_TRUE(a.test(5));
   EXPECT_EQ(a.Count(), 3);
+}
+
+TEST(FlatBitsetVisit, WordRangesVisitTheirBitsInOrderAndStopWhenAsked) {
+  const FlatBitset bits = RandomBits(64 * 9 + 5, 0.3, 17);
+  std::vector<int64_t> all;
+  bits.ForEach([&](int64_t i) { all.push_back(i); });
+  for (int64_t i = 1; i < static_cast<int64_t>(all.size()); ++i) ASSERT_LT(all[i - 1], all[i]);
+  // Three word ranges side by side visit what ForEach visits.
+  std::vector<int64_t> ranges;
+  for (int64_t begin : {0, 4, 7}) {
+    const int64_t end = begin == 0 ? 4 : (begin == 4 ? 7 : 10);
+    EXPECT_TRUE(bits.ForEachInWords(begin, end, [&](int64_t i) {
+      EXPECT_GE(i, begin * 64);
+      EXPECT_LT(i, end * 64);
+      ranges.push_back(i);
+      return true;
+    }));
+  }
+  EXPECT_EQ(ranges, all);
+  // Stopped at the fifth bit: five visits, and the walk says it stopped.
+  ASSERT_GE(all.size(), 6u);
+  int visits = 0;
+  EXPECT_FALSE(bits.ForEachInWords(0, 10, [&](int64_t) { return ++visits < 5; }));
+  EXPECT_EQ(visits, 5);
 }
 
 }  // namespace

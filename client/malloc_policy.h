@@ -8,8 +8,8 @@ namespace membrane::client {
 // One arena for the process, no block mapped on its own, no trim: every freed block stays in
 // the one heap for the next allocation, and the process gives its memory back at exit.
 // Must be called before the process starts a thread or makes its first large allocation.
-// The server keeps glibc's defaults (docs/memory-decisions.md, "The client keeps what it
-// frees").
+// membraned sets its own (server/memory_release.h; docs/memory-decisions.md, "The client
+// keeps what it frees").
 void UseClientMallocPolicy();
 
 }  // namespace membrane::client

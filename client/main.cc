@@ -8,12 +8,12 @@
 #include "client/command_line.h"
 #include "client/exit_codes.h"
 #include "client/input_files.h"
-#include "client/malloc_policy.h"
+#include "core/base/malloc_policy.h"
 #include "core/io/decode_helper.h"
 
 int main(int argc, char** argv) {
-  // Freed memory stays with the process for the next stage (client/malloc_policy.h).
-  membrane::client::UseClientMallocPolicy();
+  // Freed memory stays with the process for the next stage.
+  membrane::KeepFreedBlocksInOneHeap();
   // Run by ReadInputCloud on itself to decode a Draco file under resource limits.
   if (argc >= 2 && std::string(argv[1]) == membrane::client::kDecodeHelperFlag) {
     return membrane::RunDecodeHelper(std::vector<std::string>(argv + 2, argv + argc));

@@ -302,7 +302,7 @@ int Main(int argc, char** argv) {
   absl::ParseCommandLine(static_cast<int>(args.size()), args.data());
   ServerOptions options;
   if (!OptionsFromFlags(options)) return 2;
-  LimitMallocArenas();
+  options.malloc_settings = UseMallocPolicyUnlessChosen() ? "one-arena" : "environment";
   // Block the stop signals before any thread starts, so that only sigwait below sees them.
   sigset_t stop_signals;
   sigemptyset(&stop_signals);

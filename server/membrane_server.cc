@@ -172,6 +172,9 @@ absl::StatusOr<int> MembraneServer::Start(const std::string& address) {
                                                          ? "options"
                                                          : options_.memory_budget_source},
                               {"upload_memory_bytes", absl::StrCat(options_.upload_memory_bytes)},
+                              {"malloc", options_.malloc_settings.empty()
+                                             ? "-"
+                                             : options_.malloc_settings},
                               {"store_dir", options_.store_dir.empty() ? "-" : options_.store_dir},
                               {"tls", options_.tls_cert_pem.empty() ? "off" : "on"},
                               {"token", options_.clients.empty()

@@ -1,21 +1,23 @@
-// Giving freed memory back to the system: glibc's malloc keeps the pages of freed blocks in its
-// arenas (one per thread, up to 8 per core) for reuse, so a server whose jobs and results are
-// gone would stay near its peak RSS. Chosen by measurement against MALLOC_ARENA_MAX alone,
-// jemalloc and tcmalloc (tests/bench/2026-12-02-server-memory.txt, docs/memory-decisions.md).
+// membraned's memory between jobs: while a job runs, the pages its stages free stay in the
+// process for its next stage (core/base/malloc_policy.h); once it ends they go back to the
+// system, so that a server whose jobs and results are gone does not stay near its peak RSS.
+// Chosen by measurement (tests/bench/2026-12-02-server-memory.txt,
+// tests/bench/2026-12-05-server-malloc.txt, docs/memory-decisions.md).
 #ifndef MEMBRANE_SERVER_MEMORY_RELEASE_H_
 #define MEMBRANE_SERVER_MEMORY_RELEASE_H_
 
 namespace membrane::server {
 
-// Returns the free pages of every malloc arena to the system (malloc_trim(0)). Costs a walk of
-// the arenas' free lists (milliseconds after a large job); call it after a job or a batch of
+// Returns the free pages of the malloc heap to the system (malloc_trim(0)). Costs a walk of
+// the heap's free lists (milliseconds after a large job); call it after a job or a batch of
 // results is freed, not per call.
 void ReleaseFreedMemory();
 
-// Caps glibc's malloc at kMallocArenas arenas, unless MALLOC_ARENA_MAX is set in the
-// environment (the operator's choice stands). Call before any thread starts.
-inline constexpr int kMallocArenas = 2;
-void LimitMallocArenas();
+// Sets the process's malloc policy (one arena that keeps what it frees, KeepFreedBlocksInOneHeap)
+// unless the operator chose malloc's settings in the environment: MALLOC_ARENA_MAX set, or
+// GLIBC_TUNABLES naming a glibc.malloc tunable. Those stand, on glibc's defaults otherwise.
+// Returns whether the policy was set. Call before any thread starts.
+bool UseMallocPolicyUnlessChosen();
 
 }  // namespace membrane::server
 

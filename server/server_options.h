@@ -45,6 +45,7 @@ struct ServerOptions {
   int64_t voxel_budget = 0;
   int64_t memory_budget_bytes = 0;          // estimated bytes across running jobs; 0 = no limit
   std::string memory_budget_source;         // for the log: the flag, or what the default took
+  std::string malloc_settings;              // for the log: "one-arena" (the policy) or "environment"
   int64_t upload_memory_bytes = 0;          // uploads held at once (UploadMemory); 0 = no limit
   double stall_seconds = 300;               // a call stalled this long is cancelled; 0 = never
   // A stage running longer than this sends StageProgress every second; 0 = every stage.

@@ -1,4 +1,4 @@
-#include "client/malloc_policy.h"
+#include "core/base/malloc_policy.h"
 
 #include <malloc.h>
 
@@ -7,20 +7,14 @@
 
 #include "gtest/gtest.h"
 
-namespace membrane::client {
+namespace membrane {
 namespace {
-
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kGlibcMalloc = false;  // the sanitizers bring their own allocator
-#else
-constexpr bool kGlibcMalloc = true;
-#endif
 
 // In a child process (the policy is the whole process's): a 256 MB block, written and freed,
 // is neither mapped on its own nor trimmed away, so the next one reuses its pages. Exits 0
 // when so; 1 when it was mapped on its own, 2 when the heap gave it back.
 [[noreturn]] void AllocateFreeAndExit() {
-  UseClientMallocPolicy();
+  KeepFreedBlocksInOneHeap();
   constexpr size_t kBytes = size_t{256} << 20;
   char* block = static_cast<char*>(std::malloc(kBytes));
   if (block == nullptr) std::_Exit(3);
@@ -37,4 +31,4 @@ TEST(MallocPolicyTest, FreedBigBlocksStayInTheHeap) {
 }
 
 }  // namespace
-}  // namespace membrane::client
+}  // namespace membrane

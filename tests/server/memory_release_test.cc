@@ -1,0 +1,55 @@
+#include "server/memory_release.h"
+
+#include <malloc.h>
+#include <stdlib.h>
+
+#include <cstdlib>
+#include <cstring>
+
+#include "core/base/malloc_policy.h"
+#include "gtest/gtest.h"
+
+namespace membrane::server {
+namespace {
+
+constexpr size_t kBytes = size_t{256} << 20;
+
+// In a child process (malloc's settings are the whole process's), with `name` set to `value`
+// in the environment unless name is null: a 256 MB block is allocated, written and freed.
+// Exits 0 when the policy was set, the block came from the heap and stayed there once freed,
+// and ReleaseFreedMemory then gave the heap's pages back; 10 when the policy was not set and
+// the block was mapped on its own, as glibc's defaults do. Any other code names what differed.
+[[noreturn]] void AllocateFreeAndExit(const char* name, const char* value) {
+  unsetenv("MALLOC_ARENA_MAX");
+  unsetenv("GLIBC_TUNABLES");
+  if (name != nullptr) setenv(name, value, 1);
+  const bool policy = UseMallocPolicyUnlessChosen();
+  char* block = static_cast<char*>(std::malloc(kBytes));
+  if (block == nullptr) std::_Exit(3);
+  std::memset(block, 1, kBytes);
+  const bool mapped = mallinfo2().hblks != 0;
+  std::free(block);
+  if (!policy) std::_Exit(mapped ? 10 : 11);
+  if (mapped) std::_Exit(1);
+  if (mallinfo2().arena < kBytes) std::_Exit(2);  // given back before the job's end
+  ReleaseFreedMemory();
+  std::_Exit(mallinfo2().arena < kBytes ? 0 : 4);
+}
+
+TEST(ServerMallocPolicy, AJobsFreedBlocksStayUntilReleased) {
+  if (!kGlibcMalloc) GTEST_SKIP() << "glibc's malloc is replaced under the sanitizers";
+  EXPECT_EXIT(AllocateFreeAndExit(nullptr, nullptr), ::testing::ExitedWithCode(0), "");
+  // Tunables of another part of glibc leave malloc to the policy.
+  EXPECT_EXIT(AllocateFreeAndExit("GLIBC_TUNABLES", "glibc.rtld.optional_static_tls=4096"),
+              ::testing::ExitedWithCode(0), "");
+}
+
+TEST(ServerMallocPolicy, TheOperatorsSettingsStand) {
+  if (!kGlibcMalloc) GTEST_SKIP() << "glibc's malloc is replaced under the sanitizers";
+  EXPECT_EXIT(AllocateFreeAndExit("MALLOC_ARENA_MAX", "2"), ::testing::ExitedWithCode(10), "");
+  EXPECT_EXIT(AllocateFreeAndExit("GLIBC_TUNABLES", "glibc.malloc.arena_max=2"),
+              ::testing::ExitedWithCode(10), "");
+}
+
+}  // namespace
+}  // namespace membrane::server

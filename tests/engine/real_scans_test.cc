@@ -14,7 +14,6 @@
 #include "absl/strings/str_replace.h"
 #include "core/engine/piece_separation.h"
 #include "core/engine/voxel_topology.h"
-#include "core/io/point_cloud_io.h"
 #include "gtest/gtest.h"
 #include "tests/support/shared_data.h"
 #include "tests/support/shared_models.h"
@@ -70,15 +69,20 @@ std::string Expected(const SharedModel& m) {
                       m.genus_asserted ? absl::StrJoin(m.expected.genus, ",") : "any", "]");
 }
 
+// The cloud `name` of ../shared/data shrunk at `factor` x its formula-(1) voxel size.
+absl::StatusOr<testing::ShrinkRun> ShrinkSharedCloud(const std::string& data_dir,
+                                                     const std::string& name, double factor) {
+  absl::StatusOr<PointCloud> cloud = testing::ReadSharedCloud(data_dir, name);
+  if (!cloud.ok()) return cloud.status();
+  return testing::ShrinkCloud(*cloud, factor);
+}
+
 class RealScanTest : public ::testing::TestWithParam<ScanRun> {};
 
 TEST_P(RealScanTest, HasTheExpectedShellsAndGenus) {
   MEMBRANE_REQUIRE_SHARED_DATA(data_dir);
   const ScanRun& r = GetParam();
-  const std::string path = absl::StrCat(data_dir, "/clouds/", r.Cloud(), ".ply");
-  absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
-  ASSERT_TRUE(cloud.ok()) << cloud.status();
-  auto run = testing::ShrinkCloud(*cloud, r.factor);
+  auto run = ShrinkSharedCloud(data_dir, r.Cloud(), r.factor);
   ASSERT_TRUE(run.ok()) << run.status();
   RecordProperty("topology", run->Describe());
   const std::string what = absl::StrFormat("%s at %gx: %s", r.Cloud(), r.factor, run->Describe());
@@ -108,10 +112,7 @@ TEST_P(RealScanTest, HasTheExpectedShellsAndGenus) {
 // close them (the run is asserted above).
 TEST(RealScanSeparation, CowSpotBeltAt1p5xComesApartWithoutNewHandles) {
   MEMBRANE_REQUIRE_SHARED_DATA(data_dir);
-  absl::StatusOr<PointCloud> cloud =
-      ReadPointCloud(absl::StrCat(data_dir, "/clouds/cow-spot-belt-scan.ply"));
-  ASSERT_TRUE(cloud.ok()) << cloud.status();
-  auto run = testing::ShrinkCloud(*cloud, 1.5);
+  auto run = ShrinkSharedCloud(data_dir, "cow-spot-belt-scan", 1.5);
   ASSERT_TRUE(run.ok()) << run.status();
   const PieceSeparationStats& sep = run->result.separation;
   const std::string what = absl::StrFormat(
@@ -137,10 +138,7 @@ TEST(RealScanSeparation, CowSpotBeltAt1p5xComesApartWithoutNewHandles) {
 // voxels (tests/bench/2026-12-05-dense-genus.txt).
 TEST(RealScanDense, SpotScanAtAFinerVoxelKeepsNoWebHandle) {
   MEMBRANE_REQUIRE_SHARED_DATA(data_dir);
-  absl::StatusOr<PointCloud> cloud =
-      ReadPointCloud(absl::StrCat(data_dir, "/clouds/spot-scan.ply"));
-  ASSERT_TRUE(cloud.ok()) << cloud.status();
-  auto run = testing::ShrinkCloud(*cloud, 0.85);
+  auto run = ShrinkSharedCloud(data_dir, "spot-scan", 0.85);
   ASSERT_TRUE(run.ok()) << run.status();
   EXPECT_EQ(run->topology.shells, 1) << run->Describe();
   const std::string miss = testing::RetryMissOfWebs(*run, 4);

@@ -12,7 +12,6 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_replace.h"
-#include "core/io/point_cloud_io.h"
 #include "core/mesh/cuberille.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/output_grid.h"
@@ -205,7 +204,7 @@ INSTANTIATE_TEST_SUITE_P(Shapes, ShapeDecimationTest,
 
 TEST(RealCloudDecimationTest, SpotScanKeepsItsSurface) {
   MEMBRANE_REQUIRE_SHARED_DATA(data_dir);
-  absl::StatusOr<PointCloud> cloud = ReadPointCloud(absl::StrCat(data_dir, "/clouds/spot-scan.ply"));
+  absl::StatusOr<PointCloud> cloud = testing::ReadSharedCloud(data_dir, "spot-scan");
   ASSERT_TRUE(cloud.ok()) << cloud.status();
   const Surface surface = SmoothSurfaceOf(*cloud);
   for (double fraction : {0.1, 0.01}) {

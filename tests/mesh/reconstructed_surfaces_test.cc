@@ -11,7 +11,6 @@
 #include "absl/strings/str_replace.h"
 #include "core/engine/voxel_topology.h"
 #include "core/io/draco_codec.h"
-#include "core/io/point_cloud_io.h"
 #include "core/mesh/cuberille.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/relaxation.h"
@@ -121,8 +120,8 @@ class RealCloudSurfaceTest
 TEST_P(RealCloudSurfaceTest, IsClosedManifoldOutwardWithTheMembranesTopology) {
   MEMBRANE_REQUIRE_SHARED_DATA(data_dir);
   const auto& [model, kind, surface] = GetParam();
-  const std::string path = absl::StrCat(data_dir, "/clouds/", model, "-", kind, ".ply");
-  absl::StatusOr<PointCloud> cloud = ReadPointCloud(path);
+  absl::StatusOr<PointCloud> cloud =
+      testing::ReadSharedCloud(data_dir, absl::StrCat(model, "-", kind));
   ASSERT_TRUE(cloud.ok()) << cloud.status();
   ExpectSurfaceMatchesMembrane(*cloud, surface, absl::StrCat(model, "-", kind));
 }

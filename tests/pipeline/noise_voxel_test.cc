@@ -7,7 +7,6 @@
 #include "absl/strings/str_cat.h"
 #include "core/engine/point_noise.h"
 #include "core/engine/voxelization.h"
-#include "core/io/point_cloud_io.h"
 #include "core/pipeline/memory_estimate.h"
 #include "core/synth/synthesize.h"
 #include "gtest/gtest.h"
@@ -65,8 +64,7 @@ TEST(NoiseVoxelTest, TheSharedScansKeepFormulaOnesSize) {
   for (const testing::SharedModel& m : testing::SharedModels()) {
     for (const std::string& kind : m.kinds) {
       const std::string name = absl::StrCat(m.model, "-", kind);
-      const absl::StatusOr<PointCloud> cloud =
-          ReadPointCloud(absl::StrCat(data_dir, "/clouds/", name, ".ply"));
+      const absl::StatusOr<PointCloud> cloud = testing::ReadSharedCloud(data_dir, name);
       ASSERT_TRUE(cloud.ok()) << cloud.status();
       const absl::StatusOr<PlannedGrid> plan = PlanGrid(*cloud, VoxelizeOptions{});
       ASSERT_TRUE(plan.ok()) << plan.status();

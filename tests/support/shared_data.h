@@ -5,11 +5,19 @@
 #include <optional>
 #include <string>
 
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "core/geometry/point_cloud.h"
+
 namespace membrane::testing {
 
 // The directory ../shared/data (from MEMBRANE_SHARED_DIR, set by ctest), or nullopt when it
 // does not exist.
 std::optional<std::string> SharedDataDir();
+
+// The cloud `name` of `data_dir` (SharedDataDir()'s), read from data_dir/clouds/name.ply;
+// ReadPointCloud's errors.
+absl::StatusOr<PointCloud> ReadSharedCloud(absl::string_view data_dir, absl::string_view name);
 
 }  // namespace membrane::testing
 

@@ -54,10 +54,11 @@ double EstimateVoxelSize(const Box3d& bounds, int64_t points);
 
 // How many different points `points` holds (equal coordinates counted once): formula (1)'s
 // n, since a point given twice samples the surface once (a file concatenated with itself, a
-// scanner repeating its points). Linear expected time: on `threads` threads (at most 8 parts),
-// each part a hash set of its points (parts by a hash of the coordinates; equal points share
-// a part), and the count is theirs summed. Each part asks `cancel` every 65536 points and stops
-// once it has fired: the count is then short, and the caller, who holds the token, knows it.
+// scanner repeating its points). Linear expected time on `threads` threads: the points are
+// grouped by a hash of their coordinates into buckets of a few thousand (equal points share a
+// bucket; a copy of the points is held meanwhile), and each bucket's distinct points are
+// counted in a hash set of its own. The passes ask `cancel` every 65536 points and stop once
+// it has fired: the count is then meaningless, and the caller, who holds the token, knows it.
 int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads = 1,
                            const CancelToken& cancel = CancelToken::Never());
 

@@ -35,7 +35,7 @@ constexpr double kCloudBytes = 12;
 // Decode: the cloud.
 constexpr StageCost kDecode = {kProcessBytes, 0, kCloudBytes, 0};
 // Voxelize: the grid (1 byte a voxel), the points' sorted voxels (8 bytes a point); formula
-// (1)'s hash set of distinct points before it (27 bytes a point, freed before the grid).
+// (1)'s copy of the points grouped by hash before it (12 bytes a point, freed before the grid).
 constexpr StageCost kVoxelize = {kProcessBytes, 1, kCloudBytes + 36, 0};
 // The shrink: the grid (1 byte a voxel), 8 work planes (1 bit a voxel each), the anchors of
 // the last snapshot kept as packed copies (place_finder.h: 0.54 bytes a voxel measured at 1M

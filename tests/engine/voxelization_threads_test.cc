@@ -109,6 +109,22 @@ TEST(VoxelizationThreads, DistinctPointCountIsTheSameForAnyThreadCount) {
   }
 }
 
+// Copies far apart in the cloud (in other blocks of the count's passes), +0 and -0 at its two
+// ends, and a cloud of one point given 200k times (one bucket holding every point).
+TEST(VoxelizationThreads, DistinctPointCountFindsCopiesAcrossTheCloud) {
+  const std::vector<Point3f> base = UnevenSphere(100000);
+  std::vector<Point3f> points = {{0.0f, -0.0f, 0.0f}};
+  points.insert(points.end(), base.begin(), base.end());
+  points.insert(points.end(), base.rbegin(), base.rend());
+  points.insert(points.end(), base.begin(), base.begin() + 50000);
+  points.push_back({-0.0f, 0.0f, -0.0f});
+  const std::vector<Point3f> same(200000, Point3f{0.25f, -1.5f, 3.0f});
+  for (int threads : {1, 2, 3, 8}) {
+    EXPECT_EQ(DistinctPointCount(points, threads), 100001) << threads << " threads";
+    EXPECT_EQ(DistinctPointCount(same, threads), 1) << threads << " threads";
+  }
+}
+
 TEST(VoxelizationThreads, SortedPointVoxelsIsTheSortedListForAnyThreadCount) {
   const std::vector<Point3f> points = UnevenSphere(150000);
   Box3d box;

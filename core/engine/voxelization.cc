@@ -13,6 +13,7 @@
 #include "absl/hash/hash.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
+#include "core/base/bucket_offsets.h"
 #include "core/base/parallel_tasks.h"
 #include "core/engine/point_density.h"
 #include "core/geometry/vec3.h"
@@ -75,17 +76,7 @@ int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads,
                 [&](size_t, const Point3f& p) { ++count[bucket_of(p)]; });
   });
   if (cancel.cancelled()) return 0;
-  std::vector<size_t> bucket_start(buckets + 1, 0);
-  size_t next = 0;
-  for (size_t b = 0; b < buckets; ++b) {
-    bucket_start[b] = next;
-    for (int64_t block = 0; block < blocks; ++block) {
-      const size_t count = offsets[block][b];
-      offsets[block][b] = next;
-      next += count;
-    }
-  }
-  bucket_start[buckets] = next;
+  const std::vector<size_t> bucket_start = PlaceBucketsByPart(offsets);
   std::vector<Point3f> grouped(n);
   RunTasks(threads, blocks, [&](int, int64_t block) {
     std::vector<size_t>& at = offsets[block];

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "core/base/bucket_offsets.h"
 #include "core/base/parallel_tasks.h"
 
 namespace membrane {
@@ -124,17 +125,7 @@ PointRowGrid::PointRowGrid(absl::Span<const Point3f> points, double cell, int th
         ++count[row_of[i]];
       }
     });
-    std::vector<uint32_t> row_start(rows + 1);
-    uint32_t total = 0;
-    for (int64_t r = 0; r < rows; ++r) {
-      row_start[r] = total;
-      for (int64_t t = 0; t < parts; ++t) {
-        const uint32_t c = next[t][r];
-        next[t][r] = total;
-        total += c;
-      }
-    }
-    row_start[rows] = total;
+    const std::vector<uint32_t> row_start = PlaceBucketsByPart(next);
     RunTasks(threads, parts, [&](int, int64_t t) {
       const int64_t begin = t * part_points, end = std::min(n, begin + part_points);
       std::vector<uint32_t>& slot = next[t];

@@ -1,8 +1,8 @@
 // How a membrane process asks glibc's malloc to manage its memory. Each stage of a
 // reconstruction allocates grid-sized arrays and frees them before the next stage allocates
 // its own, so the pages one stage frees are the cheapest memory for the next
-// (docs/memory-decisions.md, "A process keeps what it frees"). The core never calls this: the
-// executables do, once, at the start of main.
+// (docs/memory-decisions.md, "A process keeps what it frees during a run"). The core never
+// calls this: the executables do, once, at the start of main.
 #ifndef MEMBRANE_CORE_BASE_MALLOC_POLICY_H_
 #define MEMBRANE_CORE_BASE_MALLOC_POLICY_H_
 

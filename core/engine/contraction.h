@@ -37,6 +37,13 @@ struct ChainRules {
   // thin_part_min_spread voxels from their best plane (data on both sides; 0 = not read).
   int thick_wall_detour = 4;
   double thin_part_min_spread = 0.25;
+  // A run of at most thin_wall_face_max_run hard voxels whose two ends face surfaces at least
+  // thin_wall_face_gap voxels apart (thin_wall_faces.h) is a thin part whatever the detour,
+  // for plates of thin_wall_face_min_plate and more: the chains that carve a thin-walled
+  // container's inside through its mouth (incursion_test.h; 0 = not read).
+  double thin_wall_face_gap = 0.6;
+  int thin_wall_face_min_plate = 20;
+  int thin_wall_face_max_run = 2;
   bool topology_guard = true;     // algorithm-notes 12
 };
 
@@ -49,7 +56,9 @@ struct ChainOptions {
   int plate_size() const { return guard.plate_size; }
   // The thin-part exception of the thick-wall test these options ask for.
   ThinPartRule thin_part() const {
-    return {rules.thick_wall_detour, rules.thin_part_min_spread, points};
+    return {rules.thick_wall_detour, rules.thin_part_min_spread, points,
+            plate_size() >= rules.thin_wall_face_min_plate ? rules.thin_wall_face_gap : 0.0,
+            rules.thin_wall_face_max_run};
   }
 };
 

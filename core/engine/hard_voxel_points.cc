@@ -11,6 +11,17 @@
 #include "core/geometry/symmetric_eigen3.h"
 
 namespace membrane {
+namespace {
+
+// The voxels within Chebyshev distance `radius` of `c`, clipped to the grid: [a, b].
+void CubeAround(const VoxelGrid& grid, const Coord& c, int radius, Coord& a, Coord& b) {
+  for (int d = 0; d < 3; ++d) {
+    a[d] = std::max(c[d] - radius, 0);
+    b[d] = std::min(c[d] + radius, grid.dim(d) - 1);
+  }
+}
+
+}  // namespace
 
 HardVoxelPoints::HardVoxelPoints(const VoxelGrid& grid, absl::Span<const Point3f> points,
                                  int threads) {
@@ -140,10 +151,7 @@ bool HardVoxelPoints::PlaneNormal(const VoxelGrid& grid, const Coord& lo, const 
 
 double HardVoxelPoints::NearestDistance(const VoxelGrid& grid, const Coord& c, int radius) const {
   Coord a, b;
-  for (int d = 0; d < 3; ++d) {
-    a[d] = std::max(c[d] - radius, 0);
-    b[d] = std::min(c[d] + radius, grid.dim(d) - 1);
-  }
+  CubeAround(grid, c, radius, a, b);
   double best2 = static_cast<double>(radius + 1) * (radius + 1);
   ForEachPoint(grid, a, b, [&](const std::array<float, 3>& p) {
     const double x = p[0] - (c.x + 0.5), y = p[1] - (c.y + 0.5), z = p[2] - (c.z + 0.5);
@@ -152,13 +160,47 @@ double HardVoxelPoints::NearestDistance(const VoxelGrid& grid, const Coord& c, i
   return std::sqrt(best2);
 }
 
+bool HardVoxelPoints::FacingPatch(const VoxelGrid& grid, const Coord& c, int radius,
+                                  double band, Patch& patch) const {
+  Coord a, b;
+  CubeAround(grid, c, radius, a, b);
+  const double cx = c.x + 0.5, cy = c.y + 0.5, cz = c.z + 0.5;
+  auto distance2 = [&](const std::array<float, 3>& p) {
+    const double x = p[0] - cx, y = p[1] - cy, z = p[2] - cz;
+    return x * x + y * y + z * z;
+  };
+  // Two passes over a few voxels' points: the nearest first, then the band beyond it.
+  double nearest2 = -1;
+  ForEachPoint(grid, a, b, [&](const std::array<float, 3>& p) {
+    const double d2 = distance2(p);
+    if (nearest2 < 0 || d2 < nearest2) nearest2 = d2;
+  });
+  if (nearest2 < 0) return false;
+  const double reach = std::sqrt(nearest2) + band;
+  const double reach2 = reach * reach;
+  // Sums relative to the voxel's centre, so that they stay small.
+  double n = 0;
+  std::array<double, 3> s{};
+  std::array<double, 6> ss{};
+  ForEachPoint(grid, a, b, [&](const std::array<float, 3>& p) {
+    if (distance2(p) > reach2) return;
+    const double x = p[0] - cx, y = p[1] - cy, z = p[2] - cz;
+    n += 1;
+    s[0] += x, s[1] += y, s[2] += z;
+    ss[0] += x * x, ss[1] += x * y, ss[2] += x * z, ss[3] += y * y, ss[4] += y * z, ss[5] += z * z;
+  });
+  const double mx = s[0] / n, my = s[1] / n, mz = s[2] / n;
+  patch.count = n;
+  patch.mean = {cx + mx, cy + my, cz + mz};
+  patch.scatter = {ss[0] - n * mx * mx, ss[1] - n * mx * my, ss[2] - n * mx * mz,
+                   ss[3] - n * my * my, ss[4] - n * my * mz, ss[5] - n * mz * mz};
+  return true;
+}
+
 void HardVoxelPoints::SpotDistances(const VoxelGrid& grid, const Coord& c, int radius,
                                     int samples, std::vector<double>& distances) const {
   Coord a, b;
-  for (int d = 0; d < 3; ++d) {
-    a[d] = std::max(c[d] - radius, 0);
-    b[d] = std::min(c[d] + radius, grid.dim(d) - 1);
-  }
+  CubeAround(grid, c, radius, a, b);
   const double cap2 = static_cast<double>(radius + 1) * (radius + 1);
   distances.assign(static_cast<size_t>(samples) * samples * samples, cap2);
   ForEachPoint(grid, a, b, [&](const std::array<float, 3>& p) {

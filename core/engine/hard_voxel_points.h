@@ -57,6 +57,19 @@ class HardVoxelPoints {
   void SpotDistances(const VoxelGrid& grid, const Coord& c, int radius, int samples,
                      std::vector<double>& distances) const;
 
+  // The patch of data seen from voxel `c`: the points, among those of the voxels within
+  // Chebyshev distance `radius` of it, that lie within `band` voxels more than the nearest of
+  // them from its centre. Seen from an outside voxel beside the data, that is the surface it
+  // faces: its foot on one sheet, not a mean over a wall's two faces.
+  struct Patch {
+    double count = 0;
+    std::array<double, 3> mean{};  // voxels from the grid's origin
+    std::array<double, 6> scatter{};  // sums of (p - mean)(p - mean)^T: xx, xy, xz, yy, yz, zz
+  };
+  // False when those voxels hold no point.
+  bool FacingPatch(const VoxelGrid& grid, const Coord& c, int radius, double band,
+                   Patch& patch) const;
+
   // The grid indices of the voxels holding points, ascending: a voxel's rank is its position.
   absl::Span<const int64_t> voxels() const { return voxels_; }
 

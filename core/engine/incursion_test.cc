@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/engine/local_topology.h"
+#include "core/engine/thin_wall_faces.h"
 
 namespace membrane {
 namespace {
@@ -136,6 +137,13 @@ bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run,
     // dig behind it. The points are read first: they are cheaper than the search.
     if (thin.detour > 0 && ThinPartData(grid, index, d, lo, hi, thin) &&
         JoinedInCube(grid, index, index + (lo - 1) * sd, index + (hi + 1) * sd, thin.detour)) {
+      continue;
+    }
+    // Data on both faces of a wall, seen from its two ends: the two sides of a thin wall,
+    // however far around they meet.
+    if (thin.min_face_gap > 0 && thin.points != nullptr && hi - lo + 1 <= thin.face_max_run &&
+        FacingGap(grid, *thin.points, grid.CoordOf(index + (lo - 1) * sd),
+                  grid.CoordOf(index + (hi + 1) * sd)) >= thin.min_face_gap) {
       continue;
     }
     return true;

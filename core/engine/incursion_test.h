@@ -26,6 +26,10 @@ struct ThinPartRule {
   int detour = 0;          // radius (voxels) within which the run's ends must be joined; 0 = never
   double min_spread = 0;   // least PlaneSpread of the run's points (voxels); 0 = not read
   const HardVoxelPoints* points = nullptr;  // the input points; none: min_spread is never met
+  // Least FacingGap (thin_wall_faces.h) of the ends of a run of at most face_max_run voxels,
+  // in voxels, for the run to be taken as a thin part whatever the detour; 0 = not read.
+  double min_face_gap = 0;
+  int face_max_run = 2;
 };
 
 // The thick-wall extension: for some axis, the run of hard or frozen non-outside voxels through
@@ -39,7 +43,10 @@ struct ThinPartRule {
 // thin.min_spread voxels from their best plane (HardVoxelPoints::PlaneSpread): data on both
 // sides of the run, the two faces of a leg, a horn or a belt. A scanned wall at the rim of a
 // data hole is joined around too, but its points lie on one surface: the test fires there, so
-// that plates do not dig behind it. `index` must lie at least max_run voxels from the array
+// that plates do not dig behind it. A run of at most thin.face_max_run voxels is also a thin
+// part, joined around or not, when thin.min_face_gap > 0 and the surfaces its two ends A and B
+// face lie at least that far apart (FacingGap): a wall with data on both faces, such as a
+// cup's, whose two sides meet only over its rim, far beyond any detour. `index` must lie at least max_run voxels from the array
 // border (the padding guarantees it for hard voxels when max_run <= 3).
 bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run,
                         const ThinPartRule& thin);

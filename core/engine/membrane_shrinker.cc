@@ -65,8 +65,10 @@ MembraneShrinker::MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options
       runner_(grid) {
   // Only the thin-part exception, the piece separation's split and the hole opening read the
   // points.
-  const bool thin_parts = options.chain.thick_wall_run > 1 && options.chain.thick_wall_detour > 0 &&
-                          options.chain.thin_part_min_spread > 0;
+  const bool thin_parts =
+      options.chain.thick_wall_run > 1 &&
+      ((options.chain.thick_wall_detour > 0 && options.chain.thin_part_min_spread > 0) ||
+       options.chain.thin_wall_face_gap > 0);
   const bool split = options.separation.enabled && options.separation.split_reach > 0;
   if ((thin_parts || split || options.holes.enabled) && !points.empty()) {
     points_.emplace(grid, points, word_threads_);

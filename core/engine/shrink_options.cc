@@ -105,6 +105,15 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
         "thin_part_min_spread %g is out of range [0, 8] voxels (0 = not read)",
         o.chain.thin_part_min_spread));
   }
+  if (!(o.chain.thin_wall_face_gap >= 0 && o.chain.thin_wall_face_gap <= 8) ||
+      o.chain.thin_wall_face_min_plate < 1 || o.chain.thin_wall_face_max_run < 2 ||
+      o.chain.thin_wall_face_max_run > 5) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "thin-wall face options out of range: thin_wall_face_gap %g [0, 8] voxels (0 = not "
+        "read), thin_wall_face_min_plate %d [>= 1], thin_wall_face_max_run %d [2, 5]",
+        o.chain.thin_wall_face_gap, o.chain.thin_wall_face_min_plate,
+        o.chain.thin_wall_face_max_run));
+  }
   const HoleOpeningOptions& h = o.holes;
   if (h.max_plug < 1 || h.max_plug > 32 || h.ring_radius < 2 || h.ring_radius > 16 ||
       h.join_radius < 1 || h.join_radius > 64 || h.min_data_rays < 1 || h.min_sectors < 0 ||

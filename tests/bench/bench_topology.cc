@@ -43,7 +43,8 @@ constexpr char kUsage[] =
     "usage: bench_topology [--factors 1,1.25,1.5,2] [--models NAME,...] [--no-synthetic]\n"
     "                      [--no-real] [--locate] [--genus-per-generation] [--retry T,S,W]\n"
     "                      [--thick-wall-run K]\n"
-    "                      [--thick-wall-detour R] [--thin-part-spread S] [--depth-bound D]\n"
+    "                      [--thick-wall-detour R] [--thin-part-spread S]\n"
+    "                      [--thin-wall-face-gap G] [--depth-bound D]\n"
     "                      [--rerun-thin K] [--no-retry] [--strict-only] [--no-close-cut-loops]\n"
     "                      [--no-hole-opening] [--wall-core-depth D] [--far-steps F]\n"
     "                      [--near-far-steps N]\n"
@@ -65,6 +66,8 @@ constexpr char kUsage[] =
     "                   the outside stop the test (0 = off; ChainRules::thick_wall_detour)\n"
     "  --thin-part-spread S  and the run's points must lie S voxels off their best plane\n"
     "                   (0 = not read; ChainRules::thin_part_min_spread)\n"
+    "  --thin-wall-face-gap G  a run whose ends face surfaces G voxels apart is a thin part\n"
+    "                   whatever the detour (0 = not read; ChainRules::thin_wall_face_gap)\n"
     "  --depth-bound D  the small plates' depth bound (0 = unbounded; ChainRules::depth_bound)\n"
     "  --rerun-thin K   when a result has handles, shrink the grid again with a thick-wall run\n"
     "                   of K and keep that result if it has fewer handles and no fewer shells\n"
@@ -170,6 +173,12 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.thick_wall_detour)) return false;
     } else if (arg == "--thin-part-spread" && has_value) {
       if (!absl::SimpleAtod(argv[++i], &o.shrink.chain.thin_part_min_spread)) return false;
+    } else if (arg == "--thin-wall-face-gap" && has_value) {
+      if (!absl::SimpleAtod(argv[++i], &o.shrink.chain.thin_wall_face_gap)) return false;
+    } else if (arg == "--thin-wall-face-min-plate" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.thin_wall_face_min_plate)) return false;
+    } else if (arg == "--thin-wall-face-max-run" && has_value) {
+      if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.thin_wall_face_max_run)) return false;
     } else if (arg == "--depth-bound" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.chain.depth_bound)) return false;
     } else if (arg == "--rerun-thin" && has_value) {

@@ -15,25 +15,46 @@
 #include "core/engine/plate.h"
 #include "core/engine/state_planes.h"
 #include "core/engine/topology_guard.h"
+#include "core/engine/word_blocks.h"
 
 namespace membrane {
 namespace {
 
 // s[i] = state for every set bit i of `cells`: a whole word of set bits (the bulk of a first
-// generation's hundreds of millions) is one 64-byte fill.
-void SetStatesOf(const FlatBitset& cells, VoxelState state, VoxelState* s) {
+// generation's hundreds of millions) is one 64-byte fill. Blocks of words on `threads`: each
+// writes the states of its own words' voxels.
+void SetStatesOf(const FlatBitset& cells, VoxelState state, VoxelState* s, int threads) {
   const uint64_t* w = cells.words();
-  for (size_t k = 0; k < cells.word_count(); ++k) {
-    uint64_t bits = w[k];
-    if (bits == ~uint64_t{0}) {
-      std::memset(s + 64 * static_cast<int64_t>(k), state, 64);
-      continue;
-    }
-    while (bits != 0) {
-      s[64 * static_cast<int64_t>(k) + __builtin_ctzll(bits)] = state;
-      bits &= bits - 1;
-    }
-  }
+  ForWordBlocks(threads, static_cast<int64_t>(cells.word_count()),
+                [&](int64_t, int64_t begin, int64_t end) {
+                  for (int64_t k = begin; k < end; ++k) {
+                    uint64_t bits = w[k];
+                    if (bits == ~uint64_t{0}) {
+                      std::memset(s + 64 * k, state, 64);
+                      continue;
+                    }
+                    while (bits != 0) {
+                      s[64 * k + __builtin_ctzll(bits)] = state;
+                      bits &= bits - 1;
+                    }
+                  }
+                });
+}
+
+// Every inside voxel of `adjacent` becomes boundary and is set in `converted` (clear before).
+// Blocks of words on `threads`: a voxel's state and bit are its word's block's alone.
+void ConvertToBoundary(const FlatBitset& adjacent, VoxelState* s, FlatBitset& converted,
+                       int threads) {
+  ForWordBlocks(threads, static_cast<int64_t>(adjacent.word_count()),
+                [&](int64_t, int64_t begin, int64_t end) {
+                  adjacent.ForEachInWords(begin, end, [&](int64_t i) {
+                    if (IsInside(s[i])) {
+                      s[i] |= kBoundaryBit;
+                      converted.set(i);
+                    }
+                    return true;
+                  });
+                });
 }
 
 // Spans the closed form's checks are split into: one on one thread or for fewer than 2^12
@@ -148,16 +169,11 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     adjacent = fresh;
     adjacent.Dilate26(strides, ws.scratch);
     adjacent.AndNot(out);
-    SetStatesOf(fresh, label, s);
+    SetStatesOf(fresh, label, s, planes.threads());
   }
   FlatBitset& converted = ws.converted;
   converted.clear_all();
-  adjacent.ForEach([&](int64_t i) {
-    if (IsInside(s[i])) {
-      s[i] |= kBoundaryBit;
-      converted.set(i);
-    }
-  });
+  ConvertToBoundary(adjacent, s, converted, planes.threads());
 
   // Rejected or cancelled: restore, and (when rejected) let the chains run this generation.
   auto restore = [&] {

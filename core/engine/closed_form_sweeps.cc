@@ -18,8 +18,10 @@ void FreeSquares(const FlatBitset& free_cells, int n, const PlaneBox& box,
   eroded_z.ErodeRunFrom(free_cells, n, st[2], scratch);
   squares[0]->ErodeRunFrom(eroded_z, n, st[1], scratch);  // x: in-plane y, z
   squares[1]->ErodeRunFrom(eroded_z, n, st[0], scratch);  // y: in-plane z, x
-  squares[2]->ErodeRunFrom(free_cells, n, st[0], scratch);  // overwrites eroded_z
-  squares[2]->ErodeRun(n, st[1], scratch);                  // z: in-plane x, y
+  // z: in-plane x, y. Erosions along two axes commute; along y first, from another plane, a
+  // long run's cell passes run side by side (the one along x is no such run below n = 64).
+  squares[2]->ErodeRunFrom(free_cells, n, st[1], scratch);  // overwrites eroded_z
+  squares[2]->ErodeRun(n, st[0], scratch);
 }
 
 std::optional<int> SweepToFixedPoint(FlatBitset& out, int n, const PlaneBox& box,
@@ -49,8 +51,11 @@ std::optional<int> SweepToFixedPoint(FlatBitset& out, int n, const PlaneBox& box
       // fronts of the axis use the same eroded plane: a step of the least fixed point only
       // needs its plates valid for the current `out`, so updating `out` after both (rather
       // than between them) reaches the same fixed point.
-      back.ErodeRunFrom(out, n, su, scratch);
-      back.ErodeRun(n, sv, scratch);
+      // Each run reads another plane than it writes (reach_back is free until the seeds):
+      // in place, a long run's two cell passes (flat_bitset_long_runs.cc) follow each other on
+      // one thread; from another plane they run side by side.
+      reach_back.ErodeRunFrom(out, n, su, scratch);
+      back.ErodeRunFrom(reach_back, n, sv, scratch);
       if (cancel.cancelled()) return std::nullopt;
       // Dig straight on: a plate whose back plate was contracted fits if its square is free.
       // Both fronts' seeds first: `back` is then free to serve the spreads as scratch.
@@ -60,9 +65,10 @@ std::optional<int> SweepToFixedPoint(FlatBitset& out, int n, const PlaneBox& box
       reach_back.SpreadAlong(squares, -sa, box.dims[a], scratch, back);
       reach.Or(reach_back);
       if (cancel.cancelled()) return std::nullopt;
-      // Cells covered by the plates reached (dilation distributes over the union).
-      reach.DilateRun(n, sv, scratch);
-      reach.DilateRun(n, su, scratch);
+      // Cells covered by the plates reached (dilation distributes over the union), through
+      // `back`, free again, for the same reason.
+      back.DilateRunFrom(reach, n, sv, scratch);
+      reach.DilateRunFrom(back, n, su, scratch);
       if (out.OrChanged(reach)) {
         changed = true;
         ++out_version;

@@ -54,6 +54,7 @@ struct GapRefillStats {
   int64_t refilled_voxels = 0;  // outside voxels returned to the solid
   int64_t pocket_voxels = 0;     // region voxels that pass the pocket test only
   int loops_closed = 0;          // non-simple additions that closed a loop of the outside
+  double seconds = 0;            // wall time of the refill (set by the shrink that runs it)
 };
 
 // Input: a shrunk grid (the membrane invariants hold; every outside voxel 6-connected to the

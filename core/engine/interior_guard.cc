@@ -23,6 +23,10 @@ namespace {
 
 constexpr int kPad = VoxelGrid::kPadding;
 
+// A band of fewer coarse voxels than this is released on the calling thread: starting a thread
+// costs more than their fine voxels (64 each at the factor 4).
+constexpr int64_t kMinCoarseVoxelsToSplit = 1024;
+
 // Marks of a grid's voxels, one byte each.
 using Marks = std::vector<uint8_t>;
 
@@ -191,22 +195,35 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
   return stats;
 }
 
-int64_t ReleaseGuardedBand(VoxelGrid& grid, GuardedBand& band) {
-  int64_t released = 0;
+int64_t ReleaseGuardedBand(VoxelGrid& grid, GuardedBand& band, int threads) {
   if (!band.held) return 0;
   band.held = false;
   const std::array<int, 3>& cd = band.coarse_dims;
-  for (int64_t c : band.coarse_voxels) {
-    const int cx = static_cast<int>(c % cd[0]), cy = static_cast<int>(c / cd[0] % cd[1]),
-              cz = static_cast<int>(c / (static_cast<int64_t>(cd[0]) * cd[1]));
-    ForFineOf(grid, band.factor, cx, cy, cz, [&](const Coord& f) {
-      const int64_t i = grid.Index(f);
-      if (grid.at(i) != kInsideFrozen) return;
-      grid.set(i, kInsideSoft);
-      ++released;
-    });
-  }
-  return released;
+  const int64_t count = static_cast<int64_t>(band.coarse_voxels.size());
+  // A range of coarse voxels a task: the coarse voxels are distinct, so each task writes fine
+  // voxels no other task reads or writes.
+  const int64_t tasks = threads <= 1 || count < kMinCoarseVoxelsToSplit
+                            ? 1
+                            : std::min<int64_t>(count, 4 * int64_t{threads});
+  std::vector<int64_t> released(static_cast<size_t>(tasks), 0);
+  RunTasks(threads, tasks, [&](int, int64_t task) {
+    int64_t n = 0;
+    for (int64_t j = count * task / tasks; j < count * (task + 1) / tasks; ++j) {
+      const int64_t c = band.coarse_voxels[static_cast<size_t>(j)];
+      const int cx = static_cast<int>(c % cd[0]), cy = static_cast<int>(c / cd[0] % cd[1]),
+                cz = static_cast<int>(c / (static_cast<int64_t>(cd[0]) * cd[1]));
+      ForFineOf(grid, band.factor, cx, cy, cz, [&](const Coord& f) {
+        const int64_t i = grid.Index(f);
+        if (grid.at(i) != kInsideFrozen) return;
+        grid.set(i, kInsideSoft);
+        ++n;
+      });
+    }
+    released[static_cast<size_t>(task)] = n;
+  });
+  int64_t total = 0;
+  for (int64_t n : released) total += n;
+  return total;
 }
 
 int64_t ReleaseInteriorGuard(VoxelGrid& grid, int threads) {

@@ -108,9 +108,10 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
 // Turns the band's frozen INSIDE voxels back to INSIDE soft (a chain freezes boundary voxels
 // only, so these are the guard's), leaving the core frozen: from the plate size
 // InteriorGuardOptions::band_release_below down, the plates that reach the skin work there as
-// they would without the guard. Does nothing unless band.held, which it clears. Returns how
-// many voxels it released.
-int64_t ReleaseGuardedBand(VoxelGrid& grid, GuardedBand& band);
+// they would without the guard. Does nothing unless band.held, which it clears. Runs on
+// `threads` (>= 1), a range of the band's coarse voxels a task: the same grid for any count.
+// Returns how many voxels it released.
+int64_t ReleaseGuardedBand(VoxelGrid& grid, GuardedBand& band, int threads = 1);
 
 // After the generations: every voxel still INSIDE and frozen is one GuardInteriors froze (a
 // chain freezes boundary voxels only, and a boundary voxel never turns inside again); they

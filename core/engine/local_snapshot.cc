@@ -5,17 +5,31 @@
 #include <cstring>
 
 #include "absl/types/span.h"
+#include "core/base/parallel_tasks.h"
+#include "core/base/split_sort.h"
 #include "core/engine/interior_plane.h"
 #include "core/engine/state_planes.h"
 #include "core/engine/voxel_state.h"
 
 namespace membrane {
+namespace {
+
+// Fewer bricks than this are computed on the calling thread: starting threads would cost more
+// than the bricks (a brick's box is some 40^3 voxels).
+constexpr int64_t kMinBricksToSplit = 16;
+
+}  // namespace
 
 std::optional<std::vector<int64_t>> LocalSnapshot::Take(int n, const std::vector<VoxelBox>& written,
                                                         const LocalSnapshotOptions& options,
                                                         const CancelToken& cancel) {
-  Release();
-  if (options.max_share <= 0 || options.brick < 1) return std::nullopt;
+  // The bricks' packed anchors are kept (resized below) and reassigned: their buffers serve
+  // again without allocations, a few thousand a pass.
+  slot_.clear();
+  if (options.max_share <= 0 || options.brick < 1) {
+    Release();
+    return std::nullopt;
+  }
   n_ = n;
   brick_ = options.brick;
   const std::array<int, 3>& dims = grid_.dims();
@@ -49,26 +63,49 @@ std::optional<std::vector<int64_t>> LocalSnapshot::Take(int n, const std::vector
     return std::nullopt;
   }
   bricks_.resize(marked.size());
-  std::vector<int64_t> candidates;
   for (size_t k = 0; k < marked.size(); ++k) {
-    if (cancel.cancelled()) {
-      Release();
-      return std::nullopt;
-    }
-    const int64_t b = marked[k];
-    slot_[static_cast<size_t>(b)] = static_cast<int32_t>(k);
-    const Coord core_lo{
-        static_cast<int>(b % brick_counts_[0]) * brick_,
-        static_cast<int>((b / brick_counts_[0]) % brick_counts_[1]) * brick_,
-        static_cast<int>(b / (static_cast<int64_t>(brick_counts_[0]) * brick_counts_[1])) *
-            brick_};
-    Compute(bricks_[k], core_lo, candidates);
+    slot_[static_cast<size_t>(marked[k])] = static_cast<int32_t>(k);
   }
-  std::sort(candidates.begin(), candidates.end());
+  // A range of bricks a task, a few ranges a thread so that ranges of busy bricks even out;
+  // each brick reads the grid and writes only its own planes and its range's candidates,
+  // which are joined in range order and sorted: the same list for any thread count.
+  const int threads = static_cast<int>(work_.size());
+  const int64_t count = static_cast<int64_t>(marked.size());
+  const int64_t tasks = threads <= 1 || count < kMinBricksToSplit
+                            ? 1
+                            : std::min<int64_t>(count, 8 * int64_t{threads});
+  std::vector<std::vector<int64_t>> found(static_cast<size_t>(tasks));
+  TaskCancel stop(cancel, threads, /*period=*/1);
+  RunTasks(threads, tasks, [&](int worker, int64_t task) {
+    for (int64_t k = count * task / tasks; k < count * (task + 1) / tasks; ++k) {
+      if (stop.Poll(worker)) return;
+      const int64_t b = marked[static_cast<size_t>(k)];
+      const Coord core_lo{
+          static_cast<int>(b % brick_counts_[0]) * brick_,
+          static_cast<int>((b / brick_counts_[0]) % brick_counts_[1]) * brick_,
+          static_cast<int>(b / (static_cast<int64_t>(brick_counts_[0]) * brick_counts_[1])) *
+              brick_};
+      Compute(bricks_[static_cast<size_t>(k)], core_lo, work_[static_cast<size_t>(worker)],
+              found[static_cast<size_t>(task)]);
+    }
+  });
+  if (stop.fired()) {
+    Release();
+    return std::nullopt;
+  }
+  size_t total = 0;
+  for (const std::vector<int64_t>& f : found) total += f.size();
+  std::vector<int64_t> joined;
+  joined.reserve(total);
+  for (const std::vector<int64_t>& f : found) joined.insert(joined.end(), f.begin(), f.end());
+  // The bricks' cores are disjoint: every candidate is listed once.
+  std::vector<int64_t> candidates(total);
+  MakeAndSortUnique(candidates, threads, [&](size_t i) { return joined[i]; });
   return candidates;
 }
 
-void LocalSnapshot::Compute(Brick& brick, const Coord& core_lo, std::vector<int64_t>& candidates) {
+void LocalSnapshot::Compute(Brick& brick, const Coord& core_lo, BoxPlanes& w,
+                            std::vector<int64_t>& candidates) const {
   const int n = n_;
   const std::array<int, 3>& dims = grid_.dims();
   // The core and n + 2 voxels around it: the anchors the core's candidates read (within n - 1
@@ -82,53 +119,53 @@ void LocalSnapshot::Compute(Brick& brick, const Coord& core_lo, std::vector<int6
   const int64_t nx = brick.dims[0], ny = brick.dims[1], nz = brick.dims[2];
   const int64_t size = nx * ny * nz;
   const int64_t st[3] = {1, nx, nx * ny};
-  for (FlatBitset* p : {&free_, &out_, &bs_, &free_z_, &out_z_, &free_sq_, &out_sq_, &covered_,
-                        &anchor_, &scratch_}) {
+  for (FlatBitset* p : {&w.free, &w.out, &w.bs, &w.free_z, &w.out_z, &w.free_sq, &w.out_sq,
+                        &w.covered, &w.anchor, &w.scratch}) {
     p->EnsureSize(size);
   }
   // The box's states, row by row, then its planes as the dense snapshot builds them; the
   // box's outermost layer (which holds the grid's border where the box reaches it) is
   // cleared from `free`: plates touching it are left out, as at the border.
-  bytes_.resize(static_cast<size_t>(size));
+  w.bytes.resize(static_cast<size_t>(size));
   const VoxelState* s = grid_.states().data();
   for (int64_t z = 0; z < nz; ++z)
     for (int64_t y = 0; y < ny; ++y) {
-      std::memcpy(bytes_.data() + nx * (y + ny * z),
+      std::memcpy(w.bytes.data() + nx * (y + ny * z),
                   s + grid_.Index(brick.lo.x, brick.lo.y + static_cast<int>(y),
                                   brick.lo.z + static_cast<int>(z)),
                   static_cast<size_t>(nx));
     }
-  const absl::Span<const VoxelState> box_states(bytes_);
-  FillStatePlane(box_states, StatePredicate::kBoundarySoft, bs_);
-  FillStatePlane(box_states, StatePredicate::kOutside, out_);
-  free_.AssignOr(bs_, out_);
-  ClearArrayBorder(brick.dims, free_);
+  const absl::Span<const VoxelState> box_states(w.bytes);
+  FillStatePlane(box_states, StatePredicate::kBoundarySoft, w.bs);
+  FillStatePlane(box_states, StatePredicate::kOutside, w.out);
+  w.free.AssignOr(w.bs, w.out);
+  ClearArrayBorder(brick.dims, w.free);
   // The dense snapshot's anchors (place_finder.cc), on the box.
-  free_z_.ErodeRunFrom(free_, n, st[2]);
-  out_z_.ErodeRunFrom(out_, n, st[2]);
-  FlatBitset& free_x = free_;
-  FlatBitset& out_x = out_;
+  w.free_z.ErodeRunFrom(w.free, n, st[2]);
+  w.out_z.ErodeRunFrom(w.out, n, st[2]);
+  FlatBitset& free_x = w.free;
+  FlatBitset& out_x = w.out;
   free_x.ErodeRun(n, st[0]);
   out_x.ErodeRun(n, st[0]);
-  covered_.clear_all();
+  w.covered.clear_all();
   for (int a = 0; a < 3; ++a) {
     const bool from_z = a != 2;
     const int last_axis = a == 1 ? 0 : 1;
-    free_sq_.ErodeRunFrom(from_z ? free_z_ : free_x, n, st[last_axis]);
-    out_sq_.ErodeRunFrom(from_z ? out_z_ : out_x, n, st[last_axis]);
+    w.free_sq.ErodeRunFrom(from_z ? w.free_z : free_x, n, st[last_axis]);
+    w.out_sq.ErodeRunFrom(from_z ? w.out_z : out_x, n, st[last_axis]);
     const int64_t su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
     for (int o = 2 * a; o < 2 * a + 2; ++o) {
-      anchor_.AssignAndShifted(free_sq_, out_sq_, kOrientations[o].sign * st[a]);
-      brick.anchors[static_cast<size_t>(o)].Assign(anchor_);
-      scratch_ = anchor_;
-      scratch_.DilateRun(n, sv);
-      scratch_.DilateRun(n, su);
-      covered_.Or(scratch_);
+      w.anchor.AssignAndShifted(w.free_sq, w.out_sq, kOrientations[o].sign * st[a]);
+      brick.anchors[static_cast<size_t>(o)].Assign(w.anchor);
+      w.scratch = w.anchor;
+      w.scratch.DilateRun(n, sv);
+      w.scratch.DilateRun(n, su);
+      w.covered.Or(w.scratch);
     }
   }
   // The core's candidates.
-  covered_.And(bs_);
-  covered_.ForEach([&](int64_t local) {
+  w.covered.And(w.bs);
+  w.covered.ForEach([&](int64_t local) {
     const int64_t x = local % nx, y = (local / nx) % ny, z = local / (nx * ny);
     const Coord c{brick.lo.x + static_cast<int>(x), brick.lo.y + static_cast<int>(y),
                   brick.lo.z + static_cast<int>(z)};

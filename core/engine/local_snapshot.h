@@ -36,8 +36,11 @@ struct LocalSnapshotOptions {
 
 class LocalSnapshot {
  public:
-  // Keeps a reference to `grid`, which must outlive the snapshot.
-  explicit LocalSnapshot(const VoxelGrid& grid) : grid_(grid) {}
+  // Keeps a reference to `grid`, which must outlive the snapshot. The bricks of a snapshot
+  // are computed on `threads` threads (>= 1), with the same candidates and places for any
+  // count.
+  explicit LocalSnapshot(const VoxelGrid& grid, int threads = 1)
+      : grid_(grid), work_(static_cast<size_t>(threads < 1 ? 1 : threads)) {}
 
   // Takes the snapshot for plate size n >= 1 on the bricks within 2n + 1 of `written`, the
   // boxes holding every voxel written since the last snapshot of the same plate size on this
@@ -65,8 +68,15 @@ class LocalSnapshot {
     return bx + static_cast<int64_t>(brick_counts_[0]) *
                     (by + static_cast<int64_t>(brick_counts_[1]) * bz);
   }
-  // Computes the anchors and candidates of `brick` (core [core_lo, core_lo + brick_)).
-  void Compute(Brick& brick, const Coord& core_lo, std::vector<int64_t>& candidates);
+  // The states and planes of the box being computed: one set per thread.
+  struct BoxPlanes {
+    std::vector<VoxelState> bytes;
+    FlatBitset free, out, bs, free_z, out_z, free_sq, out_sq, covered, anchor, scratch;
+  };
+  // Computes the anchors of `brick` (core [core_lo, core_lo + brick_)) in `w`, and appends
+  // the core's candidates to `candidates` in increasing voxel index.
+  void Compute(Brick& brick, const Coord& core_lo, BoxPlanes& w,
+               std::vector<int64_t>& candidates) const;
 
   const VoxelGrid& grid_;
   int n_ = 0;
@@ -74,9 +84,7 @@ class LocalSnapshot {
   std::array<int, 3> brick_counts_ = {0, 0, 0};
   std::vector<int32_t> slot_;  // per brick of the grid: its index in bricks_, or -1
   std::vector<Brick> bricks_;
-  // The states and planes of the box being computed.
-  std::vector<VoxelState> bytes_;
-  FlatBitset free_, out_, bs_, free_z_, out_z_, free_sq_, out_sq_, covered_, anchor_, scratch_;
+  std::vector<BoxPlanes> work_;  // per thread
 };
 
 }  // namespace membrane

@@ -14,6 +14,7 @@
 #include "core/engine/hole_opening.h"
 #include "core/engine/handle_retry.h"
 #include "core/engine/interior_guard.h"
+#include "core/engine/planes_ahead.h"
 #include "core/engine/plate_schedule.h"
 #include "core/engine/silhouette.h"
 
@@ -79,6 +80,10 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
   const Clock::time_point start = Clock::now();
   ShrinkResult result;
   if (options_.silhouette_preshrink) result.preshrink_outside_voxels = SilhouettePreshrink(grid_);
+  // On a grid big enough for the word passes' threads, the planes' first writes run beside the
+  // guard and the coarse plates, which use none of them (planes_ahead.h).
+  std::optional<PlanesAhead> ahead;
+  if (word_threads_ > 1) ahead.emplace(planes_, WorkPlanes::kArenaPlanes, cancel_);
   {
     absl::StatusOr<InteriorGuardStats> guard =
         GuardInteriors(grid_, options_, cancel_, &guarded_band_);
@@ -95,6 +100,7 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
     result.coarse_plates = *coarse;
     first = static_cast<size_t>(coarse->generations);
   }
+  ahead.reset();  // the planes are the generations' again
   Recount();
   // The strict rules decide as the default ones do until the first removal they would refuse
   // (a loose tunnel): the handle retry starts at the generation that made it, from the grid
@@ -158,16 +164,20 @@ absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_
     }
   }
   {
+    const Clock::time_point t = Clock::now();
     absl::StatusOr<GapRefillStats> refill =
         RefillGapChannels(grid_, options_.refill, cancel_, word_threads_);
     if (!refill.ok()) return refill.status();
     result.refill = *refill;
+    result.refill.seconds = SecondsSince(t);
   }
   if (options_.connect_inside_hard) {
+    const Clock::time_point t = Clock::now();
     absl::StatusOr<PostProcessStats> post =
         ConnectInsideHardVoxels(grid_, cancel_, /*max_path=*/64, word_threads_);
     if (!post.ok()) return post.status();
     result.post_process = *post;
+    result.post_process.seconds = SecondsSince(t);
   }
   result.seconds = SecondsSince(start);
   return result;
@@ -191,7 +201,7 @@ absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
                                              std::vector<GenerationStats>& rows) {
   const Clock::time_point t0 = Clock::now();
   if (guarded_band_.held && sizes_[g] < options_.interior_guard.band_release_below) {
-    ReleaseGuardedBand(grid_, guarded_band_);
+    ReleaseGuardedBand(grid_, guarded_band_, word_threads_);
   }
   GenerationStats stats;
   stats.generation = static_cast<int>(g) + 1;

@@ -205,7 +205,9 @@ class MembraneShrinker {
   // generation (on a 70 M voxel grid each pass costs as much as a small generation).
   StateCounts counts_;
   GuardedBand guarded_band_;  // the band GuardInteriors froze, released by plate size
-  WorkPlanes planes_;  // allocated at the first snapshot or closed form
+  // Made beside the guard on a grid with threaded word passes (PlanesAhead), else at the
+  // first snapshot or closed form.
+  WorkPlanes planes_;
   PlaceFinder finder_;
   ChainRunner runner_;
   std::optional<HardVoxelPoints> points_;  // when the thin-part exception or holes read them

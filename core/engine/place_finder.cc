@@ -12,7 +12,7 @@ namespace membrane {
 static_assert(kPlaceFinderPlanes <= WorkPlanes::kArenaPlanes);
 
 PlaceFinder::PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes)
-    : grid_(grid), planes_(planes), local_(grid) {}
+    : grid_(grid), planes_(planes), local_(grid, planes.threads()) {}
 
 std::optional<std::vector<int64_t>> PlaceFinder::SnapshotAfter(int n,
                                                                const std::vector<VoxelBox>& written,

@@ -33,7 +33,8 @@ class PlaceFinder {
  public:
   // Keeps references to `grid` and `planes` (made for that grid), which must outlive the
   // finder. A snapshot overwrites the first kPlaceFinderPlanes planes; PlaceFor reads only the
-  // finder's own packed copies, so other users may write the planes in between.
+  // finder's own packed copies, so other users may write the planes in between. A local
+  // snapshot's bricks are computed on the planes' threads.
   PlaceFinder(const VoxelGrid& grid, WorkPlanes& planes);
 
   // Takes a snapshot for plate size n >= 1 of the current grid: every plate whose cells are

@@ -16,6 +16,7 @@ struct PostProcessStats {
   int64_t inside_hard_after = 0;
   int64_t carved_voxels = 0;  // soft voxels made outside to reach them
   int64_t bridge_voxels = 0;  // voxels added by BridgeMembraneContacts
+  double seconds = 0;         // wall time of the post-process (set by the shrink that runs it)
 };
 
 // Makes the non-outside voxel `index` (not on the array border) outside with generation label 0

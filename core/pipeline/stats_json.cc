@@ -38,7 +38,8 @@ std::string PostProcessJson(const PostProcessStats& p) {
   return absl::StrCat("{\"inside_hard_before\": ", p.inside_hard_before,
                       ", \"inside_hard_after\": ", p.inside_hard_after,
                       ", \"carved_voxels\": ", p.carved_voxels,
-                      ", \"bridge_voxels\": ", p.bridge_voxels, "}");
+                      ", \"bridge_voxels\": ", p.bridge_voxels,
+                      ", \"seconds\": ", JsonNumber(p.seconds), "}");
 }
 
 std::string HandleRetryJson(const HandleRetry& h) {
@@ -79,7 +80,8 @@ std::string HoleOpeningJson(const HoleOpeningStats& h) {
 std::string GapRefillJson(const GapRefillStats& g) {
   return absl::StrCat("{\"refilled_voxels\": ", g.refilled_voxels,
                       ", \"pocket_voxels\": ", g.pocket_voxels,
-                      ", \"loops_closed\": ", g.loops_closed, "}");
+                      ", \"loops_closed\": ", g.loops_closed,
+                      ", \"seconds\": ", JsonNumber(g.seconds), "}");
 }
 
 std::string InteriorGuardJson(const InteriorGuardStats& g) {

@@ -95,12 +95,16 @@ RandomBox MakeRandomBox(const std::array<int, 3>& dims, int balls, uint32_t seed
   return g;
 }
 
-// SweepToFixedPoint from `start`, with the square planes of g's free cells.
-FlatBitset Sweep(const RandomBox& g, FlatBitset start, int n) {
+// SweepToFixedPoint from `start`, with the square planes of g's free cells, every plane's word
+// passes on `threads` threads.
+FlatBitset Sweep(const RandomBox& g, FlatBitset start, int n, int threads = 1) {
   const int64_t nv = g.box.size();
   FlatBitset squares[3] = {FlatBitset(nv), FlatBitset(nv), FlatBitset(nv)};
   FlatBitset* sq[3] = {&squares[0], &squares[1], &squares[2]};
   FlatBitset back(nv), reach(nv), reach_back(nv), scratch(nv);
+  for (FlatBitset* p : {sq[0], sq[1], sq[2], &back, &reach, &reach_back, &scratch, &start}) {
+    p->set_threads(threads);
+  }
   FreeSquares(g.free_cells, n, g.box, sq, scratch);
   const SweepPlanes planes{{sq[0], sq[1], sq[2]}, &back, &reach, &reach_back, &scratch};
   const std::optional<int> rounds = SweepToFixedPoint(start, n, g.box, planes, CancelToken::Never());
@@ -133,6 +137,27 @@ TEST(ClosedFormSweeps, ReachThePlateRulesLeastFixedPointFromAnyStartBelowIt) {
     }
   }
   EXPECT_EQ(grown, 30);  // every case had plates to apply
+}
+
+// Plates of 17 and more across rows of 129 voxels and more: the erosions and dilations along y
+// and z are the long runs' cell passes (flat_bitset_long_runs.cc), side by side on threads.
+TEST(ClosedFormSweeps, LongRunsReachTheLeastFixedPointOnAnyThreadCount) {
+  int grown = 0;
+  for (uint32_t seed = 1; seed <= 2; ++seed) {
+    const std::array<int, 3> dims = {131 + static_cast<int>(seed), 24, 23 + static_cast<int>(seed)};
+    const RandomBox g = MakeRandomBox(dims, 2, seed);
+    for (int n : {17, 19}) {
+      const FlatBitset truth = PlateByPlateFixedPoint(g.free_cells, g.out0, n, g.box);
+      for (int threads : {1, 3}) {
+        const FlatBitset swept = Sweep(g, g.out0, n, threads);
+        for (int64_t i = 0; i < g.box.size(); ++i)
+          ASSERT_EQ(swept.test(i), truth.test(i))
+              << "seed " << seed << " n " << n << " threads " << threads << " voxel " << i;
+      }
+      grown += truth.Count() > g.out0.Count();
+    }
+  }
+  EXPECT_EQ(grown, 4);  // every case had plates to apply
 }
 
 }  // namespace

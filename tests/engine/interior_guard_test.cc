@@ -153,7 +153,8 @@ TEST(InteriorGuard, LeavesATorusHoleFree) {
 }
 
 // The band is released once: the release turns its frozen voxels soft and clears `held`, and
-// a second call (the next generation below band_release_below) leaves the grid alone.
+// a second call (the next generation below band_release_below) leaves the grid alone. Split
+// over threads, the release gives the grid and the count of one thread.
 TEST(InteriorGuard, ReleasesTheBandOnce) {
   VoxelGrid grid = GridOf(SphereScan(100000, 0));
   GuardedBand band;
@@ -162,8 +163,15 @@ TEST(InteriorGuard, ReleasesTheBandOnce) {
   ASSERT_TRUE(stats.ok()) << stats.status();
   ASSERT_GT(stats->band_frozen, 0);
   EXPECT_TRUE(band.held);
+  // Enough coarse voxels to be split in ranges.
+  ASSERT_GT(band.coarse_voxels.size(), 4096u);
+  VoxelGrid on_threads = grid;
+  GuardedBand band_on_threads = band;
   EXPECT_EQ(ReleaseGuardedBand(grid, band), stats->band_frozen);
   EXPECT_FALSE(band.held);
+  EXPECT_EQ(ReleaseGuardedBand(on_threads, band_on_threads, 3), stats->band_frozen);
+  EXPECT_FALSE(band_on_threads.held);
+  EXPECT_TRUE(on_threads.states() == grid.states());
   // A voxel frozen again in the band (as a chain would freeze one) stays as it is.
   const int64_t c = band.coarse_voxels[band.coarse_voxels.size() / 2];
   const int cd0 = band.coarse_dims[0], cd1 = band.coarse_dims[1];

@@ -28,9 +28,11 @@ LocalSnapshotOptions AlwaysLocal(int brick) { return {.max_share = 1000, .brick 
 
 // Runs generations of chains of plate sizes `sizes` on `grid` as MembraneShrinker::RunChains
 // does, taking each pass's snapshot both near the last pass's writes and densely: the same
-// candidates and, for each, the same place. Returns the passes whose snapshot was local.
-int ExpectLocalPassesAsDense(VoxelGrid& grid, const std::vector<int>& sizes, int brick) {
-  WorkPlanes planes(grid), dense_planes(grid);
+// candidates and, for each, the same place. The local snapshots' bricks are computed on
+// `threads` threads, the dense snapshot on one. Returns the passes whose snapshot was local.
+int ExpectLocalPassesAsDense(VoxelGrid& grid, const std::vector<int>& sizes, int brick,
+                             int threads = 1) {
+  WorkPlanes planes(grid, threads), dense_planes(grid);
   PlaceFinder finder(grid, planes), dense(grid, dense_planes);
   ChainRunner runner(grid);
   ChainCounters counters;
@@ -50,7 +52,8 @@ int ExpectLocalPassesAsDense(VoxelGrid& grid, const std::vector<int>& sizes, int
         ADD_FAILURE() << "a snapshot failed";
         return local_passes;
       }
-      const std::string at = absl::StrCat("bricks of ", brick, ", n = ", sizes[g],
+      const std::string at = absl::StrCat("bricks of ", brick, " on ", threads,
+                                          " thread(s), n = ", sizes[g],
                                           (first ? ", first pass" : ", a later pass"),
                                           (finder.local() ? " (local)" : " (dense)"));
       EXPECT_EQ(*candidates, *expected) << at;
@@ -88,6 +91,18 @@ TEST(LocalSnapshots, EveryPassHasTheDenseCandidatesAndPlaces) {
     absl::StatusOr<Voxelization> voxels = Voxelize(cloud.points, {});
     ASSERT_TRUE(voxels.ok()) << voxels.status();
     EXPECT_GT(ExpectLocalPassesAsDense(voxels->grid, {7, 5, 3, 2, 1}, brick), 3);
+  }
+}
+
+TEST(LocalSnapshots, BricksOnThreadsHaveTheDenseCandidatesAndPlaces) {
+  // Small bricks: hundreds of them a pass, split in ranges over the threads.
+  const PointCloud cloud = SynthCloud("two-spheres", 12000);
+  for (int threads : {2, 3}) {
+    for (int brick : {2, 5}) {
+      absl::StatusOr<Voxelization> voxels = Voxelize(cloud.points, {});
+      ASSERT_TRUE(voxels.ok()) << voxels.status();
+      EXPECT_GT(ExpectLocalPassesAsDense(voxels->grid, {7, 5, 3, 2, 1}, brick, threads), 3);
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "core/engine/interior_plane.h"
+#include "core/engine/planes_ahead.h"
 
 #include "gtest/gtest.h"
 
@@ -69,6 +70,37 @@ TEST(WorkPlanes, CancelledBeforeAllocatingReturnsFalse) {
   CancelToken cancel;
   cancel.Cancel();
   EXPECT_FALSE(planes.Ensure(3, cancel));
+}
+
+TEST(PlanesAhead, MakesThePlanesZeroedOnAThreadOfTheirOwn) {
+  const VoxelGrid grid({170, 170, 170}, {0, 0, 0}, 1.0);
+  WorkPlanes planes(grid, 2);
+  {
+    PlanesAhead ahead(planes, WorkPlanes::kArenaPlanes, CancelToken::Never());
+    ahead.Wait();
+    for (int i = 0; i < WorkPlanes::kArenaPlanes; ++i) {
+      EXPECT_EQ(planes.plane(i).bits(), grid.size());
+      EXPECT_EQ(planes.plane(i).threads(), 2);
+      EXPECT_FALSE(planes.plane(i).any()) << "plane " << i;
+    }
+    planes.plane(0).set(7);
+  }  // the destructor after Wait joins nothing
+  // The planes are the caller's: kept as they were, none made twice.
+  ASSERT_TRUE(planes.Ensure(WorkPlanes::kArenaPlanes, CancelToken::Never()));
+  EXPECT_TRUE(planes.plane(0).test(7));
+}
+
+TEST(PlanesAhead, StoppedByTheTokenLeavesTheRestToEnsure) {
+  const VoxelGrid grid({9, 8, 7}, {0, 0, 0}, 1.0);
+  WorkPlanes planes(grid);
+  CancelToken cancel;
+  cancel.Cancel();
+  PlanesAhead(planes, 3, cancel).Wait();
+  ASSERT_TRUE(planes.Ensure(3, CancelToken::Never()));
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(planes.plane(i).bits(), grid.size());
+    EXPECT_FALSE(planes.plane(i).any()) << "plane " << i;
+  }
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 // Thin-walled open cups (issue 18): walls and bottom 2, 3, 4.5 and 8 voxels thick at the
 // formula-(1) voxel, shrunk at 1x, 1.25x, 1.5x and 2x that voxel, give one shell of genus 0,
-// with the inside open but for the 2-voxel wall at 1x and 2x. Walls of 2-5 voxels sampled at
-// about a point a voxel let the shrink dig into their core through the data gaps of both
-// faces; the plug left between two digs must not be opened as a hole (docs/engine-decisions.md
-// "Plugged holes opened from the data", the wall-core test).
+// with the inside open (three runs are still known misses, listed below). Walls of 2-5 voxels
+// sampled at about a point a voxel let the shrink dig into their core through the data gaps of
+// both faces; the plug left between two digs must not be opened as a hole
+// (docs/engine-decisions.md "Plugged holes opened from the data", the wall-core test).
 #include <cstdint>
 #include <string>
 #include <tuple>
@@ -62,6 +62,30 @@ TEST(CupBaseTest, ItsPointsAreReadInTheirHardVoxels) {
   EXPECT_GT(index.PlaneSpread(g, Coord{cx - 1, cy - 1, p}, Coord{cx + 1, cy + 1, p + 1}), 0.5);
 }
 
+// The runs still wrong (issue 18; docs/engine-decisions.md, the known limits of "Thin walls:
+// the faces each end sees"): each still runs and prints what it gives, and is reported as
+// skipped. A run in this list that comes out right fails, so that the list is kept to what is
+// still wrong.
+struct KnownCupMiss {
+  double wall_voxels;
+  double factor;
+  const char* reason;
+};
+constexpr KnownCupMiss kKnownCupMisses[] = {
+    {2.0, 1.0, "the inside stays filled: a wall sampled at about a point a voxel"},
+    {2.0, 2.0, "the inside stays filled: a wall 1 voxel thick, which the paper's own test reads"},
+    {3.0, 1.5,
+     "genus 1: the inside opens, and the hole opening carves a plug through the bottom where "
+     "the data of both faces have gaps (two voxels, as a narrow waist)"},
+};
+
+// The known miss of a cup, or nullptr.
+const KnownCupMiss* FindKnownCupMiss(double wall_voxels, double factor) {
+  for (const KnownCupMiss& k : kKnownCupMisses)
+    if (k.wall_voxels == wall_voxels && k.factor == factor) return &k;
+  return nullptr;
+}
+
 class CupTopologyTest : public ::testing::TestWithParam<std::tuple<double, double>> {};
 
 TEST_P(CupTopologyTest, OneShellOfGenusZeroWithTheInsideOpen) {
@@ -70,31 +94,32 @@ TEST_P(CupTopologyTest, OneShellOfGenusZeroWithTheInsideOpen) {
   auto run = ShrinkCloud(cloud, 1.0, {}, factor * CupVoxelSize(kCupPoints));
   ASSERT_TRUE(run.ok()) << run.status();
   EXPECT_TRUE(run->invariants.ok()) << run->Describe();
-  EXPECT_EQ(run->topology.shells, 1) << run->Describe();
-  // The 3-voxel cup at 1.5x: its inside opens, and the hole opening carves a plug through the
-  // bottom where the data of both faces have gaps (two voxels, as a narrow waist; known limit).
-  // Asserted as it is.
-  const bool plug_through_bottom = wall_voxels == 3 && factor == 1.5;
-  EXPECT_EQ(run->topology.genus, std::vector<int>{plug_through_bottom ? 1 : 0}) << run->Describe();
-  EXPECT_EQ(run->topology.cavities, 0) << run->Describe();
   // The voxels hold the wall and about a voxel more on each face; a filled inside holds the
   // cylinder's volume. Walls of 2 voxels or less at the run's voxel are read as thin walls by
   // the faces their thick-wall runs' two ends see (ChainRules::thin_wall_face_gap), so the big
   // plates carve the inside through the mouth; some frozen plates of smaller chains stay
-  // (up to 0.4 of the cylinder). Two stay filled (docs/engine-decisions.md, known limits of
-  // "Thin walls: the faces each end sees"): the 2-voxel wall at 1x, sampled at about a point
-  // a voxel, and at 2x, a wall 1 voxel thick that the paper's own test reads.
+  // (up to 0.4 of the cylinder).
   const double wall = wall_voxels * CupVoxelSize(kCupPoints);
   const double volume = MembraneVolume(run->voxels.grid);
-  if (wall_voxels / factor >= 3) {
-    EXPECT_GT(volume, CupSolidVolume(wall)) << run->Describe();
-    EXPECT_LT(volume, 2 * CupSolidVolume(wall)) << run->Describe();
-  } else if (wall_voxels == 2 && (factor == 1.0 || factor == 2.0)) {
-    EXPECT_GT(volume, 0.9 * CupCylinderVolume()) << run->Describe();
-  } else {
-    EXPECT_GT(volume, CupSolidVolume(wall)) << run->Describe();
-    EXPECT_LT(volume, 0.5 * CupCylinderVolume()) << run->Describe();
+  const double most = wall_voxels / factor >= 3 ? 2 * CupSolidVolume(wall)
+                                                : 0.5 * CupCylinderVolume();
+  const std::string what = absl::StrCat(run->Describe(), ", volume ", volume, " (solid ",
+                                        CupSolidVolume(wall), ", cylinder ",
+                                        CupCylinderVolume(), ")");
+  const bool right = run->topology.shells == 1 && run->topology.genus == std::vector<int>{0} &&
+                     run->topology.cavities == 0 && volume > CupSolidVolume(wall) &&
+                     volume < most;
+  if (const KnownCupMiss* miss = FindKnownCupMiss(wall_voxels, factor); miss != nullptr) {
+    EXPECT_FALSE(right) << what << ": a known miss came out right; remove it from "
+                        << "kKnownCupMisses";
+    if (!right) GTEST_SKIP() << "known miss (issue 18): " << what << " (" << miss->reason << ")";
+    return;
   }
+  EXPECT_EQ(run->topology.shells, 1) << what;
+  EXPECT_EQ(run->topology.genus, std::vector<int>{0}) << what;
+  EXPECT_EQ(run->topology.cavities, 0) << what;
+  EXPECT_GT(volume, CupSolidVolume(wall)) << what;
+  EXPECT_LT(volume, most) << what;
 }
 
 INSTANTIATE_TEST_SUITE_P(Walls, CupTopologyTest,

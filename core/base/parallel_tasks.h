@@ -23,6 +23,26 @@ namespace membrane {
 // with the workers it has.
 void RunTasks(int threads, int64_t tasks, absl::FunctionRef<void(int worker, int64_t task)> task);
 
+// [0, count) cut into `tasks` consecutive ranges of sizes differing by at most one, range t
+// being [begin(t), end(t)), for RunTasks(threads, ranges.tasks, ...) over a list whose items
+// are independent. A few ranges a thread even out ranges of unequal cost.
+struct TaskRanges {
+  // `per_thread` ranges a thread (>= 1), at most one an item; one range (the calling thread's)
+  // when threads <= 1 or count < min_split. count >= 0; count 0 gives one empty range.
+  static TaskRanges Split(int64_t count, int threads, int per_thread, int64_t min_split = 0) {
+    const int64_t tasks = threads <= 1 || count < min_split
+                              ? 1
+                              : std::clamp<int64_t>(int64_t{per_thread} * threads, 1,
+                                                    std::max<int64_t>(count, 1));
+    return TaskRanges{count, tasks};
+  }
+  int64_t begin(int64_t t) const { return count * t / tasks; }
+  int64_t end(int64_t t) const { return count * (t + 1) / tasks; }
+
+  int64_t count = 0;
+  int64_t tasks = 1;
+};
+
 // Cancellation inside RunTasks: every worker polls the caller's `cancel` (an atomic flag any
 // thread may read), and every worker sees the answer through a shared flag, so that the
 // workers all stop at once, whichever of them runs the tasks (on a loaded machine the calling

@@ -167,10 +167,11 @@ absl::StatusOr<int64_t> FreezeBandByWaves(VoxelGrid& grid, const std::array<int,
   // The bricks' reads and the waves' first step run a range of bricks a task: each task
   // writes only its own bricks' words (the freezes wait until every task is done, so no task
   // reads a state another writes).
-  const int64_t ranges = std::min<int64_t>(bands, 16 * int64_t{std::max(threads, 1)});
+  const TaskRanges split = TaskRanges::Split(bands, threads, 16);
+  const int64_t ranges = split.tasks;
   const auto range_of = [&](int64_t task) {
-    return std::pair<int32_t, int32_t>(static_cast<int32_t>(bands * task / ranges),
-                                       static_cast<int32_t>(bands * (task + 1) / ranges));
+    return std::pair<int32_t, int32_t>(static_cast<int32_t>(split.begin(task)),
+                                       static_cast<int32_t>(split.end(task)));
   };
   RunTasks(threads, ranges, [&](int, int64_t task) {
     const auto [first, end] = range_of(task);

@@ -199,16 +199,14 @@ int64_t ReleaseGuardedBand(VoxelGrid& grid, GuardedBand& band, int threads) {
   if (!band.held) return 0;
   band.held = false;
   const std::array<int, 3>& cd = band.coarse_dims;
-  const int64_t count = static_cast<int64_t>(band.coarse_voxels.size());
   // A range of coarse voxels a task: the coarse voxels are distinct, so each task writes fine
   // voxels no other task reads or writes.
-  const int64_t tasks = threads <= 1 || count < kMinCoarseVoxelsToSplit
-                            ? 1
-                            : std::min<int64_t>(count, 4 * int64_t{threads});
-  std::vector<int64_t> released(static_cast<size_t>(tasks), 0);
-  RunTasks(threads, tasks, [&](int, int64_t task) {
+  const TaskRanges ranges = TaskRanges::Split(static_cast<int64_t>(band.coarse_voxels.size()),
+                                              threads, 4, kMinCoarseVoxelsToSplit);
+  std::vector<int64_t> released(static_cast<size_t>(ranges.tasks), 0);
+  RunTasks(threads, ranges.tasks, [&](int, int64_t task) {
     int64_t n = 0;
-    for (int64_t j = count * task / tasks; j < count * (task + 1) / tasks; ++j) {
+    for (int64_t j = ranges.begin(task); j < ranges.end(task); ++j) {
       const int64_t c = band.coarse_voxels[static_cast<size_t>(j)];
       const int cx = static_cast<int>(c % cd[0]), cy = static_cast<int>(c / cd[0] % cd[1]),
                 cz = static_cast<int>(c / (static_cast<int64_t>(cd[0]) * cd[1]));

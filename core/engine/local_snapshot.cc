@@ -70,14 +70,12 @@ std::optional<std::vector<int64_t>> LocalSnapshot::Take(int n, const std::vector
   // each brick reads the grid and writes only its own planes and its range's candidates,
   // which are joined in range order and sorted: the same list for any thread count.
   const int threads = static_cast<int>(work_.size());
-  const int64_t count = static_cast<int64_t>(marked.size());
-  const int64_t tasks = threads <= 1 || count < kMinBricksToSplit
-                            ? 1
-                            : std::min<int64_t>(count, 8 * int64_t{threads});
-  std::vector<std::vector<int64_t>> found(static_cast<size_t>(tasks));
+  const TaskRanges ranges =
+      TaskRanges::Split(static_cast<int64_t>(marked.size()), threads, 8, kMinBricksToSplit);
+  std::vector<std::vector<int64_t>> found(static_cast<size_t>(ranges.tasks));
   TaskCancel stop(cancel, threads, /*period=*/1);
-  RunTasks(threads, tasks, [&](int worker, int64_t task) {
-    for (int64_t k = count * task / tasks; k < count * (task + 1) / tasks; ++k) {
+  RunTasks(threads, ranges.tasks, [&](int worker, int64_t task) {
+    for (int64_t k = ranges.begin(task); k < ranges.end(task); ++k) {
       if (stop.Poll(worker)) return;
       const int64_t b = marked[static_cast<size_t>(k)];
       const Coord core_lo{

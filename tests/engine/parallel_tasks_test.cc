@@ -1,5 +1,6 @@
 #include "core/base/parallel_tasks.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <thread>
@@ -50,6 +51,30 @@ TEST(ParallelTasks, WorkerZeroIsTheCallingThread) {
   });
   EXPECT_EQ(mismatches.load(), 0);
   EXPECT_GT(zero_tasks.load(), 0);
+}
+
+TEST(TaskRanges, CoverTheListInConsecutiveRangesOfNearlyEqualSize) {
+  for (int threads : {-1, 0, 1, 2, 3, 8})
+    for (int per_thread : {1, 4, 16})
+      for (int64_t count : {0, 1, 5, 16, 17, 1000, 1001}) {
+        const TaskRanges r = TaskRanges::Split(count, threads, per_thread, /*min_split=*/16);
+        SCOPED_TRACE(testing::Message() << "threads " << threads << " per thread " << per_thread
+                                        << " count " << count);
+        const int64_t expected =
+            threads <= 1 || count < 16 ? 1 : std::min<int64_t>(count, per_thread * threads);
+        ASSERT_EQ(r.tasks, expected);
+        EXPECT_EQ(r.begin(0), 0);
+        EXPECT_EQ(r.end(r.tasks - 1), count);
+        int64_t smallest = count, largest = 0;
+        for (int64_t t = 0; t < r.tasks; ++t) {
+          if (t > 0) {
+            EXPECT_EQ(r.begin(t), r.end(t - 1));
+          }
+          smallest = std::min(smallest, r.end(t) - r.begin(t));
+          largest = std::max(largest, r.end(t) - r.begin(t));
+        }
+        EXPECT_LE(largest - smallest, 1);
+      }
 }
 
 TEST(TaskCancel, AWorkerOtherThanTheCallingThreadSeesTheCancel) {

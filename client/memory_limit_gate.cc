@@ -4,6 +4,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "core/pipeline/memory_estimate.h"
 
 namespace membrane::client {
 namespace {
@@ -23,10 +24,16 @@ absl::Status CheckMemoryLimit(int64_t bytes, int64_t limit, const std::string& w
 absl::Status MemoryLimitGate::AdmitGrid(const PlannedGrid& grid, int64_t points,
                                         const CancelToken& /*cancel*/) {
   grid_ = grid;
+  if (limit_ <= 0 || grid.bytes <= limit_) return absl::OkStatus();
+  const double fitting = SmallestVoxelSizeWithin(grid, limit_);
+  const std::string advice =
+      fitting > 0 ? absl::StrFormat("; --voxel-size %.3g or larger fits (%.2f times this grid's)",
+                                    fitting, fitting / grid.voxel_size)
+                  : std::string("; use a larger --voxel-size");
   return CheckMemoryLimit(
       grid.bytes, limit_,
       absl::StrFormat("the grid of %d voxels and the %d points need", grid.voxels, points), "",
-      "; use a larger --voxel-size");
+      advice.c_str());
 }
 
 absl::Status MemoryLimitGate::AdmitSurface(const MembraneCounts& membrane,

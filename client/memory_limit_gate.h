@@ -19,8 +19,9 @@ class MemoryLimitGate : public ResourceGate {
       : limit_(limit_bytes), output_quantization_bits_(output_quantization_bits) {}
 
   // ResourceExhausted "the grid of V voxels and the P points need about B, over the memory
-  // limit of L (--memory-limit, ...); use a larger --voxel-size" when the grid's bytes are
-  // over the limit. Never waits.
+  // limit of L (--memory-limit, ...); --voxel-size S or larger fits (R times this grid's)"
+  // when the grid's bytes are over the limit (S: SmallestVoxelSizeWithin the limit; "; use a
+  // larger --voxel-size" when no size fits). Never waits.
   absl::Status AdmitGrid(const PlannedGrid& grid, int64_t points,
                          const CancelToken& cancel) override;
 

@@ -54,6 +54,8 @@ class MemoryBudget {
     int64_t bytes_ = 0;
   };
 
+  // The whole budget in bytes; <= 0: no limit.
+  int64_t total() const { return total_; }
   // The bytes reserved by all shares now (for the metrics).
   int64_t reserved() const ABSL_LOCKS_EXCLUDED(mutex_);
   // The shares waiting in Add now (for the metrics, and for tests to wait on).

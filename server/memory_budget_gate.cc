@@ -3,13 +3,20 @@
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "core/pipeline/memory_estimate.h"
 
 namespace membrane::server {
 
 absl::Status MemoryBudgetGate::AdmitGrid(const PlannedGrid& grid, int64_t /*points*/,
                                          const CancelToken& cancel) {
   grid_ = grid;
-  return share_.Add(grid.bytes, cancel);
+  absl::Status admission = share_.Add(grid.bytes, cancel);
+  if (!absl::IsResourceExhausted(admission) || grid.bytes <= budget_.total()) return admission;
+  const double fitting = SmallestVoxelSizeWithin(grid, budget_.total());
+  if (fitting <= 0) return admission;
+  return absl::ResourceExhaustedError(
+      absl::StrFormat("%s: %.3g or larger fits", admission.message(), fitting));
 }
 
 absl::Status MemoryBudgetGate::AdmitSurface(const MembraneCounts& membrane,

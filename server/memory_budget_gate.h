@@ -15,10 +15,12 @@ class MemoryBudgetGate : public ResourceGate {
   // destroyed: keep it until the job has ended. `output_quantization_bits` is the job's Draco
   // encoding's (0: none): the encoder's tables join the surface's share (SurfacePeakBytes).
   MemoryBudgetGate(MemoryBudget& budget, int output_quantization_bits)
-      : share_(budget), output_quantization_bits_(output_quantization_bits) {}
+      : budget_(budget), share_(budget), output_quantization_bits_(output_quantization_bits) {}
 
   // Adds the grid's bytes to the share (MemoryBudget::Share::Add: waits while other jobs hold
-  // the memory; its ResourceExhausted and Cancelled as they are).
+  // the memory; its ResourceExhausted and Cancelled as they are, but that a grid over the
+  // whole budget is told which voxel_size fits: "...; use a larger voxel_size: S or larger
+  // fits", S being SmallestVoxelSizeWithin the budget).
   absl::Status AdmitGrid(const PlannedGrid& grid, int64_t points,
                          const CancelToken& cancel) override;
 
@@ -29,6 +31,7 @@ class MemoryBudgetGate : public ResourceGate {
   absl::Status AdmitSurface(const MembraneCounts& membrane, const CancelToken& cancel) override;
 
  private:
+  MemoryBudget& budget_;
   MemoryBudget::Share share_;
   const int output_quantization_bits_;
   PlannedGrid grid_;  // admitted by AdmitGrid

@@ -1,6 +1,7 @@
 #include "core/pipeline/memory_estimate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -113,16 +114,53 @@ absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOpti
       return s;
     }
   }
-  double voxels = 1;
-  for (const double side : bounds->Extent()) {
-    voxels *= std::floor(side / plan.voxel_size) + 1 + 2 * VoxelGrid::kPadding;
-  }
-  plan.voxels = static_cast<int64_t>(std::min(voxels, 9e18));
+  plan.voxels = PlannedVoxelCount(*bounds, plan.voxel_size);
   plan.points = static_cast<int64_t>(cloud.points.size());
   const int64_t counted =
       voxelize.voxel_budget > 0 ? std::min(plan.voxels, voxelize.voxel_budget) : plan.voxels;
   plan.bytes = GridBytesEstimate(counted, plan.points);
   return plan;
+}
+
+int64_t PlannedVoxelCount(const Box3d& bounds, double voxel_size) {
+  double voxels = 1;
+  for (const double side : bounds.Extent()) {
+    voxels *= std::floor(side / voxel_size) + 1 + 2 * VoxelGrid::kPadding;
+  }
+  return static_cast<int64_t>(std::min(voxels, 9e18));
+}
+
+double SmallestVoxelSizeWithin(const PlannedGrid& grid, int64_t limit_bytes,
+                               int64_t voxel_budget) {
+  // A plan whose box does not give its voxels was not made by PlanGrid: nothing to scale.
+  if (limit_bytes <= 0 || !(grid.voxel_size > 0) ||
+      PlannedVoxelCount(grid.bounds, grid.voxel_size) != grid.voxels) {
+    return 0;
+  }
+  const auto fits = [&](double size) {
+    const int64_t voxels = PlannedVoxelCount(grid.bounds, size);
+    return GridBytesEstimate(voxels, grid.points) <= limit_bytes &&
+           (voxel_budget <= 0 || voxels <= voxel_budget);
+  };
+  if (fits(grid.voxel_size)) return grid.voxel_size;
+  // The bytes fall as the size grows (each side's count is a floor): double it up to the size
+  // that makes the box one voxel wide, then halve the interval to where it starts to fit.
+  const std::array<double, 3> extent = grid.bounds.Extent();
+  const double widest = std::max({extent[0], extent[1], extent[2]});
+  double over = grid.voxel_size, within = grid.voxel_size;
+  while (!fits(within)) {
+    over = within;
+    within *= 2;
+    if (within > 2 * widest) return 0;
+  }
+  for (int step = 0; step < 60 && within - over > 1e-6 * within; ++step) {
+    const double middle = (over + within) / 2;
+    (fits(middle) ? within : over) = middle;
+  }
+  // Up to three significant digits, as the advice prints it: larger, so it still fits.
+  const double unit = std::pow(10.0, std::floor(std::log10(within)) - 2);
+  const double rounded = std::ceil(within / unit * (1 - 1e-12)) * unit;
+  return fits(rounded) ? rounded : within;
 }
 
 absl::Status CheckMemoryCeiling(const PlannedGrid& grid, int64_t ceiling_bytes) {
@@ -136,11 +174,13 @@ absl::Status CheckMemoryCeiling(const PlannedGrid& grid, int64_t ceiling_bytes) 
     what = absl::StrFormat("the ceiling of %s", BytesText(ceiling_bytes));
   }
   if (ceiling_bytes <= 0 || grid.bytes <= ceiling_bytes) return absl::OkStatus();
+  const double fitting = SmallestVoxelSizeWithin(grid, ceiling_bytes);
   return absl::ResourceExhaustedError(absl::StrFormat(
       "voxel size %g gives a grid of %.3g voxels: with the %d points it needs about %s, more "
-      "than %s",
+      "than %s%s",
       grid.voxel_size, static_cast<double>(grid.voxels), grid.points, BytesText(grid.bytes),
-      what));
+      what,
+      fitting > 0 ? absl::StrFormat(" (voxel size %.3g or larger fits)", fitting) : ""));
 }
 
 StageBytes EstimateStageBytes(int64_t voxels, int64_t points, const MembraneCounts& membrane) {

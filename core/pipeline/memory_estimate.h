@@ -59,9 +59,22 @@ absl::StatusOr<PlannedGrid> PlanGrid(const PointCloud& cloud, const VoxelizeOpti
                                      const CancelToken& cancel = CancelToken::Never(),
                                      const std::optional<Box3d>& grid_box = std::nullopt);
 
+// The voxels of a grid on `bounds` with voxels of `voxel_size` > 0, padding included, as
+// PlanGrid counts them (saturating at 9e18).
+int64_t PlannedVoxelCount(const Box3d& bounds, double voxel_size);
+
+// For a refusal's advice: the smallest voxel size at or above grid.voxel_size, given to three
+// significant digits, whose grid on grid.bounds (PlannedVoxelCount) with grid.points has a
+// GridBytesEstimate within `limit_bytes` and, when voxel_budget > 0, at most that many voxels.
+// grid.voxel_size itself when it fits; 0 when no size does (the points alone are over the
+// limit, or a limit <= 0) or the plan is not PlanGrid's (grid.voxels is not its box's count).
+double SmallestVoxelSizeWithin(const PlannedGrid& grid, int64_t limit_bytes,
+                               int64_t voxel_budget = 0);
+
 // The most a planned grid may need whatever the run's gate admits: ResourceExhausted "voxel size
 // L gives a grid of V voxels: with the P points it needs about B, more than the M of memory
-// this machine has (SOURCE)" when `grid.bytes` is over the ceiling. `ceiling_bytes` -1: the
+// this machine has (SOURCE) (voxel size S or larger fits)" when `grid.bytes` is over the
+// ceiling, S being SmallestVoxelSizeWithin the ceiling (left out when none fits). `ceiling_bytes` -1: the
 // machine's memory (ReadMachineMemory's total_bytes; no check when unknown); 0: none; else the
 // ceiling itself (named "the ceiling of M" then). Such a grid could never be allocated: without
 // this check a run without a memory limit would end in the kernel's OOM killer instead.

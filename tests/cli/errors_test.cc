@@ -230,6 +230,27 @@ TEST_F(ErrorsTest, GridOverTheMemoryLimitIsRefusedBeforeVoxelizing) {
   EXPECT_THAT(r.err, ::testing::Not(HasSubstr("voxelize:")));
 }
 
+// The refusal names the smallest --voxel-size whose grid fits the limit, and at that size the
+// grid is admitted. (Far below formula (1)'s size, as here, the membrane of a sparse cloud is
+// a foam whose surface the limit may still refuse, with its own message.)
+TEST_F(ErrorsTest, AGridOverTheMemoryLimitNamesTheVoxelSizeThatFits) {
+  const std::string cloud = SphereCloud();
+  const CliResult r = Run({"reconstruct", cloud, "-o", dir_.File("out.ply"), "--local",
+                           "--quiet", "--voxel-size", "0.001", "--memory-limit", "80000000"});
+  EXPECT_EQ(r.exit_code, 3);
+  ASSERT_THAT(ErrorLines(r.err),
+              ElementsAre(AllOf(HasSubstr("over the memory limit of 80 MB"),
+                                HasSubstr("; --voxel-size "), HasSubstr(" or larger fits ("),
+                                HasSubstr(" times this grid's)"))));
+  const std::string line = ErrorLines(r.err).front();
+  const size_t at = line.find("; --voxel-size ") + std::string("; --voxel-size ").size();
+  const std::string size = line.substr(at, line.find(' ', at) - at);
+  ASSERT_GT(std::stod(size), 0.001) << line;
+  const CliResult fits = Run({"reconstruct", cloud, "-o", dir_.File("out.ply"), "--local",
+                              "--voxel-size", size, "--memory-limit", "80000000"});
+  EXPECT_THAT(fits.err, AllOf(HasSubstr("voxelize:"), Not(HasSubstr("the grid of"))));
+}
+
 TEST_F(ErrorsTest, MemoryLimitIsForLocalRunsAndNamesItsRange) {
   const CliResult remote = Run({"reconstruct", SphereCloud(), "-o", dir_.File("out.ply"),
                                 "--memory-limit", "100000"});

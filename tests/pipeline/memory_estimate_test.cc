@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 
+#include "absl/strings/str_format.h"
 #include "core/engine/voxelization.h"
 #include "core/pipeline/memory_estimate.h"
 #include "core/synth/synthesize.h"
@@ -159,6 +161,56 @@ TEST(CheckMemoryCeiling, RefusesWhatNoMachineOfThatSizeHolds) {
                                ::testing::HasSubstr("50000000 points"),
                                ::testing::HasSubstr("the ceiling of 25.8 GB")));
   EXPECT_TRUE(CheckMemoryCeiling(fifty_million, 0).ok());  // none
+}
+
+// A plan as PlanGrid makes it on a box of 2.6 x 2.6 x 0.6 (a flat torus's), with formula
+// (1)'s size for 50M points on such a torus.
+PlannedGrid TorusPlan(double voxel_size, int64_t points) {
+  PlannedGrid plan;
+  plan.bounds = Box3d{{-1.3, -1.3, -0.3}, {1.3, 1.3, 0.3}};
+  plan.voxel_size = voxel_size;
+  plan.voxels = PlannedVoxelCount(plan.bounds, voxel_size);
+  plan.points = points;
+  plan.bytes = GridBytesEstimate(plan.voxels, points);
+  return plan;
+}
+
+bool Fits(const PlannedGrid& plan, double size, int64_t limit, int64_t voxel_budget = 0) {
+  const int64_t voxels = PlannedVoxelCount(plan.bounds, size);
+  return GridBytesEstimate(voxels, plan.points) <= limit &&
+         (voxel_budget <= 0 || voxels <= voxel_budget);
+}
+
+// The advice of a refusal: the smallest size whose grid fits, in three significant digits,
+// so that the size printed is one that fits and one a hundredth smaller does not.
+TEST(SmallestVoxelSizeWithin, IsTheSmallestThreeDigitSizeThatFits) {
+  const PlannedGrid plan = TorusPlan(0.00070775, 50'000'000);
+  for (const int64_t limit : {int64_t{20} << 30, int64_t{8} << 30, int64_t{4} << 30}) {
+    for (const int64_t budget : {int64_t{0}, int64_t{1'000'000'000}}) {
+      SCOPED_TRACE(::testing::Message() << "limit " << limit << " voxel budget " << budget);
+      const double size = SmallestVoxelSizeWithin(plan, limit, budget);
+      ASSERT_GT(size, plan.voxel_size);
+      EXPECT_TRUE(Fits(plan, size, limit, budget));
+      EXPECT_FALSE(Fits(plan, 0.99 * size, limit, budget));
+      const double unit = std::pow(10.0, std::floor(std::log10(size)) - 2);
+      EXPECT_NEAR(size / unit, std::round(size / unit), 1e-6) << size;
+    }
+  }
+  // A coarser grid on the same box that fits 20 GB as it is.
+  const PlannedGrid ten_million = TorusPlan(0.0015826, 10'000'000);
+  EXPECT_EQ(SmallestVoxelSizeWithin(ten_million, int64_t{20} << 30), 0.0015826);
+  // No size fits when the points alone are over the limit, nor for a plan with no box.
+  EXPECT_EQ(SmallestVoxelSizeWithin(plan, 1000), 0);
+  EXPECT_EQ(SmallestVoxelSizeWithin(Plan(0.00070775, 24'170'000'000, 50'000'000), 8LL << 30), 0);
+}
+
+TEST(CheckMemoryCeiling, NamesTheVoxelSizeThatFits) {
+  const absl::Status refused =
+      CheckMemoryCeiling(TorusPlan(0.00070775, 50'000'000), int64_t{24} << 30);
+  EXPECT_EQ(refused.code(), absl::StatusCode::kResourceExhausted);
+  const double fits = SmallestVoxelSizeWithin(TorusPlan(0.00070775, 50'000'000), 24LL << 30);
+  EXPECT_THAT(std::string(refused.message()),
+              ::testing::HasSubstr(absl::StrFormat("(voxel size %.3g or larger fits)", fits)));
 }
 
 TEST(CheckMemoryCeiling, TheDefaultIsTheMachinesMemory) {

@@ -4,12 +4,16 @@
 #include <algorithm>
 #include <atomic>
 #include <optional>
+#include <string>
 #include <thread>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "absl/strings/str_format.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/clock.h"
+#include "core/pipeline/memory_estimate.h"
 #include "server/memory_budget.h"
 #include "server/memory_budget_gate.h"
 
@@ -154,6 +158,30 @@ TEST(MemoryBudgetGate, ALargeSurfaceTakesItsPeak) {
   foam.soft_voxels = 900'000;
   ASSERT_TRUE(gate.AdmitSurface(foam, CancelToken()).ok());
   EXPECT_EQ(budget.reserved(), SurfaceBytesEstimate(grid, foam));
+}
+
+// A grid over the whole budget is told the voxel_size whose grid fits it; one over what other
+// jobs leave free waits instead (MemoryBudget's tests).
+TEST(MemoryBudgetGate, AGridOverTheWholeBudgetNamesTheVoxelSizeThatFits) {
+  PlannedGrid grid;
+  grid.bounds = Box3d{{0, 0, 0}, {1, 1, 1}};
+  grid.voxel_size = 0.001;
+  grid.voxels = PlannedVoxelCount(grid.bounds, grid.voxel_size);
+  grid.points = 1'000'000;
+  grid.bytes = GridBytesEstimate(grid.voxels, grid.points);
+  const int64_t total = int64_t{1} << 30;
+  ASSERT_GT(grid.bytes, total);
+  MemoryBudget budget(total);
+  MemoryBudgetGate gate(budget, 0);
+  const absl::Status refused = gate.AdmitGrid(grid, grid.points, CancelToken());
+  EXPECT_EQ(refused.code(), absl::StatusCode::kResourceExhausted);
+  const double fits = SmallestVoxelSizeWithin(grid, total);
+  ASSERT_GT(fits, grid.voxel_size);
+  EXPECT_THAT(std::string(refused.message()),
+              ::testing::AllOf(::testing::HasSubstr("over the server's memory budget"),
+                               ::testing::EndsWith(absl::StrFormat(
+                                   "; use a larger voxel_size: %.3g or larger fits", fits))));
+  EXPECT_EQ(budget.reserved(), 0);
 }
 
 TEST(MemoryBudgetGate, ASurfaceOverTheBudgetNamesTheMembrane) {

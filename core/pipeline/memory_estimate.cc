@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include "absl/status/status.h"
@@ -157,10 +158,15 @@ double SmallestVoxelSizeWithin(const PlannedGrid& grid, int64_t limit_bytes,
     const double middle = (over + within) / 2;
     (fits(middle) ? within : over) = middle;
   }
-  // Up to three significant digits, as the advice prints it: larger, so it still fits.
+  // Up to three significant digits, as the advice prints it, and read back as a user would
+  // type it: the decimal, not the double it was printed from, must fit.
   const double unit = std::pow(10.0, std::floor(std::log10(within)) - 2);
-  const double rounded = std::ceil(within / unit * (1 - 1e-12)) * unit;
-  return fits(rounded) ? rounded : within;
+  double rounded = std::ceil(within / unit * (1 - 1e-12)) * unit;
+  for (int bump = 0; bump < 3; ++bump, rounded += unit) {
+    const double typed = std::strtod(absl::StrFormat("%.3g", rounded).c_str(), nullptr);
+    if (fits(typed)) return typed;
+  }
+  return within;
 }
 
 absl::Status CheckMemoryCeiling(const PlannedGrid& grid, int64_t ceiling_bytes) {

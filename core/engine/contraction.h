@@ -37,10 +37,11 @@ struct ChainRules {
   // thin_part_min_spread voxels from their best plane (data on both sides; 0 = not read).
   int thick_wall_detour = 4;
   double thin_part_min_spread = 0.25;
-  // A run of at most thin_wall_face_max_run hard voxels whose two ends face surfaces at least
-  // thin_wall_face_gap voxels apart (thin_wall_faces.h) is a thin part whatever the detour,
-  // for plates of thin_wall_face_min_plate and more: the chains that carve a thin-walled
-  // container's inside through its mouth (incursion_test.h; 0 = not read).
+  // A run of at most thin_wall_face_max_run hard voxels (the paper's test's one voxel
+  // included) whose two ends face surfaces at least thin_wall_face_gap voxels apart
+  // (thin_wall_faces.h) is a thin part whatever the detour, for plates of
+  // thin_wall_face_min_plate and more: the chains that carve a thin-walled container's inside
+  // through its mouth (incursion_test.h; 0 = not read).
   double thin_wall_face_gap = 0.6;
   int thin_wall_face_min_plate = 20;
   int thin_wall_face_max_run = 2;

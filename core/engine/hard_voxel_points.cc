@@ -161,7 +161,8 @@ double HardVoxelPoints::NearestDistance(const VoxelGrid& grid, const Coord& c, i
 }
 
 bool HardVoxelPoints::FacingPatch(const VoxelGrid& grid, const Coord& c, int radius,
-                                  double band, Patch& patch) const {
+                                  double band, int min_count, double max_band,
+                                  Patch& patch) const {
   Coord a, b;
   CubeAround(grid, c, radius, a, b);
   const double cx = c.x + 0.5, cy = c.y + 0.5, cz = c.z + 0.5;
@@ -169,14 +170,30 @@ bool HardVoxelPoints::FacingPatch(const VoxelGrid& grid, const Coord& c, int rad
     const double x = p[0] - cx, y = p[1] - cy, z = p[2] - cz;
     return x * x + y * y + z * z;
   };
-  // Two passes over a few voxels' points: the nearest first, then the band beyond it.
-  double nearest2 = -1;
+  // Two passes over a few voxels' points: the min_count nearest first (ascending, -1 where
+  // fewer were read), then the band beyond the nearest.
+  constexpr int kMaxCount = 8;
+  const int k = std::clamp(min_count, 1, kMaxCount);
+  std::array<double, kMaxCount> nearest2;
+  nearest2.fill(-1);
   ForEachPoint(grid, a, b, [&](const std::array<float, 3>& p) {
-    const double d2 = distance2(p);
-    if (nearest2 < 0 || d2 < nearest2) nearest2 = d2;
+    double d2 = distance2(p);
+    for (int j = 0; j < k; ++j) {
+      if (nearest2[j] < 0) {
+        nearest2[j] = d2;
+        return;
+      }
+      if (d2 < nearest2[j]) std::swap(d2, nearest2[j]);
+    }
   });
-  if (nearest2 < 0) return false;
-  const double reach = std::sqrt(nearest2) + band;
+  if (nearest2[0] < 0) return false;
+  const double nearest = std::sqrt(nearest2[0]);
+  // The band, or as far as the min_count-th nearest point (all read when fewer) within
+  // max_band.
+  double farthest2 = nearest2[0];
+  for (int j = 0; j < k && nearest2[j] >= 0; ++j) farthest2 = nearest2[j];
+  const double reach =
+      nearest + std::clamp(std::sqrt(farthest2) - nearest, band, std::max(band, max_band));
   const double reach2 = reach * reach;
   // Sums relative to the voxel's centre, so that they stay small.
   double n = 0;

@@ -59,8 +59,11 @@ class HardVoxelPoints {
 
   // The patch of data seen from voxel `c`: the points, among those of the voxels within
   // Chebyshev distance `radius` of it, that lie within `band` voxels more than the nearest of
-  // them from its centre. Seen from an outside voxel beside the data, that is the surface it
-  // faces: its foot on one sheet, not a mean over a wall's two faces.
+  // them from its centre, or, when fewer than `min_count` (at most 8) lie there, within as
+  // far as the min_count-th nearest, up to `max_band` more than the nearest. Seen from an
+  // outside voxel beside the data, that is the surface it faces: its foot on one sheet, not a
+  // mean over a wall's two faces; on a face sampled at a point a voxel the band alone holds a
+  // point or two, too few for the face's plane.
   struct Patch {
     double count = 0;
     std::array<double, 3> mean{};  // voxels from the grid's origin
@@ -68,7 +71,7 @@ class HardVoxelPoints {
   };
   // False when those voxels hold no point.
   bool FacingPatch(const VoxelGrid& grid, const Coord& c, int radius, double band,
-                   Patch& patch) const;
+                   int min_count, double max_band, Patch& patch) const;
 
   // The grid indices of the voxels holding points, ascending: a voxel's rank is its position.
   absl::Span<const int64_t> voxels() const { return voxels_; }

@@ -252,9 +252,12 @@ absl::StatusOr<HoleOpeningStats> OpenPluggedHoles(VoxelGrid& grid,
       if (stats.opened + stats.refused >= options.max_openings) return false;
       if (!finder.Walk(i, dir, plug) || !finder.Surrounded(plug)) continue;
       const int64_t mid = plug.path[(plug.path.size() - 1) / 2];
-      if (options.wall_core_depth > 0 &&
-          PlugInsideWallCore(grid, mid, plug.dir, options.ring_radius,
-                             options.wall_core_depth)) {
+      if ((options.wall_core_depth > 0 &&
+           PlugInsideWallCore(grid, mid, plug.dir, options.ring_radius,
+                              options.wall_core_depth)) ||
+          (options.wall_faces_spread > 0 &&
+           PlugBetweenWallFaces(grid, *points, mid, plug.dir, options.ring_radius,
+                                options.narrow_steps, options.wall_faces_spread))) {
         ++stats.wall_cores;
         continue;
       }

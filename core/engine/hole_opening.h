@@ -68,12 +68,19 @@ struct HoleOpeningOptions {
   // between digs through the data gaps of the wall's two faces (PlugInsideWallCore); 0: not
   // tested.
   int wall_core_depth = 3;
+  // Nor is it when, past a narrow waist, the points of the 3x3x3 block around more than half
+  // of the hard voxels those rays meet lie at least wall_faces_spread voxels from their best
+  // plane: the two faces of a wall thinner than the block, crossed through data gaps of both
+  // (PlugBetweenWallFaces; the thin-part exception's two surfaces, ChainRules::
+  // thin_part_min_spread); 0: not tested.
+  double wall_faces_spread = 0.25;
 };
 
 struct HoleOpeningStats {
   int64_t opened = 0;         // plugs carved, each one more handle
   int64_t refused = 0;        // plugs whose carving would not add exactly one handle (undone)
   int64_t wall_cores = 0;     // plugs that passed the data tests but lie in a wall's core
+                              // (or between a thin wall's faces)
   int64_t carved_voxels = 0;  // voxels turned outside
   int64_t whole_grid_counts = 0;  // plugs whose topology change was counted over the grid,
                                   // not around the plug (CountCarveLocally undecided)

@@ -82,13 +82,20 @@ bool ThinPartData(const VoxelGrid& grid, int64_t index, int d, int lo, int hi,
   return thin.points->PlaneSpread(grid, a, b) >= thin.min_spread;
 }
 
+// Whether the outside voxels a and b at the two ends of a run face the two faces of a thin
+// wall (ThinPartRule::min_face_gap; FacingGap).
+bool FacesOfAThinWall(const VoxelGrid& grid, int64_t a, int64_t b, const ThinPartRule& thin) {
+  return thin.min_face_gap > 0 && thin.points != nullptr &&
+         FacingGap(grid, *thin.points, grid.CoordOf(a), grid.CoordOf(b)) >= thin.min_face_gap;
+}
+
 }  // namespace
 
 bool OutsideJoinedInCube(const VoxelGrid& grid, int64_t centre, int64_t a, int64_t b, int r) {
   return JoinedInCube(grid, centre, a, b, r);
 }
 
-bool PaperIncursion(const VoxelGrid& grid, int64_t index) {
+bool PaperIncursion(const VoxelGrid& grid, int64_t index, const ThinPartRule& thin) {
   const auto st = grid.strides();
   const VoxelState* s = grid.states().data() + index;
   uint32_t outside = 0;
@@ -103,7 +110,11 @@ bool PaperIncursion(const VoxelGrid& grid, int64_t index) {
     const int off[3] = {d == 0, d == 1, d == 2};
     const uint32_t bit_a = 1u << NeighbourBit(-off[0], -off[1], -off[2]);
     const uint32_t bit_b = 1u << NeighbourBit(off[0], off[1], off[2]);
-    if ((Flood6(bit_a, outside) & bit_b) == 0) return true;
+    if ((Flood6(bit_a, outside) & bit_b) != 0) continue;
+    // A wall of one voxel with data on both of its faces: a thin part, as a thick-wall run's.
+    if (thin.face_max_run >= 1 && FacesOfAThinWall(grid, index - st[d], index + st[d], thin))
+      continue;
+    return true;
   }
   return false;
 }
@@ -141,9 +152,8 @@ bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run,
     }
     // Data on both faces of a wall, seen from its two ends: the two sides of a thin wall,
     // however far around they meet.
-    if (thin.min_face_gap > 0 && thin.points != nullptr && hi - lo + 1 <= thin.face_max_run &&
-        FacingGap(grid, *thin.points, grid.CoordOf(index + (lo - 1) * sd),
-                  grid.CoordOf(index + (hi + 1) * sd)) >= thin.min_face_gap) {
+    if (hi - lo + 1 <= thin.face_max_run &&
+        FacesOfAThinWall(grid, index + (lo - 1) * sd, index + (hi + 1) * sd, thin)) {
       continue;
     }
     return true;

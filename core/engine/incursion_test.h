@@ -9,19 +9,14 @@
 
 namespace membrane {
 
-// The paper's test on the hard or frozen, non-outside voxel at `index`: for some axis, its two
-// face neighbours A and B are outside with different generations and are not local-arc
-// connected (no 6-path of outside voxels joins them inside the 3x3x3 block around the voxel).
-// `index` must lie at least one voxel from the array border.
-bool PaperIncursion(const VoxelGrid& grid, int64_t index);
-
 // Whether the outside voxels a and b are joined by a 6-path of outside voxels inside the cube
 // of Chebyshev radius r around `centre` (clipped to the array): false when a or b lies outside
 // the cube. A breadth-first search over at most (2r + 1)^3 voxels.
 bool OutsideJoinedInCube(const VoxelGrid& grid, int64_t centre, int64_t a, int64_t b, int r);
 
-// When a thick-wall run is taken for a thin part rather than a wall with a dig behind it
-// (ChainRules::thick_wall_detour and thin_part_min_spread).
+// When a thick-wall run (or, for the facing gap, the paper's wall of one voxel) is taken for a
+// thin part rather than a wall with a dig behind it (ChainRules::thick_wall_detour,
+// thin_part_min_spread and thin_wall_face_*).
 struct ThinPartRule {
   int detour = 0;          // radius (voxels) within which the run's ends must be joined; 0 = never
   double min_spread = 0;   // least PlaneSpread of the run's points (voxels); 0 = not read
@@ -31,6 +26,15 @@ struct ThinPartRule {
   double min_face_gap = 0;
   int face_max_run = 2;
 };
+
+// The paper's test on the hard or frozen, non-outside voxel at `index`: for some axis, its two
+// face neighbours A and B are outside with different generations and are not local-arc
+// connected (no 6-path of outside voxels joins them inside the 3x3x3 block around the voxel),
+// and, when thin.min_face_gap > 0 and thin.face_max_run >= 1, the surfaces A and B face do not
+// lie that far apart (FacingGap): a wall of one voxel with data on both of its faces is a
+// thin part, as ThickWallIncursion's runs (a thin-walled cup at twice its wall's voxel).
+// `index` must lie at least one voxel from the array border.
+bool PaperIncursion(const VoxelGrid& grid, int64_t index, const ThinPartRule& thin = {});
 
 // The thick-wall extension: for some axis, the run of hard or frozen non-outside voxels through
 // the voxel (at most `max_run` long) is longer than one, the voxels A and B just beyond its ends
@@ -54,7 +58,7 @@ bool ThickWallIncursion(const VoxelGrid& grid, int64_t index, int max_run,
 // Either test fires (the thick one only when max_run > 1).
 inline bool IncursionAt(const VoxelGrid& grid, int64_t index, int max_run,
                         const ThinPartRule& thin) {
-  return PaperIncursion(grid, index) ||
+  return PaperIncursion(grid, index, thin) ||
          (max_run > 1 && ThickWallIncursion(grid, index, max_run, thin));
 }
 

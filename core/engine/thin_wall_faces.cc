@@ -16,9 +16,10 @@ namespace {
 // still count as the face the end sees (under the thinnest wall the test reads, 1 voxel).
 constexpr int kFacingRadius = 2;
 constexpr double kFacingBand = 0.5;
+constexpr double kFacingMaxBand = 1.0;
 // Points give a plane when they are this many at least and their scatter across it is under
 // this share of the least along it.
-constexpr double kPlanePoints = 4;
+constexpr int kPlanePoints = 4;
 constexpr double kPlaneRatio = 0.25;
 
 // The normal of the plane of `count` points whose scatter about their mean is `scatter`, into
@@ -36,8 +37,10 @@ void PlaneOf(const SymmetricMatrix3& scatter, double count, Vec3d& normal) {
 double FacingGap(const VoxelGrid& grid, const HardVoxelPoints& points, const Coord& a,
                  const Coord& b) {
   HardVoxelPoints::Patch pa, pb;
-  if (!points.FacingPatch(grid, a, kFacingRadius, kFacingBand, pa) ||
-      !points.FacingPatch(grid, b, kFacingRadius, kFacingBand, pb)) {
+  if (!points.FacingPatch(grid, a, kFacingRadius, kFacingBand, kPlanePoints, kFacingMaxBand,
+                          pa) ||
+      !points.FacingPatch(grid, b, kFacingRadius, kFacingBand, kPlanePoints, kFacingMaxBand,
+                          pb)) {
     return -1;
   }
   const Vec3d ca{a.x + 0.5, a.y + 0.5, a.z + 0.5}, cb{b.x + 0.5, b.y + 0.5, b.z + 0.5};

@@ -46,7 +46,8 @@ constexpr char kUsage[] =
     "                      [--thick-wall-detour R] [--thin-part-spread S]\n"
     "                      [--thin-wall-face-gap G] [--depth-bound D]\n"
     "                      [--rerun-thin K] [--no-retry] [--strict-only] [--no-close-cut-loops]\n"
-    "                      [--no-hole-opening] [--wall-core-depth D] [--far-steps F]\n"
+    "                      [--no-hole-opening] [--wall-core-depth D] [--wall-faces-spread S]\n"
+    "                      [--far-steps F]\n"
     "                      [--near-far-steps N]\n"
     "                      [--max-cut-fraction C] [--all-cut-counts] [--split-reach R]\n"
     "                      [--data-genus R]\n"
@@ -99,6 +100,9 @@ constexpr char kUsage[] =
     "  --wall-core-depth D  the hole opening's wall-core test: a plug is no hole when every\n"
     "                   ray across it meeting data has the outside within D voxels past it\n"
     "                   (0 = not tested; HoleOpeningOptions::wall_core_depth)\n"
+    "  --wall-faces-spread S  nor when the points around every hard voxel those rays meet\n"
+    "                   lie S voxels or more off their best plane: a thin wall's two faces\n"
+    "                   (0 = not tested; HoleOpeningOptions::wall_faces_spread)\n"
     "  --clearance-samples K, --passage-sectors P  the hole opening's clearance spots per\n"
     "                   axis and the sectors of a passage lined with data (9: no passage\n"
     "                   test; HoleOpeningOptions)\n"
@@ -226,6 +230,8 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       o.shrink.separation.enabled = false;
     } else if (arg == "--wall-core-depth" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.holes.wall_core_depth)) return false;
+    } else if (arg == "--wall-faces-spread" && has_value) {
+      if (!absl::SimpleAtod(argv[++i], &o.shrink.holes.wall_faces_spread)) return false;
     } else if (arg == "--no-hole-opening") {
       o.shrink.holes.enabled = false;
     } else if (arg == "--no-synthetic") {

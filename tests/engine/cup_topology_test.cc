@@ -1,9 +1,10 @@
 // Thin-walled open cups (issue 18): walls and bottom 2, 3, 4.5 and 8 voxels thick at the
 // formula-(1) voxel, shrunk at 1x, 1.25x, 1.5x and 2x that voxel, give one shell of genus 0,
-// with the inside open (three runs are still known misses, listed below). Walls of 2-5 voxels
+// with the inside open. Walls of 2-5 voxels
 // sampled at about a point a voxel let the shrink dig into their core through the data gaps of
 // both faces; the plug left between two digs must not be opened as a hole
 // (docs/engine-decisions.md "Plugged holes opened from the data", the wall-core test).
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <tuple>
@@ -11,6 +12,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_replace.h"
 #include "core/engine/hard_voxel_points.h"
+#include "core/engine/thin_wall_faces.h"
 #include "core/engine/voxelization.h"
 #include "gtest/gtest.h"
 #include "tests/support/cup_cloud.h"
@@ -22,6 +24,7 @@ namespace {
 
 using testing::CupCloud;
 using testing::CupCylinderVolume;
+using testing::kCupRadius;
 using testing::CupSolidVolume;
 using testing::CupVoxelSize;
 using testing::ShrinkCloud;
@@ -62,28 +65,33 @@ TEST(CupBaseTest, ItsPointsAreReadInTheirHardVoxels) {
   EXPECT_GT(index.PlaneSpread(g, Coord{cx - 1, cy - 1, p}, Coord{cx + 1, cy + 1, p + 1}), 0.5);
 }
 
-// The runs still wrong (issue 18; docs/engine-decisions.md, the known limits of "Thin walls:
-// the faces each end sees"): each still runs and prints what it gives, and is reported as
-// skipped. A run in this list that comes out right fails, so that the list is kept to what is
-// still wrong.
-struct KnownCupMiss {
-  double wall_voxels;
-  double factor;
-  const char* reason;
-};
-constexpr KnownCupMiss kKnownCupMisses[] = {
-    {2.0, 1.0, "the inside stays filled: a wall sampled at about a point a voxel"},
-    {2.0, 2.0, "the inside stays filled: a wall 1 voxel thick, which the paper's own test reads"},
-    {3.0, 1.5,
-     "genus 1: the inside opens, and the hole opening carves a plug through the bottom where "
-     "the data of both faces have gaps (two voxels, as a narrow waist)"},
-};
-
-// The known miss of a cup, or nullptr.
-const KnownCupMiss* FindKnownCupMiss(double wall_voxels, double factor) {
-  for (const KnownCupMiss& k : kKnownCupMisses)
-    if (k.wall_voxels == wall_voxels && k.factor == factor) return &k;
-  return nullptr;
+// The base of a cup of 2-voxel walls at its formula-(1) voxel, sampled at about a point a voxel
+// on each face: the outside under it and the carved inside above it, ends of a run of its two
+// hard layers, face its two faces 2 voxels apart (more than 1 at every column of the base, 1.19
+// at the least, over ChainRules::thin_wall_face_gap's 0.6), where a face
+// patch of the points within half a voxel of the nearest would hold one or two points and no
+// plane (HardVoxelPoints::FacingPatch widens it to 4 points).
+TEST(CupBaseTest, EveryColumnOfAThinBaseReadsItsTwoFaces) {
+  const PointCloud cloud = CupCloud(2.0, kCupPoints);
+  VoxelizeOptions options;
+  options.voxel_size = CupVoxelSize(kCupPoints);
+  absl::StatusOr<Voxelization> vox = Voxelize(cloud.points, options);
+  ASSERT_TRUE(vox.ok()) << vox.status();
+  const VoxelGrid& g = vox->grid;
+  const HardVoxelPoints index(g, cloud.points);
+  const int p = VoxelGrid::kPadding;
+  const double l = g.voxel_size();
+  int columns = 0;
+  for (int y = 0; y < g.dim(1); ++y)
+    for (int x = 0; x < g.dim(0); ++x) {
+      const double mx = g.origin()[0] + (x + 0.5) * l, my = g.origin()[1] + (y + 0.5) * l;
+      if (std::hypot(mx, my) > kCupRadius - 4 * l) continue;  // the base, off the side wall
+      ++columns;
+      const double gap = FacingGap(g, index, Coord{x, y, p - 1}, Coord{x, y, p + 2});
+      EXPECT_GT(gap, 1.0) << "column " << x << "," << y;
+      EXPECT_LT(gap, 2.5) << "column " << x << "," << y;
+    }
+  EXPECT_GT(columns, 10000);
 }
 
 class CupTopologyTest : public ::testing::TestWithParam<std::tuple<double, double>> {};
@@ -95,10 +103,12 @@ TEST_P(CupTopologyTest, OneShellOfGenusZeroWithTheInsideOpen) {
   ASSERT_TRUE(run.ok()) << run.status();
   EXPECT_TRUE(run->invariants.ok()) << run->Describe();
   // The voxels hold the wall and about a voxel more on each face; a filled inside holds the
-  // cylinder's volume. Walls of 2 voxels or less at the run's voxel are read as thin walls by
-  // the faces their thick-wall runs' two ends see (ChainRules::thin_wall_face_gap), so the big
-  // plates carve the inside through the mouth; some frozen plates of smaller chains stay
-  // (up to 0.4 of the cylinder).
+  // cylinder's volume. Walls of 2 voxels or less at the run's voxel (1 at the 2-voxel wall's
+  // 2x) are read as thin walls by the faces their runs' two ends see
+  // (ChainRules::thin_wall_face_gap), so the big plates carve the inside through the mouth;
+  // some frozen plates of smaller chains stay (up to 0.46 of the cylinder). The plugs the
+  // small plates leave through a base of 2 voxels, between its two faces' data gaps, stay
+  // closed (HoleOpeningOptions::wall_faces_spread).
   const double wall = wall_voxels * CupVoxelSize(kCupPoints);
   const double volume = MembraneVolume(run->voxels.grid);
   const double most = wall_voxels / factor >= 3 ? 2 * CupSolidVolume(wall)
@@ -106,15 +116,6 @@ TEST_P(CupTopologyTest, OneShellOfGenusZeroWithTheInsideOpen) {
   const std::string what = absl::StrCat(run->Describe(), ", volume ", volume, " (solid ",
                                         CupSolidVolume(wall), ", cylinder ",
                                         CupCylinderVolume(), ")");
-  const bool right = run->topology.shells == 1 && run->topology.genus == std::vector<int>{0} &&
-                     run->topology.cavities == 0 && volume > CupSolidVolume(wall) &&
-                     volume < most;
-  if (const KnownCupMiss* miss = FindKnownCupMiss(wall_voxels, factor); miss != nullptr) {
-    EXPECT_FALSE(right) << what << ": a known miss came out right; remove it from "
-                        << "kKnownCupMisses";
-    if (!right) GTEST_SKIP() << "known miss (issue 18): " << what << " (" << miss->reason << ")";
-    return;
-  }
   EXPECT_EQ(run->topology.shells, 1) << what;
   EXPECT_EQ(run->topology.genus, std::vector<int>{0}) << what;
   EXPECT_EQ(run->topology.cavities, 0) << what;

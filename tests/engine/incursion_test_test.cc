@@ -98,6 +98,28 @@ TEST(IncursionTest, ThinPartWithDataOnBothSidesDoesNotFire) {
   EXPECT_FALSE(IncursionAt(g, g.Index(7, 6, 6), 3, rule));
 }
 
+// A wall of one voxel, x = 6 in the 13^3 grid (a cup's bottom at twice its wall's voxel), with
+// outside of two generations on its two sides, not joined around it: the paper's test fires.
+// With data on both of its faces (x = 6.05 and 6.95, FacingGap 0.9) and the faces' gap read,
+// it is a thin part; one scanned surface seen from both sides (x = 6.5) still fires.
+TEST(IncursionTest, AOneVoxelWallWithDataOnBothFacesIsAThinPart) {
+  VoxelGrid g({13, 13, 13}, {0, 0, 0}, 1.0, kInsideSoft);
+  g.set(Coord{6, 6, 6}, kBoundaryHard);
+  g.set(Coord{5, 6, 6}, OutsideState(1));
+  g.set(Coord{7, 6, 6}, OutsideState(2));
+  const int64_t v = g.Index(6, 6, 6);
+  const HardVoxelPoints two_faces(g, PointsOnPlanes(6.05f, 6.95f));
+  const HardVoxelPoints one_sheet(g, PointsOnPlanes(6.5f, 6.5f));
+  EXPECT_TRUE(PaperIncursion(g, v));
+  EXPECT_TRUE(PaperIncursion(g, v, ThinPartRule{.points = &two_faces}));  // the gap not read
+  const ThinPartRule faces{.points = &two_faces, .min_face_gap = 0.6};
+  EXPECT_FALSE(PaperIncursion(g, v, faces));
+  EXPECT_FALSE(IncursionAt(g, v, 3, faces));
+  EXPECT_TRUE(PaperIncursion(g, v, ThinPartRule{.points = &one_sheet, .min_face_gap = 0.6}));
+  // A wall 0.9 voxel thick is no thin part for a gap of 1.
+  EXPECT_TRUE(PaperIncursion(g, v, ThinPartRule{.points = &two_faces, .min_face_gap = 1.0}));
+}
+
 // Data on one surface only (a scanned wall at a data hole's rim, joined around the rim): the
 // test fires, and so it does without points to read.
 TEST(IncursionTest, JoinedAroundWithDataOnOneSideFires) {

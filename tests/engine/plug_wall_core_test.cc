@@ -1,13 +1,16 @@
-// The hole opening's wall-core test: a plug in the core of a thin wall, whose faces have the
+// The hole opening's wall-core tests: a plug in the core of a thin wall, whose faces have the
 // outside right behind them, is told from a plug in a hole through a thick slab or a thin
-// sheet, whose walls have the solid behind them.
+// sheet, whose walls have the solid behind them; a plug through a wall thinner than a plane
+// fit's block, between its two faces' data, from a hole lined with one surface.
 #include "core/engine/plug_wall_core.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
+#include <vector>
 
+#include "core/engine/hard_voxel_points.h"
 #include "core/engine/voxel_grid.h"
 #include "core/engine/voxel_state.h"
 #include "tests/engine/final_membrane_states.h"
@@ -79,6 +82,53 @@ TEST(PlugWallCoreTest, AThinSheetsHoleIsNoWallCore) {
 TEST(PlugWallCoreTest, NoDataMetIsNoWallCore) {
   const VoxelGrid grid = Grid([](int, int, int) { return kInsideSoft; });
   EXPECT_FALSE(PlugInsideWallCore(grid, grid.Index(16, 16, 16), {0, 0, 1}, 5, 3));
+}
+
+// A wall 2 voxels thick, z in [15, 17), hard, the outside on both sides, whose two faces
+// (z = 15.05 and 16.95, every 0.25 voxel) both miss the disc of radius `gap` around
+// (16.5, 16.5): the voxels whose centre lies in it are soft, a plug through the wall along z.
+VoxelState GappedWall(double gap, int x, int y, int z) {
+  if (z < 15 || z >= 17) return OutsideState(2);
+  return std::hypot(x + 0.5 - 16.5, y + 0.5 - 16.5) < gap ? kInsideSoft : kInsideHard;
+}
+std::vector<Point3f> GappedWallPoints(double gap) {
+  std::vector<Point3f> points;
+  for (double x = 1.125; x < kDim - 1; x += 0.25)
+    for (double y = 1.125; y < kDim - 1; y += 0.25) {
+      if (std::hypot(x - 16.5, y - 16.5) < gap) continue;
+      for (float z : {15.05f, 16.95f})
+        points.push_back({static_cast<float>(x), static_cast<float>(y), z});
+    }
+  return points;
+}
+
+// Across a plug through both faces' gaps (2 voxels wide), the rays meet the wall 2 voxels out,
+// and every 3x3x3 block there holds both faces: two surfaces, no hole's wall.
+TEST(PlugWallCoreTest, APlugThroughAThinWallsFacesIsBetweenThem) {
+  const VoxelGrid grid = Grid([](int x, int y, int z) { return GappedWall(2.0, x, y, z); });
+  const HardVoxelPoints points(grid, GappedWallPoints(2.0));
+  const int64_t mid = grid.Index(16, 16, 15);
+  ASSERT_FALSE(IsHard(grid.at(mid)));
+  EXPECT_TRUE(PlugBetweenWallFaces(grid, points, mid, {0, 0, 1}, 5, 1, 0.25));
+  // Faces 1.9 voxels apart spread about 0.95 from their plane: not for a spread of 1.
+  EXPECT_FALSE(PlugBetweenWallFaces(grid, points, mid, {0, 0, 1}, 5, 1, 1.0));
+  // Read as a narrow waist (rays meeting data within 2 steps), it is not read.
+  EXPECT_FALSE(PlugBetweenWallFaces(grid, points, mid, {0, 0, 1}, 5, 2, 0.25));
+}
+
+// The pierced slab's hole with its wall scanned (the cylinder of radius 3, every 0.25 voxel
+// along z and a 64th of a turn): the blocks the rays meet hold that one surface.
+TEST(PlugWallCoreTest, AHolesWallIsOneSurface) {
+  const VoxelGrid grid = Grid(PiercedSlab);
+  std::vector<Point3f> wall;
+  for (double z = 6.125; z < 26; z += 0.25)
+    for (int k = 0; k < 64; ++k) {
+      const double a = 2 * M_PI * k / 64;
+      wall.push_back({static_cast<float>(16 + 3.05 * std::cos(a)),
+                      static_cast<float>(16 + 3.05 * std::sin(a)), static_cast<float>(z)});
+    }
+  const HardVoxelPoints points(grid, wall);
+  EXPECT_FALSE(PlugBetweenWallFaces(grid, points, grid.Index(16, 16, 16), {0, 0, 1}, 5, 1, 0.25));
 }
 
 }  // namespace

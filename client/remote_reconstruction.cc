@@ -21,9 +21,11 @@
 #include "client/std_streams.h"
 #include "client/upload_plan.h"
 #include "client/voxel_keeping_snap.h"
+#include "core/io/draco_parts.h"
 #include "core/io/mesh_io.h"
 #include "core/pipeline/grid_box.h"
 #include "core/pipeline/stopwatch.h"
+#include "core/pipeline/thread_limits.h"
 #include "membrane/v1/reconstruction.grpc.pb.h"
 #include "proto/crc32c.h"
 
@@ -43,6 +45,7 @@ constexpr int kMaxSubmissions = 3;
 // (params.parameters with the cloud's origin and, unless one was given, its voxel size).
 struct Upload {
   std::string bytes;
+  std::vector<uint64_t> part_bytes;  // UploadHeader.upload_part_bytes; empty: one part
   v1::Parameters parameters;
   Origin3d origin{0, 0, 0};  // PointCloud::origin, to write the mesh back with
   size_t dropped = 0;        // points left out for NaN or infinite coordinates
@@ -77,6 +80,9 @@ grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams&
   *header.mutable_header()->mutable_parameters() = upload_cloud.parameters;
   header.mutable_header()->set_upload_bytes(upload.size());
   header.mutable_header()->set_upload_crc32c(Crc32c(upload));
+  for (uint64_t size : upload_cloud.part_bytes) {
+    header.mutable_header()->add_upload_part_bytes(size);
+  }
   bool sending = stream->Write(header);
   reached = sending;
   for (size_t at = 0; sending && at < upload.size(); at += kChunkBytes) {
@@ -139,7 +145,14 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
                              draco.position_quantization_bits);
     if (snap) draco.box = snap->grid.box;
   }
-  absl::StatusOr<DracoEncoding> encoded = EncodeDracoPointCloud(*cloud, draco);
+  // The cloud in parts encoded on this machine's threads and decoded on the job's: Draco codes
+  // one cloud on one thread. Parts need a box every part is quantized on, so that they hold
+  // the same points as one cloud (draco_parts.h); without the snap's, one part.
+  const size_t points = cloud->points.size();
+  const int parts =
+      draco.position_quantization_bits == 0 || draco.box ? DracoPartCount(points) : 1;
+  absl::StatusOr<DracoParts> encoded =
+      EncodeDracoPointCloudParts(std::move(cloud->points), draco, parts, MachineThreads());
   if (!encoded.ok()) {
     return absl::Status(encoded.status().code(),
                         absl::StrCat(InputName(params.input), ": ", encoded.status().message()));
@@ -156,7 +169,7 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
     box.set_max_y(plan.box->max[1]);
     box.set_max_z(plan.box->max[2]);
   }
-  outcome.raw_bytes = cloud->points.size() * sizeof(Point3f);
+  outcome.raw_bytes = points * sizeof(Point3f);
   outcome.upload_bytes = encoded->bytes.size();
   const std::string positions =
       draco.position_quantization_bits == 0
@@ -168,10 +181,11 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
       dropped > 0 ? absl::StrCat(" (", DroppedPointsNote(dropped), ")") : std::string();
   progress.Finish(absl::StrFormat(
       "decode: %d points%s%s, %d bytes as Draco (%.1f%% of %d raw float32 bytes; %s) in %.3f s",
-      cloud->points.size(), OriginNote(cloud->origin), dropped_note, outcome.upload_bytes,
+      points, OriginNote(cloud->origin), dropped_note, outcome.upload_bytes,
       100.0 * outcome.upload_bytes / std::max<uint64_t>(1, outcome.raw_bytes),
       outcome.raw_bytes, positions, watch.Seconds()));
   upload.bytes = std::move(encoded->bytes);
+  if (encoded->part_bytes.size() > 1) upload.part_bytes = std::move(encoded->part_bytes);
   return upload;
 }
 

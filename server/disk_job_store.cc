@@ -12,6 +12,7 @@
 #include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "core/io/draco_parts.h"
 #include "proto/crc32c.h"
 #include "server/rpc_status.h"
 #include "server/server_log.h"
@@ -23,8 +24,9 @@ constexpr char kSuffix[] = ".job";
 constexpr char kUploadSuffix[] = ".upload";
 constexpr char kWriteCheck[] = ".write-check";
 constexpr size_t kChunkBytes = 1 << 20;
-// The header of an upload file: a delimited UploadHeader of two small fields.
-constexpr int64_t kUploadHeaderBytes = 64;
+// The header of an upload file: a delimited UploadHeader of two small fields and the parts'
+// sizes (at most kMaxDracoParts varints of at most 10 bytes, packed).
+constexpr int64_t kUploadHeaderBytes = 64 + 10 * kMaxDracoParts;
 
 // What a record holds. Without a JobDone (`ended` false), the process stopped first.
 struct Record {
@@ -82,8 +84,10 @@ absl::StatusOr<Record> ParseRecord(const std::string& bytes) {
   return record;
 }
 
-// The upload an upload file holds, checked against its header and the job's record.
-absl::StatusOr<std::string> ParseUpload(const std::string& bytes, uint64_t expected_bytes) {
+// The upload an upload file holds, checked against its header and the job's record; its
+// parts' sizes into `part_bytes`.
+absl::StatusOr<std::string> ParseUpload(const std::string& bytes, uint64_t expected_bytes,
+                                        std::vector<uint64_t>& part_bytes) {
   google::protobuf::io::ArrayInputStream input(bytes.data(), static_cast<int>(bytes.size()));
   v1::UploadHeader header;
   if (!google::protobuf::util::ParseDelimitedFromZeroCopyStream(&header, &input, nullptr)) {
@@ -95,6 +99,10 @@ absl::StatusOr<std::string> ParseUpload(const std::string& bytes, uint64_t expec
     return absl::DataLossError(absl::StrCat("the upload (", upload.size(),
                                             " bytes) does not match its size and CRC-32C"));
   }
+  if (absl::Status s = CheckDracoPartBytes(header.upload_part_bytes(), upload.size()); !s.ok()) {
+    return absl::DataLossError(absl::StrCat("the upload's header: ", s.message()));
+  }
+  part_bytes.assign(header.upload_part_bytes().begin(), header.upload_part_bytes().end());
   return upload;
 }
 
@@ -208,7 +216,8 @@ absl::StatusOr<DiskJobStore::Loaded> DiskJobStore::Load(const HookMaker& make_ho
         uploads.contains(id)
             ? files_->Read(UploadPathOf(id), options_.max_upload_bytes + kUploadHeaderBytes)
             : absl::NotFoundError("no upload file");
-    if (upload.ok()) upload = ParseUpload(*upload, record->snapshot.upload_bytes());
+    std::vector<uint64_t> part_bytes;
+    if (upload.ok()) upload = ParseUpload(*upload, record->snapshot.upload_bytes(), part_bytes);
     if (!upload.ok()) {
       LogEvent("store_upload_unreadable",
                {{"job", id}, {"message", std::string(upload.status().message())}});
@@ -217,6 +226,7 @@ absl::StatusOr<DiskJobStore::Loaded> DiskJobStore::Load(const HookMaker& make_ho
       continue;
     }
     std::shared_ptr<Job> job = Job::Resume(record->snapshot, *std::move(upload), make_hook(id));
+    job->set_upload_part_bytes(std::move(part_bytes));
     job->RequireEndRecord();
     keep_uploads.insert(id);
     loaded.resumed.push_back(job);
@@ -249,10 +259,12 @@ absl::Status DiskJobStore::Add(std::shared_ptr<Job> job) {
   job->RequireEndRecord();
   // The upload first: a record without its upload could not be run again.
   absl::Status s;
+  const std::vector<uint64_t>& part_bytes = job->upload_part_bytes();
   job->ReadUpload([&](absl::string_view upload) {
     v1::UploadHeader header;
     header.set_upload_bytes(upload.size());
     header.set_upload_crc32c(Crc32c(upload));
+    for (uint64_t size : part_bytes) header.add_upload_part_bytes(size);
     std::string prefix;
     google::protobuf::io::StringOutputStream output(&prefix);
     if (!google::protobuf::util::SerializeDelimitedToZeroCopyStream(header, &output)) {

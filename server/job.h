@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "absl/base/thread_annotations.h"
@@ -68,6 +69,13 @@ class Job {
   // the upload is decoded (and gone). Ending the job does it too.
   void ReleaseUploadHold() ABSL_LOCKS_EXCLUDED(mutex_);
   uint64_t upload_bytes() const { return upload_bytes_; }
+  // The sizes of the upload's Draco parts (UploadHeader.upload_part_bytes, checked by
+  // CheckDracoPartBytes); empty for an upload of one part.
+  const std::vector<uint64_t>& upload_part_bytes() const { return upload_part_bytes_; }
+  // Sets upload_part_bytes(); once, before the job is shared.
+  void set_upload_part_bytes(std::vector<uint64_t> sizes) {
+    upload_part_bytes_ = std::move(sizes);
+  }
   // Calls `read` with the upload (empty once taken), under the job's lock: `read` must not
   // call the job. For a store that keeps the upload beside the job.
   void ReadUpload(const std::function<void(absl::string_view)>& read) const
@@ -179,6 +187,7 @@ class Job {
   std::string client_;  // set once, before the job is shared
   const v1::Parameters parameters_;
   uint64_t upload_bytes_;  // set once, before the job is shared
+  std::vector<uint64_t> upload_part_bytes_;  // set once, before the job is shared
   absl::Time created_at_;  // set once, before the job is shared
   const FinishHook on_finish_;
   CancelToken cancel_;

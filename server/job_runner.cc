@@ -86,6 +86,7 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   limits.timeout_seconds = options_.decoder_timeout_seconds;
   limits.memory_bytes = options_.decoder_memory_bytes;
   limits.max_points = options_.max_points;
+  limits.threads = threads;
   limits.subject = "the upload";
   UploadSource upload(*job, std::move(limits), settings->origin);
   // The web console draws a sample of the points over the mesh.

@@ -6,6 +6,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "core/io/draco_parts.h"
 #include "proto/crc32c.h"
 #include "proto/job_routing.h"
 #include "server/bearer_token.h"
@@ -88,7 +89,8 @@ grpc::Status ReconstructionService::Authenticate(const grpc::ServerContext& cont
 grpc::Status ReconstructionService::ReadUpload(
     grpc::ServerContext* context,
     grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
-    v1::Parameters& parameters, std::string& upload, UploadMemory::Hold& hold) {
+    v1::Parameters& parameters, std::string& upload, std::vector<uint64_t>& part_bytes,
+    UploadMemory::Hold& hold) {
   IdleWatchdog::Watch watch = stall_watchdog_.Start(context);
   auto idle = [&] {
     return grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED,
@@ -111,6 +113,11 @@ grpc::Status ReconstructionService::ReadUpload(
     return ToGrpcStatus(s);
   }
   if (header.upload_bytes() == 0) return InvalidArgument("the upload is empty (0 bytes)");
+  if (absl::Status s = CheckDracoPartBytes(header.upload_part_bytes(), header.upload_bytes());
+      !s.ok()) {
+    return ToGrpcStatus(s);
+  }
+  part_bytes.assign(header.upload_part_bytes().begin(), header.upload_part_bytes().end());
   if (header.upload_bytes() > static_cast<uint64_t>(options_.max_upload_bytes)) {
     return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
                         absl::StrFormat("upload of %d bytes is over the server's limit of %d "
@@ -207,8 +214,10 @@ grpc::Status ReconstructionService::Reconstruct(
   }
   v1::Parameters parameters;
   std::string upload;
+  std::vector<uint64_t> part_bytes;
   UploadMemory::Hold hold;
-  if (grpc::Status s = ReadUpload(context, stream, parameters, upload, hold); !s.ok()) {
+  if (grpc::Status s = ReadUpload(context, stream, parameters, upload, part_bytes, hold);
+      !s.ok()) {
     LogEvent("upload_rejected", {{"peer", peer},
                                  {"client", caller.LogName()},
                                  {"code", absl::StrCat(s.error_code())},
@@ -220,6 +229,7 @@ grpc::Status ReconstructionService::Reconstruct(
   auto job = std::make_shared<Job>(id, peer, parameters, std::move(upload),
                                    std::move(hold), JobEndHook(metrics_, store_, id));
   job->set_client(caller.name);
+  job->set_upload_part_bytes(std::move(part_bytes));
   const auto queue_refused = [&](const absl::Status& s) {
     LogEvent("job_refused", {{"peer", peer},
                              {"client", caller.LogName()},

@@ -59,7 +59,8 @@ class ReconstructionService final : public v1::Reconstruction::Service {
                         v1::ListJobsResponse* response) override;
 
  private:
-  // Reads the header and the chunks of an upload; checks parameters, size and checksum. The
+  // Reads the header and the chunks of an upload; checks parameters, size, the parts' sizes
+  // (into `part_bytes`, CheckDracoPartBytes) and checksum. The
   // buffer's bytes are held in the memory for uploads (`hold`) as it grows: RESOURCE_EXHAUSTED
   // at the header when the upload can never fit, with a retry delay when it does not fit now.
   // The call is cancelled when its upload makes no progress for options_.stall_seconds
@@ -68,7 +69,7 @@ class ReconstructionService final : public v1::Reconstruction::Service {
   grpc::Status ReadUpload(grpc::ServerContext* context,
                           grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
                           v1::Parameters& parameters, std::string& upload,
-                          UploadMemory::Hold& hold);
+                          std::vector<uint64_t>& part_bytes, UploadMemory::Hold& hold);
   // OK, with the caller, for a call carrying the token of one of options_.clients (or any call
   // when there are none); UNAUTHENTICATED, logged with the peer, otherwise.
   grpc::Status Authenticate(const grpc::ServerContext& context, Caller& caller);

@@ -5,9 +5,12 @@
 #include <new>
 #include <utility>
 
+#include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
 #include "core/io/draco_codec.h"
+#include "core/io/draco_parts.h"
 
 namespace membrane {
 namespace {
@@ -33,16 +36,42 @@ std::string ReadAll(std::FILE* in) {
   return bytes;
 }
 
+// The helper's arguments after MAX_POINTS.
+struct HelperArguments {
+  std::string mode;  // empty, kAcceptMeshArgument or kMeshArgument
+  std::vector<uint64_t> part_bytes;
+  int threads = 1;
+};
+
+bool ParseArguments(const std::vector<std::string>& args, HelperArguments& parsed) {
+  for (size_t i = 1; i < args.size(); ++i) {
+    absl::string_view arg = args[i];
+    if ((arg == kAcceptMeshArgument || arg == kMeshArgument) && parsed.mode.empty()) {
+      parsed.mode = args[i];
+    } else if (absl::ConsumePrefix(&arg, kPartsArgument) && parsed.part_bytes.empty()) {
+      for (absl::string_view size : absl::StrSplit(arg, ',')) {
+        if (!absl::SimpleAtoi(size, &parsed.part_bytes.emplace_back())) return false;
+      }
+    } else if (absl::ConsumePrefix(&arg, kThreadsArgument)) {
+      if (!absl::SimpleAtoi(arg, &parsed.threads) || parsed.threads < 1) return false;
+    } else {
+      return false;
+    }
+  }
+  return parsed.mode != kMeshArgument || parsed.part_bytes.empty();
+}
+
 }  // namespace
 
 int RunDecodeHelper(const std::vector<std::string>& args) {
   int64_t max_points = 0;
-  const std::string mode = args.size() == 2 ? args[1] : "";
-  if (args.empty() || args.size() > 2 || !absl::SimpleAtoi(args[0], &max_points) ||
-      (!mode.empty() && mode != kAcceptMeshArgument && mode != kMeshArgument)) {
+  HelperArguments parsed;
+  if (args.empty() || !absl::SimpleAtoi(args[0], &max_points) || !ParseArguments(args, parsed)) {
     return Reject(absl::StrCat("usage: membrane-decode MAX_POINTS [", kAcceptMeshArgument, " | ",
-                               kMeshArgument, "]"));
+                               kMeshArgument, "] [", kPartsArgument, "BYTES,BYTES,...] [",
+                               kThreadsArgument, "N]"));
   }
+  const std::string& mode = parsed.mode;
   const std::string bytes = ReadAll(stdin);
   if (bytes.empty()) return Reject("the Draco data is empty");
   TriangleMesh mesh;  // a cloud is a mesh without faces here
@@ -54,9 +83,11 @@ int RunDecodeHelper(const std::vector<std::string>& args) {
       if (!decoded.ok()) return Reject(std::string(decoded.status().message()));
       mesh = *std::move(decoded);
     } else {
-      absl::StatusOr<DecodedDracoCloud> decoded = DecodeDracoPointCloud(
-          bytes, mode == kAcceptMeshArgument ? DracoMeshPolicy::kAcceptMeshVertices
-                                             : DracoMeshPolicy::kRejectMesh);
+      absl::StatusOr<DecodedDracoCloud> decoded = DecodeDracoPointCloudParts(
+          bytes, parsed.part_bytes,
+          mode == kAcceptMeshArgument ? DracoMeshPolicy::kAcceptMeshVertices
+                                      : DracoMeshPolicy::kRejectMesh,
+          parsed.threads);
       if (!decoded.ok()) return Reject(std::string(decoded.status().message()));
       if (decoded->cloud.points.empty()) return Reject("the cloud has no points");
       mesh.vertices = std::move(decoded->cloud.points);

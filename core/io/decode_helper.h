@@ -16,9 +16,15 @@ inline constexpr int kDecodeHelperOverLimit = 4;  // more points than MAX_POINTS
 inline constexpr char kAcceptMeshArgument[] = "--accept-mesh";
 // The argument after MAX_POINTS that decodes a mesh, faces and all.
 inline constexpr char kMeshArgument[] = "--mesh";
+// The argument prefix that gives a point cloud's parts: kPartsArgument then their sizes in
+// bytes, comma-separated (draco_parts.h).
+inline constexpr char kPartsArgument[] = "--parts=";
+// The argument prefix that gives the threads the parts are decoded on (default 1).
+inline constexpr char kThreadsArgument[] = "--threads=";
 
-// `args`: MAX_POINTS, then optionally kAcceptMeshArgument or kMeshArgument. Reads all of stdin
-// and decodes it: with DecodeDracoPointCloud it writes the point count as a little-endian
+// `args`: MAX_POINTS, then optionally kAcceptMeshArgument or kMeshArgument, and for a point
+// cloud optionally kPartsArgument and kThreadsArgument. Reads all of stdin
+// and decodes it: with DecodeDracoPointCloudParts it writes the point count as a little-endian
 // uint64, then x y z float32 per point, to stdout; with kMeshArgument, DecodeDracoMesh, and it
 // writes the vertices so, then the face count and three int32 indices per face. MAX_POINTS
 // bounds the points or the vertices. Returns the process exit status: 0, or

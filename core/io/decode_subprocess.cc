@@ -19,6 +19,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
 #include "absl/strings/strip.h"
 #include "core/io/decode_helper.h"
 #include "core/io/decode_progress.h"
@@ -82,9 +83,10 @@ struct ChildPipes {
   }
 };
 
-// Starts the helper with its limits and `mode` (if any) after MAX_POINTS; fills `pipes`.
-// Returns the child's pid or -1.
-pid_t StartHelper(const DecodeLimits& limits, const std::string& mode, ChildPipes& pipes) {
+// Starts the helper with its limits and `options` (RunDecodeHelper's arguments after
+// MAX_POINTS); fills `pipes`. Returns the child's pid or -1.
+pid_t StartHelper(const DecodeLimits& limits, const std::vector<std::string>& options,
+                  ChildPipes& pipes) {
   if (limits.helper.empty()) return -1;
   int in[2], out[2], err[2];
   if (pipe2(in, O_CLOEXEC) != 0) return -1;
@@ -100,7 +102,7 @@ pid_t StartHelper(const DecodeLimits& limits, const std::string& mode, ChildPipe
   // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
   std::vector<std::string> args = limits.helper;
   args.push_back(std::to_string(limits.max_points));
-  if (!mode.empty()) args.push_back(mode);
+  args.insert(args.end(), options.begin(), options.end());
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -247,13 +249,13 @@ absl::StatusOr<TriangleMesh> ParseMesh(const std::string& out, const std::string
   return mesh;
 }
 
-// Runs the helper on `bytes` with `mode` (an argument after MAX_POINTS, or empty); its standard
+// Runs the helper on `bytes` with `options` (its arguments after MAX_POINTS); its standard
 // output when it succeeds.
 absl::StatusOr<std::string> RunHelper(absl::string_view bytes, const DecodeLimits& limits,
-                                      const std::string& mode, const CancelToken& cancel,
-                                      ProgressRange progress) {
+                                      const std::vector<std::string>& options,
+                                      const CancelToken& cancel, ProgressRange progress) {
   ChildPipes pipes;
-  const pid_t pid = StartHelper(limits, mode, pipes);
+  const pid_t pid = StartHelper(limits, options, pipes);
   if (pid < 0) {
     return absl::InternalError(absl::StrCat("cannot start the decoder ", HelperName(limits), ": ",
                                             strerror(errno)));
@@ -295,9 +297,15 @@ absl::StatusOr<std::string> RunHelper(absl::string_view bytes, const DecodeLimit
 }  // namespace
 
 absl::StatusOr<PointCloud> DecodeInSubprocess(absl::string_view bytes, const DecodeLimits& limits,
-                                              const CancelToken& cancel, ProgressRange progress) {
-  absl::StatusOr<std::string> out =
-      RunHelper(bytes, limits, limits.accept_mesh ? kAcceptMeshArgument : "", cancel, progress);
+                                              const CancelToken& cancel, ProgressRange progress,
+                                              absl::Span<const uint64_t> part_bytes) {
+  std::vector<std::string> options;
+  if (limits.accept_mesh) options.push_back(kAcceptMeshArgument);
+  if (!part_bytes.empty()) {
+    options.push_back(absl::StrCat(kPartsArgument, absl::StrJoin(part_bytes, ",")));
+    options.push_back(absl::StrCat(kThreadsArgument, std::max(1, limits.threads)));
+  }
+  absl::StatusOr<std::string> out = RunHelper(bytes, limits, options, cancel, progress);
   if (!out.ok()) return out.status();
   absl::StatusOr<PointCloud> cloud = ParsePoints(*out, limits.subject);
   if (cloud.ok()) progress.Done();
@@ -308,7 +316,7 @@ absl::StatusOr<TriangleMesh> DecodeMeshInSubprocess(absl::string_view bytes,
                                                     const DecodeLimits& limits,
                                                     const CancelToken& cancel,
                                                     ProgressRange progress) {
-  absl::StatusOr<std::string> out = RunHelper(bytes, limits, kMeshArgument, cancel, progress);
+  absl::StatusOr<std::string> out = RunHelper(bytes, limits, {kMeshArgument}, cancel, progress);
   if (!out.ok()) return out.status();
   absl::StatusOr<TriangleMesh> mesh = ParseMesh(*out, limits.subject);
   if (mesh.ok()) progress.Done();

@@ -4,6 +4,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -168,6 +169,26 @@ absl::StatusOr<std::vector<Point3f>> AllPositionValues(const draco::PointAttribu
   return values;
 }
 
+absl::string_view DataTypeName(draco::DataType type) {
+  static constexpr absl::string_view kNames[] = {"invalid", "int8",   "uint8",   "int16",
+                                                 "uint16",  "int32",  "uint32",  "int64",
+                                                 "uint64",  "float32", "float64", "bool"};
+  const int index = static_cast<int>(type);
+  return index >= 0 && index < static_cast<int>(std::size(kNames)) ? kNames[index] : "unknown";
+}
+
+// DecodedDracoCloud::attributes of `pc`.
+std::string AttributeSignature(const draco::PointCloud& pc) {
+  std::string signature;
+  for (int i = 0; i < pc.num_attributes(); ++i) {
+    const draco::PointAttribute& a = *pc.attribute(i);
+    absl::StrAppend(&signature, i > 0 ? ", " : "",
+                    draco::GeometryAttribute::TypeToString(a.attribute_type()), " ",
+                    DataTypeName(a.data_type()), " x", int{a.num_components()});
+  }
+  return signature;
+}
+
 }  // namespace
 
 double DracoPositionErrorBound(const std::vector<Point3f>& positions, const DracoOptions& options) {
@@ -295,6 +316,7 @@ absl::StatusOr<DecodedDracoCloud> DecodeDracoPointCloud(absl::string_view bytes,
   if (!position.ok()) return position.status();
   DecodedDracoCloud result;
   result.geometry = *geometry;
+  result.attributes = AttributeSignature(pc);
   if (*geometry == DracoGeometry::kMesh) {
     absl::StatusOr<std::vector<Point3f>> values = AllPositionValues(**position);
     if (!values.ok()) return values.status();

@@ -91,6 +91,10 @@ struct DecodedDracoCloud {
   PointCloud cloud;
   // What the bytes held: a mesh's vertices are returned as points under kAcceptMeshVertices.
   DracoGeometry geometry = DracoGeometry::kPointCloud;
+  // The bytes' attributes as "TYPE datatype xN" in their order, comma-separated (e.g.
+  // "POSITION float32 x3, NORMAL float32 x3"): what the parts of one upload must share
+  // (draco_parts.h).
+  std::string attributes;
 };
 
 // The positions in Draco `bytes`: one point per Draco point for a point cloud, one per

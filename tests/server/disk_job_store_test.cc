@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "absl/synchronization/notification.h"
@@ -135,6 +136,7 @@ TEST(DiskJobStoreTest, UnfinishedJobsResumeFromTheirUploads) {
     DiskJobStore store(path);
     ASSERT_EQ(LoadCount(store), 0);
     std::shared_ptr<Job> queued = NewJob(store, "00000000000000dd");
+    queued->set_upload_part_bytes({1000, 234});  // an upload of two Draco parts
     ASSERT_TRUE(store.Add(queued).ok());
     std::shared_ptr<Job> running = NewJob(store, "00000000000000ee");
     ASSERT_TRUE(store.Add(running).ok());
@@ -149,6 +151,8 @@ TEST(DiskJobStoreTest, UnfinishedJobsResumeFromTheirUploads) {
   ASSERT_EQ(loaded->resumed.size(), 2u);
   EXPECT_EQ(loaded->resumed[0]->id(), "00000000000000dd");  // oldest first
   EXPECT_EQ(loaded->resumed[1]->id(), "00000000000000ee");
+  EXPECT_THAT(loaded->resumed[0]->upload_part_bytes(), ::testing::ElementsAre(1000, 234));
+  EXPECT_TRUE(loaded->resumed[1]->upload_part_bytes().empty());
   for (const std::shared_ptr<Job>& job : loaded->resumed) {
     EXPECT_EQ(job->state(), v1::QUEUED);
     EXPECT_TRUE(job->Events().empty());

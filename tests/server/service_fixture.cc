@@ -110,6 +110,7 @@ void SendUpload(grpc::ClientReaderWriter<v1::ReconstructRequest, v1::JobEvent>& 
   header.mutable_header()->set_upload_bytes(
       tweaks.announced_bytes >= 0 ? tweaks.announced_bytes : upload.size());
   header.mutable_header()->set_upload_crc32c(Crc32c(upload) + (tweaks.wrong_checksum ? 1 : 0));
+  for (uint64_t size : tweaks.part_bytes) header.mutable_header()->add_upload_part_bytes(size);
   stream.Write(header);
   const std::string sent = upload.substr(0, std::min(tweaks.send_bytes, upload.size()));
   for (size_t at = 0; at < sent.size(); at += 1 << 20) {

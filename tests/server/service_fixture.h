@@ -42,6 +42,7 @@ struct CallResult {
 struct UploadTweaks {
   int64_t announced_bytes = -1;  // >= 0: the header's size instead of the real one
   bool wrong_checksum = false;
+  std::vector<uint64_t> part_bytes;  // the header's upload_part_bytes
   size_t send_bytes = SIZE_MAX;  // send only this many bytes of the upload
   // Then keep the upload open until the server ends the call, while the server's clock runs
   // (ServiceTest::WhileTimeFlies, a step of stall_step), sending a chunk of `trickle_bytes`

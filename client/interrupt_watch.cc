@@ -97,15 +97,7 @@ void InterruptWatch::OnInterrupt() {
     std::_Exit(kInterruptedExit);
   }
   if (cancel_job_) {
-    auto stub = v1::Reconstruction::NewStub(Connect(server_));
-    grpc::ClientContext context;
-    Authorize(context, server_);
-    RouteToJob(context, job_id);
-    context.set_deadline(absl::ToChronoTime(absl::Now() + absl::Seconds(5)));
-    v1::CancelJobRequest request;
-    request.set_job_id(job_id);
-    v1::Job job;
-    const grpc::Status status = stub->CancelJob(&context, request, &job);
+    const grpc::Status status = CancelRemoteJob(server_, job_id, absl::Seconds(5));
     if (status.ok()) {
       std::fprintf(stderr, "membrane: interrupted; job %s cancelled on %s\n", job_id.c_str(),
                    server_.address.c_str());

@@ -11,6 +11,7 @@ void JobEventSink::Consume(const v1::JobEvent& event) {
   switch (event.event_case()) {
     case v1::JobEvent::kAccepted:
       job_id_ = event.accepted().job_id();
+      upload_parts_ = event.accepted().upload_parts();
       if (on_accepted_) on_accepted_(job_id_);
       events_in_call_ = 0;
       progress_.Finish(absl::StrFormat("job %s accepted, queue position %d", job_id_,

@@ -31,6 +31,9 @@ class JobEventSink {
   void Consume(const v1::JobEvent& event);
 
   bool accepted() const { return !job_id_.empty(); }
+  // Accepted.upload_parts: the Draco clouds the server reads the upload as (0: a server that
+  // predates uploads in parts, or no Accepted yet).
+  uint32_t upload_parts() const { return upload_parts_; }
   bool done() const { return done_; }
   const std::string& job_id() const { return job_id_; }
   // Events taken since the last Accepted or snapshot (for tests that drop a call midway).
@@ -59,6 +62,7 @@ class JobEventSink {
   ProgressPrinter& progress_;
   std::function<void(const std::string&)> on_accepted_;
   std::string job_id_;
+  uint32_t upload_parts_ = 0;
   int progress_seen_ = 0;   // stage, progress and generation events handled, over all calls
   int replay_index_ = 0;    // stage, progress and generation events of the current call
   int events_in_call_ = 0;

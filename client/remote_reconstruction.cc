@@ -66,6 +66,13 @@ absl::Status DeadlineStatus(const RemoteParams& params) {
       absl::StrFormat("timed out after %g s", absl::ToDoubleSeconds(params.timeout)));
 }
 
+// The server accepted an upload in parts without saying it reads them (Accepted.upload_parts):
+// one that predates them would decode the first part alone.
+bool PartsUnread(const Upload& upload, const JobEventSink& sink) {
+  return sink.accepted() && upload.part_bytes.size() > 1 &&
+         sink.upload_parts() != upload.part_bytes.size();
+}
+
 // One Reconstruct call: the upload, then the events into `sink`. `reached` tells whether the
 // header went out, which needs a connection to the server.
 grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams& params,
@@ -94,6 +101,10 @@ grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams&
   v1::JobEvent event;
   while (stream->Read(&event)) {
     sink.Consume(event);
+    if (PartsUnread(upload_cloud, sink)) {
+      context.TryCancel();  // the caller cancels the job and sends the cloud in one part
+      break;
+    }
     if (params.drop_after_events > 0 && sink.accepted() &&
         sink.events_in_call() >= params.drop_after_events) {
       context.TryCancel();  // the test hook: as if the connection dropped here
@@ -103,8 +114,10 @@ grpc::Status ReconstructOnce(v1::Reconstruction::Stub& stub, const RemoteParams&
   return stream->Finish();
 }
 
+// The cloud read and encoded for the upload: in Draco parts when `in_parts` and it is large
+// enough (DracoPartCount), else as one Draco cloud.
 absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& outcome,
-                                     ProgressPrinter& progress) {
+                                     ProgressPrinter& progress, bool in_parts) {
   const Stopwatch watch;
   progress.Begin(absl::StrCat("decode: reading ", InputName(params.input)));
   // The job does not exist yet: nothing to cancel.
@@ -150,7 +163,8 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   // the same points as one cloud (draco_parts.h); without the snap's, one part.
   const size_t points = cloud->points.size();
   const int parts =
-      draco.position_quantization_bits == 0 || draco.box ? DracoPartCount(points) : 1;
+      in_parts && (draco.position_quantization_bits == 0 || draco.box) ? DracoPartCount(points)
+                                                                        : 1;
   absl::StatusOr<DracoParts> encoded =
       EncodeDracoPointCloudParts(std::move(cloud->points), draco, parts, MachineThreads());
   if (!encoded.ok()) {
@@ -179,9 +193,12 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
                             snap ? " and in its voxel" : "");
   const std::string dropped_note =
       dropped > 0 ? absl::StrCat(" (", DroppedPointsNote(dropped), ")") : std::string();
+  const std::string parts_note =
+      encoded->part_bytes.size() > 1 ? absl::StrCat(" in ", encoded->part_bytes.size(), " parts")
+                                     : std::string();
   progress.Finish(absl::StrFormat(
-      "decode: %d points%s%s, %d bytes as Draco (%.1f%% of %d raw float32 bytes; %s) in %.3f s",
-      points, OriginNote(cloud->origin), dropped_note, outcome.upload_bytes,
+      "decode: %d points%s%s, %d bytes as Draco%s (%.1f%% of %d raw float32 bytes; %s) in %.3f s",
+      points, OriginNote(cloud->origin), dropped_note, outcome.upload_bytes, parts_note,
       100.0 * outcome.upload_bytes / std::max<uint64_t>(1, outcome.raw_bytes),
       outcome.raw_bytes, positions, watch.Seconds()));
   upload.bytes = std::move(encoded->bytes);
@@ -268,8 +285,9 @@ MeshReport MeshReportOf(const v1::MeshSummary& s) {
 namespace {
 
 // Submits `upload` (retrying a busy or unreachable server) and follows its job to the end,
-// re-attaching when the call breaks. OK once `sink` holds the job's end, whatever it is; else
-// why the job could not be followed (DeadlineExceeded at `deadline`).
+// re-attaching when the call breaks. OK once `sink` holds the job's end, whatever it is, or
+// once the server accepted parts it does not read (PartsUnread: the job is not followed);
+// else why the job could not be followed (DeadlineExceeded at `deadline`).
 absl::Status SubmitAndFollow(grpc::Channel& channel, v1::Reconstruction::Stub& stub,
                              const RemoteParams& params, const Upload& upload,
                              absl::Time deadline, JobEventSink& sink, ProgressPrinter& progress) {
@@ -308,6 +326,7 @@ absl::Status SubmitAndFollow(grpc::Channel& channel, v1::Reconstruction::Stub& s
           params.server.address, attempt, status.error_message()));
     }
   }
+  if (PartsUnread(upload, sink)) return absl::OkStatus();
   if (!sink.done()) {
     // The call broke after the job was accepted: the job runs on; follow it by its id.
     progress.Finish(absl::StrCat("connection lost; re-attaching to job ", sink.job_id()));
@@ -324,7 +343,7 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
                                                       ProgressPrinter& progress) {
   const absl::Time deadline = absl::Now() + params.timeout;
   RemoteOutcome outcome;
-  absl::StatusOr<Upload> upload = ReadAndEncode(params, outcome, progress);
+  absl::StatusOr<Upload> upload = ReadAndEncode(params, outcome, progress, /*in_parts=*/true);
   if (!upload.ok()) return upload.status();
 
   std::shared_ptr<grpc::Channel> channel = Connect(params.server);
@@ -336,6 +355,20 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
             SubmitAndFollow(*channel, *stub, params, *upload, deadline, sink, progress);
         !s.ok()) {
       return s;
+    }
+    if (PartsUnread(*upload, sink)) {
+      // A server that predates uploads in parts (a replica not yet upgraded) would reconstruct
+      // the first part alone: its job is cancelled and the cloud sent again in one part.
+      const grpc::Status cancelled = CancelRemoteJob(params.server, sink.job_id(), absl::Seconds(5));
+      progress.Finish(absl::StrFormat(
+          "the server reads no upload in parts (it predates them): job %s %s; sending the "
+          "cloud as one Draco cloud",
+          sink.job_id(),
+          cancelled.ok() ? "cancelled"
+                         : absl::StrCat("not cancelled (", cancelled.error_message(), ")")));
+      upload = ReadAndEncode(params, outcome, progress, /*in_parts=*/false);
+      if (!upload.ok()) return upload.status();
+      continue;
     }
     absl::Status ended = sink.Outcome();
     // A job ends UNAVAILABLE only when the server lost it, stopping while it was queued or

@@ -8,8 +8,10 @@
 #include "absl/status/status.h"
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
 #include "core/io/file_bytes.h"
 #include "core/io/token_file.h"
+#include "membrane/v1/reconstruction.grpc.pb.h"
 #include "proto/endpoint_address.h"
 #include "proto/job_routing.h"
 
@@ -80,6 +82,19 @@ void Authorize(grpc::ClientContext& context, const ServerConnection& connection)
 void RouteToJob(grpc::ClientContext& context, const std::string& job_id) {
   const absl::string_view replica = ReplicaOfJobId(job_id);
   if (!replica.empty()) context.AddMetadata(kReplicaHeader, std::string(replica));
+}
+
+grpc::Status CancelRemoteJob(const ServerConnection& connection, const std::string& job_id,
+                             absl::Duration timeout) {
+  auto stub = v1::Reconstruction::NewStub(Connect(connection));
+  grpc::ClientContext context;
+  Authorize(context, connection);
+  RouteToJob(context, job_id);
+  context.set_deadline(absl::ToChronoTime(absl::Now() + timeout));
+  v1::CancelJobRequest request;
+  request.set_job_id(job_id);
+  v1::Job job;
+  return stub->CancelJob(&context, request, &job);
 }
 
 }  // namespace membrane::client

@@ -9,8 +9,10 @@
 
 #include <grpcpp/channel.h>
 #include <grpcpp/client_context.h>
+#include <grpcpp/support/status.h>
 
 #include "absl/status/statusor.h"
+#include "absl/time/time.h"
 
 namespace CLI {
 class App;
@@ -56,6 +58,11 @@ void Authorize(grpc::ClientContext& context, const ServerConnection& connection)
 // metadata, so that a balancer sends the call to the replica holding the job. For every call
 // that names a job: GetJob, WatchJob (re-attach too), CancelJob.
 void RouteToJob(grpc::ClientContext& context, const std::string& job_id);
+
+// Cancels job `job_id` on `connection`'s server (CancelJob, authorized and routed to the job's
+// replica), waiting at most `timeout` for the answer; the call's status.
+grpc::Status CancelRemoteJob(const ServerConnection& connection, const std::string& job_id,
+                             absl::Duration timeout);
 
 }  // namespace membrane::client
 

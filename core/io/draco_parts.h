@@ -4,8 +4,10 @@
 // serial), 5 s of the 10M-point upload's encode and 3 s of its decode.
 // Every part is quantized on one explicit box (or stored lossless), so that a point decodes to
 // the same float32 position whichever part holds it: the parts decode to the points of a
-// one-part encoding, grouped by part (Draco's kd-tree coder reorders points within a cloud
-// anyway; the reconstruction does not depend on the points' order).
+// one-part encoding, grouped by part. Draco's kd-tree coder orders the points within a cloud
+// either way; the surface's fit sums near points in float32 in their order, so a mesh from
+// parts can differ from a one-part upload's in a few vertices by a fraction of a voxel
+// (docs/io-decisions.md, "An upload in parts").
 #ifndef MEMBRANE_CORE_IO_DRACO_PARTS_H_
 #define MEMBRANE_CORE_IO_DRACO_PARTS_H_
 

@@ -5,7 +5,6 @@
 #include <optional>
 
 #include "core/geometry/symmetric_eigen3.h"
-
 #include "core/geometry/vec3.h"
 
 namespace membrane {

@@ -99,8 +99,11 @@ void JobRunner::Run(const std::shared_ptr<Job>& job, int threads) const {
   DracoMeshSink draco_sink(settings->mesh_encoding.compression_level);
   PlyMeshSink ply_sink;
   // The web console's job list shows a preview of each mesh.
-  PreviewSink sink(settings->ply_mesh ? static_cast<MeshSink&>(ply_sink) : draco_sink);
-  JobEventObserver observer(*job, &metrics_, options_.progress_after_seconds);
+  PreviewSink sink(settings->ply_mesh ? static_cast<MeshSink&>(ply_sink) : draco_sink,
+                   &job->cancel_token());
+  JobEventObserver events(*job, &metrics_, options_.progress_after_seconds);
+  // The preview is drawn once the check beside the encode has ended.
+  PreviewCheckObserver observer(events, sink);
   // A grid over the budget: the message says which job fields change it.
   ErrorContext errors;
   errors.resource_exhausted_advice =

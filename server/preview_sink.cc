@@ -16,8 +16,8 @@ absl::StatusOr<std::string> PreviewPng(const TriangleMesh& mesh) {
 }
 
 // Draco's encoder is serial, and on a big mesh it outlasts the check beside it: the drawing
-// fits in the core the check leaves. Drawn beside the check, it took cores from both and
-// stretched the 10M-point torus's encode (tests/bench/2026-12-06-server-encode.txt).
+// fits in the core the check leaves. Drawn at once, it shares the cores with both (the
+// 10M-point torus's check longer: tests/bench/2026-12-06-server-encode.txt).
 absl::Status PreviewSink::Write(const TriangleMesh& mesh, const PositionGrid& grid) {
   {
     absl::MutexLock lock(&mutex_);

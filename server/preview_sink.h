@@ -29,8 +29,9 @@ absl::StatusOr<std::string> PreviewPng(const TriangleMesh& mesh);
 // unless a test gives another) on a thread beside inner's write, starting when the mesh check
 // has ended (CheckEnded), or when the write has, whichever comes first: the check's threads,
 // the write and the drawing would otherwise share the cores at once. When no thread can be
-// started, the drawing follows the write. The preview is drawn and kept only when `inner`
-// took the mesh. Like any sink it only reads the mesh.
+// started, the drawing follows the write. The preview is kept only when `inner` took the mesh
+// (and not drawn when the write failed before the check ended). Like any sink it only reads
+// the mesh.
 class PreviewSink : public MeshSink {
  public:
   using Drawing = std::function<absl::StatusOr<std::string>(const TriangleMesh&)>;

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <numeric>
 
+#include "core/base/parallel_tasks.h"
+
 namespace membrane {
 namespace {
 
@@ -66,24 +68,60 @@ void JoinRows(const std::vector<VoxelRun>& runs, int64_t a, int64_t a_end, int64
 
 }  // namespace
 
-VoxelRuns NonOutsideRuns(const VoxelGrid& grid) {
+VoxelRuns NonOutsideRuns(const VoxelGrid& grid) { return NonOutsideRuns(grid, 1); }
+
+VoxelRuns NonOutsideRuns(const VoxelGrid& grid, int threads) {
   VoxelRuns out;
   out.dims = grid.dims();
   const int nx = out.dims[0], ny = out.dims[1], nz = out.dims[2];
-  out.row_begin.reserve(static_cast<size_t>(ny) * static_cast<size_t>(nz) + 1);
   const VoxelState* s = grid.states().data();
-  for (int z = 0; z < nz; ++z)
-    for (int y = 0; y < ny; ++y) {
-      out.row_begin.push_back(static_cast<int64_t>(out.runs.size()));
-      const VoxelState* row = s + grid.Index(0, y, z);
-      int x = FindNext(row, 0, nx, false);
-      while (x < nx) {
-        const int end = FindNext(row, x, nx, true);
-        out.runs.push_back({x, end, -1});
-        x = FindNext(row, end, nx, false);
+  // Appends the runs of planes [z0, z1) to `runs` and each row's first run to `row_begin`.
+  auto read_planes = [&](int z0, int z1, std::vector<int64_t>& row_begin,
+                         std::vector<VoxelRun>& runs) {
+    for (int z = z0; z < z1; ++z)
+      for (int y = 0; y < ny; ++y) {
+        row_begin.push_back(static_cast<int64_t>(runs.size()));
+        const VoxelState* row = s + grid.Index(0, y, z);
+        int x = FindNext(row, 0, nx, false);
+        while (x < nx) {
+          const int end = FindNext(row, x, nx, true);
+          runs.push_back({x, end, -1});
+          x = FindNext(row, end, nx, false);
+        }
       }
-    }
-  out.row_begin.push_back(static_cast<int64_t>(out.runs.size()));
+  };
+  // A pass over the whole grid (2e9 voxels at 10M points) is worth splitting; a small grid's
+  // is not.
+  constexpr int64_t kMinSplitVoxels = int64_t{1} << 24;
+  const TaskRanges slabs =
+      TaskRanges::Split(nz, grid.size() < kMinSplitVoxels ? 1 : threads, /*per_thread=*/4);
+  if (slabs.tasks == 1) {
+    out.row_begin.reserve(static_cast<size_t>(ny) * static_cast<size_t>(nz) + 1);
+    read_planes(0, nz, out.row_begin, out.runs);
+    out.row_begin.push_back(static_cast<int64_t>(out.runs.size()));
+    return out;
+  }
+  // Each slab's rows and runs on its own, then joined in slab order: each slab's row starts
+  // offset by the runs of the slabs before it, so the list is the one-slab list.
+  std::vector<std::vector<int64_t>> slab_rows(static_cast<size_t>(slabs.tasks));
+  std::vector<std::vector<VoxelRun>> slab_runs(static_cast<size_t>(slabs.tasks));
+  RunTasks(threads, slabs.tasks, [&](int, int64_t t) {
+    read_planes(static_cast<int>(slabs.begin(t)), static_cast<int>(slabs.end(t)),
+                slab_rows[static_cast<size_t>(t)], slab_runs[static_cast<size_t>(t)]);
+  });
+  std::vector<int64_t> first_run(static_cast<size_t>(slabs.tasks) + 1, 0);
+  for (size_t t = 0; t < slab_runs.size(); ++t) first_run[t + 1] = first_run[t] + static_cast<int64_t>(slab_runs[t].size());
+  out.row_begin.resize(static_cast<size_t>(ny) * static_cast<size_t>(nz) + 1);
+  out.runs.resize(static_cast<size_t>(first_run.back()));
+  RunTasks(threads, slabs.tasks, [&](int, int64_t t) {
+    const size_t k = static_cast<size_t>(t);
+    const size_t row0 = static_cast<size_t>(slabs.begin(t)) * static_cast<size_t>(ny);
+    for (size_t r = 0; r < slab_rows[k].size(); ++r) out.row_begin[row0 + r] = slab_rows[k][r] + first_run[k];
+    std::copy(slab_runs[k].begin(), slab_runs[k].end(), out.runs.begin() + first_run[k]);
+    std::vector<int64_t>().swap(slab_rows[k]);
+    std::vector<VoxelRun>().swap(slab_runs[k]);
+  });
+  out.row_begin.back() = first_run.back();
   return out;
 }
 

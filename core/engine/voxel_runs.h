@@ -35,6 +35,10 @@ struct VoxelRuns {
 // The maximal runs of non-outside voxels of `grid`, unlabeled. Any grid, border included.
 VoxelRuns NonOutsideRuns(const VoxelGrid& grid);
 
+// The same runs, read on `threads` (slabs of z planes, joined in order): the same result for
+// any thread count.
+VoxelRuns NonOutsideRuns(const VoxelGrid& grid, int threads);
+
 // The maximal runs of outside voxels of the grid `solid` was taken from that lie off the array
 // border (x, y, z in [1, n - 2]): the complement of `solid` in that box, unlabeled.
 VoxelRuns OutsideRunsOffBorder(const VoxelRuns& solid);

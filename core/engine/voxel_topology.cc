@@ -167,8 +167,13 @@ VoxelTopology ComputeVoxelTopology(const VoxelGrid& grid) {
 
 std::optional<VoxelTopology> ComputeVoxelTopology(const VoxelGrid& grid,
                                                   const CancelToken& cancel) {
+  return ComputeVoxelTopology(grid, cancel, 1);
+}
+
+std::optional<VoxelTopology> ComputeVoxelTopology(const VoxelGrid& grid,
+                                                  const CancelToken& cancel, int threads) {
   VoxelTopology topo;
-  VoxelRuns shells = NonOutsideRuns(grid);
+  VoxelRuns shells = NonOutsideRuns(grid, threads);
   if (cancel.cancelled()) return std::nullopt;
   topo.shells = LabelRunComponents(shells, RunAdjacency::kVertex);
   if (cancel.cancelled()) return std::nullopt;

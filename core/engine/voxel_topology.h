@@ -36,6 +36,11 @@ int TotalGenus(const VoxelTopology& t);
 std::optional<VoxelTopology> ComputeVoxelTopology(const VoxelGrid& grid,
                                                   const CancelToken& cancel);
 
+// The same, its pass over the grid's voxels (NonOutsideRuns) on `threads`: the same topology
+// for any thread count.
+std::optional<VoxelTopology> ComputeVoxelTopology(const VoxelGrid& grid,
+                                                  const CancelToken& cancel, int threads);
+
 // Labels the 26-components of non-outside voxels: label[i] = shell index (0-based, ordered by
 // lowest voxel index) or -1 for outside voxels. Returns the number of components. Costs one
 // int32 per voxel, which ComputeVoxelTopology avoids: meant for checks, not the pipeline.

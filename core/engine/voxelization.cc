@@ -77,7 +77,8 @@ int64_t DistinctPointCount(absl::Span<const Point3f> points, int threads,
   });
   if (cancel.cancelled()) return 0;
   const std::vector<size_t> bucket_start = PlaceBucketsByPart(offsets);
-  std::vector<Point3f> grouped(n);
+  // Sized unset: every point is written below, on the threads, which take its pages' faults.
+  std::vector<Point3f, UnsetAllocator<Point3f>> grouped(n);
   RunTasks(threads, blocks, [&](int, int64_t block) {
     std::vector<size_t>& at = offsets[block];
     VisitPoints(block_points(block), cancel,

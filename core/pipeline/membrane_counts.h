@@ -27,8 +27,8 @@ struct MembraneCounts {
 
 // Counts the voxel states of `grid` and computes its shells and genus (ComputeVoxelTopology
 // of core/engine). `grid` must have an outside border layer, as every membrane has.
-// O(voxels).
-MembraneCounts CountMembrane(const VoxelGrid& grid);
+// O(voxels), its passes over the voxels on `threads`: the same counts for any thread count.
+MembraneCounts CountMembrane(const VoxelGrid& grid, int threads = 1);
 
 }  // namespace membrane
 

@@ -127,7 +127,7 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   if (absl::Status s = ShrinkStage(options, cancel, grid, *cloud, report, observer); !s.ok()) {
     return with_context(s);
   }
-  report.membrane = CountMembrane(grid);
+  report.membrane = CountMembrane(grid, options.threads);
   if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kShrink); !s.ok()) return s;
   if (options.relax) {
     if (absl::Status s =

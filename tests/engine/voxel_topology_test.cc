@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <random>
 #include <vector>
 
+#include "core/engine/voxel_runs.h"
 #include "gtest/gtest.h"
 
 namespace membrane {
@@ -257,6 +259,52 @@ TEST(VoxelTopology, MatchesBruteForceOnRandomGrids) {
   EXPECT_GT(with_cavities, 100);
   EXPECT_GT(with_several_shells, 100);
   EXPECT_GT(with_genus, 100);
+}
+
+// A grid over NonOutsideRuns' split size (2^24 voxels): balls and solid tori with random
+// voxels flipped, so that rows hold many runs and several slabs hold shells that cross them.
+VoxelGrid LargeRandomSolid() {
+  const std::array<int, 3> dims = {260, 258, 256};
+  VoxelGrid g(dims, {0, 0, 0}, 1.0, OutsideState(0));
+  std::mt19937 rng(20261205);
+  std::uniform_real_distribution<double> uniform(0, 1);
+  for (int z = 1; z < dims[2] - 1; ++z)
+    for (int y = 1; y < dims[1] - 1; ++y)
+      for (int x = 1; x < dims[0] - 1; ++x) {
+        const double ball = std::hypot(x - 70.0, y - 80.0, z - 90.0);
+        const double ring = std::hypot(std::hypot(x - 170.0, z - 140.0) - 60, y - 150.0);
+        bool solid = ball < 50 || ring < 18;
+        if (uniform(rng) < 0.02) solid = !solid;
+        if (solid) g.set(Coord{x, y, z}, uniform(rng) < 0.5 ? kBoundarySoft : kInsideHard);
+      }
+  return g;
+}
+
+TEST(VoxelTopology, TheSameRunsAndTopologyOnAnyThreadCount) {
+  const VoxelGrid g = LargeRandomSolid();
+  ASSERT_GE(g.size(), int64_t{1} << 24);
+  const VoxelRuns one = NonOutsideRuns(g);
+  const VoxelTopology expected = ComputeVoxelTopology(g);
+  ASSERT_GT(one.runs.size(), 100000u);
+  ASSERT_GT(expected.shells, 100);
+  for (int threads : {2, 3}) {
+    const VoxelRuns split = NonOutsideRuns(g, threads);
+    EXPECT_EQ(split.dims, one.dims) << threads << " threads";
+    EXPECT_EQ(split.row_begin, one.row_begin) << threads << " threads";
+    ASSERT_EQ(split.runs.size(), one.runs.size()) << threads << " threads";
+    EXPECT_TRUE(std::equal(split.runs.begin(), split.runs.end(), one.runs.begin(),
+                           [](const VoxelRun& a, const VoxelRun& b) {
+                             return a.begin == b.begin && a.end == b.end &&
+                                    a.component == b.component;
+                           }))
+        << threads << " threads";
+    const std::optional<VoxelTopology> t = ComputeVoxelTopology(g, CancelToken::Never(), threads);
+    ASSERT_TRUE(t.has_value());
+    EXPECT_EQ(t->shells, expected.shells) << threads << " threads";
+    EXPECT_EQ(t->genus, expected.genus) << threads << " threads";
+    EXPECT_EQ(t->voxels, expected.voxels) << threads << " threads";
+    EXPECT_EQ(t->cavities, expected.cavities) << threads << " threads";
+  }
 }
 
 int64_t EulerOf(const VoxelTopology& t) {

@@ -95,5 +95,34 @@ TEST(MembraneCounts, CountsASolidBlockAndItsTopology) {
   EXPECT_EQ(counts.genus[0], 0);
 }
 
+// A grid over the split size (2^24 voxels) holding every state, counted on 1 to 3 threads:
+// the census and the topology of one thread.
+TEST(MembraneCounts, TheSameCountsOnAnyThreadCount) {
+  const std::array<int, 3> dims = {260, 258, 256};
+  VoxelGrid g(dims, {0, 0, 0}, 1.0, OutsideState(0));
+  constexpr std::array<VoxelState, 7> kSolid = {kInsideSoft,    kBoundarySoft,  kInsideHard,
+                                                kBoundaryHard,  kInsideFrozen,  kBoundaryFrozen,
+                                                kInsideSoft};
+  uint32_t h = 12345;
+  for (int z = 1; z < dims[2] - 1; ++z)
+    for (int y = 1; y < dims[1] - 1; ++y)
+      for (int x = 1; x < dims[0] - 1; ++x) {
+        h = h * 1664525u + 1013904223u;
+        const int dx = x - 130, dy = y - 129, dz = z - 128;
+        if (dx * dx + dy * dy + dz * dz < 110 * 110 || (h >> 24) < 8)
+          g.set(Coord{x, y, z}, kSolid[(h >> 8) % kSolid.size()]);
+      }
+  ASSERT_GE(g.size(), int64_t{1} << 24);
+  const MembraneCounts one = CountMembrane(g);
+  ExpectSameCounts(one, Census(g));
+  ASSERT_GT(one.shells, 1);
+  for (int threads : {2, 3}) {
+    const MembraneCounts split = CountMembrane(g, threads);
+    ExpectSameCounts(split, one);
+    EXPECT_EQ(split.shells, one.shells) << threads << " threads";
+    EXPECT_EQ(split.genus, one.genus) << threads << " threads";
+  }
+}
+
 }  // namespace
 }  // namespace membrane

@@ -22,8 +22,8 @@ echo "== Release build and full suite"
 # relative to the root (CCACHE_BASEDIR, the image compiles under /src), and none of the locale
 # variables ccache hashes (the image's build sets none). The store is kept between runs (a
 # build with nothing to compile leaves the image its objects); ccache never trims a file
-# store, so its least recently used files go here once it passes 1 GB (the image's 219
-# objects take 9 MB).
+# store, so its least recently used files go here once it passes 1 GB (a whole
+# Release build's objects take 14 MB).
 mkdir -p build/ccache-store
 ccache --trim-dir build/ccache-store --trim-max-size 1G >/dev/null
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DMEMBRANE_WERROR=ON \

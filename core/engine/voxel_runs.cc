@@ -92,9 +92,8 @@ VoxelRuns NonOutsideRuns(const VoxelGrid& grid, int threads) {
   };
   // A pass over the whole grid (2e9 voxels at 10M points) is worth splitting; a small grid's
   // is not.
-  constexpr int64_t kMinSplitVoxels = int64_t{1} << 24;
   const TaskRanges slabs =
-      TaskRanges::Split(nz, grid.size() < kMinSplitVoxels ? 1 : threads, /*per_thread=*/4);
+      TaskRanges::Split(nz, grid.size() < kMinSplitGridVoxels ? 1 : threads, /*per_thread=*/4);
   if (slabs.tasks == 1) {
     out.row_begin.reserve(static_cast<size_t>(ny) * static_cast<size_t>(nz) + 1);
     read_planes(0, nz, out.row_begin, out.runs);
@@ -110,13 +109,17 @@ VoxelRuns NonOutsideRuns(const VoxelGrid& grid, int threads) {
                 slab_rows[static_cast<size_t>(t)], slab_runs[static_cast<size_t>(t)]);
   });
   std::vector<int64_t> first_run(static_cast<size_t>(slabs.tasks) + 1, 0);
-  for (size_t t = 0; t < slab_runs.size(); ++t) first_run[t + 1] = first_run[t] + static_cast<int64_t>(slab_runs[t].size());
+  for (size_t t = 0; t < slab_runs.size(); ++t) {
+    first_run[t + 1] = first_run[t] + static_cast<int64_t>(slab_runs[t].size());
+  }
   out.row_begin.resize(static_cast<size_t>(ny) * static_cast<size_t>(nz) + 1);
   out.runs.resize(static_cast<size_t>(first_run.back()));
   RunTasks(threads, slabs.tasks, [&](int, int64_t t) {
     const size_t k = static_cast<size_t>(t);
     const size_t row0 = static_cast<size_t>(slabs.begin(t)) * static_cast<size_t>(ny);
-    for (size_t r = 0; r < slab_rows[k].size(); ++r) out.row_begin[row0 + r] = slab_rows[k][r] + first_run[k];
+    for (size_t r = 0; r < slab_rows[k].size(); ++r) {
+      out.row_begin[row0 + r] = slab_rows[k][r] + first_run[k];
+    }
     std::copy(slab_runs[k].begin(), slab_runs[k].end(), out.runs.begin() + first_run[k]);
     std::vector<int64_t>().swap(slab_rows[k]);
     std::vector<VoxelRun>().swap(slab_runs[k]);

@@ -13,9 +13,6 @@ namespace {
 
 constexpr uint64_t kAll = ~uint64_t{0};
 
-// Below this many voxels the flood stays on the calling thread: the slabs' rounds and thread
-// starts cost more than they share (the 100k-point clouds' grids are 1e6-1e7 voxels).
-constexpr int64_t kSlabFloodMinVoxels = int64_t{1} << 24;
 // Planes of a slab, at least: a thinner slab sends most of its runs across its faces.
 constexpr int kMinSlabPlanes = 8;
 
@@ -262,7 +259,7 @@ FloodBox WholeArray(const std::array<int, 3>& dims) {
 }  // namespace
 
 FlatBitset FloodFromBorder(const std::array<int, 3>& dims, const FlatBitset& open, int threads) {
-  if (threads <= 1 || open.bits() < kSlabFloodMinVoxels || dims[2] < 2 * kMinSlabPlanes)
+  if (threads <= 1 || open.bits() < kMinSplitGridVoxels || dims[2] < 2 * kMinSlabPlanes)
     return SerialFlood(WholeArray(dims), open);
   // Many slabs a thread: the open runs are not spread evenly over the planes, and a round
   // waits for its last slab (at 4 a thread, one thread idled the last sixth of the 4M

@@ -13,8 +13,6 @@
 namespace membrane {
 namespace {
 
-// Below this many voxels the flood stays on the calling thread (as the cave filling's).
-constexpr int64_t kSlabFloodMinVoxels = int64_t{1} << 24;
 // Planes of a slab, at least.
 constexpr int kMinSlabPlanes = 8;
 
@@ -181,7 +179,7 @@ int64_t RemoveLooseSheetsOn(VoxelGrid& grid, int threads, int slabs) {
 
 int64_t RemoveLooseSheets(VoxelGrid& grid, int threads) {
   const auto& d = grid.dims();
-  const bool slabbed = threads > 1 && grid.size() >= kSlabFloodMinVoxels && d[2] >= 2 * kMinSlabPlanes;
+  const bool slabbed = threads > 1 && grid.size() >= kMinSplitGridVoxels && d[2] >= 2 * kMinSlabPlanes;
   // Many slabs a thread, as the cave filling's flood: a round waits for its last slab.
   return RemoveLooseSheetsOn(grid, threads, slabbed ? std::min(d[2] / kMinSlabPlanes, 16 * threads) : 0);
 }

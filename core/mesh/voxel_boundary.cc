@@ -405,9 +405,6 @@ void BuildSlab(const VoxelGrid& grid, int z0, int z1,
 
 // Slabs of at least this many voxel layers.
 constexpr int kMinSlabLayers = 8;
-// The boundary is extracted on slabs on grids of this many voxels and more, with 2 threads
-// or more.
-constexpr int64_t kSlabMinVoxels = int64_t{1} << 24;
 
 // The slabs' boundaries joined in slab order, their ids made global: the one-thread pass's
 // numbering, since each slab numbers what it makes in that pass's order and the pass makes
@@ -525,7 +522,7 @@ Vec3d FanOutsideDirection(int config, int fan) { return Table()[config].outside_
 int FanSolidOctant(int config, int fan) { return Table()[config].solid_octant[fan]; }
 
 VoxelBoundary ExtractVoxelBoundary(const VoxelGrid& grid, int threads) {
-  if (threads > 1 && grid.size() >= kSlabMinVoxels && grid.dim(2) >= 2 * kMinSlabLayers) {
+  if (threads > 1 && grid.size() >= kMinSplitGridVoxels && grid.dim(2) >= 2 * kMinSlabLayers) {
     // Many slabs a thread: the boundary is not spread evenly over the layers.
     return ExtractOnSlabs(grid, threads, std::min(grid.dim(2) / kMinSlabLayers, 16 * threads));
   }

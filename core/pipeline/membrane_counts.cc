@@ -48,8 +48,8 @@ void CountStates(const VoxelState* s, int64_t begin, int64_t end, MembraneCounts
 MembraneCounts CountMembrane(const VoxelGrid& grid, int threads) {
   // Ranges of the grid a task, each counted on its own and summed: sums of counts, the same
   // for any split.
-  constexpr int64_t kMinSplitVoxels = int64_t{1} << 24;
-  const TaskRanges ranges = TaskRanges::Split(grid.size(), threads, /*per_thread=*/4, kMinSplitVoxels);
+  const TaskRanges ranges =
+      TaskRanges::Split(grid.size(), threads, /*per_thread=*/4, kMinSplitGridVoxels);
   std::vector<MembraneCounts> parts(static_cast<size_t>(ranges.tasks));
   const VoxelState* const s = grid.states().data();
   RunTasks(threads, ranges.tasks, [&](int, int64_t t) {

@@ -359,7 +359,8 @@ absl::StatusOr<RemoteOutcome> RunRemoteReconstruction(const RemoteParams& params
     if (PartsUnread(*upload, sink)) {
       // A server that predates uploads in parts (a replica not yet upgraded) would reconstruct
       // the first part alone: its job is cancelled and the cloud sent again in one part.
-      const grpc::Status cancelled = CancelRemoteJob(params.server, sink.job_id(), absl::Seconds(5));
+      const grpc::Status cancelled =
+          CancelRemoteJob(params.server, sink.job_id(), absl::Seconds(5));
       progress.Finish(absl::StrFormat(
           "the server reads no upload in parts (it predates them): job %s %s; sending the "
           "cloud as one Draco cloud",

@@ -229,7 +229,6 @@ grpc::Status ReconstructionService::Reconstruct(
   auto job = std::make_shared<Job>(id, peer, parameters, std::move(upload),
                                    std::move(hold), JobEndHook(metrics_, store_, id));
   job->set_client(caller.name);
-  const uint32_t upload_parts = static_cast<uint32_t>(std::max<size_t>(part_bytes.size(), 1));
   job->set_upload_part_bytes(std::move(part_bytes));
   const auto queue_refused = [&](const absl::Status& s) {
     LogEvent("job_refused", {{"peer", peer},
@@ -255,7 +254,8 @@ grpc::Status ReconstructionService::Reconstruct(
   v1::JobEvent accepted;
   accepted.mutable_accepted()->set_job_id(job->id());
   accepted.mutable_accepted()->set_queue_position(snapshot.queue_position());
-  accepted.mutable_accepted()->set_upload_parts(upload_parts);
+  accepted.mutable_accepted()->set_upload_parts(
+      static_cast<uint32_t>(std::max<size_t>(job->upload_part_bytes().size(), 1)));
   const FollowPolicy policy{options_.on_disconnect == DisconnectPolicy::kCancel};
   if (!WriteUnlessStalled(context, [&] { return stream->Write(accepted); })) {
     return FollowJob(*job, *context, peer, policy, [](const v1::JobEvent&) { return false; });

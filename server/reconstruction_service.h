@@ -59,13 +59,13 @@ class ReconstructionService final : public v1::Reconstruction::Service {
                         v1::ListJobsResponse* response) override;
 
  private:
-  // Reads the header and the chunks of an upload; checks parameters, size, the parts' sizes
-  // (into `part_bytes`, CheckDracoPartBytes) and checksum. The
-  // buffer's bytes are held in the memory for uploads (`hold`) as it grows: RESOURCE_EXHAUSTED
-  // at the header when the upload can never fit, with a retry delay when it does not fit now.
-  // The call is cancelled when its upload makes no progress for options_.stall_seconds
-  // (DEADLINE_EXCEEDED, for the log). Progress is bytes: kStallProgressBytes, or the rest of
-  // the upload, since the last progress; empty chunks, or a byte now and then, are none.
+  // Reads the header and the chunks of an upload; checks parameters, size, the parts' sizes (into
+  // `part_bytes`, CheckDracoPartBytes) and checksum. The buffer's bytes are held in the memory for
+  // uploads (`hold`) as it grows: RESOURCE_EXHAUSTED at the header when the upload can never fit,
+  // with a retry delay when it does not fit now. The call is cancelled when its upload makes no
+  // progress for options_.stall_seconds (DEADLINE_EXCEEDED, for the log). Progress is bytes:
+  // kStallProgressBytes, or the rest of the upload, since the last progress; empty chunks, or a
+  // byte now and then, are none.
   grpc::Status ReadUpload(grpc::ServerContext* context,
                           grpc::ServerReaderWriter<v1::JobEvent, v1::ReconstructRequest>* stream,
                           v1::Parameters& parameters, std::string& upload,

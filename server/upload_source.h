@@ -17,12 +17,12 @@ class UploadSource : public CloudSource {
   UploadSource(Job& job, DecodeLimits limits, const Origin3d& origin)
       : job_(job), limits_(std::move(limits)), origin_(origin) {}
 
-  // Takes the job's upload, decodes it under `limits` (its parts, if any, on limits.threads)
-  // and gives the upload's bytes back to
-  // the server's memory for uploads; the cloud gets `origin`. DecodeInSubprocess's errors as
-  // they are: InvalidArgument for an upload the decoder rejects or dies on, ResourceExhausted
-  // for one over limits.max_points, Cancelled within 50 ms of `cancel` firing, Internal when
-  // the decoder cannot be started. The decode counts on `progress` (DecodeProgress).
+  // Takes the job's upload, decodes it under `limits` (its parts, if any, on limits.threads) and
+  // gives the upload's bytes back to the server's memory for uploads; the cloud gets `origin`.
+  // DecodeInSubprocess's errors as they are: InvalidArgument for an upload the decoder rejects or
+  // dies on, ResourceExhausted for one over limits.max_points, Cancelled within 50 ms of `cancel`
+  // firing, Internal when the decoder cannot be started. The decode counts on `progress`
+  // (DecodeProgress).
   absl::StatusOr<PointCloud> Read(const CancelToken& cancel, ProgressRange progress) override;
 
  private:

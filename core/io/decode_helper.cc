@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <new>
 #include <utility>
+#include <vector>
 
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
@@ -20,12 +21,17 @@ int Reject(const std::string& message, int code = kDecodeHelperRejected) {
   return code;
 }
 
-// A count as a uint64, then the records, on stdout.
+// A count as a uint64, then the records of `pieces` one piece after the other, on stdout:
+// a cloud's parts go out as they were decoded, without one array of all their points.
 template <typename T>
-bool WriteRecords(const std::vector<T>& records) {
-  const uint64_t count = records.size();
-  return std::fwrite(&count, sizeof count, 1, stdout) == 1 &&
-         std::fwrite(records.data(), sizeof(T), records.size(), stdout) == records.size();
+bool WriteRecords(const std::vector<std::vector<T>>& pieces) {
+  uint64_t count = 0;
+  for (const std::vector<T>& piece : pieces) count += piece.size();
+  if (std::fwrite(&count, sizeof count, 1, stdout) != 1) return false;
+  for (const std::vector<T>& piece : pieces) {
+    if (std::fwrite(piece.data(), sizeof(T), piece.size(), stdout) != piece.size()) return false;
+  }
+  return true;
 }
 
 std::string ReadAll(std::FILE* in) {
@@ -74,36 +80,39 @@ int RunDecodeHelper(const std::vector<std::string>& args) {
   const std::string& mode = parsed.mode;
   const std::string bytes = ReadAll(stdin);
   if (bytes.empty()) return Reject("the Draco data is empty");
-  TriangleMesh mesh;  // a cloud is a mesh without faces here
+  // A mesh's vertices, or a cloud's points part after part (one piece for one part).
+  std::vector<std::vector<Point3f>> points;
+  std::vector<decltype(TriangleMesh::faces)> faces(1);
   // Draco allocates what crafted counts ask for; under the parent's RLIMIT_AS that ends in
   // bad_alloc, which deserves a line of its own rather than an abort.
   try {
     if (mode == kMeshArgument) {
       absl::StatusOr<TriangleMesh> decoded = DecodeDracoMesh(bytes);
       if (!decoded.ok()) return Reject(std::string(decoded.status().message()));
-      mesh = *std::move(decoded);
+      points.push_back(std::move(decoded->vertices));
+      faces.front() = std::move(decoded->faces);
     } else {
-      absl::StatusOr<DecodedDracoCloud> decoded = DecodeDracoPointCloudParts(
+      absl::StatusOr<std::vector<DecodedDracoCloud>> decoded = DecodeDracoParts(
           bytes, parsed.part_bytes,
           mode == kAcceptMeshArgument ? DracoMeshPolicy::kAcceptMeshVertices
                                       : DracoMeshPolicy::kRejectMesh,
           parsed.threads);
       if (!decoded.ok()) return Reject(std::string(decoded.status().message()));
-      if (decoded->cloud.points.empty()) return Reject("the cloud has no points");
-      mesh.vertices = std::move(decoded->cloud.points);
+      for (DecodedDracoCloud& part : *decoded) points.push_back(std::move(part.cloud.points));
     }
   } catch (const std::bad_alloc&) {
     return Reject("the Draco decoder asked for more memory than its limit: the data is corrupt");
   }
-  if (static_cast<int64_t>(mesh.vertices.size()) > max_points) {
-    return Reject(absl::StrCat("the ", mode == kMeshArgument ? "mesh" : "cloud", " has ",
-                               mesh.vertices.size(), " points, over the limit of ", max_points,
-                               " (--max-points)"),
+  size_t count = 0;
+  for (const std::vector<Point3f>& piece : points) count += piece.size();
+  if (count == 0 && mode != kMeshArgument) return Reject("the cloud has no points");
+  if (static_cast<int64_t>(count) > max_points) {
+    return Reject(absl::StrCat("the ", mode == kMeshArgument ? "mesh" : "cloud", " has ", count,
+                               " points, over the limit of ", max_points, " (--max-points)"),
                   kDecodeHelperOverLimit);
   }
   // x86-64 and aarch64 are little-endian; the parent reads the same layout.
-  const bool written =
-      WriteRecords(mesh.vertices) && (mode != kMeshArgument || WriteRecords(mesh.faces));
+  const bool written = WriteRecords(points) && (mode != kMeshArgument || WriteRecords(faces));
   if (!written || std::fflush(stdout) != 0) return Reject("cannot write the result");
   return 0;
 }

@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <string>
 
 namespace membrane {
 
@@ -34,11 +34,10 @@ DecodeProgress::DecodeProgress(ProgressRange range, size_t input_bytes, pid_t ch
   range_.Part(0, kDecoderShare).Begin(std::max<int64_t>(1, std::llround(ticks)));
 }
 
-void DecodeProgress::Update(const std::string& out) {
+void DecodeProgress::Update(uint64_t output_bytes, std::optional<uint64_t> point_count) {
   if (!range_.counts()) return;
-  uint64_t count = 0;
   if (!reading_points_) {
-    if (out.size() < sizeof count) {
+    if (!point_count) {
       const int64_t ticks = ProcessCpuTicks(child_);
       if (ticks > cpu_ticks_) {
         range_.Add(ticks - cpu_ticks_);
@@ -46,15 +45,15 @@ void DecodeProgress::Update(const std::string& out) {
       }
       return;
     }
-    std::memcpy(&count, out.data(), sizeof count);
     // A count past what memory could hold is the parent's to refuse, not the meter's.
+    const uint64_t count = *point_count;
     const uint64_t bytes = count > (uint64_t{1} << 58) ? 1 : sizeof count + 12 * count;
     range_.Part(kDecoderShare, 1).Begin(static_cast<int64_t>(bytes));
     reading_points_ = true;
   }
-  if (out.size() > bytes_counted_) {
-    range_.Add(static_cast<int64_t>(out.size() - bytes_counted_));
-    bytes_counted_ = out.size();
+  if (output_bytes > bytes_counted_) {
+    range_.Add(static_cast<int64_t>(output_bytes - bytes_counted_));
+    bytes_counted_ = output_bytes;
   }
 }
 

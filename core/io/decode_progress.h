@@ -11,7 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <string>
+#include <optional>
 
 #include "core/base/progress_meter.h"
 
@@ -39,16 +39,17 @@ class DecodeProgress {
   DecodeProgress(ProgressRange range, size_t input_bytes, pid_t child);
 
   // Counts what has happened since the last call: the child's CPU time while it decodes, then
-  // the bytes of `out` (all its standard output so far: a little-endian uint64 point count,
-  // then 12 bytes a point). Reads /proc only while no output has come and `range` counts.
-  void Update(const std::string& out);
+  // the `output_bytes` of its standard output so far (a little-endian uint64 point count, then
+  // 12 bytes a point), once `point_count`, that count, has come. Reads /proc only while the
+  // count has not come and `range` counts.
+  void Update(uint64_t output_bytes, std::optional<uint64_t> point_count);
 
  private:
   const ProgressRange range_;
   const pid_t child_;
   int64_t cpu_ticks_ = 0;      // counted so far
   bool reading_points_ = false;  // the second step has begun
-  size_t bytes_counted_ = 0;   // of the output, in the second step
+  uint64_t bytes_counted_ = 0;  // of the output, in the second step
 };
 
 }  // namespace membrane

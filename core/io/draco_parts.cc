@@ -144,10 +144,16 @@ absl::StatusOr<DracoParts> EncodeDracoPointCloudParts(std::vector<Point3f> point
   return result;
 }
 
-absl::StatusOr<DecodedDracoCloud> DecodeDracoPointCloudParts(absl::string_view bytes,
-                                                             absl::Span<const uint64_t> part_bytes,
-                                                             DracoMeshPolicy policy, int threads) {
-  if (part_bytes.empty()) return DecodeDracoPointCloud(bytes, policy);
+absl::StatusOr<std::vector<DecodedDracoCloud>> DecodeDracoParts(
+    absl::string_view bytes, absl::Span<const uint64_t> part_bytes, DracoMeshPolicy policy,
+    int threads) {
+  std::vector<DecodedDracoCloud> parts;
+  if (part_bytes.empty()) {
+    absl::StatusOr<DecodedDracoCloud> one = DecodeDracoPointCloud(bytes, policy);
+    if (!one.ok()) return one.status();
+    parts.push_back(*std::move(one));
+    return parts;
+  }
   if (absl::Status s = CheckDracoPartBytes(part_bytes, bytes.size()); !s.ok()) return s;
   const size_t count = part_bytes.size();
   std::vector<uint64_t> begin(count, 0);
@@ -156,7 +162,6 @@ absl::StatusOr<DecodedDracoCloud> DecodeDracoPointCloudParts(absl::string_view b
   RunTasks(threads, static_cast<int64_t>(count), [&](int, int64_t t) {
     decoded[t] = DecodeDracoPointCloud(bytes.substr(begin[t], part_bytes[t]), policy);
   });
-  size_t points = 0;
   for (size_t i = 0; i < count; ++i) {
     const std::string name = PartName(i, count, begin[i], part_bytes[i]);
     const absl::StatusOr<DecodedDracoCloud>& part = *decoded[i];
@@ -174,16 +179,29 @@ absl::StatusOr<DecodedDracoCloud> DecodeDracoPointCloudParts(absl::string_view b
                                                      part->attributes, " where part 1 has ",
                                                      first.attributes));
     }
-    points += part->cloud.points.size();
   }
+  parts.reserve(count);
+  for (auto& part : decoded) parts.push_back(**std::move(part));
+  return parts;
+}
+
+absl::StatusOr<DecodedDracoCloud> DecodeDracoPointCloudParts(absl::string_view bytes,
+                                                             absl::Span<const uint64_t> part_bytes,
+                                                             DracoMeshPolicy policy, int threads) {
+  if (part_bytes.empty()) return DecodeDracoPointCloud(bytes, policy);
+  absl::StatusOr<std::vector<DecodedDracoCloud>> parts =
+      DecodeDracoParts(bytes, part_bytes, policy, threads);
+  if (!parts.ok()) return parts.status();
+  size_t points = 0;
+  for (const DecodedDracoCloud& part : *parts) points += part.cloud.points.size();
   DecodedDracoCloud result;
-  result.geometry = (*decoded[0])->geometry;
-  result.attributes = (*decoded[0])->attributes;
+  result.geometry = parts->front().geometry;
+  result.attributes = parts->front().attributes;
   result.cloud.points.reserve(points);
-  for (auto& part : decoded) {
-    const std::vector<Point3f>& p = (*part)->cloud.points;
+  for (DecodedDracoCloud& part : *parts) {
+    const std::vector<Point3f>& p = part.cloud.points;
     result.cloud.points.insert(result.cloud.points.end(), p.begin(), p.end());
-    part.reset();
+    part.cloud.points = std::vector<Point3f>();
   }
   return result;
 }

@@ -69,6 +69,13 @@ absl::StatusOr<DecodedDracoCloud> DecodeDracoPointCloudParts(absl::string_view b
                                                              absl::Span<const uint64_t> part_bytes,
                                                              DracoMeshPolicy policy, int threads);
 
+// The parts that DecodeDracoPointCloudParts joins, each its own DecodedDracoCloud, in order (one
+// for empty `part_bytes`), with the same checks and errors: for a writer that passes the points
+// on part after part without one array of them all (the decode helper, decode_helper.h).
+absl::StatusOr<std::vector<DecodedDracoCloud>> DecodeDracoParts(
+    absl::string_view bytes, absl::Span<const uint64_t> part_bytes, DracoMeshPolicy policy,
+    int threads);
+
 }  // namespace membrane
 
 #endif  // MEMBRANE_CORE_IO_DRACO_PARTS_H_

@@ -3,9 +3,7 @@
 #include <unistd.h>
 
 #include <cstdint>
-#include <cstring>
 #include <optional>
-#include <string>
 
 #include <gtest/gtest.h>
 
@@ -14,13 +12,6 @@
 
 namespace membrane {
 namespace {
-
-// The helper's output for `count` points, cut after `bytes` bytes.
-std::string PointOutput(uint64_t count, size_t bytes) {
-  std::string out(sizeof count + 12 * count, '\0');
-  std::memcpy(out.data(), &count, sizeof count);
-  return out.substr(0, bytes);
-}
 
 TEST(DecodeProgress, ProcessCpuTicksReadsALiveProcess) {
   EXPECT_GE(ProcessCpuTicks(getpid()), 0);
@@ -36,10 +27,10 @@ TEST(DecodeProgress, TheDecoderShareHoldsBelowThePointsUntilTheyCome) {
   DecodeProgress progress(ProgressRange(&meter), 1, getpid());
   ASSERT_TRUE(meter.fraction().has_value());
   EXPECT_EQ(*meter.fraction(), 0);
-  progress.Update("");
+  progress.Update(0, std::nullopt);
   EXPECT_EQ(*meter.fraction(), kDecoderShare);
   // Part of a count is no count yet.
-  progress.Update(std::string(3, '\0'));
+  progress.Update(3, std::nullopt);
   EXPECT_EQ(*meter.fraction(), kDecoderShare);
 }
 
@@ -50,7 +41,7 @@ TEST(DecodeProgress, ThePointsReadBackTakeTheRestToOne) {
   const size_t total = 8 + 12 * points;
   double last = *meter.fraction();
   for (size_t bytes : {size_t{8}, total / 2, total - 1, total}) {
-    progress.Update(PointOutput(points, bytes));
+    progress.Update(bytes, points);
     const double f = *meter.fraction();
     EXPECT_GE(f, kDecoderShare) << bytes;
     EXPECT_GE(f, last) << bytes;

@@ -62,6 +62,40 @@ TEST(DracoParts, PartsOnOneBoxDecodeToTheSamePointsAsOneCloud) {
   }
 }
 
+TEST(DracoParts, DecodedPartByPartTheyJoinToTheDecodedCloud) {
+  const PointCloud cloud = SampleCloud(9000);
+  absl::StatusOr<DracoParts> parts = EncodeDracoPointCloudParts(cloud.points, BoxOptions(), 4, 2);
+  ASSERT_TRUE(parts.ok()) << parts.status();
+  absl::StatusOr<DecodedDracoCloud> joined = DecodeDracoPointCloudParts(
+      parts->bytes, parts->part_bytes, DracoMeshPolicy::kRejectMesh, 2);
+  ASSERT_TRUE(joined.ok()) << joined.status();
+  absl::StatusOr<std::vector<DecodedDracoCloud>> each =
+      DecodeDracoParts(parts->bytes, parts->part_bytes, DracoMeshPolicy::kRejectMesh, 3);
+  ASSERT_TRUE(each.ok()) << each.status();
+  ASSERT_EQ(each->size(), 4u);
+  std::vector<Point3f> in_order;
+  for (const DecodedDracoCloud& part : *each) {
+    EXPECT_EQ(part.attributes, joined->attributes);
+    in_order.insert(in_order.end(), part.cloud.points.begin(), part.cloud.points.end());
+  }
+  EXPECT_EQ(in_order, joined->cloud.points);
+  // No part table: the bytes are one cloud, one part.
+  absl::StatusOr<DracoEncoding> one = EncodeDracoPointCloud(cloud, BoxOptions());
+  ASSERT_TRUE(one.ok()) << one.status();
+  absl::StatusOr<std::vector<DecodedDracoCloud>> whole =
+      DecodeDracoParts(one->bytes, {}, DracoMeshPolicy::kRejectMesh, 2);
+  ASSERT_TRUE(whole.ok()) << whole.status();
+  ASSERT_EQ(whole->size(), 1u);
+  EXPECT_EQ(Sorted(whole->front().cloud.points), Sorted(joined->cloud.points));
+  // A part's error names it, as the joined decode's does.
+  std::string broken = parts->bytes;
+  broken[parts->part_bytes[0] + 3] ^= 0x55;
+  absl::StatusOr<std::vector<DecodedDracoCloud>> bad =
+      DecodeDracoParts(broken, parts->part_bytes, DracoMeshPolicy::kRejectMesh, 2);
+  EXPECT_FALSE(bad.ok());
+  EXPECT_THAT(bad.status().message(), HasSubstr("part 2 of 4"));
+}
+
 TEST(DracoParts, LosslessPartsKeepEveryPoint) {
   const PointCloud cloud = SampleCloud(3000);
   absl::StatusOr<DracoParts> parts = EncodeDracoPointCloudParts(

@@ -49,6 +49,63 @@ TEST(DecodeSubprocess, ARefusedUploadDoesNotEndItsProgress) {
   EXPECT_LE(*meter.fraction(), 0.9);
 }
 
+// A decoder that reads its input whole, then answers with `output` and succeeds: what a
+// decoder gone wrong could write.
+std::string WriteDecoderAnswering(const ScratchDir& dir, const std::string& output) {
+  const std::string answer = dir.File("answer.bin");
+  std::ofstream(answer, std::ios::binary) << output;
+  const std::string script = dir.File("answering-decode.sh");
+  std::ofstream out(script);
+  out << "#!/bin/sh\ncat > /dev/null\ncat '" << answer << "'\n";
+  out.close();
+  EXPECT_EQ(chmod(script.c_str(), 0700), 0) << script;
+  return script;
+}
+
+// The helper's output for a count and that many points, then `extra` bytes, less `short_by`.
+std::string PointAnswer(uint64_t count, uint64_t points, size_t extra, size_t short_by = 0) {
+  std::string out(reinterpret_cast<const char*>(&count), sizeof count);
+  for (uint64_t i = 0; i < points; ++i) {
+    const float p[3] = {1.0f * i, 2.0f, 3.0f};
+    out.append(reinterpret_cast<const char*>(p), sizeof p);
+  }
+  out += std::string(extra, 'x');
+  out.resize(out.size() - short_by);
+  return out;
+}
+
+// The status of decoding a small upload with a decoder that answers `output`.
+absl::Status DecodeAnswering(const std::string& output, int64_t memory_bytes = 1LL << 30) {
+  ScratchDir dir;
+  DecodeLimits limits;
+  limits.helper = {WriteDecoderAnswering(dir, output)};
+  limits.memory_bytes = memory_bytes;
+  return DecodeInSubprocess(LosslessDracoCloud("sphere", 200), limits, CancelToken::Never())
+      .status();
+}
+
+TEST(DecodeSubprocess, TheDecodersAnswerIsReadWholeAndNoFurther) {
+  ScratchDir dir;
+  DecodeLimits limits;
+  limits.helper = {WriteDecoderAnswering(dir, PointAnswer(3, 3, 0))};
+  const absl::StatusOr<PointCloud> cloud =
+      DecodeInSubprocess(LosslessDracoCloud("sphere", 200), limits, CancelToken::Never());
+  ASSERT_TRUE(cloud.ok()) << cloud.status();
+  ASSERT_EQ(cloud->points.size(), 3u);
+  EXPECT_EQ(cloud->points[2], (Point3f{2.0f, 2.0f, 3.0f}));
+
+  const absl::Status truncated = DecodeAnswering(PointAnswer(3, 3, 0, /*short_by=*/1));
+  EXPECT_EQ(truncated.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(truncated.message(), "the Draco decoder returned a truncated point list");
+  const absl::Status trailing = DecodeAnswering(PointAnswer(3, 3, 1));
+  EXPECT_EQ(trailing.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(trailing.message(), "the Draco decoder returned bytes after its point list");
+  // 2^36 points would be 768 GB: refused at the count, over the decoder's 1 GB.
+  const absl::Status too_large = DecodeAnswering(PointAnswer(uint64_t{1} << 36, 3, 0));
+  EXPECT_EQ(too_large.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(too_large.message(), "the Draco decoder returned a point list over its memory limit");
+}
+
 // The decoder in the next test: it writes its pid into a FIFO (the open waits for the test to
 // read it), then waits for a line that never comes on a FIFO it holds open itself: a decoder
 // that would run for ever.

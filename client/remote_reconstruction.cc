@@ -138,7 +138,7 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   if (upload.origin != Origin3d{0, 0, 0}) {
     for (double v : upload.origin) upload.parameters.add_origin(v);
   }
-  const UploadPlan plan = PlanUpload(*cloud, params.parameters.voxel_size());
+  const UploadPlan plan = PlanUpload(*cloud, params.parameters.voxel_size(), MachineThreads());
   if (plan.voxel_size > 0) upload.parameters.set_voxel_size(plan.voxel_size);
   if (plan.voxel_plan) {
     v1::VoxelPlan& sent = *upload.parameters.mutable_voxel_plan();
@@ -155,7 +155,7 @@ absl::StatusOr<Upload> ReadAndEncode(const RemoteParams& params, RemoteOutcome& 
   std::optional<VoxelKeepingSnap> snap;
   if (plan.box) {
     snap = SnapKeepingVoxels(cloud->points, *plan.box, plan.voxel_size,
-                             draco.position_quantization_bits);
+                             draco.position_quantization_bits, MachineThreads());
     if (snap) draco.box = snap->grid.box;
   }
   // The cloud in parts encoded on this machine's threads and decoded on the job's: Draco codes

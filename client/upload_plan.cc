@@ -10,10 +10,10 @@
 
 namespace membrane::client {
 
-UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size) {
+UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size, int threads) {
   UploadPlan plan;
   absl::StatusOr<PlannedGrid> grid =
-      PlanGrid(cloud, VoxelizeOptions{.voxel_size = requested_voxel_size});
+      PlanGrid(cloud, VoxelizeOptions{.voxel_size = requested_voxel_size, .threads = threads});
   if (!grid.ok()) return plan;
   plan.voxel_size = grid->voxel_size;
   plan.noise_note = NoiseVoxelNote(*grid);

@@ -38,8 +38,9 @@ struct UploadPlan {
 // For `cloud` and the voxel size asked for (0: the default, as PlanGrid plans Voxelize's):
 // that voxel size, its box, and the fewest bits from kDefaultUploadBits up (at most 30) whose
 // step over the cloud's largest side is at most voxel / kStepsPerVoxel. A degenerate cloud (no
-// points, coplanar, ...) gives voxel_size 0, no box and the default bits.
-UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size);
+// points, coplanar, ...) gives voxel_size 0, no box and the default bits. Formula (1)'s
+// distinct count runs on `threads`; the plan is the same for any number.
+UploadPlan PlanUpload(const PointCloud& cloud, double requested_voxel_size, int threads = 1);
 
 }  // namespace membrane::client
 

@@ -29,9 +29,10 @@ struct VoxelKeepingSnap {
 // `box`, `voxel_size`), to the next node back towards the point, inside its voxel. Each
 // coordinate then moves by at most one step. nullopt, and `points` unchanged, when the step is
 // over voxel_size / kGridBoxStepsPerVoxel (a voxel holds too few nodes, and the server's check
-// of the points against the box would refuse them) or `bits` is 0.
+// of the points against the box would refuse them) or `bits` is 0. The points are moved on
+// `threads`, with the same result for any number.
 std::optional<VoxelKeepingSnap> SnapKeepingVoxels(std::vector<Point3f>& points, const Box3d& box,
-                                                  double voxel_size, int bits);
+                                                  double voxel_size, int bits, int threads = 1);
 
 }  // namespace membrane::client
 

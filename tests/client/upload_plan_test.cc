@@ -52,6 +52,26 @@ TEST(UploadPlan, DefaultVoxelOfASurfaceIsFormulaOnesWithNoNote) {
   EXPECT_EQ(plan.bits, kDefaultUploadBits);
 }
 
+TEST(UploadPlan, TheSamePlanOnAnyThreadCount) {
+  // Enough points for the distinct count to split, a third of them repeated (a scanner's
+  // overlapping views): formula (1) counts each once.
+  PointCloud cloud = Sphere(300000);
+  for (int i = 0; i < 100000; ++i) cloud.points.push_back(cloud.points[3 * i]);
+  const UploadPlan alone = PlanUpload(cloud, 0, 1);
+  ASSERT_TRUE(alone.voxel_plan.has_value());
+  const absl::StatusOr<Box3d> bounds = CheckedBounds(cloud.points);
+  ASSERT_TRUE(bounds.ok());
+  EXPECT_NEAR(alone.voxel_plan->formula_voxel_size, EstimateVoxelSize(*bounds, 300000), 1e-12);
+  for (int threads : {2, 3}) {
+    const UploadPlan plan = PlanUpload(cloud, 0, threads);
+    EXPECT_EQ(plan.voxel_size, alone.voxel_size) << threads;
+    EXPECT_EQ(plan.bits, alone.bits) << threads;
+    ASSERT_TRUE(plan.voxel_plan.has_value());
+    EXPECT_EQ(plan.voxel_plan->formula_voxel_size, alone.voxel_plan->formula_voxel_size);
+    EXPECT_EQ(plan.voxel_plan->point_noise, alone.voxel_plan->point_noise);
+  }
+}
+
 // A lattice fills a volume, which reads as noise: the default voxel is PlanGrid's, coarser than
 // formula (1)'s, and the plan carries the note that the server, given that size, cannot make.
 TEST(UploadPlan, DefaultVoxelIsThePipelinesWithItsNoiseNote) {

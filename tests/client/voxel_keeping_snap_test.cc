@@ -58,6 +58,23 @@ TEST(VoxelKeepingSnap, EveryPointStaysInItsVoxelWithinAStep) {
   EXPECT_LT(snap->moved_coordinates, 200000 * 3 / 32 * 2);
 }
 
+TEST(VoxelKeepingSnap, TheSamePositionsAndFiguresOnAnyThreadCount) {
+  // Over the calling thread's share: 200,002 points are cut into ranges.
+  const std::vector<Point3f> original = Points(200000);
+  std::vector<Point3f> one = original;
+  const std::optional<VoxelKeepingSnap> alone = SnapKeepingVoxels(one, kBox, 1.0 / 255, 11, 1);
+  ASSERT_TRUE(alone.has_value());
+  for (int threads : {2, 3}) {
+    std::vector<Point3f> points = original;
+    const std::optional<VoxelKeepingSnap> snap =
+        SnapKeepingVoxels(points, kBox, 1.0 / 255, 11, threads);
+    ASSERT_TRUE(snap.has_value());
+    EXPECT_EQ(points, one) << threads;
+    EXPECT_EQ(snap->moved_coordinates, alone->moved_coordinates) << threads;
+    EXPECT_EQ(snap->max_error, alone->max_error) << threads;
+  }
+}
+
 TEST(VoxelKeepingSnap, DracoReturnsTheSnappedPositions) {
   std::vector<Point3f> points = Points(20000);
   const std::optional<VoxelKeepingSnap> snap = SnapKeepingVoxels(points, kBox, 1.0 / 255, 11);

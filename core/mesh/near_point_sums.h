@@ -31,13 +31,23 @@ struct NearPointResult {
   int count = 0;            // how many points are within the radius
 };
 
+// The instructions the sums are computed with: the same bits with either.
+enum class SumsInstructions {
+  kBest,      // the widest the processor has (AVX-512 F and VL on x86-64), else the baseline's
+  kBaseline,  // the build's baseline instruction set
+};
+
+// Whether kBest runs other instructions than kBaseline on this processor.
+bool HasWideSumsInstructions();
+
 // Over the points of `grid` that ForEachRun(origin, radius) lists, those with |d|^2 <= radius2,
 // weighted w = exp(-(|d|^2 - (d.n)^2) inv_2s2 - (d.n)^2 inv_2n2): the accumulated plane sums
 // (in float, returned in double) and their count. A grid with weights (ws(): cell means and
 // their point counts, point_cell_means.h) multiplies each w by the stored weight, and counts
 // the stored weights.
 NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
-                                const NearPointWeights& weights);
+                                const NearPointWeights& weights,
+                                SumsInstructions instructions = SumsInstructions::kBest);
 
 // The same weights in a vertex's frame: each offset d = point - origin (model units) becomes
 // (u, v, h) = (d.axes[0], d.axes[1], d.axes[2]), the axes orthogonal with a common length
@@ -55,7 +65,8 @@ struct FrameWeights {
 // field sums of height_quadric.h (in float, returned in double) and their count; a grid with
 // weights as WeighNearPoints weighs them.
 HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
-                                       const FrameWeights& weights);
+                                       const FrameWeights& weights,
+                                       SumsInstructions instructions = SumsInstructions::kBest);
 
 }  // namespace membrane
 

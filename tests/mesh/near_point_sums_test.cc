@@ -1,11 +1,13 @@
 #include "core/mesh/near_point_sums.h"
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
 #include <random>
 #include <vector>
 
+#include "absl/types/span.h"
 #include "core/mesh/fast_exp.h"
 #include "gtest/gtest.h"
 
@@ -88,6 +90,30 @@ TEST(NearPointSums, EveryPointOfALongRunCountsOnce) {
   EXPECT_NEAR(got.acc.WeightedSum()[0], 0.0, 1e-5);
 }
 
+// The axes (t1, t2, n) of a frame around the unit normal n: t1, t2 an orthonormal tangent basis.
+std::array<std::array<double, 3>, 3> FrameAxes(const std::array<double, 3>& n) {
+  std::array<double, 3> t1 = {n[2], 0, -n[0]};
+  const double l1 = std::sqrt(t1[0] * t1[0] + t1[2] * t1[2]);
+  for (double& c : t1) c /= l1;
+  const std::array<double, 3> t2 = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
+                                    n[0] * t1[1] - n[1] * t1[0]};
+  return {t1, t2, n};
+}
+
+// A vertex's frame as the fit makes it: the normal (tilt x, tilt y, 1) normalized, x and y
+// random in [-1, 1], every axis of length 1 / voxel.
+FrameWeights RandomFrame(std::mt19937& rng, double voxel, double tilt) {
+  std::uniform_real_distribution<double> g(-1, 1);
+  std::array<double, 3> n = {tilt * g(rng), tilt * g(rng), 1};
+  const double ln = std::sqrt(n[0] * n[0] + n[1] * n[1] + 1);
+  for (double& c : n) c /= ln;
+  const auto axes = FrameAxes(n);
+  FrameWeights w;
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) w.axes[i][k] = static_cast<float>(axes[i][k] / voxel);
+  return w;
+}
+
 TEST(NearPointSums, FrameSumsMatchTheDoubleSumsPointByPoint) {
   // A curved noisy sheet in model units (voxel 0.1), queried in tilted frames whose axes have
   // length 1 / voxel: every moment of height_quadric.h against the same sums in double.
@@ -101,14 +127,7 @@ TEST(NearPointSums, FrameSumsMatchTheDoubleSumsPointByPoint) {
   }
   const double radius = 2 * voxel;
   const PointRowGrid grid(points, radius / 2);
-  const double n[3] = {0.1, -0.2, std::sqrt(1 - 0.05)};
-  // A tangent basis of n.
-  double t1[3] = {n[2], 0, -n[0]};
-  const double l1 = std::sqrt(t1[0] * t1[0] + t1[2] * t1[2]);
-  for (double& c : t1) c /= l1;
-  const double t2[3] = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
-                        n[0] * t1[1] - n[1] * t1[0]};
-  const double* axes[3] = {t1, t2, n};
+  const auto axes = FrameAxes({0.1, -0.2, std::sqrt(1 - 0.05)});
   for (int q = 0; q < 100; ++q) {
     FrameWeights w;
     const float x = 0.7f * u(rng), y = 0.7f * u(rng);
@@ -218,27 +237,15 @@ TEST(NearPointSums, FrameSumsSkipOnlyStepsThatAddNothing) {
     const float x = u(rng), y = u(rng);
     p = {x, y, 0.2f * x * y + noise(rng)};
   }
-  std::uniform_real_distribution<double> g(-1, 1);
   for (const double radius_voxels : {2.0, 4.0}) {
     const double radius = radius_voxels * voxel;
     const PointRowGrid grid(points, voxel);
     int skipped = 0;
     for (int q = 0; q < 300; ++q) {
-      FrameWeights w;
       // Up to the sheet's edge (runs ending at the last stored point included).
       const float x = 1.05f * u(rng), y = 1.05f * u(rng);
+      FrameWeights w = RandomFrame(rng, voxel, 0.3);
       w.origin = {x, y, 0.2f * x * y + 0.15f * u(rng)};
-      double n[3] = {0.3 * g(rng), 0.3 * g(rng), 1};
-      const double ln = std::sqrt(n[0] * n[0] + n[1] * n[1] + 1);
-      for (double& c : n) c /= ln;
-      double t1[3] = {n[2], 0, -n[0]};
-      const double l1 = std::sqrt(t1[0] * t1[0] + t1[2] * t1[2]);
-      for (double& c : t1) c /= l1;
-      const double t2[3] = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
-                            n[0] * t1[1] - n[1] * t1[0]};
-      const double* axes[3] = {t1, t2, n};
-      for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 3; ++k) w.axes[i][k] = static_cast<float>(axes[i][k] / voxel);
       w.radius2 = static_cast<float>(radius_voxels * radius_voxels);
       w.inv_2s2 = q % 3 ? 0.5f : 0.125f;
       w.inv_2n2 = q % 2 ? 1.0f / (2 * 0.6f * 0.6f) : 0.5f;
@@ -254,6 +261,68 @@ TEST(NearPointSums, FrameSumsSkipOnlyStepsThatAddNothing) {
     // The case under test occurs: most queries have steps wholly outside the ball.
     EXPECT_GT(skipped, 250) << radius_voxels;
   }
+}
+
+TEST(NearPointSums, TheWideInstructionsGiveTheBaselineBits) {
+  // The sums of both weighings, on both kinds of grid (points, and cell means weighted by
+  // their counts), at the fit's two radii: the widest instructions this processor has
+  // against the baseline's, bit for bit (the fitted mesh must be the same on every machine).
+  if (!HasWideSumsInstructions()) GTEST_SKIP() << "this processor has no wider instructions";
+  const double voxel = 0.1;
+  std::mt19937 rng(33);
+  std::uniform_real_distribution<float> u(-1, 1), noise(-0.02f, 0.02f), count(1, 9);
+  std::vector<Point3f> points(40000);
+  std::vector<float> counts(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const float x = u(rng), y = u(rng);
+    points[i] = {x, y, 0.3f * x * x - 0.2f * x * y + noise(rng)};
+    counts[i] = std::floor(count(rng));
+  }
+  int compared = 0;
+  for (const bool weighted : {false, true}) {
+    const PointRowGrid grid(points, voxel, 1, PointRowGrid::Limits(),
+                            weighted ? absl::Span<const float>(counts) : absl::Span<const float>());
+    for (const double radius_voxels : {2.0, 4.0}) {
+      const double radius = radius_voxels * voxel;
+      for (int q = 0; q < 200; ++q) {
+        const float x = 1.05f * u(rng), y = 1.05f * u(rng);
+        const Point3f origin = {x, y, 0.3f * x * x - 0.2f * x * y + 0.1f * u(rng)};
+        FrameWeights f = RandomFrame(rng, voxel, 0.4);
+        f.origin = origin;
+        f.radius2 = static_cast<float>(radius_voxels * radius_voxels);
+        f.inv_2s2 = q % 3 ? 0.5f : 0.125f;
+        f.inv_2n2 = q % 2 ? 1.0f / (2 * 0.6f * 0.6f) : f.inv_2s2;
+        const HeightFieldSums a = WeighNearPointsInFrame(grid, radius, f, SumsInstructions::kBest);
+        const HeightFieldSums b =
+            WeighNearPointsInFrame(grid, radius, f, SumsInstructions::kBaseline);
+        ASSERT_EQ(a.count, b.count) << q;
+        for (int k = 0; k < 15; ++k) EXPECT_EQ(a.uv[k], b.uv[k]) << q << " uv " << k;
+        for (int k = 0; k < 6; ++k) EXPECT_EQ(a.huv[k], b.huv[k]) << q << " huv " << k;
+        EXPECT_EQ(a.hh, b.hh) << q;
+
+        NearPointWeights w;
+        w.origin = origin;
+        w.radius2 = static_cast<float>(radius * radius);
+        w.inv_2s2 = static_cast<float>(f.inv_2s2 / (voxel * voxel));
+        w.inv_2n2 = static_cast<float>(f.inv_2n2 / (voxel * voxel));
+        for (int k = 0; k < 3; ++k) w.normal[k] = f.axes[2][k] * static_cast<float>(voxel);
+        const NearPointResult c = WeighNearPoints(grid, radius, w, SumsInstructions::kBest);
+        const NearPointResult d = WeighNearPoints(grid, radius, w, SumsInstructions::kBaseline);
+        ASSERT_EQ(c.count, d.count) << q;
+        EXPECT_EQ(c.acc.weight(), d.acc.weight()) << q;
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(c.acc.WeightedSum()[k], d.acc.WeightedSum()[k]) << q;
+        const auto pc = c.acc.Fit(), pd = d.acc.Fit();
+        ASSERT_EQ(pc.has_value(), pd.has_value()) << q;
+        if (pc) {
+          for (int k = 0; k < 3; ++k) EXPECT_EQ(pc->centroid[k], pd->centroid[k]) << q;
+          for (int k = 0; k < 3; ++k) EXPECT_EQ(pc->normal[k], pd->normal[k]) << q;
+        }
+        compared += a.count > 0 && c.count > 0;
+      }
+    }
+  }
+  // Most queries weigh points (a few lie beyond the sheet's edge).
+  EXPECT_GT(compared, 700);
 }
 
 }  // namespace

@@ -224,11 +224,12 @@ bool HasWideSumsInstructions() { return UseWide(SumsInstructions::kBest); }
 NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
                                 const NearPointWeights& weights, SumsInstructions instructions) {
   const bool weighted = grid.ws() != nullptr;
+  if (UseWide(instructions)) {
 #ifdef MEMBRANE_WIDE_TARGET
-  if (UseWide(instructions))
     return weighted ? NearWide<true>(grid, radius, weights)
                     : NearWide<false>(grid, radius, weights);
 #endif
+  }
   return weighted ? NearBaseline<true>(grid, radius, weights)
                   : NearBaseline<false>(grid, radius, weights);
 }
@@ -236,11 +237,12 @@ NearPointResult WeighNearPoints(const PointRowGrid& grid, double radius,
 HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
                                        const FrameWeights& weights, SumsInstructions instructions) {
   const bool weighted = grid.ws() != nullptr;
+  if (UseWide(instructions)) {
 #ifdef MEMBRANE_WIDE_TARGET
-  if (UseWide(instructions))
     return weighted ? InFrameWide<true>(grid, radius, weights)
                     : InFrameWide<false>(grid, radius, weights);
 #endif
+  }
   return weighted ? InFrameBaseline<true>(grid, radius, weights)
                   : InFrameBaseline<false>(grid, radius, weights);
 }

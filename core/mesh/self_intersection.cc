@@ -5,7 +5,6 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <utility>
 
 #include "core/base/parallel_tasks.h"
@@ -15,11 +14,10 @@
 namespace membrane {
 namespace {
 
-// The search's big arrays, fresh on every call: 2 MB pages where the kernel gives them (their
-// 4 KB page faults would be a quarter of the search's time on the shared virtual machine).
-// Sized without being filled: every element is written before it is read, so a
-// value-initializing fill (a memset of tens of MB on a full search) would be one more pass
-// over memory that the search writes anyway.
+// The search's big arrays, fresh on every call: plain pages (docs/engine-decisions.md "Plain
+// pages for big arrays"). Sized without being filled: every element is written before it is
+// read, so a value-initializing fill (a memset of tens of MB on a full search) would be one
+// more pass over memory that the search writes anyway.
 template <typename T>
 using BigVector = std::vector<T, UnfilledAllocator<T>>;
 
@@ -207,40 +205,34 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
     return pairs;
   }
   const SortedFaceCells cells(p.box, threads);
-  const size_t n = p.face.size();
-  // Lowest cell of each box: the lowest cell of two boxes' overlap is the per-axis maximum of
-  // theirs, so each pair is tested once, in that cell. Face planes are computed once per face:
-  // each face meets a dozen neighbours.
   auto triangle = [&](int32_t i) {
     const auto& idx = mesh.faces[p.face[i]];
     return Triangle3d{ToVec3d(mesh.vertices[idx[0]]), ToVec3d(mesh.vertices[idx[1]]),
                       ToVec3d(mesh.vertices[idx[2]])};
   };
-  BigVector<std::array<int32_t, 3>> low(n);
-  BigVector<FacePlane> plane(n);
-  constexpr int64_t kFacesPerTask = 16384;
-  RunTasks(threads, (static_cast<int64_t>(n) + kFacesPerTask - 1) / kFacesPerTask,
-           [&](int, int64_t task) {
-             const size_t end = std::min(n, static_cast<size_t>((task + 1) * kFacesPerTask));
-             for (size_t i = static_cast<size_t>(task * kFacesPerTask); i < end; ++i) {
-               const CellCoord c = cells.CellOf(p.box[i].lo);
-               low[i] = {static_cast<int32_t>(c[0]), static_cast<int32_t>(c[1]),
-                         static_cast<int32_t>(c[2])};
-               plane[i] = MakeFacePlane(triangle(static_cast<int32_t>(i)));
-             }
-           });
   const bool all = p.dirty.empty();
   // A cell's faces, copied side by side before its pairs are walked: the pair loop then reads
   // contiguous memory instead of jumping through the per-face arrays a dozen times per face.
-  // `at_low` has bit k set when the face's lowest cell has this cell's coordinate k. Both faces
-  // of a pair touch this cell, so their lowest cells are at or below it on every axis, and the
-  // overlap's lowest cell is this one exactly when every axis has a face at this coordinate:
-  // (at_low_a | at_low_b) == 7.
+  // `at_low` has bit k set when the face's lowest cell (the cell of its box's low corner) has
+  // this cell's coordinate k. Both faces of a pair touch this cell, so their lowest cells are
+  // at or below it on every axis, and the overlap's lowest cell is this one exactly when every
+  // axis has a face at this coordinate: (at_low_a | at_low_b) == 7, so each pair is tested
+  // once, in that cell.
+  // A face's triangle and plane are made in its member at the first pair that tests it, not
+  // once per face into arrays of the participants: such arrays (84 bytes a face, 1.3 GB on
+  // the 15M faces of a 10M-point torus) would be the process's peak on smaller clouds, each
+  // of their pages a fresh page fault. A face met in two or three cells makes them again
+  // there, from the same positions: the same bits.
   struct Member {
+    Member(int32_t position, bool dirty, uint8_t at_low, const Box& box)
+        : position(position), dirty(dirty), at_low(at_low), box(box) {}
     int32_t position;
     bool dirty;
     uint8_t at_low;
+    bool made = false;  // `triangle` and `plane` hold the face's
     Box box;
+    Triangle3d triangle;
+    FacePlane plane;
   };
   // Cells are independent: runs of whole cells go to the workers (several runs per worker, so
   // that a run of crowded cells does not leave the others idle), each run's pairs to a list
@@ -276,24 +268,29 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
       members.clear();
       for (size_t e = begin; e < end; ++e) {
         const int32_t i = cells.position(e);
+        const CellCoord low = cells.CellOf(p.box[i].lo);
         uint8_t at_low = 0;
-        for (int k = 0; k < 3; ++k) at_low |= (low[i][k] == c[k] ? 1 : 0) << k;
-        members.push_back({i, all || p.dirty[i] != 0, at_low, p.box[i]});
+        for (int k = 0; k < 3; ++k) at_low |= (low[k] == c[k] ? 1 : 0) << k;
+        members.emplace_back(i, all || p.dirty[i] != 0, at_low, p.box[i]);
       }
+      auto make = [&](Member& m) {
+        if (m.made) return;
+        m.triangle = triangle(m.position);
+        m.plane = MakeFacePlane(m.triangle);
+        m.made = true;
+      };
       for (size_t a = 0; a < members.size(); ++a) {
-        const Member& mi = members[a];
-        const int32_t i = mi.position;
-        std::optional<Triangle3d> ti;  // made once, at the first pair that needs it
+        Member& mi = members[a];
         for (size_t b = a + 1; b < members.size(); ++b) {
-          const Member& mj = members[b];
+          Member& mj = members[b];
           if (!mi.dirty && !mj.dirty) continue;
           if ((mi.at_low | mj.at_low) != 7) continue;
           if (!BoxesOverlap(mi.box, mj.box)) continue;
-          const int32_t j = mj.position;
-          const int32_t fi = p.face[i], fj = p.face[j];
-          if (!ti) ti = triangle(i);
-          if (MeshTrianglesIntersect(mesh.faces[fi], *ti, plane[i], mesh.faces[fj],
-                                     triangle(j), plane[j]))
+          make(mi);
+          make(mj);
+          const int32_t fi = p.face[mi.position], fj = p.face[mj.position];
+          if (MeshTrianglesIntersect(mesh.faces[fi], mi.triangle, mi.plane, mesh.faces[fj],
+                                     mj.triangle, mj.plane))
             out.emplace_back(std::min(fi, fj), std::max(fi, fj));
         }
       }

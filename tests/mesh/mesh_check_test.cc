@@ -4,8 +4,11 @@
 #include <cmath>
 
 #include <iostream>
+#include <utility>
+#include <vector>
 
 #include "core/mesh/self_intersection.h"
+#include "core/mesh/triangle_intersection.h"
 #include "gtest/gtest.h"
 #include "tests/mesh/mesh_builders.h"
 
@@ -15,6 +18,17 @@ namespace {
 using testing::Concat;
 using testing::CubeMesh;
 using testing::TorusMesh;
+
+// Two tori of `rings` x `segments` crossing along a ring, and a third, a little over a third
+// as fine, touching the second: many crossing pairs, in cells shared by the three.
+TriangleMesh CrossingTori(int rings, int segments) {
+  TriangleMesh a = TorusMesh(rings, segments, 1.0f, 0.3f);
+  TriangleMesh b = TorusMesh(rings, segments, 1.0f, 0.3f);
+  TriangleMesh c = TorusMesh(rings * 3 / 10, segments * 3 / 10, 0.5f, 0.2f);
+  for (auto& v : b.vertices) v[0] += 0.3f;
+  for (auto& v : c.vertices) v[2] += 0.5f;
+  return Concat(Concat(a, b), c);
+}
 
 TEST(MeshCheck, AcceptsClosedOutwardCube) {
   const MeshReport r = CheckMesh(CubeMesh());
@@ -83,12 +97,7 @@ TEST(MeshCheck, CancelStopsTheSelfIntersectionSearchEarly) {
 TEST(MeshCheck, SearchFindsTheSamePairsOnAnyThreadCount) {
   // Two tori crossing along a ring, and a third touching the second: the cells are shared out
   // among the threads, and the pairs must come back the same, each once, in order.
-  TriangleMesh a = TorusMesh(200, 100, 1.0f, 0.3f);
-  TriangleMesh b = TorusMesh(200, 100, 1.0f, 0.3f);
-  TriangleMesh c = TorusMesh(60, 30, 0.5f, 0.2f);
-  for (auto& v : b.vertices) v[0] += 0.3f;
-  for (auto& v : c.vertices) v[2] += 0.5f;
-  const TriangleMesh all = Concat(Concat(a, b), c);
+  const TriangleMesh all = CrossingTori(200, 100);
   const auto one = FindIntersectingFaces(all, CancelToken::Never(), 1);
   ASSERT_GT(one.size(), 100u);
   EXPECT_TRUE(std::is_sorted(one.begin(), one.end()));
@@ -104,6 +113,28 @@ TEST(MeshCheck, SearchFindsTheSamePairsOnAnyThreadCount) {
   for (size_t f = 0; f < dirty.size(); f += 97) dirty[f] = 1;
   const auto near_one = FindIntersectingFacesNear(all, dirty, 1);
   EXPECT_EQ(FindIntersectingFacesNear(all, dirty, 4), near_one);
+}
+
+TEST(MeshCheck, SearchFindsThePairsThatTestingEveryPairFinds) {
+  // The search makes each face's triangle and plane in each cell where it is first tested (a
+  // face spans several cells): its pairs must be those of MeshTrianglesIntersect over every
+  // pair of faces, here 3,344.
+  const TriangleMesh all = CrossingTori(40, 20);
+  auto triangle = [&](int32_t f) {
+    const auto& idx = all.faces[f];
+    return Triangle3d{ToVec3d(all.vertices[idx[0]]), ToVec3d(all.vertices[idx[1]]),
+                      ToVec3d(all.vertices[idx[2]])};
+  };
+  std::vector<std::pair<int32_t, int32_t>> every;
+  const int32_t nf = static_cast<int32_t>(all.faces.size());
+  for (int32_t i = 0; i < nf; ++i)
+    for (int32_t j = i + 1; j < nf; ++j)
+      if (MeshTrianglesIntersect(all.faces[i], triangle(i), all.faces[j], triangle(j)))
+        every.emplace_back(i, j);
+  ASSERT_GT(every.size(), 50u);
+  for (int threads : {1, 2})
+    EXPECT_EQ(FindIntersectingFaces(all, CancelToken::Never(), threads), every)
+        << threads << " threads";
 }
 
 TEST(MeshCheck, SearchNearDirtyFacesSkipsFarRunsWithoutMissingPairs) {

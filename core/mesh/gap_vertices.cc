@@ -33,56 +33,28 @@ absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
   std::optional<PointRowGrid> own;
   if (shared == nullptr) own.emplace(points, radius, threads);
   const PointRowGrid& grid = shared != nullptr ? *shared : *own;
-  // A bit a point, set by whichever vertex sees it first (an atomic or): the union does not
-  // depend on the order. Bits, so that a vertex passes over 64 points some vertex already
-  // covered with one load.
-  std::vector<std::atomic<uint64_t>> covered(collect_remote ? (grid.num_points() + 63) / 64 : 0);
-  const auto mark = [&](uint64_t i) {
-    std::atomic<uint64_t>& word = covered[i >> 6];
-    const uint64_t bit = uint64_t{1} << (i & 63);
-    if ((word.load(std::memory_order_relaxed) & bit) == 0)
-      word.fetch_or(bit, std::memory_order_relaxed);
-  };
   const float* px = grid.xs();
   const float* py = grid.ys();
   const float* pz = grid.zs();
   const int workers = std::max(threads, 1);
+  const int64_t tasks = (nv + kBlockVertices - 1) / kBlockVertices;
   // Per worker: integer sums, the same whatever tasks each worker ran.
   std::vector<int64_t> counts(workers, 0);
   std::vector<std::vector<int64_t>> histograms(workers, std::vector<int64_t>(last_bin + 1, 0));
   TaskCancel task_cancel(cancel, workers, 1);
-  const int64_t tasks = (nv + kBlockVertices - 1) / kBlockVertices;
+  // The counts first, each vertex's stopping at last_bin points: a mesh with too few gaps (most
+  // meshes) needs nothing more, and a vertex on dense data stops after a few of the dozens of
+  // points in its ball.
   RunTasks(threads, tasks, [&](int worker, int64_t task) {
     if (task_cancel.Poll(worker)) return;
     const int64_t end = std::min(nv, (task + 1) * kBlockVertices);
     for (int64_t v = task * kBlockVertices; v < end; ++v) {
       int near = 0;
       const Vec3d c = ToVec3d(mesh.vertices[v]);
-      const auto inside = [&](uint64_t i) {
-        const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
-        return dx * dx + dy * dy + dz * dz <= r2;
-      };
       grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t stop) {
-        uint64_t i = begin;
-        for (; i < stop && near < last_bin; ++i)
-          if (inside(i)) {
-            ++near;
-            if (collect_remote) mark(i);
-          }
-        if (!collect_remote) return;
-        // Past last_bin the count is not needed, and a covered point stays covered: only the
-        // points no vertex has covered yet are weighed, found a word of bits at a time (on a
-        // dense cloud most of a vertex's points are covered by its neighbours).
-        while (i < stop) {
-          const uint64_t open = ~covered[i >> 6].load(std::memory_order_relaxed) >> (i & 63);
-          if (open == 0) {
-            i = (i | 63) + 1;
-            continue;
-          }
-          i += static_cast<uint64_t>(std::countr_zero(open));
-          if (i >= stop) break;
-          if (inside(i)) mark(i);
-          ++i;
+        for (uint32_t i = begin; i < stop && near < last_bin; ++i) {
+          const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
+          near += dx * dx + dy * dy + dz * dz <= r2;
         }
       });
       out.gap[v] = near == 0;
@@ -95,10 +67,40 @@ absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
     out.count += counts[w];
     for (int k = 0; k <= last_bin; ++k) out.histogram[k] += histograms[w][k];
   }
-  if (collect_remote && out.count >= remote_min_count)
-    for (size_t i = 0; i < grid.num_points(); ++i)
-      if (((covered[i >> 6].load(std::memory_order_relaxed) >> (i & 63)) & 1) == 0)
-        out.remote.push_back(Point3f{px[i], py[i], pz[i]});
+  if (!collect_remote || out.count < remote_min_count) return out;
+  // Then the points some vertex covers. A bit a point, set by whichever vertex sees it first
+  // (an atomic or): the union does not depend on the order. Only the points no vertex has
+  // covered yet are weighed, found a word of bits at a time (on a dense cloud most of a
+  // vertex's points are covered by its neighbours).
+  std::vector<std::atomic<uint64_t>> covered((grid.num_points() + 63) / 64);
+  RunTasks(threads, tasks, [&](int worker, int64_t task) {
+    if (task_cancel.Poll(worker)) return;
+    const int64_t end = std::min(nv, (task + 1) * kBlockVertices);
+    for (int64_t v = task * kBlockVertices; v < end; ++v) {
+      const Vec3d c = ToVec3d(mesh.vertices[v]);
+      grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t stop) {
+        uint64_t i = begin;
+        while (i < stop) {
+          const uint64_t open = ~covered[i >> 6].load(std::memory_order_relaxed) >> (i & 63);
+          if (open == 0) {
+            i = (i | 63) + 1;
+            continue;
+          }
+          i += static_cast<uint64_t>(std::countr_zero(open));
+          if (i >= stop) break;
+          const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
+          if (dx * dx + dy * dy + dz * dz <= r2) {
+            covered[i >> 6].fetch_or(uint64_t{1} << (i & 63), std::memory_order_relaxed);
+          }
+          ++i;
+        }
+      });
+    }
+  });
+  if (task_cancel.fired()) return absl::CancelledError("hole caps cancelled");
+  for (size_t i = 0; i < grid.num_points(); ++i)
+    if (((covered[i >> 6].load(std::memory_order_relaxed) >> (i & 63)) & 1) == 0)
+      out.remote.push_back(Point3f{px[i], py[i], pz[i]});
   return out;
 }
 

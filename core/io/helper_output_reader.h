@@ -1,8 +1,8 @@
 // The decode helper's standard output (decode_helper.h: sections of a little-endian uint64
 // count followed by that many fixed-size records) read as it arrives, each section's records
-// straight into the vector that keeps them. A 10M-point cloud is 120 MB: gathered in a growing
-// string and then copied into its vector, it was written three times over in fresh pages,
-// 1.2 s of the server's decode stage on one thread after the child had finished.
+// straight into the vector that keeps them. A 10M-point cloud is 120 MB: gathering it in a
+// growing string and then copying it into its vector would write it three times over in fresh
+// pages, on one thread after the child has finished (1.2 s of a 2.5 s decode stage).
 #ifndef MEMBRANE_CORE_IO_HELPER_OUTPUT_READER_H_
 #define MEMBRANE_CORE_IO_HELPER_OUTPUT_READER_H_
 

@@ -218,8 +218,13 @@ PointRowGrid::PointRowGrid(absl::Span<const Point3f> points, double cell, int th
       if (weighted) w_[s] = weights[order[s]];
     }
   });
+  // The paddings copy the last point (no weight): finite and within the cloud, so that a
+  // masked lane's products stay finite in any frame (a far value such as 1e15, in the frame
+  // of a voxel of 1e-7, squares to infinity, and the mask's 0 times infinity is NaN).
   for (size_t s = num_points_; s < num_points_ + kTail; ++s) {
-    x_[s] = y_[s] = z_[s] = kPadding;
+    x_[s] = num_points_ > 0 ? x_[num_points_ - 1] : 0.0f;
+    y_[s] = num_points_ > 0 ? y_[num_points_ - 1] : 0.0f;
+    z_[s] = num_points_ > 0 ? z_[num_points_ - 1] : 0.0f;
     if (weighted) w_[s] = 0;
   }
 }

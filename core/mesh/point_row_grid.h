@@ -38,10 +38,10 @@ struct PointRowGridLimits {
 // at most 12 bytes a point more (and 4 MB).
 class PointRowGrid {
  public:
-  // Extra entries after the last point in each coordinate array, holding kPadding: a reader
-  // of SIMD width up to kTail + 1 may load past a run's end (and mask the extra lanes).
+  // Extra entries after the last point in each coordinate array, copies of the last point
+  // with weight 0: a reader of SIMD width up to kTail + 1 may load past a run's end (and mask
+  // the extra lanes).
   static constexpr size_t kTail = 7;
-  static constexpr float kPadding = 1e15f;
 
   // How the cells are found: kDense, an offset per cell of the box; kRowTable, per row of
   // the box its occupied cells; kSparseRows, the occupied rows and their occupied cells.

@@ -325,5 +325,48 @@ TEST(NearPointSums, TheWideInstructionsGiveTheBaselineBits) {
   EXPECT_GT(compared, 700);
 }
 
+TEST(NearPointSums, FrameSumsKeepTheirBitsAtAnyScale) {
+  // The same sheet in model units 2^-20 times smaller (a voxel of 1e-7: a part of a few
+  // millimetres given in metres): offsets and frame axes scale by powers of 2, so every frame
+  // coordinate, and so every sum, has the same bits. Queried at the last points the grid
+  // stores, whose runs end at the arrays' end: the lanes read past it must not overflow in a
+  // frame whose axes have length 1e7.
+  const double voxel = 0.1, scale = std::ldexp(1.0, -20);
+  std::mt19937 rng(35);
+  std::uniform_real_distribution<float> u(-1, 1), noise(-0.02f, 0.02f);
+  std::vector<Point3f> points(20000), tiny(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const float x = u(rng), y = u(rng);
+    points[i] = {x, y, 0.3f * x * x - 0.2f * x * y + noise(rng)};
+    for (int k = 0; k < 3; ++k) tiny[i][k] = static_cast<float>(points[i][k] * scale);
+  }
+  const PointRowGrid grid(points, 2 * voxel), tiny_grid(tiny, 2 * voxel * scale);
+  ASSERT_EQ(grid.num_points(), tiny_grid.num_points());
+  int weighed = 0;
+  for (size_t back = 1; back <= 40; ++back) {
+    const size_t last = grid.num_points() - back;
+    FrameWeights f = RandomFrame(rng, voxel, 0.3);
+    f.origin = {grid.xs()[last], grid.ys()[last], grid.zs()[last]};
+    f.radius2 = 4;
+    f.inv_2s2 = 0.5f;
+    f.inv_2n2 = 1.0f / (2 * 0.6f * 0.6f);
+    FrameWeights g = f;
+    for (int k = 0; k < 3; ++k) g.origin[k] = static_cast<float>(f.origin[k] * scale);
+    for (auto& axis : g.axes)
+      for (float& c : axis) c = static_cast<float>(c / scale);
+    for (const SumsInstructions instructions :
+         {SumsInstructions::kBest, SumsInstructions::kBaseline}) {
+      const HeightFieldSums a = WeighNearPointsInFrame(grid, 2 * voxel, f, instructions);
+      const HeightFieldSums b = WeighNearPointsInFrame(tiny_grid, 2 * voxel * scale, g, instructions);
+      ASSERT_EQ(a.count, b.count) << back;
+      for (int k = 0; k < 15; ++k) EXPECT_EQ(a.uv[k], b.uv[k]) << back << " uv " << k;
+      for (int k = 0; k < 6; ++k) EXPECT_EQ(a.huv[k], b.huv[k]) << back << " huv " << k;
+      EXPECT_EQ(a.hh, b.hh) << back;
+      weighed += a.count > 0;
+    }
+  }
+  EXPECT_GT(weighed, 40);
+}
+
 }  // namespace
 }  // namespace membrane

@@ -170,8 +170,12 @@ void ExpectSameAsDense(const std::vector<Point3f>& points, double cell,
       ASSERT_EQ(grid.ys()[i], dense.stored[i][1]) << i;
       ASSERT_EQ(grid.zs()[i], dense.stored[i][2]) << i;
     }
-    for (size_t i = points.size(); i < points.size() + PointRowGrid::kTail; ++i)
-      ASSERT_EQ(grid.xs()[i], PointRowGrid::kPadding);
+    // The paddings copy the last stored point.
+    for (size_t i = points.size(); i < points.size() + PointRowGrid::kTail; ++i) {
+      ASSERT_EQ(grid.xs()[i], dense.stored.back()[0]);
+      ASSERT_EQ(grid.ys()[i], dense.stored.back()[1]);
+      ASSERT_EQ(grid.zs()[i], dense.stored.back()[2]);
+    }
     std::uniform_int_distribution<size_t> pick(0, points.size() - 1);
     std::uniform_real_distribution<double> jitter(-3, 3), radius(0.3, 4.5);
     for (int q = 0; q < 3000; ++q) {

@@ -42,25 +42,29 @@ absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
   std::vector<int64_t> counts(workers, 0);
   std::vector<std::vector<int64_t>> histograms(workers, std::vector<int64_t>(last_bin + 1, 0));
   TaskCancel task_cancel(cancel, workers, 1);
+  // Calls visit(worker, v) for every vertex, in blocks on the threads, until a cancel.
+  const auto each_vertex = [&](auto&& visit) {
+    RunTasks(threads, tasks, [&](int worker, int64_t task) {
+      if (task_cancel.Poll(worker)) return;
+      const int64_t end = std::min(nv, (task + 1) * kBlockVertices);
+      for (int64_t v = task * kBlockVertices; v < end; ++v) visit(worker, v);
+    });
+  };
   // The counts first, each vertex's stopping at last_bin points: a mesh with too few gaps (most
   // meshes) needs nothing more, and a vertex on dense data stops after a few of the dozens of
   // points in its ball.
-  RunTasks(threads, tasks, [&](int worker, int64_t task) {
-    if (task_cancel.Poll(worker)) return;
-    const int64_t end = std::min(nv, (task + 1) * kBlockVertices);
-    for (int64_t v = task * kBlockVertices; v < end; ++v) {
-      int near = 0;
-      const Vec3d c = ToVec3d(mesh.vertices[v]);
-      grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t stop) {
-        for (uint32_t i = begin; i < stop && near < last_bin; ++i) {
-          const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
-          near += dx * dx + dy * dy + dz * dz <= r2;
-        }
-      });
-      out.gap[v] = near == 0;
-      counts[worker] += near == 0;
-      if (near > 0) ++histograms[worker][std::min(near, last_bin)];
-    }
+  each_vertex([&](int worker, int64_t v) {
+    int near = 0;
+    const Vec3d c = ToVec3d(mesh.vertices[v]);
+    grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t stop) {
+      for (uint32_t i = begin; i < stop && near < last_bin; ++i) {
+        const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
+        near += dx * dx + dy * dy + dz * dz <= r2;
+      }
+    });
+    out.gap[v] = near == 0;
+    counts[worker] += near == 0;
+    if (near > 0) ++histograms[worker][std::min(near, last_bin)];
   });
   if (task_cancel.fired()) return absl::CancelledError("hole caps cancelled");
   for (int w = 0; w < workers; ++w) {
@@ -73,29 +77,25 @@ absl::StatusOr<GapVertices> FindGapVertices(const TriangleMesh& mesh,
   // covered yet are weighed, found a word of bits at a time (on a dense cloud most of a
   // vertex's points are covered by its neighbours).
   std::vector<std::atomic<uint64_t>> covered((grid.num_points() + 63) / 64);
-  RunTasks(threads, tasks, [&](int worker, int64_t task) {
-    if (task_cancel.Poll(worker)) return;
-    const int64_t end = std::min(nv, (task + 1) * kBlockVertices);
-    for (int64_t v = task * kBlockVertices; v < end; ++v) {
-      const Vec3d c = ToVec3d(mesh.vertices[v]);
-      grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t stop) {
-        uint64_t i = begin;
-        while (i < stop) {
-          const uint64_t open = ~covered[i >> 6].load(std::memory_order_relaxed) >> (i & 63);
-          if (open == 0) {
-            i = (i | 63) + 1;
-            continue;
-          }
-          i += static_cast<uint64_t>(std::countr_zero(open));
-          if (i >= stop) break;
-          const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
-          if (dx * dx + dy * dy + dz * dz <= r2) {
-            covered[i >> 6].fetch_or(uint64_t{1} << (i & 63), std::memory_order_relaxed);
-          }
-          ++i;
+  each_vertex([&](int, int64_t v) {
+    const Vec3d c = ToVec3d(mesh.vertices[v]);
+    grid.ForEachRun(c, radius, [&](uint32_t begin, uint32_t stop) {
+      uint64_t i = begin;
+      while (i < stop) {
+        const uint64_t open = ~covered[i >> 6].load(std::memory_order_relaxed) >> (i & 63);
+        if (open == 0) {
+          i = (i | 63) + 1;
+          continue;
         }
-      });
-    }
+        i += static_cast<uint64_t>(std::countr_zero(open));
+        if (i >= stop) break;
+        const double dx = px[i] - c[0], dy = py[i] - c[1], dz = pz[i] - c[2];
+        if (dx * dx + dy * dy + dz * dz <= r2) {
+          covered[i >> 6].fetch_or(uint64_t{1} << (i & 63), std::memory_order_relaxed);
+        }
+        ++i;
+      }
+    });
   });
   if (task_cancel.fired()) return absl::CancelledError("hole caps cancelled");
   for (size_t i = 0; i < grid.num_points(); ++i)

@@ -46,10 +46,12 @@ int64_t Floor(double v) {
   return t - (static_cast<double>(t) > v);
 }
 
-// A uniform grid of cells of side about one face, stored sparsely: one (cell key, position)
-// entry per cell a face's box touches, packed in a uint64 and radix-sorted. Memory follows the
-// number of entries, not the box volume, and walking the sorted entries visits neighbouring
-// cells one after the other, which keeps the faces' data in cache.
+// A uniform grid of cells of side about one face, stored sparsely: one (cell key, lowest-cell
+// bits, position) entry per cell a face's box touches, packed in a uint64 and sorted by the
+// key (Sort). The lowest-cell bits (see SearchPairs) are known as the entry is made, so the pair
+// search reads them instead of finding the cell of each member's low corner again. Memory
+// follows the number of entries, not the box volume, and walking the sorted entries visits
+// neighbouring cells one after the other, which keeps the faces' data in cache.
 class SortedFaceCells {
  public:
   // The entries are made and sorted in blocks of boxes on `threads`; the sort is stable, so
@@ -71,62 +73,84 @@ class SortedFaceCells {
       lo_[k] = all.lo[k];
       diag = std::max(diag, static_cast<double>(all.hi[k]) - all.lo[k]);
     }
-    // Cells 1.5 times the mean face extent (fewer entries per face for a few more pairs per
-    // cell: measured a little faster than 1 or 2); coarser when the entry count would not stay
-    // linear in the face count (a few huge faces) or the cell key and the position would not
-    // fit in 64 bits together.
+    // Cells twice the mean face extent (fewer entries per face for a few more pairs per cell:
+    // 1.5 times was 10-45% slower, 2.5 to 4 times within the noise); coarser when the entry
+    // count would not stay linear in the face count (a few huge faces) or the cell key, the
+    // lowest-cell bits and the position would not fit in 64 bits together.
     pos_bits_ = std::bit_width(static_cast<uint64_t>(boxes.size()));
-    cell_ = std::max({2.0 * extent_sum / boxes.size(), diag / ((1 << 20) - 2), 1e-30});
+    SetCell(std::max({2.0 * extent_sum / boxes.size(), diag / ((1 << 20) - 2), 1e-30}));
     const double max_entries = 16.0 * boxes.size() + 64;
     std::vector<int64_t> counts;  // entries per block of boxes
     for (;;) {
-      for (int k = 0; k < 3; ++k) dims_[k] = Cell(all.hi[k], k) + 1;
-      if (std::bit_width(static_cast<uint64_t>(dims_[0] * dims_[1] * dims_[2])) + pos_bits_ > 64) {
-        cell_ *= 2;
+      key_bits_ = 0;
+      for (int k = 0; k < 3; ++k) {
+        dims_[k] = Cell(all.hi[k], k) + 1;
+        key_bits_ += std::bit_width(static_cast<uint64_t>(dims_[k] - 1));
+      }
+      if (key_bits_ + pos_bits_ + kLowBits > 64) {
+        SetCell(cell_ * 2);
         continue;
       }
       counts = CountEntries(boxes, threads, max_entries);
       double entries = 0;
       for (int64_t count : counts) entries += static_cast<double>(count);
       if (entries <= max_entries) break;
-      cell_ *= 1.5;
+      SetCell(cell_ * 1.5);
     }
-    // Each block writes its boxes' entries from its own offset: position order, as one loop.
-    std::vector<size_t> offset(counts.size() + 1, 0);
-    for (size_t b = 0; b < counts.size(); ++b) offset[b + 1] = offset[b] + counts[b];
-    entries_.resize(offset.back());
-    RunTasks(threads, static_cast<int64_t>(counts.size()), [&](int, int64_t block) {
-      size_t e = offset[block];
-      const size_t end = std::min(boxes.size(), static_cast<size_t>(block + 1) * kBoxesPerBlock);
-      for (size_t p = static_cast<size_t>(block) * kBoxesPerBlock; p < end; ++p) {
-        const CellCoord lo = CellOf(boxes[p].lo), hi = CellOf(boxes[p].hi);
-        for (int64_t z = lo[2]; z <= hi[2]; ++z)
-          for (int64_t y = lo[1]; y <= hi[1]; ++y)
-            for (int64_t x = lo[0]; x <= hi[0]; ++x) {
-              const uint64_t key = static_cast<uint64_t>(x + dims_[0] * (y + dims_[1] * z));
-              entries_[e++] = key << pos_bits_ | static_cast<uint64_t>(p);
-            }
-      }
-    });
-    RadixSort(static_cast<uint64_t>(dims_[0] * dims_[1] * dims_[2]), threads);
+    MakeSpreads();
+    double total = 0;
+    for (int64_t count : counts) total += static_cast<double>(count);
+    Sort(boxes, static_cast<size_t>(total), threads);
   }
 
-  int64_t Cell(float v, int axis) const { return Floor((v - lo_[axis]) / cell_); }
+  // A product by the inverse, not a quotient: any rounding that is monotone in `v` keeps every
+  // pair of overlapping boxes in a common cell, and a product is several times cheaper.
+  int64_t Cell(float v, int axis) const { return Floor((v - lo_[axis]) * inverse_cell_); }
   CellCoord CellOf(const std::array<float, 3>& p) const {
     return {Cell(p[0], 0), Cell(p[1], 1), Cell(p[2], 2)};
   }
-  CellCoord Decode(uint64_t key) const {
-    const int64_t k = static_cast<int64_t>(key);
-    return {k % dims_[0], (k / dims_[0]) % dims_[1], k / (dims_[0] * dims_[1])};
-  }
   size_t size() const { return entries_.size(); }
-  uint64_t key(size_t e) const { return entries_[e] >> pos_bits_; }
+  uint64_t key(size_t e) const { return entries_[e] >> (pos_bits_ + kLowBits); }
+  // Bit k set when the entry's face has its lowest cell (the cell of its box's low corner) at
+  // this entry's cell's coordinate k.
+  uint8_t at_low(size_t e) const { return static_cast<uint8_t>(entries_[e] >> pos_bits_ & 7); }
   int32_t position(size_t e) const {
     return static_cast<int32_t>(entries_[e] & ((uint64_t{1} << pos_bits_) - 1));
   }
 
  private:
   static constexpr size_t kBoxesPerBlock = 16384;
+  static constexpr int kLowBits = 3;
+  static constexpr int kMaxTopBits = 12;  // 4096 buckets: as many write streams as L2 holds
+
+  // The cell keys are Morton codes (the coordinates' bits interleaved, an axis's bits left out
+  // above its width): the cells are walked in the Z order the faces are stored in
+  // (MortonOrder), so a face's box, indices and positions are read again from cache in its
+  // next cell, not from memory after a whole slab of cells (x-major keys: the 1M torus's
+  // search 20% slower). spread_[k][c]: coordinate c's bits at axis k's places.
+  void MakeSpreads() {
+    int width[3];
+    for (int k = 0; k < 3; ++k) width[k] = std::bit_width(static_cast<uint64_t>(dims_[k] - 1));
+    std::array<std::vector<uint64_t>, 3> place;  // place[k][i]: the key bit of bit i of axis k
+    int next = 0;
+    for (int i = 0; i < std::max({width[0], width[1], width[2]}); ++i)
+      for (int k = 0; k < 3; ++k)
+        if (i < width[k]) place[k].push_back(uint64_t{1} << next++);
+    for (int k = 0; k < 3; ++k) {
+      spread_[k].resize(dims_[k]);
+      for (int64_t c = 0; c < dims_[k]; ++c) {
+        uint64_t key = 0;
+        for (int i = 0; i < width[k]; ++i)
+          if (c >> i & 1) key |= place[k][i];
+        spread_[k][c] = key;
+      }
+    }
+  }
+
+  void SetCell(double cell) {
+    cell_ = cell;
+    inverse_cell_ = 1 / cell;
+  }
 
   // The entries of each block of kBoxesPerBlock boxes at the current cell size; a block stops
   // counting past `limit` (the caller then coarsens the cells anyway).
@@ -147,51 +171,128 @@ class SortedFaceCells {
     return counts;
   }
 
-  // LSD radix sort of the packed entries by their key bits, 11 bits per pass. Stable, and the
-  // entries were made in position order, so a cell lists its faces by increasing position.
-  // Each pass counts the digits of slices of the entries side by side, then each slice writes
-  // its entries from its own offsets (digit first, slice second): the same order as one loop.
-  void RadixSort(uint64_t key_limit, int threads) {
-    constexpr int kBits = 11;
-    constexpr uint64_t kMask = (1 << kBits) - 1;
-    constexpr size_t kMinSlice = size_t{1} << 16;
-    const int passes = (std::bit_width(key_limit) + kBits - 1) / kBits;
-    const size_t n = entries_.size();
-    const size_t slices =
-        threads <= 1 ? 1 : std::clamp<size_t>(n / kMinSlice, 1, 4 * static_cast<size_t>(threads));
-    auto slice_begin = [&](size_t s) { return n * s / slices; };
-    BigVector<uint64_t> other(n);
-    std::vector<std::vector<size_t>> count(slices, std::vector<size_t>(kMask + 1));
-    for (int pass = 0; pass < passes; ++pass) {
-      const int shift = pos_bits_ + pass * kBits;
-      RunTasks(threads, static_cast<int64_t>(slices), [&](int, int64_t s) {
-        std::vector<size_t>& c = count[s];
-        std::fill(c.begin(), c.end(), 0);
-        for (size_t e = slice_begin(s); e < slice_begin(s + 1); ++e)
-          ++c[(entries_[e] >> shift) & kMask];
-      });
-      size_t start = 0;
-      for (size_t d = 0; d <= kMask; ++d)
-        for (size_t s = 0; s < slices; ++s) {
-          const size_t c = count[s][d];
-          count[s][d] = start;
-          start += c;
+  // Calls visit(entry) for each of box p's entries, x fastest.
+  template <typename Visit>
+  void ForEachEntry(const Box& box, uint64_t p, Visit&& visit) const {
+    const CellCoord lo = CellOf(box.lo), hi = CellOf(box.hi);
+    for (int64_t z = lo[2]; z <= hi[2]; ++z)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+          const uint64_t key = spread_[0][x] | spread_[1][y] | spread_[2][z];
+          const uint64_t at_low =
+              (x == lo[0] ? 1 : 0) | (y == lo[1] ? 2 : 0) | (z == lo[2] ? 4 : 0);
+          visit(key << (pos_bits_ + kLowBits) | at_low << pos_bits_ | p);
         }
-      RunTasks(threads, static_cast<int64_t>(slices), [&](int, int64_t s) {
-        std::vector<size_t>& at = count[s];
-        for (size_t e = slice_begin(s); e < slice_begin(s + 1); ++e) {
-          const uint64_t v = entries_[e];
-          other[at[(v >> shift) & kMask]++] = v;
-        }
-      });
-      entries_.swap(other);
+  }
+
+  // Makes the `total` entries sorted by key, each key's entries by increasing position, in
+  // one array: a most-significant-digit split as they are made, then each bucket sorted on its
+  // own. Chunks of boxes (several per thread) count their entries per bucket (the key's top
+  // bits), then write them from their own offsets (bucket first, chunk second): each bucket
+  // holds its entries in position order, as one loop would write them. A bucket (a few hundred
+  // entries, a Z-order block of cells) is then sorted by the rest of its key, stably, in
+  // cache. Against a least-significant-digit sort of the whole array, no second array of the
+  // entries (8 bytes an entry, 2.6 entries a face: each page a fresh page fault) and one
+  // pass over memory instead of two or three.
+  void Sort(const BigVector<Box>& boxes, size_t total, int threads) {
+    constexpr size_t kMinChunk = size_t{1} << 14;
+    constexpr size_t kEntriesPerBucket = 256;
+    const int top_bits = std::min(
+        {key_bits_, kMaxTopBits, static_cast<int>(std::bit_width(total / kEntriesPerBucket))});
+    const int top_shift = pos_bits_ + kLowBits + key_bits_ - top_bits;
+    const size_t buckets = size_t{1} << top_bits;
+    const size_t chunks = threads <= 1 ? 1
+                                       : std::clamp<size_t>(boxes.size() / kMinChunk, 1,
+                                                            4 * static_cast<size_t>(threads));
+    auto chunk_begin = [&](size_t c) { return boxes.size() * c / chunks; };
+    std::vector<std::vector<size_t>> at(chunks, std::vector<size_t>(buckets, 0));
+    RunTasks(threads, static_cast<int64_t>(chunks), [&](int, int64_t c) {
+      std::vector<size_t>& count = at[c];
+      for (size_t p = chunk_begin(c); p < chunk_begin(c + 1); ++p)
+        ForEachEntry(boxes[p], p, [&](uint64_t v) { ++count[v >> top_shift]; });
+    });
+    std::vector<size_t> bucket_start(buckets + 1);
+    size_t start = 0;
+    for (size_t b = 0; b < buckets; ++b) {
+      bucket_start[b] = start;
+      for (size_t c = 0; c < chunks; ++c) {
+        const size_t count = at[c][b];
+        at[c][b] = start;
+        start += count;
+      }
     }
+    bucket_start[buckets] = start;
+    entries_.resize(start);
+    RunTasks(threads, static_cast<int64_t>(chunks), [&](int, int64_t c) {
+      std::vector<size_t>& next = at[c];
+      for (size_t p = chunk_begin(c); p < chunk_begin(c + 1); ++p)
+        ForEachEntry(boxes[p], p, [&](uint64_t v) { entries_[next[v >> top_shift]++] = v; });
+    });
+    SortBuckets(bucket_start, key_bits_ - top_bits, threads);
+  }
+
+  // Sorts each bucket [start[b], start[b + 1]) of the entries by the low `key_bits` bits of
+  // their key, stably: least-significant digit first, at most 8 bits a pass, through a
+  // bucket-sized buffer per worker; insertion for the smallest.
+  void SortBuckets(const std::vector<size_t>& start, int key_bits, int threads) {
+    if (key_bits == 0) return;
+    constexpr int kMaxBits = 8;
+    constexpr size_t kInsertion = 16;
+    constexpr int64_t kBucketsPerTask = 64;
+    const int passes = (key_bits + kMaxBits - 1) / kMaxBits;
+    const int bits = (key_bits + passes - 1) / passes;
+    const uint64_t mask = (uint64_t{1} << bits) - 1;
+    const int key_shift = pos_bits_ + kLowBits;
+    const uint64_t key_mask = (uint64_t{1} << key_bits) - 1;
+    const int64_t buckets = static_cast<int64_t>(start.size()) - 1;
+    std::vector<std::vector<uint64_t>> other(std::max(threads, 1));
+    const int64_t tasks = (buckets + kBucketsPerTask - 1) / kBucketsPerTask;
+    RunTasks(threads, tasks, [&](int worker, int64_t task) {
+      std::vector<uint64_t>& buffer = other[worker];
+      std::array<size_t, (1 << kMaxBits)> at;
+      const int64_t last = std::min(buckets, (task + 1) * kBucketsPerTask);
+      for (int64_t b = task * kBucketsPerTask; b < last; ++b) {
+        uint64_t* const first = entries_.data() + start[b];
+        const size_t n = start[b + 1] - start[b];
+        if (n <= kInsertion) {
+          for (size_t i = 1; i < n; ++i) {
+            const uint64_t v = first[i];
+            const uint64_t key = v >> key_shift & key_mask;
+            size_t j = i;
+            for (; j > 0 && (first[j - 1] >> key_shift & key_mask) > key; --j)
+              first[j] = first[j - 1];
+            first[j] = v;
+          }
+          continue;
+        }
+        if (buffer.size() < n) buffer.resize(n);
+        uint64_t* from = first;
+        uint64_t* to = buffer.data();
+        for (int pass = 0; pass < passes; ++pass) {
+          const int shift = key_shift + pass * bits;
+          std::fill(at.begin(), at.begin() + mask + 1, 0);
+          for (size_t i = 0; i < n; ++i) ++at[from[i] >> shift & mask];
+          size_t sum = 0;
+          for (size_t d = 0; d <= mask; ++d) {
+            const size_t count = at[d];
+            at[d] = sum;
+            sum += count;
+          }
+          for (size_t i = 0; i < n; ++i) to[at[from[i] >> shift & mask]++] = from[i];
+          std::swap(from, to);
+        }
+        if (from != first) std::copy(from, from + n, first);
+      }
+    });
   }
 
   std::array<double, 3> lo_{0, 0, 0};
   double cell_ = 1;
+  double inverse_cell_ = 1;
   std::array<int64_t, 3> dims_{1, 1, 1};
   int pos_bits_ = 1;
+  int key_bits_ = 0;  // the cell keys are below 2^key_bits_
+  std::array<std::vector<uint64_t>, 3> spread_;
   BigVector<uint64_t> entries_;
 };
 
@@ -211,28 +312,36 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
                       ToVec3d(mesh.vertices[idx[2]])};
   };
   const bool all = p.dirty.empty();
-  // A cell's faces, copied side by side before its pairs are walked: the pair loop then reads
-  // contiguous memory instead of jumping through the per-face arrays a dozen times per face.
-  // `at_low` has bit k set when the face's lowest cell (the cell of its box's low corner) has
-  // this cell's coordinate k. Both faces of a pair touch this cell, so their lowest cells are
-  // at or below it on every axis, and the overlap's lowest cell is this one exactly when every
-  // axis has a face at this coordinate: (at_low_a | at_low_b) == 7, so each pair is tested
-  // once, in that cell.
+  // A cell's faces, copied side by side before its pairs are walked, in two arrays: what the
+  // pair filter reads (`Filtered`: the box and a flags byte, 28 bytes), and what the tests of
+  // the pairs that pass it read (`Tested`). The filter then walks a few hundred contiguous
+  // bytes a cell, and without a branch per pair: of the ~24 pairs a face meets in its cells,
+  // ~6 pass, in no order a predictor could learn.
+  // The flags' bits 0-2 are the entry's lowest-cell bits: bit k set when the face's lowest
+  // cell (the cell of its box's low corner) has this cell's coordinate k. Both faces of a pair
+  // touch this cell, so their lowest cells are at or below it on every axis, and the overlap's
+  // lowest cell is this one exactly when every axis has a face at this coordinate:
+  // (at_low_a | at_low_b) == 7, so each pair is tested once, in that cell. Bit 3: the face is
+  // dirty (every pair with a dirty face counts). A pair passes when its flags or'ed are 15.
+  struct Filtered {
+    Box box;
+    uint8_t flags;
+  };
   // A face's triangle and plane are made in its member at the first pair that tests it, not
   // once per face into arrays of the participants: such arrays (84 bytes a face, 1.3 GB on
   // the 15M faces of a 10M-point torus) would be the process's peak on smaller clouds, each
   // of their pages a fresh page fault. A face met in two or three cells makes them again
   // there, from the same positions: the same bits.
-  struct Member {
-    Member(int32_t position, bool dirty, uint8_t at_low, const Box& box)
-        : position(position), dirty(dirty), at_low(at_low), box(box) {}
+  struct Tested {
     int32_t position;
-    bool dirty;
-    uint8_t at_low;
-    bool made = false;  // `triangle` and `plane` hold the face's
-    Box box;
+    bool made;  // `triangle` and `plane` hold the face's
     Triangle3d triangle;
     FacePlane plane;
+  };
+  struct Scratch {
+    std::vector<Filtered> filtered;
+    std::vector<Tested> tested;
+    std::vector<uint32_t> passed;  // the members that pass the filter with the current one
   };
   // Cells are independent: runs of whole cells go to the workers (several runs per worker, so
   // that a run of crowded cells does not leave the others idle), each run's pairs to a list
@@ -247,12 +356,14 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
     run_start[r] = e;
   }
   std::vector<std::vector<std::pair<int32_t, int32_t>>> found(runs);
-  std::vector<std::vector<Member>> scratch(workers);
+  std::vector<Scratch> scratch(workers);
   constexpr int kCellsPerPoll = 4096;
   TaskCancel stop(cancel, workers, kCellsPerPoll);
   progress.Begin(static_cast<int64_t>(cells.size()));
   RunTasks(workers, runs, [&](int worker, int64_t run) {
-    std::vector<Member>& members = scratch[worker];
+    std::vector<Filtered>& filtered = scratch[worker].filtered;
+    std::vector<Tested>& tested = scratch[worker].tested;
+    std::vector<uint32_t>& passed = scratch[worker].passed;
     std::vector<std::pair<int32_t, int32_t>>& out = found[run];
     int64_t uncounted = 0;  // cell entries walked, not yet added to `progress`
     for (size_t begin = run_start[run]; begin < run_start[run + 1];) {
@@ -264,33 +375,47 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
         progress.Add(uncounted);
         uncounted = 0;
       }
-      const CellCoord c = cells.Decode(cells.key(begin));
-      members.clear();
+      const size_t m = end - begin;
+      filtered.resize(m);
+      tested.resize(m);
+      passed.resize(m);
       for (size_t e = begin; e < end; ++e) {
         const int32_t i = cells.position(e);
-        const CellCoord low = cells.CellOf(p.box[i].lo);
-        uint8_t at_low = 0;
-        for (int k = 0; k < 3; ++k) at_low |= (low[k] == c[k] ? 1 : 0) << k;
-        members.emplace_back(i, all || p.dirty[i] != 0, at_low, p.box[i]);
+        const bool dirty = all || p.dirty[i] != 0;
+        filtered[e - begin] = {p.box[i], static_cast<uint8_t>(cells.at_low(e) | (dirty ? 8 : 0))};
+        tested[e - begin].position = i;
+        tested[e - begin].made = false;
       }
-      auto make = [&](Member& m) {
-        if (m.made) return;
-        m.triangle = triangle(m.position);
-        m.plane = MakeFacePlane(m.triangle);
-        m.made = true;
+      auto make = [&](Tested& t) {
+        if (t.made) return;
+        t.triangle = triangle(t.position);
+        t.plane = MakeFacePlane(t.triangle);
+        t.made = true;
       };
-      for (size_t a = 0; a < members.size(); ++a) {
-        Member& mi = members[a];
-        for (size_t b = a + 1; b < members.size(); ++b) {
-          Member& mj = members[b];
-          if (!mi.dirty && !mj.dirty) continue;
-          if ((mi.at_low | mj.at_low) != 7) continue;
-          if (!BoxesOverlap(mi.box, mj.box)) continue;
-          make(mi);
-          make(mj);
-          const int32_t fi = p.face[mi.position], fj = p.face[mj.position];
-          if (MeshTrianglesIntersect(mesh.faces[fi], mi.triangle, mi.plane, mesh.faces[fj],
-                                     mj.triangle, mj.plane))
+      for (size_t a = 0; a < m; ++a) {
+        const Box box = filtered[a].box;
+        const uint8_t flags = filtered[a].flags;
+        size_t n = 0;
+        for (size_t b = a + 1; b < m; ++b) {
+          const Filtered& f = filtered[b];
+          // BoxesOverlap's comparisons, with & for && (every one evaluated, no branch).
+          const bool pass = ((flags | f.flags) == 15) & !(box.hi[0] < f.box.lo[0]) &
+                            !(f.box.hi[0] < box.lo[0]) & !(box.hi[1] < f.box.lo[1]) &
+                            !(f.box.hi[1] < box.lo[1]) & !(box.hi[2] < f.box.lo[2]) &
+                            !(f.box.hi[2] < box.lo[2]);
+          passed[n] = static_cast<uint32_t>(b);
+          n += pass;
+        }
+        if (n == 0) continue;
+        Tested& ti = tested[a];
+        make(ti);
+        const int32_t fi = p.face[ti.position];
+        for (size_t k = 0; k < n; ++k) {
+          Tested& tj = tested[passed[k]];
+          make(tj);
+          const int32_t fj = p.face[tj.position];
+          if (MeshTrianglesIntersect(mesh.faces[fi], ti.triangle, ti.plane, mesh.faces[fj],
+                                     tj.triangle, tj.plane))
             out.emplace_back(std::min(fi, fj), std::max(fi, fj));
         }
       }

@@ -146,7 +146,11 @@ bool CompactStates::Decode(absl::Span<VoxelState> states, const CancelToken& can
 }
 
 void CompactStates::OutsidePlane(FlatBitset& plane) const {
-  plane = FlatBitset(size_);
+  if (plane.bits() == size_) {
+    plane.clear_all();
+  } else {
+    plane = FlatBitset(size_);
+  }
   uint64_t* words = plane.words();
   for (size_t c = 0; c < chunks_.size(); ++c) {
     const Chunk& chunk = chunks_[c];

@@ -36,7 +36,8 @@ class CompactStates {
   // range of chunks a task.
   bool Decode(absl::Span<VoxelState> states, const CancelToken& cancel, int threads = 1) const;
 
-  // `plane` becomes size() bits, bit i set when voxel i of the copy is outside.
+  // `plane` becomes size() bits, bit i set when voxel i of the copy is outside. A plane of
+  // that size already keeps its words (a work plane stays in its arena).
   void OutsidePlane(FlatBitset& plane) const;
 
   // Number of voxels copied.

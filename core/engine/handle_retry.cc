@@ -9,6 +9,7 @@
 #include "absl/status/statusor.h"
 #include "core/engine/flat_bitset.h"
 #include "core/engine/voxel_topology.h"
+#include "core/engine/work_planes.h"
 
 namespace membrane {
 namespace {
@@ -26,13 +27,15 @@ absl::StatusOr<VoxelTopology> Topology(const VoxelGrid& grid, const CancelToken&
 // the share of hard voxels among the voxels solid in both that touch them (its rim). A web
 // across missing data hangs on frozen and soft voxels; a membrane across a real hole of a
 // scanned object hangs on the hole's scanned edge (a torus 2.25-2.75x the formula-(1) size:
-// 89-94% hard; the spot scan's webs between its legs: 7%).
-void MeasureWeb(const VoxelGrid& grid, const ShrinkCheckpoint& first_run, HandleRetry& r) {
-  // Bit-planes, not byte arrays: on a large grid both would be as large as the grid.
-  FlatBitset first_outside;
+// 89-94% hard; the spot scan's webs between its legs: 7%). `first_outside` and `counted` are
+// planes of the grid's size whose contents are not needed (two work planes): bit-planes, not
+// byte arrays, and not planes of their own, which on a 2e9-voxel grid would add 512 MB to the
+// shrink's peak (the grid and the work planes are still held here).
+void MeasureWeb(const VoxelGrid& grid, const ShrinkCheckpoint& first_run,
+                FlatBitset& first_outside, FlatBitset& counted, HandleRetry& r) {
   first_run.states.OutsidePlane(first_outside);
   const VoxelState* now = grid.states().data();
-  FlatBitset counted;
+  bool counted_clear = false;
   int64_t rim = 0, hard = 0;
   auto is_web = [&](int64_t i) { return first_outside.test(i) && !IsOutside(now[i]); };
   for (int z = 1; z + 1 < grid.dim(2); ++z)
@@ -41,7 +44,10 @@ void MeasureWeb(const VoxelGrid& grid, const ShrinkCheckpoint& first_run, Handle
         const int64_t i = grid.Index(x, y, z);
         if (!is_web(i)) continue;
         ++r.web_voxels;
-        if (counted.bits() == 0) counted = FlatBitset(grid.size());
+        if (!counted_clear) {
+          counted.clear_all();
+          counted_clear = true;
+        }
         for (int64_t offset : grid.block_offsets()) {
           const int64_t j = i + offset;
           if (counted.test(j) || IsOutside(now[j]) || is_web(j)) continue;
@@ -89,7 +95,9 @@ absl::Status RetryHandles(MembraneShrinker& shrinker, const ShrinkCheckpoint& st
     const VoxelTopology second = *std::move(topology);
     r.kept = second.shells >= first.shells && TotalGenus(second) < r.genus_before;
     if (r.kept) {
-      MeasureWeb(shrinker.grid(), finished, r);
+      WorkPlanes& planes = shrinker.work_planes();
+      if (!planes.Ensure(2, shrinker.cancel())) return HandleRetryCancelled();
+      MeasureWeb(shrinker.grid(), finished, planes.plane(0), planes.plane(1), r);
       r.kept = r.web_hard_rim < shrinker.options().retry.max_hard_rim;
     }
     if (r.kept) {

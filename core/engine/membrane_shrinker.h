@@ -170,6 +170,10 @@ class MembraneShrinker {
   bool Restore(const ShrinkCheckpoint& from);
 
   const VoxelGrid& grid() const { return grid_; }
+  // The work planes: nothing in them outlives a generation, so a step between generations
+  // may use them (the handle retry measures its web on two) instead of allocating planes of
+  // its own beside them.
+  WorkPlanes& work_planes() { return planes_; }
   const ShrinkOptions& options() const { return options_; }
   const CancelToken& cancel() const { return cancel_; }
   size_t generations() const { return sizes_.size(); }

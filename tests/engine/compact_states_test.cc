@@ -92,6 +92,24 @@ TEST(CompactStates, OutsidePlaneMarksTheOutsideVoxels) {
   EXPECT_EQ(mismatches, 0);
 }
 
+// A plane of the copy's size (a work plane, whose words an arena holds) keeps its words, and
+// whatever its bits were before, they become the copy's outside voxels.
+TEST(CompactStates, OutsidePlaneKeepsAPlaneOfItsSize) {
+  const std::vector<VoxelState> states = ShrunkLikeStates();
+  CompactStates copy;
+  ASSERT_TRUE(copy.Encode(states, CancelToken::Never()));
+  FlatBitset plane(static_cast<int64_t>(states.size()));
+  for (int64_t i = 0; i < plane.bits(); i += 3) plane.set(i);
+  const uint64_t* words = plane.words();
+  copy.OutsidePlane(plane);
+  EXPECT_EQ(plane.words(), words);
+  int64_t mismatches = 0;
+  for (size_t i = 0; i < states.size(); ++i) {
+    mismatches += plane.test(static_cast<int64_t>(i)) != IsOutside(states[i]);
+  }
+  EXPECT_EQ(mismatches, 0);
+}
+
 TEST(CompactStates, ReusedForAShorterCopy) {
   CompactStates copy;
   ASSERT_TRUE(copy.Encode(ShrunkLikeStates(), CancelToken::Never()));

@@ -34,8 +34,8 @@ absl::StatusOr<VoxelTopology> Topology(const VoxelGrid& grid, const CancelToken&
 void MeasureWeb(const VoxelGrid& grid, const ShrinkCheckpoint& first_run,
                 FlatBitset& first_outside, FlatBitset& counted, HandleRetry& r) {
   first_run.states.OutsidePlane(first_outside);
+  counted.clear_all();
   const VoxelState* now = grid.states().data();
-  bool counted_clear = false;
   int64_t rim = 0, hard = 0;
   auto is_web = [&](int64_t i) { return first_outside.test(i) && !IsOutside(now[i]); };
   for (int z = 1; z + 1 < grid.dim(2); ++z)
@@ -44,10 +44,6 @@ void MeasureWeb(const VoxelGrid& grid, const ShrinkCheckpoint& first_run,
         const int64_t i = grid.Index(x, y, z);
         if (!is_web(i)) continue;
         ++r.web_voxels;
-        if (!counted_clear) {
-          counted.clear_all();
-          counted_clear = true;
-        }
         for (int64_t offset : grid.block_offsets()) {
           const int64_t j = i + offset;
           if (counted.test(j) || IsOutside(now[j]) || is_web(j)) continue;

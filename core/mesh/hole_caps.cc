@@ -14,7 +14,6 @@
 #include "core/geometry/vec3.h"
 #include "core/mesh/algebraic_sphere.h"
 #include "core/mesh/corner_crease.h"
-#include "core/mesh/fold_pace.h"
 #include "core/mesh/gap_vertices.h"
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_row_grid.h"
@@ -803,8 +802,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       o.corner_smoothing < 0 || o.corner_smoothing > 100 ||
       o.corner_normal_rings < 0 || o.corner_normal_rings > 8 || o.untangle_rounds < 0 ||
       o.untangle_rounds > 1000 || o.untangle_rings < 0 || o.untangle_rings > 16 ||
-      o.untangle_iterations < 1 || o.untangle_iterations > 100 || o.untangle_window < 0 ||
-      o.untangle_window > 1000 || !(o.untangle_fall >= 0 && o.untangle_fall <= 1))
+      o.untangle_iterations < 1 || o.untangle_iterations > 100)
     return absl::InvalidArgumentError(absl::StrCat(
         "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
         o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",
@@ -825,8 +823,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         ", corner_smoothing ", o.corner_smoothing,
         ", corner_normal_rings ", o.corner_normal_rings, ", untangle_rounds ",
         o.untangle_rounds, ", untangle_rings ", o.untangle_rings, ", untangle_iterations ",
-        o.untangle_iterations, ", untangle_window ", o.untangle_window, ", untangle_fall ",
-        o.untangle_fall));
+        o.untangle_iterations));
   return absl::OkStatus();
 }
 
@@ -1154,61 +1151,29 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
       for (int32_t v : regions[r]) region_of[v] = static_cast<int32_t>(r);
     std::vector<char> in_cap(nv, 0), mark(nv, 0), untangled(nv, 0);
     for (int32_t v : free_list) in_cap[v] = 1;
-    std::vector<char> moved_faces = dirty, failed(regions.size(), 0);
-    FoldPace pace(static_cast<int>(regions.size()), options.untangle_window,
-                  options.untangle_fall);
-    std::vector<int64_t> pairs_of(regions.size());
-    // Whether a pair has joined two regions' faces: from then on a region's rounds depend on
-    // the others' positions, and one put back early would change them.
-    bool joined = false;
-    // The region of a face's moved cap vertices (a face's vertices lie in one region, or
-    // are fixed), or -1; `rounds_only`: of the regions still in the rounds.
-    auto region_of_face = [&](int32_t f, bool rounds_only) {
+    auto capped = [&](int32_t f) {
       for (int32_t v : mesh.faces[f])
-        if ((in_cap[v] || !rounds_only) && region_of[v] >= 0 && mesh.vertices[v] != before[v])
-          return region_of[v];
-      return -1;
+        if (in_cap[v] && mesh.vertices[v] != before[v]) return true;
+      return false;
     };
+    std::vector<char> moved_faces = dirty, failed(regions.size(), 0);
     for (int round = 0;; ++round) {
-      std::fill(pairs_of.begin(), pairs_of.end(), 0);
       std::vector<int32_t> folded;
-      const auto pairs = FindIntersectingFacesNear(mesh, moved_faces, 1, &blocks);
-      for (const auto& [a, b] : pairs) {
-        const int32_t ja = region_of_face(a, false), jb = region_of_face(b, false);
-        joined = joined || (ja >= 0 && jb >= 0 && ja != jb);
-        const int32_t ra = region_of_face(a, true), rb = region_of_face(b, true);
-        if (ra < 0 || rb < 0) continue;
-        ++pairs_of[ra];
-        if (rb != ra) ++pairs_of[rb];
-        for (int32_t f : {a, b})
-          for (int32_t v : mesh.faces[f])
-            if (in_cap[v] && mesh.vertices[v] != before[v]) folded.push_back(v);
-      }
+      for (const auto& [a, b] : FindIntersectingFacesNear(mesh, moved_faces, 1, &blocks))
+        if (capped(a) && capped(b))
+          for (int32_t f : {a, b})
+            for (int32_t v : mesh.faces[f])
+              if (in_cap[v] && mesh.vertices[v] != before[v]) folded.push_back(v);
       if (folded.empty()) break;
       if (round == options.untangle_rounds) {
-        for (int32_t v : folded) failed[region_of[v]] = 1;
+        for (int32_t v : folded)
+          if (region_of[v] >= 0) failed[region_of[v]] = 1;
         break;
-      }
-      // A region whose folds have stopped coming apart goes back now, as it would after
-      // untangle_rounds: it leaves the rounds, and their searches, to the others.
-      pace.Record(pairs_of);
-      bool stalled = false;
-      for (size_t r = 0; r < regions.size() && !joined; ++r) {
-        if (!pace.Stalled(static_cast<int>(r))) continue;
-        failed[r] = 1;
-        stalled = true;
-        ++st.stalled_regions;
-        for (int32_t v : regions[r]) in_cap[v] = 0;
-      }
-      if (stalled) {
-        std::erase_if(folded, [&](int32_t v) { return failed[region_of[v]] != 0; });
-        if (folded.empty()) break;
       }
       std::fill(moved_faces.begin(), moved_faces.end(), 0);
       UntangleFold(nb, star, in_cap, folded, options.untangle_rings,
                    options.untangle_iterations, mark, mesh, moved_faces, untangled);
     }
-    st.folded_regions = std::count(failed.begin(), failed.end(), 1);
     // `dirty` still marks every face around a cap vertex: the back-off's first search reads
     // them all, untangled or put back.
     for (int32_t v : free_list) {

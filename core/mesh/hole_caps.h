@@ -174,17 +174,6 @@ struct HoleCapOptions {
   int untangle_rounds = 16;
   int untangle_rings = 1;
   int untangle_iterations = 3;
-  // A region whose folds stop coming apart goes back to its cap as solved at once instead of
-  // after untangle_rounds: its crossing pairs (those of its faces with faces of the caps) at
-  // a round are more than (1 - untangle_fall) times its pairs untangle_window rounds before.
-  // Only while no pair has joined two regions' faces: then each region's rounds depend on the
-  // others' positions, and one put back early would change the others' folds.
-  // A fold that unfolds loses its pairs from round to round (the untangled caps measured lost
-  // 32% or more over every 4 rounds); one whose pairs hold over 4 rounds has kept them to the
-  // 16th round in every cap measured, and each of its rounds searches the whole fold again.
-  // 0: no such test.
-  int untangle_window = 4;
-  double untangle_fall = 0.2;
   // A cap vertex of a face that crosses another goes back toward its place before the cap:
   // halfway this many times, then all the way.
   int back_off_halvings = 4;
@@ -208,8 +197,6 @@ struct HoleCapStats {
   int64_t anchors = 0;           // cap vertices held at remote points
   int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
   int64_t untangled = 0;         // cap vertices moved to untangle a fold, in regions it untangled
-  int64_t folded_regions = 0;    // regions still folded, put back to their caps as solved
-  int64_t stalled_regions = 0;   // of those, put back before untangle_rounds (untangle_window)
   double max_lift = 0;          // largest move of a vertex by its cap, in voxels
 };
 
@@ -240,8 +227,7 @@ struct HoleCapStats {
 // creased where their tangent planes meet (corner_angle and the corner_ options). Then it
 // searches the faces around moved vertices for crossings: where two faces of the caps cross,
 // the fold is untangled by steps to the neighbours' mean (untangle_ options), and a region
-// still folded after untangle_rounds, or whose folds stop coming apart (untangle_window,
-// untangle_fall), goes back to its cap as solved. Then it sends the moved
+// still folded after untangle_rounds goes back to its cap as solved. Then it sends the moved
 // vertices of each crossing pair back toward where they were (halfway back_off_halvings
 // times, then all the way) until no crossing involves a moved vertex: where a cap would cross
 // the mesh, that part of it is not built.

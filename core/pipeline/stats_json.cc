@@ -137,8 +137,6 @@ std::string HoleCapsJson(const HoleCapStats& h) {
                       ", \"uncapped_regions\": ", h.uncapped_regions,
                       ", \"anchored_vertices\": ", h.anchors,
                       ", \"untangled_vertices\": ", h.untangled,
-                      ", \"folded_regions\": ", h.folded_regions,
-                      ", \"stalled_regions\": ", h.stalled_regions,
                       ", \"backed_off_vertices\": ", h.backed_off,
                       ", \"max_lift_voxels\": ", JsonNumber(h.max_lift), "}");
 }

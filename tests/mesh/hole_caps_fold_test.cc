@@ -86,14 +86,11 @@ TEST(HoleCapFolds, AFoldedCapIsUntangledInsteadOfSentBack) {
 
 TEST(HoleCapFolds, RefusesUntangleOptionsOutOfRange) {
   TriangleMesh mesh;
-  for (int case_index = 0; case_index < 6; ++case_index) {
+  for (int case_index = 0; case_index < 3; ++case_index) {
     HoleCapOptions options;
     if (case_index == 0) options.untangle_rounds = -1;
     if (case_index == 1) options.untangle_rings = -1;
     if (case_index == 2) options.untangle_iterations = 0;
-    if (case_index == 3) options.untangle_window = -1;
-    if (case_index == 4) options.untangle_fall = -0.1;
-    if (case_index == 5) options.untangle_fall = 1.5;
     EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument)
         << case_index;
   }

@@ -37,7 +37,8 @@ def feature_edges(V, F, angle_deg):
     P = _merged_positions(V, inverse)
     F = inverse[F]
     F = F[(F[:, 0] != F[:, 1]) & (F[:, 1] != F[:, 2]) & (F[:, 0] != F[:, 2])]
-    N, _ = meshlib.face_normals_areas(P, F)
+    N, area = meshlib.face_normals_areas(P, F)
+    F, N = F[area > 0], N[area > 0]  # a degenerate face has no normal to compare
     edges = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
     faces = np.tile(np.arange(len(F)), 3)
     key = np.sort(edges, axis=1)

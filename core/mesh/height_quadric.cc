@@ -25,6 +25,31 @@ PlaneFitAccumulator HeightFieldSums::PlaneSums() const {
       {uv[uu], uv[uvi], huv[Index(1, 0)], uv[vv], huv[Index(0, 1)], hh});
 }
 
+std::optional<HeightQuadric> SolveHeightQuadric(const HeightFieldSums& s) {
+  if (!(s.weight() > 0)) return std::nullopt;
+  // Normal equations M x = r, M[p][q] = sum w phi_p phi_q, r[p] = sum w h phi_p.
+  SquareMatrix<6> m;
+  HeightQuadric q;
+  std::array<double, 6>& r = q.coefficients;
+  for (int p = 0; p < 6; ++p) {
+    for (int k = 0; k < 6; ++k)
+      m[p][k] = s.uv[HeightFieldSums::Index(kPowU[p] + kPowU[k], kPowV[p] + kPowV[k])];
+    r[p] = s.huv[HeightFieldSums::Index(kPowU[p], kPowV[p])];
+  }
+  if (!CholeskySolve(m, r, kMinPivot)) return std::nullopt;
+  if (!std::isfinite(q.coefficients[0])) return std::nullopt;
+  return q;
+}
+
+double QuadricMeanSquareResidual(const HeightFieldSums& s, const HeightQuadric& q) {
+  const double w = s.weight();
+  if (!(w > 0)) return 0;
+  double explained = 0;
+  for (int p = 0; p < 6; ++p)
+    explained += q.coefficients[p] * s.huv[HeightFieldSums::Index(kPowU[p], kPowV[p])];
+  return std::max(0.0, (s.hh - explained) / w);
+}
+
 std::optional<HeightQuadric> FitHeightQuadric(const HeightFieldSums& s,
                                               const HeightQuadricLimits& limits) {
   const double w = s.weight();
@@ -42,18 +67,9 @@ std::optional<HeightQuadric> FitHeightQuadric(const HeightFieldSums& s,
   if (!(mu * mu + mv * mv <= limits.max_centroid_offset * limits.max_centroid_offset * spread2))
     return std::nullopt;
 
-  // Normal equations M x = r, M[p][q] = sum w phi_p phi_q, r[p] = sum w h phi_p.
-  SquareMatrix<6> m;
-  HeightQuadric q;
-  std::array<double, 6>& r = q.coefficients;
-  for (int p = 0; p < 6; ++p) {
-    for (int k = 0; k < 6; ++k)
-      m[p][k] = s.uv[HeightFieldSums::Index(kPowU[p] + kPowU[k], kPowV[p] + kPowV[k])];
-    r[p] = s.huv[HeightFieldSums::Index(kPowU[p], kPowV[p])];
-  }
-  if (!CholeskySolve(m, r, kMinPivot)) return std::nullopt;
-  const auto& c = q.coefficients;
-  if (!std::isfinite(c[0])) return std::nullopt;
+  const std::optional<HeightQuadric> q = SolveHeightQuadric(s);
+  if (!q) return std::nullopt;
+  const auto& c = q->coefficients;
   if (c[1] * c[1] + c[2] * c[2] > limits.max_slope * limits.max_slope) return std::nullopt;
   const double bend = std::max({std::fabs(2 * c[3]), std::fabs(c[4]), std::fabs(2 * c[5])});
   if (!(bend <= limits.max_curvature)) return std::nullopt;

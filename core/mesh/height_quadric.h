@@ -52,6 +52,14 @@ struct HeightQuadric {
   double height() const { return coefficients[0]; }  // h at the vertex (u = v = 0)
 };
 
+// The weighted least-squares quadric of `sums` whatever its shape, or nullopt when the normal
+// equations are singular (or the weight is zero).
+std::optional<HeightQuadric> SolveHeightQuadric(const HeightFieldSums& sums);
+
+// The weighted mean square of the points' heights about `q`, the least-squares quadric of the
+// same `sums` (sum w h^2 - c . sum w h phi, divided by the weight; 0 for no weight).
+double QuadricMeanSquareResidual(const HeightFieldSums& sums, const HeightQuadric& q);
+
 // The weighted least-squares quadric of `sums`, or nullopt when the weight is zero, the
 // normal equations are singular, or it breaks `limits`.
 std::optional<HeightQuadric> FitHeightQuadric(const HeightFieldSums& sums,

@@ -1,6 +1,7 @@
 #include "core/mesh/near_point_sums.h"
 
 #include <bit>
+#include <cmath>
 #include <cstring>
 
 #include "core/mesh/fast_exp.h"
@@ -245,6 +246,31 @@ HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
   }
   return weighted ? InFrameBaseline<true>(grid, radius, weights)
                   : InFrameBaseline<false>(grid, radius, weights);
+}
+
+void CollectNearPointsInFrame(const PointRowGrid& grid, double radius, const FrameWeights& weights,
+                              std::vector<FramePoint>& out) {
+  out.clear();
+  const float* xs = grid.xs();
+  const float* ys = grid.ys();
+  const float* zs = grid.zs();
+  const float* ws = grid.ws();
+  const auto& ax = weights.axes;
+  const Vec3d centre{weights.origin[0], weights.origin[1], weights.origin[2]};
+  grid.ForEachRun(centre, radius, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i) {
+      const double dx = xs[i] - weights.origin[0], dy = ys[i] - weights.origin[1],
+                   dz = zs[i] - weights.origin[2];
+      FramePoint p;
+      p.u = dx * ax[0][0] + dy * ax[0][1] + dz * ax[0][2];
+      p.v = dx * ax[1][0] + dy * ax[1][1] + dz * ax[1][2];
+      p.h = dx * ax[2][0] + dy * ax[2][1] + dz * ax[2][2];
+      const double t2 = p.u * p.u + p.v * p.v, h2 = p.h * p.h;
+      if (t2 + h2 > weights.radius2) continue;
+      p.w = std::exp(-t2 * weights.inv_2s2 - h2 * weights.inv_2n2) * (ws ? ws[i] : 1.0f);
+      if (p.w > 0) out.push_back(p);
+    }
+  });
 }
 
 }  // namespace membrane

@@ -9,8 +9,10 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "core/geometry/point_cloud.h"
+#include "core/mesh/crease_fit.h"
 #include "core/mesh/height_quadric.h"
 #include "core/mesh/plane_fit.h"
 #include "core/mesh/point_row_grid.h"
@@ -67,6 +69,13 @@ struct FrameWeights {
 HeightFieldSums WeighNearPointsInFrame(const PointRowGrid& grid, double radius,
                                        const FrameWeights& weights,
                                        SumsInstructions instructions = SumsInstructions::kBest);
+
+// The points WeighNearPointsInFrame weighs, one by one in `out` (cleared first): (u, v, h) and
+// w = exp(-(u^2 + v^2) inv_2s2 - h^2 inv_2n2), times the stored weight on a grid of cell means;
+// points of weight 0 are left out. In double, for the few vertices whose points are fitted
+// again one by one (crease_fit.h).
+void CollectNearPointsInFrame(const PointRowGrid& grid, double radius, const FrameWeights& weights,
+                              std::vector<FramePoint>& out);
 
 }  // namespace membrane
 

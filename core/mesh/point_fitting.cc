@@ -13,6 +13,7 @@
 #include "core/base/parallel_tasks.h"
 #include "core/engine/arena_allocator.h"
 #include "core/geometry/vec3.h"
+#include "core/mesh/crease_fit.h"
 #include "core/mesh/fan_embedding.h"
 #include "core/mesh/near_point_sums.h"
 #include "core/mesh/plane_fit.h"
@@ -175,6 +176,7 @@ class Fitter {
     std::vector<int32_t> moved;
     std::vector<Vec3d> ring_pos;       // scratch of FanEmbeddedAt
     std::vector<Triangle3d> new_tri;  // scratch of StarOk
+    std::vector<FramePoint> near;     // scratch of CurvedTarget's crease try
   };
 
   // The set-up's ranges of n items: 4 a thread with threads > 1 and kMinRangeItems items or
@@ -308,6 +310,9 @@ class Fitter {
       clock_ = std::max(clock_, w.clock);
       stats.quadric_targets += w.stats.quadric_targets;
       stats.plane_targets += w.stats.plane_targets;
+      stats.crease_targets += w.stats.crease_targets;
+      stats.crease_line_targets += w.stats.crease_line_targets;
+      stats.crease_tries += w.stats.crease_tries;
       stats.umbrella_targets += w.stats.umbrella_targets;
       stats.refused += w.stats.refused;
       moved_.insert(moved_.end(), w.moved.begin(), w.moved.end());
@@ -346,9 +351,10 @@ class Fitter {
     return count > 0 ? (1.0 / count) * sum : Pos(v);
   }
 
-  Vec3d Target(int32_t v, int round, FitStats& stats) const {
+  Vec3d Target(int32_t v, int round, SlabWork& w) const {
+    FitStats& stats = w.stats;
     const Vec3d normal = VertexNormal(v);
-    if (options_.quadric && SquaredNorm(normal) > 0) return CurvedTarget(v, round, normal, stats);
+    if (options_.quadric && SquaredNorm(normal) > 0) return CurvedTarget(v, round, normal, w);
     const Vec3d x = Pos(v);
     const double inv_2s2 = 1.0 / (2 * options_.sigma * options_.sigma * l_ * l_);
     // The first round's weights are isotropic.
@@ -381,7 +387,8 @@ class Fitter {
   // are weighed in the vertex's frame, in voxels; the quadric's height at the vertex moves it
   // along the normal. Where the quadric is not trusted, the plane of the same sums, as in
   // Target().
-  Vec3d CurvedTarget(int32_t v, int round, const Vec3d& normal, FitStats& stats) const {
+  Vec3d CurvedTarget(int32_t v, int round, const Vec3d& normal, SlabWork& w) const {
+    FitStats& stats = w.stats;
     const Vec3d x = Pos(v);
     // An orthonormal tangent basis from the normal without a branch on its direction (Duff et
     // al., "Building an Orthonormal Basis, Revisited", 2017): the frame, and so the target,
@@ -407,7 +414,23 @@ class Fitter {
     };
     const HeightFieldSums sums = weigh(options_.search_radius, options_.sigma);
     if (sums.count >= options_.quadric_min_points) {
-      if (const auto quadric = FitHeightQuadric(sums, options_.quadric_limits)) {
+      const auto quadric = FitHeightQuadric(sums, options_.quadric_limits);
+      // A quadric that leaves much unexplained, or bends past the limits, may be a crease's.
+      if (options_.creases) {
+        const auto raw = quadric ? quadric : SolveHeightQuadric(sums);
+        const double rms = raw ? std::sqrt(QuadricMeanSquareResidual(sums, *raw)) : 0;
+        if (raw && CreaseWorthTrying(rms, options_.crease_limits)) {
+          CollectNearPointsInFrame(points_, options_.search_radius * l_, weights, w.near);
+          ++stats.crease_tries;
+          if (const auto crease = FitCrease(w.near, *raw, rms, options_.crease_limits)) {
+            ++stats.crease_targets;
+            stats.crease_line_targets += crease->on_line;
+            const Vec3d& t = crease->target;
+            return x + l_ * (t[0] * t1 + t[1] * t2 + t[2] * normal);
+          }
+        }
+      }
+      if (quadric) {
         ++stats.quadric_targets;
         return x + (quadric->height() * l_) * normal;
       }
@@ -477,7 +500,7 @@ class Fitter {
   void FitVertex(int32_t v, int round, SlabWork& w) {
     settled_at_[v] = -1;
     const Vec3d x = Pos(v);
-    Vec3d target = Target(v, round, w.stats);
+    Vec3d target = Target(v, round, w);
     const Vec3d rest = ToVec3d(rest_[v]);
     const Vec3d off = target - rest;
     const double max_off = options_.max_offset * l_;

@@ -17,6 +17,7 @@
 #include "core/geometry/point_cloud.h"
 #include "core/geometry/position_grid.h"
 #include "core/geometry/triangle_mesh.h"
+#include "core/mesh/crease_fit.h"
 #include "core/mesh/height_quadric.h"
 #include "core/mesh/point_row_grid.h"
 
@@ -42,6 +43,11 @@ struct FitOptions {
   // sparse_sigma (0: no second try).
   double sparse_radius = 4.0;
   double sparse_sigma = 2.0;
+  // Creases: where the 2-voxel quadric leaves a large residual (or bends past its limits),
+  // two planes fitted to the same points (crease_fit.h) give the target when the limits take
+  // them: on their line of intersection near it, else on their envelope.
+  bool creases = true;
+  CreaseLimits crease_limits;
   // A dense cloud (at least dense_points_per_vertex points per mesh vertex: a scan at a voxel
   // its noise raised) is weighed as the means of its points per cell of search_radius /
   // mean_split voxels, each weighted by its count (point_cell_means.h: the cells of an index
@@ -61,9 +67,21 @@ struct FitOptions {
   int threads = 1;
 };
 
+// How the fit's targets were made, over all rounds (FitStats' counts, for the run's report).
+struct FitTargetCounts {
+  int64_t quadric = 0;
+  int64_t plane = 0;
+  int64_t crease = 0;       // two planes at a crease
+  int64_t crease_line = 0;  // of those, on the planes' line of intersection
+  int64_t umbrella = 0;
+};
+
 struct FitStats {
   int64_t quadric_targets = 0;    // targets from a quadric fit (over all rounds)
   int64_t plane_targets = 0;      // targets from a plane fit (over all rounds)
+  int64_t crease_targets = 0;     // targets from two planes at a crease (over all rounds)
+  int64_t crease_line_targets = 0;  // of those, on the planes' line of intersection
+  int64_t crease_tries = 0;       // targets whose points were fitted with two planes
   int64_t umbrella_targets = 0;   // targets from the umbrella step
   int64_t moves = 0;              // moves kept
   int64_t refused = 0;            // targets not taken even at 1/4 of the way
@@ -88,18 +106,20 @@ struct FitStats {
 // parity run side by side on options.threads): target = the point of the weighted height-field
 // quadric of the points near the vertex, in the frame of its normal, above or below it
 // (options.quadric, >= quadric_min_points of them and within the limits; with fewer, the same from
-// the points within sparse_radius), else the projection on their weighted PCA plane (>= min_points
-// of them), else an umbrella step (a dense cloud's points weighed as their cell means, each
-// counting its points: options.dense_points_per_vertex); the target is clamped to max_offset from
-// the vertex's input position; the move is tried at 1, 1/2, 1/4 of the way and taken at the first
-// where every triangle of the vertex keeps a non-zero area and a positive dot product with its
-// input normal, and no two of them overlap. The last pass ends with an intersection search around
-// the faces the passes moved, on the float32 positions that are written, on output_grid (so it is
-// also recipe step 6's rounding check, and the check of the encoding's quantization): the moved
-// vertices of every crossing pair back off through 1/2, 1/4 of the way, then to where they started,
-// until nothing crosses. Checking once at the end instead of once per move costs one linear search
-// instead of a grid query per vertex, and gives the same guarantee. The result does not depend on
-// options.threads.
+// the points within sparse_radius; where the 2-voxel quadric, fitted or refused, leaves a residual
+// that two planes explain, options.creases, the point of their crease line near the vertex or of
+// their envelope above it: crease_fit.h), else the projection on their weighted PCA plane (>=
+// min_points of them), else an umbrella step (a dense cloud's points weighed as their cell means,
+// each counting its points: options.dense_points_per_vertex); the target is clamped to max_offset
+// from the vertex's input position; the move is tried at 1, 1/2, 1/4 of the way and taken at the
+// first where every triangle of the vertex keeps a non-zero area and a positive dot product with
+// its input normal, and no two of them overlap. The last pass ends with an intersection search
+// around the faces the passes moved, on the float32 positions that are written, on output_grid (so
+// it is also recipe step 6's rounding check, and the check of the encoding's quantization): the
+// moved vertices of every crossing pair back off through 1/2, 1/4 of the way, then to where they
+// started, until nothing crosses. Checking once at the end instead of once per move costs one
+// linear search instead of a grid query per vertex, and gives the same guarantee. The result does
+// not depend on options.threads.
 // `fallback`, if not null, holds one position per vertex at which the mesh is known free of
 // self-intersections (SurfaceNetsBeforeRepair's); the input may then cross itself: that
 // search covers every face, and crossings that no move explains are repaired toward

@@ -17,6 +17,7 @@
 #include "core/mesh/hole_caps.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_decimation.h"
+#include "core/mesh/point_fitting.h"
 #include "core/mesh/relaxation.h"
 #include "core/mesh/surface_deviation.h"
 #include "core/pipeline/membrane_counts.h"
@@ -91,6 +92,7 @@ struct ReconstructionReport {
   MembraneCounts membrane;     // the final DMS, before relaxation
   RelaxationStats relaxation;  // all 0 with --no-relax
   HoleCapStats hole_caps;      // the smooth surface's caps over data holes
+  FitTargetCounts fit;         // the smooth surface's fit (all 0 for cuberille)
   MeshReport mesh;             // CheckMesh of the surface (vertices and faces set before it)
   DecimationReport decimation;
   QuantizationReport quantization;

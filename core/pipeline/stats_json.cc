@@ -141,6 +141,13 @@ std::string HoleCapsJson(const HoleCapStats& h) {
                       ", \"max_lift_voxels\": ", JsonNumber(h.max_lift), "}");
 }
 
+std::string FitJson(const FitTargetCounts& f) {
+  return absl::StrCat("{\"quadric_targets\": ", f.quadric, ", \"plane_targets\": ", f.plane,
+                      ", \"crease_targets\": ", f.crease,
+                      ", \"crease_line_targets\": ", f.crease_line,
+                      ", \"umbrella_targets\": ", f.umbrella, "}");
+}
+
 std::string SecondsJson(const StageSeconds& s) {
   return absl::StrCat(
       "{\"decode\": ", JsonNumber(s.decode), ", \"voxelize\": ", JsonNumber(s.voxelize),
@@ -206,6 +213,7 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"coarse_plates\": ", CoarsePlatesJson(r.coarse_plates),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
       ",\n  \"hole_caps\": ", HoleCapsJson(r.hole_caps),
+      ",\n  \"fit\": ", FitJson(r.fit),
       ",\n  \"quantization\": ", QuantizationJson(r.quantization),
       ",\n  \"decimation\": ", DecimationJson(r.decimation),
       ",\n  \"origin\": ", OriginJson(r.origin),

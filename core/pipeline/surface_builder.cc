@@ -98,16 +98,17 @@ bool KnownBroken(const BuiltSurface& surface, int threads) {
 absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken& cancel, int threads,
-                                          ProgressRange progress) {
+                                          ProgressRange progress, double point_noise) {
   // The cuberille only reads the membrane: no copy.
   if (kind == SurfaceKind::kCuberille) return CuberilleSurface(membrane, grid, threads, progress);
-  return BuildSurface(VoxelGrid(membrane), cloud, kind, grid, cancel, threads, progress);
+  return BuildSurface(VoxelGrid(membrane), cloud, kind, grid, cancel, threads, progress,
+                      point_noise);
 }
 
 absl::StatusOr<BuiltSurface> BuildSurface(VoxelGrid&& given, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken& cancel, int threads,
-                                          ProgressRange progress) {
+                                          ProgressRange progress, double point_noise) {
   VoxelGrid membrane = std::move(given);
   given = VoxelGrid();
   if (kind == SurfaceKind::kCuberille) return CuberilleSurface(membrane, grid, threads, progress);
@@ -116,12 +117,17 @@ absl::StatusOr<BuiltSurface> BuildSurface(VoxelGrid&& given, const PointCloud& c
   SmoothSurfaceOptions options;
   options.fit_options.output_grid = grid;
   options.fit_options.threads = threads;
+  if (point_noise > 0 && membrane.voxel_size() > 0)
+    options.fit_options.crease_limits.noise = point_noise / membrane.voxel_size();
   SmoothSurfaceStats stats;
   absl::StatusOr<TriangleMesh> mesh =
       SmoothSurface(std::move(membrane), cloud.points, options, &stats, cancel, progress);
   if (!mesh.ok()) return mesh.status();
   built.mesh = *std::move(mesh);
   built.hole_caps = stats.caps;
+  built.fit = FitTargetCounts{stats.fit.quadric_targets, stats.fit.plane_targets,
+                              stats.fit.crease_targets, stats.fit.crease_line_targets,
+                              stats.fit.umbrella_targets};
   if (stats.fit.crossings_known) built.crossings = std::move(stats.fit.crossings);
   return built;
 }

@@ -18,6 +18,7 @@
 #include "core/geometry/triangle_mesh.h"
 #include "core/mesh/hole_caps.h"
 #include "core/mesh/output_grid.h"
+#include "core/mesh/point_fitting.h"
 
 namespace membrane {
 
@@ -40,6 +41,7 @@ struct BuiltSurface {
   // does. nullopt otherwise (cuberille): a mesh check must search.
   std::optional<std::vector<std::pair<int32_t, int32_t>>> crossings;
   HoleCapStats hole_caps;  // the smooth surface's caps over data holes (zero for cuberille)
+  FitTargetCounts fit;     // the smooth surface's fit (zero for cuberille)
   // The cuberille's faces around its split vertices cross on the output grid: a grid about
   // as coarse as 0.2 voxel can snap a split vertex onto the sheet it was moved away from.
   bool split_crossings = false;
@@ -60,10 +62,13 @@ bool KnownBroken(const BuiltSurface& surface, int threads = 1);
 // smooth surface. `threads` (<= 1: the calling thread) share the smooth surface's fit; the
 // mesh does not depend on it. `progress` counts the smooth surface's work (SmoothSurface) and
 // reaches its end with the surface.
+// `point_noise` is the points' noise across their surface (PointNoise::sigma, model units; 0
+// when unknown), which the fit's crease test discounts.
 absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken& cancel, int threads = 1,
-                                          ProgressRange progress = ProgressRange());
+                                          ProgressRange progress = ProgressRange(),
+                                          double point_noise = 0);
 
 // The same from a membrane the caller gives up (the pipeline, which keeps it as runs): the
 // smooth surface cleans it in place and frees it before the caps and the fit (SmoothSurface's
@@ -71,7 +76,8 @@ absl::StatusOr<BuiltSurface> BuildSurface(const VoxelGrid& membrane, const Point
 absl::StatusOr<BuiltSurface> BuildSurface(VoxelGrid&& membrane, const PointCloud& cloud,
                                           SurfaceKind kind, const PositionGrid& grid,
                                           const CancelToken& cancel, int threads = 1,
-                                          ProgressRange progress = ProgressRange());
+                                          ProgressRange progress = ProgressRange(),
+                                          double point_noise = 0);
 
 }  // namespace membrane
 

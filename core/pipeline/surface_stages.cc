@@ -24,9 +24,10 @@ absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
   observer.StageStarted(PipelineStage::kSurface, report);
   absl::StatusOr<BuiltSurface> built = BuildSurface(std::move(grid), cloud, options.surface,
                                                     output_grid, cancel, options.threads,
-                                                    progress);
+                                                    progress, report.point_noise);
   if (!built.ok()) return built.status();
   report.hole_caps = built->hole_caps;
+  report.fit = built->fit;
   report.quantization.bits = output_grid.bits;
   report.quantization.step = output_grid.step();
   report.quantization.max_position_error = output_grid.step() / 2;

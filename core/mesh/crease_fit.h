@@ -28,7 +28,7 @@ struct FramePoint {
 struct CreaseLimits {
   // The quadric's RMS residual over the points must reach this before two planes are tried:
   // below it the quadric explains the points as well as the voxel can show.
-  double min_quadric_rms = 0.06;
+  double min_quadric_rms = 0.04;
   // The two planes' RMS residual (of their envelope) at most this fraction of the quadric's:
   // a crease explains what the quadric leaves; noise on a smooth surface it does not.
   double max_rms_ratio = 0.5;

@@ -11,6 +11,7 @@
 #include "absl/types/span.h"
 #include "core/engine/compact_states.h"
 #include "core/engine/plate_schedule.h"
+#include "core/engine/point_noise.h"
 #include "core/pipeline/decimation_stage.h"
 #include "core/mesh/mesh_decimation.h"
 #include "core/mesh/output_grid.h"
@@ -152,6 +153,15 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
   const std::array<int, 3> grid_dims = grid.dims();
   const std::array<double, 3> grid_origin = grid.origin();
   const double grid_voxel_size = grid.voxel_size();
+  // The fit's crease test discounts the points' noise. A size given without a plan measures
+  // none (the report's 0 says the size was not the noise's), so the surface reads it here, at
+  // that size: without it every vertex of a noisy scan would be tried as a crease.
+  double surface_noise = report.point_noise;
+  if (surface_noise == 0 && options.surface == SurfaceKind::kSmooth) {
+    surface_noise = MeasurePointNoise(cloud->points, plan->bounds,
+                                      kNoiseBoxVoxels / 2 * grid.voxel_size(), cancel)
+                        .sigma;
+  }
   CompactStates membrane_runs;
   if (!membrane_runs.Encode(grid.states(), cancel, options.threads)) {
     return StopIfCancelled(cancel, last);
@@ -165,7 +175,7 @@ absl::StatusOr<ReconstructionReport> RunReconstruction(const ReconstructionOptio
     }
     absl::StatusOr<BuiltSurface> surface =
         SurfaceStage(options, cancel, std::move(grid), *cloud, output_grid, report, observer,
-                     ticker.progress());
+                     surface_noise, ticker.progress());
     if (!surface.ok()) return with_context(surface.status());
     if (absl::Status s = StopIfCancelled(cancel, PipelineStage::kSurface); !s.ok()) return s;
     if (surface->mesh.faces.empty()) return with_context(EmptySurfaceError(report));

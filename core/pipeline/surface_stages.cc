@@ -18,13 +18,13 @@ absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
                                           const PointCloud& cloud,
                                           const PositionGrid& output_grid,
                                           ReconstructionReport& report,
-                                          ReconstructionObserver& observer,
+                                          ReconstructionObserver& observer, double point_noise,
                                           ProgressRange progress) {
   const Stopwatch watch;
   observer.StageStarted(PipelineStage::kSurface, report);
   absl::StatusOr<BuiltSurface> built = BuildSurface(std::move(grid), cloud, options.surface,
                                                     output_grid, cancel, options.threads,
-                                                    progress, report.point_noise);
+                                                    progress, point_noise);
   if (!built.ok()) return built.status();
   report.hole_caps = built->hole_caps;
   report.fit = built->fit;

@@ -25,13 +25,14 @@ namespace membrane {
 // is given up: the smooth surface cleans it in place and frees it (left empty). A second
 // call (the float32 fallback) adds its seconds to the first's. Cancelled within milliseconds
 // of `cancel` firing during the smooth surface. `progress` counts the surface's work
-// (BuildSurface) once StageStarted has been told.
+// (BuildSurface) once StageStarted has been told. `point_noise` is the points' noise across
+// their surface (model units; 0 when unknown), which the fit's crease test discounts.
 absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
                                           const CancelToken& cancel, VoxelGrid&& grid,
                                           const PointCloud& cloud,
                                           const PositionGrid& output_grid,
                                           ReconstructionReport& report,
-                                          ReconstructionObserver& observer,
+                                          ReconstructionObserver& observer, double point_noise,
                                           ProgressRange progress = ProgressRange());
 
 // InvalidArgument "no surface: ..." for a membrane that gave an empty mesh: at its voxel size

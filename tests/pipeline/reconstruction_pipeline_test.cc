@@ -397,5 +397,36 @@ TEST(ReconstructionPipeline, OutputBitsLeftToItFollowTheVoxel) {
       << as_asked.quantization.bits;
 }
 
+// The fit's crease test discounts the points' noise whether the voxel size is the default or
+// given: a given size measures the noise for the surface itself (the report keeps 0), and the
+// fit makes the same targets. Without it every vertex of a noisy cloud was tried as a crease.
+TEST(ReconstructionPipeline, AGivenVoxelSizeFitsCreasesAsTheDefaultSizeDoes) {
+  // A sphere cut flat by a cap (its rim a crease), with noise of 0.15 voxel.
+  absl::StatusOr<PointCloud> cloud = SynthesizeShape(
+      SynthOptions{.shape = "capped-sphere", .points = 60000, .noise = 0.003, .seed = 3});
+  ASSERT_TRUE(cloud.ok()) << cloud.status();
+  InMemoryCloudSource source(*cloud);
+  RecordingGate gate;
+  InMemoryMeshSink sink;
+  const Outcome automatic = RunWith(source, gate, sink);
+  ASSERT_TRUE(automatic.report.ok()) << automatic.report.status();
+  ASSERT_GT(automatic.report->point_noise, 0);
+  ReconstructionOptions given;
+  given.voxelize.voxel_size = automatic.report->voxel_size;
+  InMemoryCloudSource again(*cloud);
+  const Outcome explicit_size = RunWith(again, gate, sink, given);
+  ASSERT_TRUE(explicit_size.report.ok()) << explicit_size.report.status();
+  EXPECT_EQ(explicit_size.report->point_noise, 0);
+  const FitTargetCounts& a = automatic.report->fit;
+  const FitTargetCounts& e = explicit_size.report->fit;
+  EXPECT_GT(a.quadric, 0);
+  EXPECT_EQ(e.quadric, a.quadric);
+  EXPECT_EQ(e.plane, a.plane);
+  EXPECT_EQ(e.crease, a.crease);
+  EXPECT_EQ(e.crease_line, a.crease_line);
+  EXPECT_EQ(e.umbrella, a.umbrella);
+}
+
+
 }  // namespace
 }  // namespace membrane::testing

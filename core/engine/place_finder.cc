@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "core/engine/first_anchored_plate.h"
 #include "core/engine/interior_plane.h"
 #include "core/engine/state_planes.h"
 
@@ -18,11 +19,15 @@ std::optional<std::vector<int64_t>> PlaceFinder::SnapshotAfter(int n,
                                                                const std::vector<VoxelBox>& written,
                                                                const LocalSnapshotOptions& options,
                                                                const CancelToken& cancel) {
-  if (n == n_ && n < kAnchorRowsMinPlate) {
+  if (n == n_) {
+    local_taken_ = false;
     std::optional<std::vector<int64_t>> local = local_.Take(n, written, options, cancel);
     if (local) {
       local_taken_ = true;
-      anchors_ = {};  // stale: the local bricks hold the anchors PlaceFor reads
+      // The dense anchors are stale. Below kAnchorRowsMinPlate they are freed: the later
+      // passes and the handle retry take their room. From it on their buffers are kept for
+      // the next dense pass to reuse: freed, they were made again in fresh memory.
+      if (n < kAnchorRowsMinPlate) anchors_ = {};
       return local;
     }
     if (cancel.cancelled()) return std::nullopt;
@@ -32,7 +37,6 @@ std::optional<std::vector<int64_t>> PlaceFinder::SnapshotAfter(int n,
 
 std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelToken& cancel) {
   local_taken_ = false;
-  local_.Release();
   rows_ = n >= kAnchorRowsMinPlate;
   if (!planes_.Ensure(kPlaceFinderPlanes, cancel)) return std::nullopt;
   n_ = n;
@@ -123,23 +127,10 @@ void PlaceFinder::Release() {
 
 std::optional<Plate> PlaceFinder::PlaceFor(int64_t index) const {
   if (local_taken_) return local_.PlaceFor(index);
-  const Coord c = grid_.CoordOf(index);
-  for (int o = 0; o < 6; ++o) {
-    const Orientation& orient = kOrientations[o];
-    const int k = c[orient.axis], u = c[orient.u_axis()], v = c[orient.v_axis()];
-    for (int u0 = std::max(u - n_ + 1, 0); u0 <= u; ++u0) {
-      // The row test only skips rows whose anchors the loop below would not find.
-      if (rows_ && !anchor_rows_[o].test(grid_.Index(PlateCell(orient, k, u0, v)))) {
-        continue;
-      }
-      for (int v0 = std::max(v - n_ + 1, 0); v0 <= v; ++v0) {
-        if (anchors_[o].test(grid_.Index(PlateCell(orient, k, u0, v0)))) {
-          return Plate{o, k, u0, v0};
-        }
-      }
-    }
-  }
-  return std::nullopt;
+  return FirstAnchoredPlate(
+      grid_.CoordOf(index), n_,
+      [&](int o, const Coord& cell) { return anchors_[o].test(grid_.Index(cell)); },
+      [&](int o, const Coord& cell) { return !rows_ || anchor_rows_[o].test(grid_.Index(cell)); });
 }
 
 }  // namespace membrane

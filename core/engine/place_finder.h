@@ -46,16 +46,17 @@ class PlaceFinder {
 
   // The same snapshot (the same candidates and places) taken after a pass of chains, given
   // `written`: boxes holding every voxel written since the last snapshot, which had plate
-  // size n. Below kAnchorRowsMinPlate it is computed only near those voxels
-  // (local_snapshot.h) while their bricks' boxes hold at most options.max_share of the
-  // grid's voxels; otherwise, and for other n, it is Snapshot(n).
+  // size n. It is computed only near those voxels (local_snapshot.h), which keeps each
+  // candidate's place instead of the anchors, while their bricks' boxes hold at most
+  // options.max_share of the grid's voxels; otherwise, and for other n, it is Snapshot(n).
   std::optional<std::vector<int64_t>> SnapshotAfter(int n, const std::vector<VoxelBox>& written,
                                                     const LocalSnapshotOptions& options,
                                                     const CancelToken& cancel);
 
   // The plate the paper's list scan would take for candidate voxel `index` at the snapshot:
-  // first orientation in kOrientations order, then smallest u0, then smallest v0. nullopt
-  // when no fitting plate covers the voxel in the snapshot.
+  // first orientation in kOrientations order, then smallest u0, then smallest v0
+  // (FirstAnchoredPlate). nullopt when no fitting plate covers the voxel in the snapshot;
+  // after a local snapshot, for every voxel that is not one of its candidates.
   std::optional<Plate> PlaceFor(int64_t index) const;
 
   // True when the last snapshot was taken near the writes only (SnapshotAfter).

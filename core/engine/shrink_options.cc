@@ -32,6 +32,10 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(
         absl::StrFormat("local_snapshots.brick %d must be >= 1", o.local_snapshots.brick));
   }
+  if (o.local_snapshots.brick_plates < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "local_snapshots.brick_plates %d must be >= 0", o.local_snapshots.brick_plates));
+  }
   if (o.closed_form_voxelwise_ratio < 0) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "closed_form_voxelwise_ratio %d must be >= 0 (0 = always by planes)", o.closed_form_voxelwise_ratio));

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cassert>
 #include <cstring>
 
 #include "absl/types/span.h"
@@ -199,9 +198,10 @@ void LocalSnapshot::Compute(const Coord& core_lo, BoxPlanes& w,
     for (int d = 0; d < 3; ++d) {
       if (c[d] < core_lo[d] || c[d] > core_hi[d]) return;
     }
-    // A candidate is covered by an anchored plate, so it has a place.
+    // A candidate is covered by an anchored plate, so it has a place. One without would be
+    // skipped by the pass (PlaceFor nullopt), which is what leaving it out does.
     const std::optional<Plate> plate = FirstAnchoredPlate(c, n, anchor, row);
-    assert(plate.has_value());
+    if (!plate) return;
     const Orientation& orient = kOrientations[plate->orientation];
     const uint64_t place =
         (static_cast<uint64_t>(plate->orientation) * static_cast<uint64_t>(n) +

@@ -727,6 +727,18 @@ absl::Status ValidateOptions(double voxel_size, const FitOptions& o) {
                      ", umbrella_step ", o.umbrella_step,
                      ", max_offset ", o.max_offset, ", min_move ", o.min_move,
                      ", output grid bits ", o.output_grid.bits, " range ", o.output_grid.box.range));
+  const CreaseLimits& c = o.crease_limits;
+  if (!(c.min_quadric_rms >= 0) || !(c.max_rms_ratio >= 0) ||
+      !(c.min_angle_degrees >= 0 && c.min_angle_degrees <= 180) || c.min_side_points < 3 ||
+      !(c.min_side_share >= 0 && c.min_side_share <= 0.5) || !(c.snap_distance >= 0) ||
+      !(c.noise >= 0) || !std::isfinite(c.noise) || !(c.noise_trigger >= 0) ||
+      !(c.noise_accept >= 0) || !(c.max_noisy_ratio >= 0))
+    return absl::InvalidArgumentError(absl::StrCat(
+        "crease limits out of range: min_quadric_rms ", c.min_quadric_rms, ", max_rms_ratio ",
+        c.max_rms_ratio, ", min_angle_degrees ", c.min_angle_degrees, ", min_side_points ",
+        c.min_side_points, ", min_side_share ", c.min_side_share, ", snap_distance ",
+        c.snap_distance, ", noise ", c.noise, ", noise_trigger ", c.noise_trigger,
+        ", noise_accept ", c.noise_accept, ", max_noisy_ratio ", c.max_noisy_ratio));
   return absl::OkStatus();
 }
 

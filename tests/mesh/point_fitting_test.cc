@@ -314,6 +314,12 @@ TEST(PointFitting, RejectsNonPositiveVoxelSize) {
   FitOptions bad;
   bad.rounds = -1;
   EXPECT_EQ(FitToPoints(m, 1.0, {}, bad).status().code(), absl::StatusCode::kInvalidArgument);
+  FitOptions few_points;
+  few_points.crease_limits.min_side_points = 0;
+  const absl::Status creases = FitToPoints(m, 1.0, {}, few_points).status();
+  EXPECT_EQ(creases.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(creases.message().find("crease limits out of range"), std::string::npos)
+      << creases.message();
 }
 
 TEST(PointFitting, StopsWhenCancelled) {

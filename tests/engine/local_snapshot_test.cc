@@ -193,6 +193,13 @@ VoxelGrid RandomGrid(const std::array<int, 3>& dims, uint32_t seed) {
   }
   for (int k = 0; k < grid.size() / 200; ++k) {
     const int64_t i = std::uniform_int_distribution<int64_t>(0, grid.size() - 1)(rng);
+    const Coord c = grid.CoordOf(i);
+    // The padding stays outside, as on every grid the shrink is given: the chains' floods
+    // read a voxel's neighbours without a bounds check.
+    if (std::min({c.x, c.y, c.z, dims[0] - 1 - c.x, dims[1] - 1 - c.y, dims[2] - 1 - c.z}) <
+        VoxelGrid::kPadding) {
+      continue;
+    }
     grid.set(i, uniform(0, 1) == 0 ? OutsideState(1) : kBoundarySoft);
   }
   return grid;

@@ -781,6 +781,61 @@ void UntangleFold(const Rows& nb, const Rows& star, const std::vector<char>& in_
   }
 }
 
+// The back-off leaves each backed-off vertex where its own crossings let it stop, between its
+// cap and its surface-nets place, beside neighbours still on the cap: a ragged crease. Each
+// round takes every vertex of `patch` (backed-off vertices) whose neighbours' mean lies farther
+// than `min_step` from it one step to that mean, then sends back to where the round found it
+// every vertex of a crossing pair that the round moved, until the search (on `threads`) finds
+// none: the mesh stays as embedded as the back-off left it. The vertices that stop moving stop
+// costing a search. Returns how many vertices ended away from where the back-off left them.
+int64_t SettleBackedOff(const Rows& nb, const Rows& star, const std::vector<int32_t>& patch,
+                        int rounds, double min_step, int threads, TriangleMesh& mesh,
+                        FaceBlockBoxes& blocks) {
+  if (rounds == 0 || patch.empty()) return 0;
+  std::vector<int32_t> slot(mesh.vertices.size(), -1);
+  std::vector<Point3f> start(patch.size()), prev(patch.size()), next(patch.size());
+  for (size_t i = 0; i < patch.size(); ++i) {
+    slot[patch[i]] = static_cast<int32_t>(i);
+    start[i] = mesh.vertices[patch[i]];
+  }
+  std::vector<char> dirty(mesh.faces.size(), 0);
+  for (int round = 0; round < rounds; ++round) {
+    for (size_t i = 0; i < patch.size(); ++i) {
+      prev[i] = mesh.vertices[patch[i]];
+      Vec3d sum{0, 0, 0};
+      for (const int32_t* u = nb.begin(patch[i]); u != nb.end(patch[i]); ++u)
+        sum = sum + ToVec3d(mesh.vertices[*u]);
+      next[i] = ToPoint3f((1.0 / std::max(nb.size(patch[i]), 1)) * sum);
+    }
+    std::fill(dirty.begin(), dirty.end(), 0);
+    bool any = false;
+    for (size_t i = 0; i < patch.size(); ++i) {
+      if (SquaredNorm(ToVec3d(next[i]) - ToVec3d(prev[i])) <= min_step * min_step) continue;
+      any = true;
+      mesh.vertices[patch[i]] = next[i];
+      for (const int32_t* f = star.begin(patch[i]); f != star.end(patch[i]); ++f) dirty[*f] = 1;
+    }
+    if (!any) break;
+    // `dirty` marks every face whose vertices moved since the last search, as `blocks` needs.
+    for (;;) {
+      std::vector<int32_t> back;
+      for (const auto& [a, b] : FindIntersectingFacesNear(mesh, dirty, threads, &blocks))
+        for (int32_t f : {a, b})
+          for (int32_t v : mesh.faces[f])
+            if (slot[v] >= 0 && mesh.vertices[v] != prev[slot[v]]) back.push_back(v);
+      if (back.empty()) break;
+      std::fill(dirty.begin(), dirty.end(), 0);
+      for (int32_t v : back) {
+        mesh.vertices[v] = prev[slot[v]];
+        for (const int32_t* f = star.begin(v); f != star.end(v); ++f) dirty[*f] = 1;
+      }
+    }
+  }
+  int64_t moved = 0;
+  for (size_t i = 0; i < patch.size(); ++i) moved += mesh.vertices[patch[i]] != start[i];
+  return moved;
+}
+
 absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
   if (!(voxel_size > 0) || !std::isfinite(voxel_size))
     return absl::InvalidArgumentError(absl::StrCat("voxel size ", voxel_size, " is not positive"));
@@ -793,7 +848,9 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       !(o.spline_swept_length >= 0 && o.spline_swept_length <= 16) ||
       !(o.sphere_band_fit >= 0) ||
       !(o.sphere_margin >= 0) || !(o.converged_tolerance > 0) ||
-      o.back_off_halvings < 0 || !(o.max_shell_share > 0 && o.max_shell_share <= 1) ||
+      o.back_off_halvings < 0 || o.settle_rounds < 0 || o.settle_rounds > 1000 ||
+      !(o.settle_min_step >= 0 && o.settle_min_step <= 1) ||
+      !(o.max_shell_share > 0 && o.max_shell_share <= 1) ||
       o.min_median_points < 1 || o.min_median_points > 1000 ||
       !(o.anchor_radius > 0 && o.anchor_radius <= 64) || !(o.held_margin >= 0) ||
       !(o.corner_angle >= 0) || o.corner_sectors < 2 || o.corner_sectors > 360 ||
@@ -814,7 +871,9 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         ", swept_length ", o.swept_length, ", spline_swept_length ", o.spline_swept_length,
         ", sphere_band_fit ", o.sphere_band_fit,
         ", sphere_margin ", o.sphere_margin, ", converged_tolerance ", o.converged_tolerance,
-        ", back_off_halvings ", o.back_off_halvings, ", max_shell_share ", o.max_shell_share,
+        ", back_off_halvings ", o.back_off_halvings, ", settle_rounds ", o.settle_rounds,
+        ", settle_min_step ", o.settle_min_step,
+        ", max_shell_share ", o.max_shell_share,
         ", min_median_points ", o.min_median_points, ", anchor_radius ", o.anchor_radius,
         ", held_margin ", o.held_margin, ", corner_angle ", o.corner_angle, ", corner_sectors ",
         o.corner_sectors, ", corner_neighbours ", o.corner_neighbours,
@@ -861,13 +920,18 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   if (!options.enabled || nv == 0 || points.empty()) return absl::OkStatus();
   const double l = voxel_size;
 
+  // One index of the points, cells of the gap radius: the gap search's, and the back-off's
+  // settling asks it which backed-off vertices hold points.
+  std::optional<PointRowGrid> own_grid;
+  if (points_grid == nullptr) own_grid.emplace(points, options.gap_radius * l, threads);
+  const PointRowGrid& grid = points_grid != nullptr ? *points_grid : *own_grid;
   // Gap vertices: no input point within gap_radius. The other vertices' counts of points
   // within gap_radius, in a histogram (the last bin holds every larger count), for their median.
   // The points with no vertex within gap_radius: buried in the solid or left outside it.
   absl::StatusOr<GapVertices> found =
       FindGapVertices(mesh, points, options.gap_radius * l, options.min_median_points,
                       options.anchor_remote_points, options.min_gap_vertices, threads, cancel,
-                      points_grid);
+                      &grid);
   if (!found.ok()) return found.status();
   const std::vector<char>& gap = found->gap;
   const int64_t count = found->count;
@@ -1208,6 +1272,23 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
       for (const int32_t* f = star.begin(v); f != star.end(v); ++f) dirty[*f] = 1;
     }
   }
+  // A backed-off vertex with points near where it stopped holds the surface to them (the fit
+  // starts from it): it stays.
+  std::vector<int32_t> settling;
+  const double near = options.gap_radius * l;
+  for (int32_t v : free_list) {
+    if (!backed[v]) continue;
+    bool held = false;
+    grid.ForEachRun(ToVec3d(mesh.vertices[v]), near, [&](uint32_t begin, uint32_t end) {
+      for (uint32_t i = begin; i < end && !held; ++i) {
+        const Vec3d d = Vec3d{grid.xs()[i], grid.ys()[i], grid.zs()[i]} - ToVec3d(mesh.vertices[v]);
+        held = SquaredNorm(d) <= near * near;
+      }
+    });
+    if (!held) settling.push_back(v);
+  }
+  st.settled = SettleBackedOff(nb, star, settling, options.settle_rounds,
+                               options.settle_min_step * l, threads, mesh, blocks);
   return absl::OkStatus();
 }
 

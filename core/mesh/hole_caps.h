@@ -177,6 +177,12 @@ struct HoleCapOptions {
   // A cap vertex of a face that crosses another goes back toward its place before the cap:
   // halfway this many times, then all the way.
   int back_off_halvings = 4;
+  // Then the backed-off vertices with no point within gap_radius take up to settle_rounds
+  // steps to their neighbours' mean, each kept only where it crosses nothing: the ragged
+  // crease the back-off leaves, smoothed. 0: none. A step shorter than settle_min_step voxels
+  // is not taken (a vertex that has settled costs no search).
+  int settle_rounds = 16;
+  double settle_min_step = 0.05;
 };
 
 struct HoleCapStats {
@@ -196,6 +202,7 @@ struct HoleCapStats {
   int64_t iterations = 0;       // conjugate-gradient iterations, every solve
   int64_t anchors = 0;           // cap vertices held at remote points
   int64_t backed_off = 0;       // cap vertices sent back because their faces crossed others
+  int64_t settled = 0;          // backed-off vertices moved on by the steps that smooth the crease
   int64_t untangled = 0;         // cap vertices moved to untangle a fold, in regions it untangled
   double max_lift = 0;          // largest move of a vertex by its cap, in voxels
 };
@@ -230,7 +237,9 @@ struct HoleCapStats {
 // still folded after untangle_rounds goes back to its cap as solved. Then it sends the moved
 // vertices of each crossing pair back toward where they were (halfway back_off_halvings
 // times, then all the way) until no crossing involves a moved vertex: where a cap would cross
-// the mesh, that part of it is not built.
+// the mesh, that part of it is not built, and smooths the crease it leaves by settle_rounds
+// steps of the backed-off vertices to their neighbours' mean, each kept where it crosses
+// nothing.
 // Faces are unchanged, so the mesh stays closed, manifold and oriented with its shells and
 // genus; crossings are those of the input or none.
 // The gap search runs on `threads` (<= 1: the calling thread), the rest on the calling

@@ -138,6 +138,7 @@ std::string HoleCapsJson(const HoleCapStats& h) {
                       ", \"anchored_vertices\": ", h.anchors,
                       ", \"untangled_vertices\": ", h.untangled,
                       ", \"backed_off_vertices\": ", h.backed_off,
+                      ", \"settled_vertices\": ", h.settled,
                       ", \"max_lift_voxels\": ", JsonNumber(h.max_lift), "}");
 }
 

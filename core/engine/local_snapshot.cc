@@ -19,6 +19,13 @@ namespace {
 // than the bricks (a brick's box is some 40^3 voxels).
 constexpr int64_t kMinBricksToSplit = 16;
 
+// The voxels a brick's box holds around its core on each side at plate size n. A core
+// candidate's plates have their cells within n - 1 of it along u and v (the corner below,
+// the far edge above) and their back cells 1 away along the plate's axis, and the box's
+// outermost layer is cleared from the free cells as the grid's border is: a margin of n keeps
+// every cell a core candidate's search reads off that layer, and n - 1 does not.
+int BoxMargin(int n) { return n; }
+
 }  // namespace
 
 std::optional<std::vector<int64_t>> LocalSnapshot::Plan(int n,
@@ -59,7 +66,7 @@ std::optional<std::vector<int64_t>> LocalSnapshot::Plan(int n,
         }
   }
   std::sort(marked.begin(), marked.end());
-  const int64_t side = brick_ + 2 * (n + 2);
+  const int64_t side = brick_ + 2 * BoxMargin(n);
   if (static_cast<double>(marked.size()) * static_cast<double>(side * side * side) >
       options.max_share * static_cast<double>(grid_.size())) {
     return std::nullopt;
@@ -120,14 +127,14 @@ void LocalSnapshot::Compute(const Coord& core_lo, BoxPlanes& w,
                             std::vector<uint64_t>& keys) const {
   const int n = n_;
   const std::array<int, 3>& dims = grid_.dims();
-  // The core and n + 2 voxels around it: the anchors the core's candidates read (within n - 1
-  // below them) read cells up to n + 1 away, off the box's outermost layer.
+  // The core and BoxMargin(n) voxels around it.
+  const int margin = BoxMargin(n);
   Coord lo, core_hi;
   std::array<int, 3> box_dims;
   for (int d = 0; d < 3; ++d) {
     core_hi[d] = std::min(core_lo[d] + brick_, dims[d]) - 1;
-    lo[d] = std::max(core_lo[d] - (n + 2), 0);
-    box_dims[d] = std::min(core_hi[d] + n + 2, dims[d] - 1) - lo[d] + 1;
+    lo[d] = std::max(core_lo[d] - margin, 0);
+    box_dims[d] = std::min(core_hi[d] + margin, dims[d] - 1) - lo[d] + 1;
   }
   const int64_t nx = box_dims[0], ny = box_dims[1], nz = box_dims[2];
   const int64_t size = nx * ny * nz;

@@ -7,7 +7,8 @@
 // it is a candidate of the next pass only if it was one of this pass, which it was not. The
 // next pass's candidates therefore lie within 2n of the writes, and its anchors need to be
 // known only within n of those: bricks around the writes, each computed on its own box (the
-// brick and n + 2 voxels around it), give the dense snapshot's candidates and places.
+// brick and n voxels around it, whose outermost layer is left out as the grid's border is),
+// give the dense snapshot's candidates and places.
 //
 // A brick keeps no planes: while its box's anchors are in cache, each of its candidates looks
 // for its place (FirstAnchoredPlate, the dense search) and the snapshot keeps the places, eight
@@ -38,8 +39,8 @@ struct LocalSnapshotOptions {
   // snapshot is dense.
   double max_share = 0.5;
   int brick = 32;  // least side of the bricks (voxels), >= 1
-  // Bricks are at least this many plates wide (>= 0): a brick's box has n + 2 voxels of
-  // margin on each side, which a narrower brick would spend most of the box on.
+  // Bricks are at least this many plates wide (>= 0): a brick's box has n voxels of margin
+  // on each side, which a narrower brick would spend most of the box on.
   int brick_plates = 4;
 };
 

@@ -43,10 +43,8 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   const auto st = grid_.strides();
   FlatBitset& free_cells = planes_.plane(0);  // outside or boundary soft, off the border
   FlatBitset& out = planes_.plane(1);
-  FillStatePlane(grid_.states(), StatePredicate::kBoundarySoft, free_cells);
-  FillStatePlane(grid_.states(), StatePredicate::kOutside, out);
+  FillFreeAndOutsidePlanes(grid_.states(), free_cells, out);
   if (cancel.cancelled()) return std::nullopt;
-  free_cells.Or(out);
   ClearArrayBorder(grid_.dims(), free_cells);
 
   // The anchors of orientation (a, sign) are the plates whose cells are free and whose back
@@ -55,15 +53,18 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
   // Both signs share the two eroded planes, and the three axes share the erosions along z
   // and along x: 8 erosion runs instead of 12. Copies are folded into the first pass of each
   // run (the *From operations): the planes fit in cache, so a copy costs as much as a pass.
+  // Runs along y and z of 17 and more take three passes instead of the doubling's six or
+  // more (flat_bitset_long_runs.cc: the same bits), each with a plane the snapshot has not
+  // filled yet or no longer reads as its scratch.
   FlatBitset& free_z = planes_.plane(2);
   FlatBitset& out_z = planes_.plane(3);
-  free_z.ErodeRunFrom(free_cells, n, st[2]);
-  out_z.ErodeRunFrom(out, n, st[2]);
+  free_z.ErodeRunFrom(free_cells, n, st[2], planes_.plane(4));
+  out_z.ErodeRunFrom(out, n, st[2], planes_.plane(4));
   if (cancel.cancelled()) return std::nullopt;
   FlatBitset& free_x = free_cells;  // eroded in place: the plain planes are not needed again
   FlatBitset& out_x = out;
-  free_x.ErodeRun(n, st[0]);
-  out_x.ErodeRun(n, st[0]);
+  free_x.ErodeRun(n, st[0], planes_.plane(4));
+  out_x.ErodeRun(n, st[0], planes_.plane(4));
 
   // Candidates: bs & the union over axes of the cells covered by a plate of either sign
   // (And distributes over the union, so it is applied once at the end). Each orientation's
@@ -77,27 +78,29 @@ std::optional<std::vector<int64_t>> PlaceFinder::Snapshot(int n, const CancelTok
     // In-plane axes (u, v) = (y, z), (z, x), (x, y): one more erosion of a shared plane.
     const bool from_z = a != 2;
     const int last_axis = a == 1 ? 0 : 1;
-    free_square.ErodeRunFrom(from_z ? free_z : free_x, n, st[last_axis]);
-    out_square.ErodeRunFrom(from_z ? out_z : out_x, n, st[last_axis]);
+    free_square.ErodeRunFrom(from_z ? free_z : free_x, n, st[last_axis], second);
+    out_square.ErodeRunFrom(from_z ? out_z : out_x, n, st[last_axis], second);
     const int64_t su = st[(a + 1) % 3], sv = st[(a + 2) % 3];
     // The cells covered by the axis' plates gather in the first sign's plane: the candidates
     // for the first axis, then the z-eroded free plane, which the squares of the second axis
     // were the last to read.
     FlatBitset& covered = a == 0 ? candidates : free_z;
     for (int o = 2 * a; o < 2 * a + 2; ++o) {
-      FlatBitset& e = o == 2 * a ? covered : second;
+      const bool first_sign = o == 2 * a;
+      FlatBitset& e = first_sign ? covered : second;
       e.AssignAndShifted(free_square, out_square, kOrientations[o].sign * st[a]);
       anchors_[o].Assign(e);
       // Dilation distributes over the union of both signs' plates: with rows, each sign is
-      // dilated along v for its rows and the union is taken after.
+      // dilated along v for its rows and the union is taken after. The second sign's plane
+      // is free until its anchors are made, the squares once they are.
       if (rows_) {
-        e.DilateRun(n, sv);
+        e.DilateRun(n, sv, first_sign ? second : free_square);
         anchor_rows_[o].Assign(e);
       }
     }
     covered.Or(second);
-    if (!rows_) covered.DilateRun(n, sv);
-    covered.DilateRun(n, su);
+    if (!rows_) covered.DilateRun(n, sv, second);
+    covered.DilateRun(n, su, second);
     if (a != 0) candidates.Or(covered);
   }
   if (!rows_) anchor_rows_ = {};  // a bigger plate's rows are not read again

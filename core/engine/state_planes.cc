@@ -142,6 +142,44 @@ void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicat
                 });
 }
 
+void FillFreeAndOutsidePlanes(absl::Span<const VoxelState> states, FlatBitset& free_cells,
+                              FlatBitset& outside) {
+  const VoxelState* s = states.data();
+  const int64_t nv = static_cast<int64_t>(states.size());
+  uint64_t* free_words = free_cells.words();
+  uint64_t* out_words = outside.words();
+  ForWordBlocks(free_cells.threads(), static_cast<int64_t>(free_cells.word_count()),
+                [&](int64_t, int64_t begin, int64_t end) {
+                  const int64_t full_words = std::min(end, nv / 64);
+                  int64_t w = begin;
+                  for (; w < full_words; ++w) {
+                    const VoxelState* p = s + w * 64;
+#if defined(__SSE2__)
+                    uint64_t out = 0, soft = 0;
+                    for (int k = 0; k < 4; ++k) {
+                      out |= Matches16<StatePredicate::kOutside>(p + 16 * k) << (16 * k);
+                      soft |= Matches16<StatePredicate::kBoundarySoft>(p + 16 * k) << (16 * k);
+                    }
+#else
+                    uint64_t out = 0, soft = 0;
+                    for (int k = 0; k < 8; ++k) {
+                      const uint64_t x = Load8(p + 8 * k);
+                      out |= PackTopBits(Matches<StatePredicate::kOutside>(x)) << (8 * k);
+                      soft |= PackTopBits(Matches<StatePredicate::kBoundarySoft>(x)) << (8 * k);
+                    }
+#endif
+                    out_words[w] = out;
+                    free_words[w] = out | soft;
+                  }
+                  // The last partial word as FillStatePlane fills it.
+                  if (w < end) {
+                    Fill<StatePredicate::kOutside>(s, nv, out_words, w, end);
+                    Fill<StatePredicate::kBoundarySoft>(s, nv, free_words, w, end);
+                    for (int64_t v = w; v < end; ++v) free_words[v] |= out_words[v];
+                  }
+                });
+}
+
 namespace {
 
 StateCounts CountStateRange(const VoxelState* s, int64_t nv) {

@@ -33,6 +33,14 @@ void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicat
 void FillStatePlane(absl::Span<const VoxelState> states, StatePredicate predicate,
                     FlatBitset& plane);
 
+// Sets bit i of `free_cells` to "boundary soft or outside" (the cells a plate may cover, the
+// place finder's free plane before its border is cleared) and bit i of `outside` to
+// IsOutside(states[i]), reading each state once: the two planes FillStatePlane gives for
+// kBoundarySoft or'ed with kOutside, and for kOutside. Both must have states.size() bits and be
+// different bitsets; the words run in blocks on free_cells.threads() threads.
+void FillFreeAndOutsidePlanes(absl::Span<const VoxelState> states, FlatBitset& free_cells,
+                              FlatBitset& outside);
+
 struct StateCounts {
   int64_t outside = 0;
   int64_t boundary = 0;       // IsBoundary, any hardness

@@ -23,7 +23,8 @@ std::string GenerationJson(const GenerationStats& g) {
                       ", \"contractions\": ", g.contractions,
                       ", \"undone_contractions\": ", g.undone_contractions,
                       ", \"guard_refusals\": ", g.guard_refusals,
-                      ", \"depth_refusals\": ", g.depth_refusals, ", \"passes\": ", g.passes, ", \"level\": ", g.level, "}");
+                      ", \"depth_refusals\": ", g.depth_refusals, ", \"passes\": ", g.passes,
+                      ", \"local_passes\": ", g.local_passes, ", \"level\": ", g.level, "}");
 }
 
 std::string GenerationsJson(const std::vector<GenerationStats>& generations) {

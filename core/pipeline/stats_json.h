@@ -20,7 +20,8 @@ namespace membrane {
 //   seconds {decode, voxelize, shrink, relax, surface, encode, total}, peak_rss_bytes.
 // Extra keys: data_grid (grid without padding), schedule, surface, relaxed; per generation
 // generation, contractions, undone_contractions, guard_refusals, depth_refusals, passes,
-// level (1, or the factor of the coarser grid that ran it);
+// local_passes (of the passes, those whose snapshot was taken near the last pass's writes
+// only), level (1, or the factor of the coarser grid that ran it);
 // post_process {inside_hard_before, inside_hard_after, carved_voxels, bridge_voxels};
 // handle_retry {ran, kept, from_generation, loose_tunnels, shells_before, genus_before,
 // shells_after, genus_after, web_voxels, web_hard_rim, seconds} (HandleRetry);

@@ -1,4 +1,5 @@
 // --stats-json writes every key of design/contracts.md with the documented type.
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -79,6 +80,31 @@ TEST(StatsJsonTest, HasEveryDocumentedKeyWithItsType) {
   }
   ExpectKey(s, "", "peak_rss_bytes", Type::kNumber, true);
   EXPECT_GT(s.Find("peak_rss_bytes")->number, 0);
+}
+
+// local_passes counts the passes whose snapshot was taken near the last pass's writes only: a
+// generation's first pass never is, and on a 100k-point torus, whose small plates run chains
+// over several passes on bricks much smaller than the grid, some later pass is.
+TEST(StatsJsonTest, LocalPassesAreLaterPassesOfChainGenerations) {
+  const ScratchDir dir;
+  const std::string cloud = dir.File("torus.ply");
+  const CliResult synth =
+      RunMembrane({"synth", "torus", "-o", cloud, "--points", "100000"}, dir.path());
+  ASSERT_EQ(synth.exit_code, 0) << synth.err;
+  const JsonValue s = ReconstructStats(dir, cloud, "mesh.drc", {"-q"});
+  ASSERT_NE(s.Find("generations"), nullptr);
+  int local_passes = 0;
+  for (const JsonValue& g : s.Find("generations")->array) {
+    ExpectKey(g, "generations[].", "local_passes", Type::kNumber, true);
+    const JsonValue* local = g.Find("local_passes");
+    if (local == nullptr) continue;
+    const int passes = static_cast<int>(g.Find("passes")->number);
+    EXPECT_GE(local->number, 0);
+    EXPECT_LE(local->number, std::max(passes - 1, 0))
+        << "plate " << g.Find("plate_size")->number << ": " << passes << " passes";
+    local_passes += static_cast<int>(local->number);
+  }
+  EXPECT_GT(local_passes, 0);
 }
 
 TEST(StatsJsonTest, OneGenerationPerPlateSizeEndingWithPlateSizeOne) {

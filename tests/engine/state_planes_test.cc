@@ -1,5 +1,6 @@
 #include "core/engine/state_planes.h"
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -47,6 +48,28 @@ TEST(StatePlanes, EveryBitMatchesTheScalarPredicate) {
         ASSERT_EQ(plane.test(i), Expected(p, s[i])) << "n " << n << " voxel " << i
                                                     << " state " << int(s[i]);
       }
+    }
+  }
+}
+
+bool SameBits(const FlatBitset& a, const FlatBitset& b) {
+  return a.word_count() == b.word_count() &&
+         std::equal(a.words(), a.words() + a.word_count(), b.words());
+}
+
+// Planes of 3M voxels span several blocks of words, which the threads share.
+TEST(StatePlanes, FreeAndOutsidePlanesInOnePassAreTheTwoFills) {
+  for (int64_t n : {1, 63, 64, 65, 1000, 4099, 3000017}) {
+    const std::vector<VoxelState> s = RandomStates(n, static_cast<uint32_t>(n) + 5);
+    for (int threads : {1, 3}) {
+      FlatBitset free_cells(n), outside(n), soft(n), expected_out(n);
+      free_cells.set_threads(threads);
+      FillFreeAndOutsidePlanes(s, free_cells, outside);
+      FillStatePlane(s, StatePredicate::kBoundarySoft, soft);
+      FillStatePlane(s, StatePredicate::kOutside, expected_out);
+      soft.Or(expected_out);
+      EXPECT_TRUE(SameBits(outside, expected_out)) << "n " << n << ", " << threads << " thread(s)";
+      EXPECT_TRUE(SameBits(free_cells, soft)) << "n " << n << ", " << threads << " thread(s)";
     }
   }
 }

@@ -242,10 +242,11 @@ struct HoleCapStats {
 // nothing.
 // Faces are unchanged, so the mesh stays closed, manifold and oriented with its shells and
 // genus; crossings are those of the input or none.
-// The gap search runs on `threads` (<= 1: the calling thread), the rest on the calling
-// thread; the result depends only on the input, not on `threads`. `stats` may be null.
-// `points_grid`, if not null, is the PointRowGrid of `points` with cells of gap_radius voxels,
-// which the gap search then reads instead of building it.
+// The gap search and the settling's crossing searches run on `threads` (<= 1: the calling
+// thread), the rest on the calling thread; the result depends only on the input, not on
+// `threads`. `stats` may be null. `points_grid`, if not null, is the PointRowGrid of `points`
+// with cells of gap_radius voxels, which the gap search and the settling then read instead of
+// building it.
 // Errors: InvalidArgument for a bad voxel size or options out of range; Cancelled when
 // `cancel` fired (the mesh is then as it came in).
 absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "core/base/cancel_token.h"
 #include "core/mesh/hole_caps.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/smooth_surface.h"
@@ -65,16 +66,20 @@ TEST(HoleCapSettle, TheBackOffsCreaseIsSmoothedWhereNoPointsAreHeld) {
   const PointCloud holed = testing::BoxOnSlab(3000, nullptr, [](const Vec3d& p) {
     return SquaredNorm(p - kCorner) >= kHoleRadius * kHoleRadius;
   });
-  auto cap = [&](int settle_rounds) {
+  auto cap = [&](int settle_rounds, int threads) {
     Capped c{shelved->mesh, {}};
     HoleCapOptions options;
     options.untangle_rounds = 0;  // every crossing backs off
     options.settle_rounds = settle_rounds;
-    EXPECT_TRUE(CapHoles(c.mesh, kVoxel, holed.points, options, &c.caps).ok());
+    EXPECT_TRUE(CapHoles(c.mesh, kVoxel, holed.points, options, &c.caps, CancelToken::Never(),
+                         threads)
+                    .ok());
     return c;
   };
-  const Capped ragged = cap(0);
-  const Capped settled = cap(HoleCapOptions{}.settle_rounds);
+  const Capped ragged = cap(0, 1);
+  const Capped settled = cap(HoleCapOptions{}.settle_rounds, 1);
+  // The settling's searches run on the caps' threads: the same mesh on any count.
+  EXPECT_EQ(cap(HoleCapOptions{}.settle_rounds, 3).mesh.vertices, settled.mesh.vertices);
   const double ragged_roughness = Roughness(ragged.mesh, shelved->mesh);
   const double settled_roughness = Roughness(settled.mesh, shelved->mesh);
   std::printf("box on a slab, every crossing backed off (%d vertices): roughness of the moved "

@@ -14,6 +14,7 @@
 #include "core/engine/work_planes.h"
 #include "core/io/point_cloud_io.h"
 #include "gtest/gtest.h"
+#include "tests/support/random_membrane.h"
 #include "tests/support/shared_data.h"
 #include "tests/support/shrink_fixture.h"
 
@@ -176,32 +177,7 @@ VoxelGrid RandomGrid(const std::array<int, 3>& dims, uint32_t seed) {
           }
         }
   }
-  std::vector<int64_t> boundary;
-  for (int64_t i = 0; i < grid.size(); ++i) {
-    const Coord c = grid.CoordOf(i);
-    if (IsOutside(grid.at(i)) || grid.OnArrayBorder(c)) continue;
-    for (int64_t offset : grid.neighbour_offsets()) {
-      if (IsOutside(grid.at(i + offset))) {
-        boundary.push_back(i);
-        break;
-      }
-    }
-  }
-  for (int64_t i : boundary) {
-    const int roll = uniform(0, 99);
-    grid.set(i, roll < 4 ? kBoundaryHard : roll < 7 ? kBoundaryFrozen : kBoundarySoft);
-  }
-  for (int k = 0; k < grid.size() / 200; ++k) {
-    const int64_t i = std::uniform_int_distribution<int64_t>(0, grid.size() - 1)(rng);
-    const Coord c = grid.CoordOf(i);
-    // The padding stays outside, as on every grid the shrink is given: the chains' floods
-    // read a voxel's neighbours without a bounds check.
-    if (std::min({c.x, c.y, c.z, dims[0] - 1 - c.x, dims[1] - 1 - c.y, dims[2] - 1 - c.z}) <
-        VoxelGrid::kPadding) {
-      continue;
-    }
-    grid.set(i, uniform(0, 1) == 0 ? OutsideState(1) : kBoundarySoft);
-  }
+  testing::MarkRandomMembrane(grid, rng, 200);
   return grid;
 }
 

@@ -20,6 +20,7 @@
 #include "core/engine/voxel_state.h"
 #include "core/engine/work_planes.h"
 #include "gtest/gtest.h"
+#include "tests/support/random_membrane.h"
 
 namespace membrane {
 namespace {
@@ -54,25 +55,7 @@ VoxelGrid BoxesGrid(const std::array<int, 3>& dims, uint32_t seed) {
     }
     if (out) grid.set(i, OutsideState(uniform(0, 3)));
   }
-  std::vector<int64_t> boundary;
-  for (int64_t i = 0; i < grid.size(); ++i) {
-    if (IsOutside(grid.at(i)) || grid.OnArrayBorder(grid.CoordOf(i))) continue;
-    for (int64_t offset : grid.neighbour_offsets()) {
-      if (IsOutside(grid.at(i + offset))) {
-        boundary.push_back(i);
-        break;
-      }
-    }
-  }
-  for (int64_t i : boundary) {
-    const int roll = uniform(0, 99);
-    grid.set(i, roll < 4 ? kBoundaryHard : roll < 7 ? kBoundaryFrozen : kBoundarySoft);
-  }
-  for (int k = 0; k < grid.size() / 300; ++k) {
-    const int64_t i = std::uniform_int_distribution<int64_t>(0, grid.size() - 1)(rng);
-    if (padding(grid.CoordOf(i))) continue;
-    grid.set(i, uniform(0, 1) == 0 ? OutsideState(1) : kBoundarySoft);
-  }
+  testing::MarkRandomMembrane(grid, rng, 300);
   return grid;
 }
 

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+
+#include "core/mesh/smooth_surface.h"
+#include "tests/mesh/cloud_surface.h"
 
 namespace membrane::testing {
 
@@ -79,6 +83,18 @@ double SlabCornerDistance(const Vec3d& p) {
   const double top = dx >= 0 ? std::abs(dy) : std::hypot(dx, dy);
   const double face = dy >= 0 ? std::abs(dx) : std::hypot(dx, dy);
   return std::min(top, face);
+}
+
+absl::StatusOr<ShelvedHole> ShelvedHoleOverTheEdge(const Shelf& shelf, double hole_radius,
+                                                   double voxel_size) {
+  SmoothSurfaceOptions surface;
+  surface.fit = false;  // the surface nets, uncapped
+  absl::StatusOr<CloudSurface> shelved = SmoothSurfaceOfCloud(
+      BoxOnSlab(3000, &shelf, [](const Vec3d&) { return true; }), surface, voxel_size);
+  if (!shelved.ok()) return shelved.status();
+  return ShelvedHole{std::move(shelved->mesh), BoxOnSlab(3000, nullptr, [&](const Vec3d& p) {
+                       return SquaredNorm(p - kSlabCorner) >= hole_radius * hole_radius;
+                     })};
 }
 
 }  // namespace membrane::testing

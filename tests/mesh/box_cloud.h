@@ -6,7 +6,9 @@
 #include <functional>
 #include <random>
 
+#include "absl/status/statusor.h"
 #include "core/geometry/point_cloud.h"
+#include "core/geometry/triangle_mesh.h"
 #include "core/geometry/vec3.h"
 
 namespace membrane::testing {
@@ -34,6 +36,16 @@ struct Shelf {
 // every call: the same points for the same arguments.
 PointCloud BoxOnSlab(int per_unit_area, const Shelf* shelf,
                      const std::function<bool(const Vec3d&)>& keep);
+
+// A hole over the inner edge under a shelf: the surface nets (no fit, no caps) of the box on
+// the slab with `shelf` over its edge, at `voxel_size`, and the cloud of the box on the slab
+// without the points within `hole_radius` of kSlabCorner. Fails as SmoothSurfaceOfCloud.
+struct ShelvedHole {
+  TriangleMesh nets;
+  PointCloud holed;
+};
+absl::StatusOr<ShelvedHole> ShelvedHoleOverTheEdge(const Shelf& shelf, double hole_radius,
+                                                   double voxel_size);
 
 // Distance from p to the solid's surface near the inner edge: the slab's top (x >= 1, y = 0)
 // and the box's face (x = 1, y >= 0), across the edge.

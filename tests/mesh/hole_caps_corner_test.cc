@@ -56,16 +56,12 @@ Corner Cap(const TriangleMesh& nets, const PointCloud& holed, double corner_angl
 }
 
 TEST(HoleCapCorners, HoleOverAConcaveEdgeUnderAShelfIsCappedAlongBothFaces) {
-  SmoothSurfaceOptions surface;
-  surface.fit = false;  // the surface nets, uncapped
-  absl::StatusOr<testing::CloudSurface> shelved = testing::SmoothSurfaceOfCloud(
-      testing::BoxOnSlab(3000, &kShelf, [](const Vec3d&) { return true; }), surface, kVoxel);
+  absl::StatusOr<testing::ShelvedHole> shelved =
+      testing::ShelvedHoleOverTheEdge(kShelf, kHoleRadius, kVoxel);
   ASSERT_TRUE(shelved.ok()) << shelved.status();
-  const PointCloud holed = testing::BoxOnSlab(3000, nullptr, [](const Vec3d& p) {
-    return SquaredNorm(p - kCorner) >= kHoleRadius * kHoleRadius;
-  });
-  const Corner creased = Cap(shelved->mesh, holed, HoleCapOptions{}.corner_angle);
-  const Corner fillet = Cap(shelved->mesh, holed, 181.0);
+  const PointCloud& holed = shelved->holed;
+  const Corner creased = Cap(shelved->nets, holed, HoleCapOptions{}.corner_angle);
+  const Corner fillet = Cap(shelved->nets, holed, 181.0);
   ASSERT_GT(creased.vertices, 100);
   std::printf("box on a slab, its inner edge under a shelf: mean / max distance to the solid, "
               "voxels: creased %.2f / %.2f (%d caps creased, %d vertices), the smooth cap "

@@ -738,6 +738,14 @@ int64_t CreaseCorner(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
   return moved;
 }
 
+// The mean of v's neighbours' positions: the umbrella step's target.
+Point3f NeighbourMean(const Rows& nb, const TriangleMesh& mesh, int32_t v) {
+  Vec3d sum{0, 0, 0};
+  for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u)
+    sum = sum + ToVec3d(mesh.vertices[*u]);
+  return ToPoint3f((1.0 / std::max(nb.size(v), 1)) * sum);
+}
+
 // A fold of the caps untangled (HoleCapOptions::untangle_rounds): the cap vertices of the
 // crossing pairs (`folded`) and those within `rings` rings of them in the caps take
 // `iterations` steps each to their neighbours' mean, together. The faces around each moved
@@ -766,12 +774,7 @@ void UntangleFold(const Rows& nb, const Rows& star, const std::vector<char>& in_
   }
   std::vector<Point3f> next(patch.size());
   for (int it = 0; it < iterations; ++it) {
-    for (size_t i = 0; i < patch.size(); ++i) {
-      Vec3d sum{0, 0, 0};
-      for (const int32_t* u = nb.begin(patch[i]); u != nb.end(patch[i]); ++u)
-        sum = sum + ToVec3d(mesh.vertices[*u]);
-      next[i] = ToPoint3f((1.0 / std::max(nb.size(patch[i]), 1)) * sum);
-    }
+    for (size_t i = 0; i < patch.size(); ++i) next[i] = NeighbourMean(nb, mesh, patch[i]);
     for (size_t i = 0; i < patch.size(); ++i) mesh.vertices[patch[i]] = next[i];
   }
   for (int32_t v : patch) {
@@ -802,10 +805,7 @@ int64_t SettleBackedOff(const Rows& nb, const Rows& star, const std::vector<int3
   for (int round = 0; round < rounds; ++round) {
     for (size_t i = 0; i < patch.size(); ++i) {
       prev[i] = mesh.vertices[patch[i]];
-      Vec3d sum{0, 0, 0};
-      for (const int32_t* u = nb.begin(patch[i]); u != nb.end(patch[i]); ++u)
-        sum = sum + ToVec3d(mesh.vertices[*u]);
-      next[i] = ToPoint3f((1.0 / std::max(nb.size(patch[i]), 1)) * sum);
+      next[i] = NeighbourMean(nb, mesh, patch[i]);
     }
     std::fill(dirty.begin(), dirty.end(), 0);
     bool any = false;

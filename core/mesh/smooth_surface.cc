@@ -63,13 +63,13 @@ absl::StatusOr<TriangleMesh> SmoothSurface(VoxelGrid&& membrane,
     s.corner_contacts_left = bridging.remaining;
   }
   prepare.Add(1);
-  s.prepare_seconds = SecondsSince(start);
+  s.seconds.prepare = SecondsSince(start);
   if (cancel.cancelled()) return absl::CancelledError("surface cancelled");
 
   start = std::chrono::steady_clock::now();
   if (!options.fit) {
     TriangleMesh mesh = SurfaceNets(grid);
-    s.surface_nets_seconds = SecondsSince(start);
+    s.seconds.nets = SecondsSince(start);
     progress.Part(kPrepareShare, 1).Done();
     return mesh;
   }
@@ -79,7 +79,7 @@ absl::StatusOr<TriangleMesh> SmoothSurface(VoxelGrid&& membrane,
   // The cleaned grid has given its mesh: the caps and the fit read the mesh and the points,
   // and a byte a voxel is most of what the surface holds on a large grid (2.2 GB at 10M points).
   grid = VoxelGrid();
-  s.surface_nets_seconds = SecondsSince(start);
+  s.seconds.nets = SecondsSince(start);
   progress.Part(kPrepareShare, kNetsEnd).Done();
 
   start = std::chrono::steady_clock::now();
@@ -98,7 +98,7 @@ absl::StatusOr<TriangleMesh> SmoothSurface(VoxelGrid&& membrane,
                    points_grid ? &*points_grid : nullptr);
       !capped.ok())
     return capped;
-  s.cap_seconds = SecondsSince(start);
+  s.seconds.caps = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
   if (options.hole_caps.gap_radius != options.fit_options.search_radius) points_grid.reset();
@@ -107,7 +107,7 @@ absl::StatusOr<TriangleMesh> SmoothSurface(VoxelGrid&& membrane,
                                              progress.Part(kNetsEnd, 1), std::move(points_grid));
   if (!fit.ok()) return fit.status();
   s.fit = *fit;
-  s.fit_seconds = SecondsSince(start);
+  s.seconds.fit = SecondsSince(start);
   return std::move(nets.mesh);
 }
 

@@ -27,6 +27,14 @@ struct SmoothSurfaceOptions {
   FitOptions fit_options;
 };
 
+// Wall seconds of SmoothSurface's steps: where a large cloud's surface time goes.
+struct SurfaceStepSeconds {
+  double prepare = 0;  // the clean-up of the membrane: loose sheets, caves, diagonal bridges
+  double nets = 0;     // the surface nets (with the fit: before their repair)
+  double caps = 0;     // the caps over data holes
+  double fit = 0;      // the fit to the points, its crossing repair included
+};
+
 struct SmoothSurfaceStats {
   int64_t loose_sheet_voxels = 0;    // voxels of removed loose sheets
   int64_t cave_voxels = 0;           // voxels filled in caves
@@ -34,7 +42,7 @@ struct SmoothSurfaceStats {
   int64_t corner_contacts_left = 0;  // contacts no simple voxel could bridge
   HoleCapStats caps;
   FitStats fit;
-  double prepare_seconds = 0, surface_nets_seconds = 0, cap_seconds = 0, fit_seconds = 0;
+  SurfaceStepSeconds seconds;
 };
 
 // Input: the final (optionally relaxed) membrane, read only; `points` the input cloud in model

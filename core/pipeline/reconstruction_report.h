@@ -19,6 +19,7 @@
 #include "core/mesh/mesh_decimation.h"
 #include "core/mesh/point_fitting.h"
 #include "core/mesh/relaxation.h"
+#include "core/mesh/smooth_surface.h"
 #include "core/mesh/surface_deviation.h"
 #include "core/pipeline/membrane_counts.h"
 
@@ -97,6 +98,7 @@ struct ReconstructionReport {
   DecimationReport decimation;
   QuantizationReport quantization;
   StageSeconds seconds;
+  SurfaceStepSeconds surface_seconds;  // the smooth surface's steps (all 0 for cuberille)
   int64_t peak_rss_bytes = 0;  // getrusage ru_maxrss, in bytes
   // What the user should know about the result, one sentence each (ScatterWarning's), in the
   // order found; set before the stage that found them is reported finished.

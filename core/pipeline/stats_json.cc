@@ -159,6 +159,11 @@ std::string SecondsJson(const StageSeconds& s) {
       ", \"total\": ", JsonNumber(s.total), ", \"check\": ", JsonNumber(s.check), "}");
 }
 
+std::string SurfaceSecondsJson(const SurfaceStepSeconds& s) {
+  return absl::StrCat("{\"prepare\": ", JsonNumber(s.prepare), ", \"nets\": ", JsonNumber(s.nets),
+                      ", \"caps\": ", JsonNumber(s.caps), ", \"fit\": ", JsonNumber(s.fit), "}");
+}
+
 // Whole units up to 2^40 (CoordinateShift): %.17g prints them exactly, where JsonNumber's 9
 // digits would not.
 std::string OriginJson(const std::array<double, 3>& o) {
@@ -175,13 +180,13 @@ std::string QuantizationJson(const QuantizationReport& q) {
 std::string DecimationJson(const DecimationReport& d) {
   if (!d.ran) return "null";
   const DecimationStats& s = d.stats;
-  return absl::StrCat(
-      "{\"target_faces\": ", s.target_faces, ", \"faces_before\": ", s.faces_before,
-      ", \"faces_after\": ", s.faces_after, ", \"vertices_before\": ", s.vertices_before,
-      ", \"vertices_after\": ", s.vertices_after, ", \"collapses\": ", s.collapses,
-      ", \"refused_collapses\": ", s.refused, ", \"passes\": ", s.passes,
-      ", \"max_error\": ", JsonNumber(d.error.max), ", \"mean_error\": ", JsonNumber(d.error.mean),
-      "}");
+  return absl::StrCat("{\"target_faces\": ", s.target_faces, ", \"faces_before\": ", s.faces_before,
+                      ", \"faces_after\": ", s.faces_after,
+                      ", \"vertices_before\": ", s.vertices_before,
+                      ", \"vertices_after\": ", s.vertices_after, ", \"collapses\": ", s.collapses,
+                      ", \"refused_collapses\": ", s.refused, ", \"passes\": ", s.passes,
+                      ", \"max_error\": ", JsonNumber(d.error.max),
+                      ", \"mean_error\": ", JsonNumber(d.error.mean), "}");
 }
 
 std::string WarningsJson(const std::vector<std::string>& warnings) {
@@ -202,7 +207,9 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"density_ratio\": ", JsonNumber(r.density_ratio),
       ",\n  \"generations\": ", GenerationsJson(r.generations),
       ",\n  \"membrane\": ", MembraneJson(r.membrane), ",\n  \"mesh\": ", MeshJson(r.mesh),
-      ",\n  \"seconds\": ", SecondsJson(r.seconds), ",\n  \"peak_rss_bytes\": ", r.peak_rss_bytes,
+      ",\n  \"seconds\": ", SecondsJson(r.seconds),
+      ",\n  \"surface_seconds\": ", SurfaceSecondsJson(r.surface_seconds),
+      ",\n  \"peak_rss_bytes\": ", r.peak_rss_bytes,
       ",\n  \"data_grid\": ", IntArray(r.data_grid), ",\n  \"schedule\": ", JsonString(r.schedule),
       ",\n  \"surface\": ", JsonString(r.surface), ",\n  \"relaxed\": ", JsonBool(r.relaxed),
       ",\n  \"threads\": ", r.threads,

@@ -125,6 +125,7 @@ absl::StatusOr<BuiltSurface> BuildSurface(VoxelGrid&& given, const PointCloud& c
   if (!mesh.ok()) return mesh.status();
   built.mesh = *std::move(mesh);
   built.hole_caps = stats.caps;
+  built.steps = stats.seconds;
   built.fit = FitTargetCounts{stats.fit.quadric_targets, stats.fit.plane_targets,
                               stats.fit.crease_targets, stats.fit.crease_line_targets,
                               stats.fit.umbrella_targets};

@@ -19,6 +19,7 @@
 #include "core/mesh/hole_caps.h"
 #include "core/mesh/output_grid.h"
 #include "core/mesh/point_fitting.h"
+#include "core/mesh/smooth_surface.h"
 
 namespace membrane {
 
@@ -42,6 +43,7 @@ struct BuiltSurface {
   std::optional<std::vector<std::pair<int32_t, int32_t>>> crossings;
   HoleCapStats hole_caps;  // the smooth surface's caps over data holes (zero for cuberille)
   FitTargetCounts fit;     // the smooth surface's fit (zero for cuberille)
+  SurfaceStepSeconds steps;  // the smooth surface's steps (zero for cuberille)
   // The cuberille's faces around its split vertices cross on the output grid: a grid about
   // as coarse as 0.2 voxel can snap a split vertex onto the sheet it was moved away from.
   bool split_crossings = false;

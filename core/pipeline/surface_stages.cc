@@ -28,6 +28,7 @@ absl::StatusOr<BuiltSurface> SurfaceStage(const ReconstructionOptions& options,
   if (!built.ok()) return built.status();
   report.hole_caps = built->hole_caps;
   report.fit = built->fit;
+  report.surface_seconds = built->steps;
   report.quantization.bits = output_grid.bits;
   report.quantization.step = output_grid.step();
   report.quantization.max_position_error = output_grid.step() / 2;

@@ -127,6 +127,33 @@ TEST(StatsJsonTest, OneGenerationPerPlateSizeEndingWithPlateSizeOne) {
   EXPECT_EQ(sizes, PlateSizes(data_dims, PlateSchedule::kHalving, 0));
 }
 
+// The smooth surface's steps are parts of its stage: they add up to no more than it, and the
+// fit, which every smooth surface runs, takes time. Cuberille has none of them.
+TEST(StatsJsonTest, SurfaceSecondsArePartsOfTheSurfaceStage) {
+  const ScratchDir dir;
+  const char* const keys[] = {"prepare", "nets", "caps", "fit"};
+  for (const bool smooth : {true, false}) {
+    const JsonValue s = smooth ? SphereStats(dir) : SphereStats(dir, {"--surface", "cuberille"});
+    ExpectKey(s, "", "surface_seconds", Type::kObject);
+    const JsonValue& steps = *s.Find("surface_seconds");
+    double sum = 0;
+    for (const char* key : keys) {
+      ExpectKey(steps, "surface_seconds.", key, Type::kNumber);
+      const JsonValue* v = steps.Find(key);
+      if (v == nullptr) continue;
+      EXPECT_GE(v->number, 0) << key;
+      if (!smooth) {
+        EXPECT_EQ(v->number, 0) << key;
+      }
+      sum += v->number;
+    }
+    EXPECT_LE(sum, s.Find("seconds")->Find("surface")->number) << (smooth ? "smooth" : "cuberille");
+    if (smooth) {
+      EXPECT_GT(steps.Find("fit")->number, 0);
+    }
+  }
+}
+
 TEST(StatsJsonTest, NoRelaxLeavesRelaxationOut) {
   const ScratchDir dir;
   const JsonValue s = SphereStats(dir, {"--no-relax", "--surface", "cuberille"});

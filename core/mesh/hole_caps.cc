@@ -11,6 +11,7 @@
 #include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/base/parallel_tasks.h"
 #include "core/geometry/vec3.h"
 #include "core/mesh/algebraic_sphere.h"
 #include "core/mesh/corner_crease.h"
@@ -133,9 +134,12 @@ LocalSystem Localize(const Rows& nb, const std::vector<int32_t>& free, bool two_
 // the free ones are updated). Stops after `max_iterations` or once no step moves a vertex by
 // more than `tolerance`. Returns the iterations run, or -1 when `cancel` fired. Works on the
 // region and its two rings renumbered (LocalSystem): memory and time in the region's size.
+// A region of `min_split` vertices or more has its products and updates on `threads` (<= 1:
+// the calling thread); its dot products are summed on the calling thread in vertex order, so
+// the result is the same bits for any count.
 int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free,
-          std::vector<Vec3d>& x, int max_iterations, double tolerance,
-          const CancelToken& cancel) {
+          std::vector<Vec3d>& x, int max_iterations, double tolerance, const CancelToken& cancel,
+          int threads = 1, int64_t min_split = 0) {
   const LocalSystem sys = Localize(mesh_nb, free, thin_plate);
   const Rows& nb = sys.nb;
   const size_t n = static_cast<size_t>(sys.n);
@@ -172,20 +176,31 @@ int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free
   };
   // D^-1 L y over the free vertices and their ring (local 0..m-1), for K y.
   std::vector<Lanes> scaled(thin_plate ? size + 1 : 0, Lanes{});
+  // Ranges of the free vertices and of the free ones with their ring, one task each: every
+  // vertex's product and update reads only what the step before wrote.
+  const int workers = static_cast<int64_t>(n) >= min_split ? threads : 1;
+  const TaskRanges free_ranges = TaskRanges::Split(static_cast<int64_t>(n), workers, 2);
+  const TaskRanges ring_ranges = TaskRanges::Split(m, workers, 2);
+  auto for_ranges = [&](const TaskRanges& ranges, auto&& body) {
+    RunTasks(workers, ranges.tasks,
+             [&](int, int64_t t) { body(t, ranges.begin(t), ranges.end(t)); });
+  };
   // out = K y, and dot += y . out over the free vertices, in their order.
   auto apply = [&](const std::vector<Lanes>& y, std::vector<Lanes>& out, Lanes& dot) {
     const Lanes* in = y.data();
     if (thin_plate) {
-      for (int32_t v = 0; v < m; ++v) {
-        laplacian(v, y.data(), scaled[v]);
-        scaled[v] = inv_degree[v] * scaled[v];
-      }
+      for_ranges(ring_ranges, [&](int64_t, int64_t begin, int64_t end) {
+        for (int32_t v = static_cast<int32_t>(begin); v < end; ++v) {
+          laplacian(v, y.data(), scaled[v]);
+          scaled[v] = inv_degree[v] * scaled[v];
+        }
+      });
       in = scaled.data();
     }
-    for (size_t i = 0; i < n; ++i) {
-      laplacian(static_cast<int32_t>(i), in, out[i]);
-      dot += y[i] * out[i];
-    }
+    for_ranges(free_ranges, [&](int64_t, int64_t begin, int64_t end) {
+      for (int32_t i = static_cast<int32_t>(begin); i < end; ++i) laplacian(i, in, out[i]);
+    });
+    for (size_t i = 0; i < n; ++i) dot += y[i] * out[i];
   };
   std::vector<double> inv_diag(n);
   for (size_t i = 0; i < n; ++i) {
@@ -212,6 +227,7 @@ int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free
     p[i] = z[i];
     rz += r[i] * z[i];
   }
+  std::vector<Lanes> range_largest(static_cast<size_t>(free_ranges.tasks));
   int it = 0;
   while (it < max_iterations) {
     if (cancel.cancelled()) return -1;
@@ -221,21 +237,29 @@ int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free
     double a[3];
     for (int k = 0; k < 3; ++k) a[k] = pq[k] > 0 ? rz[k] / pq[k] : 0.0;
     const Lanes alpha{Pair{a[0], a[1]}, a[2]};
+    // The largest step per range: a maximum, the same whatever the ranges.
+    for_ranges(free_ranges, [&](int64_t t, int64_t begin, int64_t end) {
+      Lanes largest{};
+      for (int64_t i = begin; i < end; ++i) {
+        const Lanes step = alpha * p[i];
+        y[i] += step;
+        largest = Max(largest, Abs(step));
+        r[i] -= alpha * q[i];
+        z[i] = r[i] * inv_diag[i];
+      }
+      range_largest[t] = largest;
+    });
     Lanes largest{};
+    for (const Lanes& l : range_largest) largest = Max(largest, l);
     Lanes rz_next{};
-    for (size_t i = 0; i < n; ++i) {
-      const Lanes step = alpha * p[i];
-      y[i] += step;
-      largest = Max(largest, Abs(step));
-      r[i] -= alpha * q[i];
-      z[i] = r[i] * inv_diag[i];
-      rz_next += r[i] * z[i];
-    }
+    for (size_t i = 0; i < n; ++i) rz_next += r[i] * z[i];
     if (std::max({largest[0], largest[1], largest[2]}) <= tolerance) break;
     double b[3];
     for (int k = 0; k < 3; ++k) b[k] = rz[k] > 0 ? rz_next[k] / rz[k] : 0.0;
     const Lanes beta{Pair{b[0], b[1]}, b[2]};
-    for (size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
+    for_ranges(free_ranges, [&](int64_t, int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) p[i] = z[i] + beta * p[i];
+    });
     rz = rz_next;
   }
   for (size_t i = 0; i < n; ++i) x[sys.vertex[i]] = Vec3d{y[i][0], y[i][1], y[i][2]};
@@ -291,11 +315,13 @@ bool SolveExactly(const Rows& mesh_nb, const std::vector<int32_t>& free, std::ve
 // The thin plate over the free vertices to convergence: exactly (SolveExactly) where the
 // factor fits, else by Solve to `tolerance` in at most `max_iterations`. Returns the
 // conjugate-gradient iterations run (0 when solved exactly), or -1 when `cancel` fired.
+// `threads` and `min_split` as Solve's.
 int SolveConverged(const Rows& nb, const std::vector<int32_t>& free, std::vector<Vec3d>& x,
-                   int max_iterations, double tolerance, const CancelToken& cancel) {
+                   int max_iterations, double tolerance, const CancelToken& cancel,
+                   int threads, int64_t min_split) {
   if (cancel.cancelled()) return -1;
   if (max_iterations > 0 && SolveExactly(nb, free, x)) return 0;
-  return Solve(true, nb, free, x, max_iterations, tolerance, cancel);
+  return Solve(true, nb, free, x, max_iterations, tolerance, cancel, threads, min_split);
 }
 
 // Sum of the face normals (twice the areas) around v: its outward direction.
@@ -592,11 +618,13 @@ double HeldPointsDistance(const std::vector<int32_t>& region, const std::vector<
 // passes farther from the held points, on average, than the other by more than held_margin
 // voxels. Caps that wrap converge anyway and are not judged. One entry per region (1:
 // converge); the trial's iterations are added to `iterations`. Cancelled when `cancel` fired.
+// The solves on `threads` (the same result for any count).
 absl::StatusOr<std::vector<char>> HeldCapsToConverge(
     const TriangleMesh& mesh, const Rows& nb, const Rows& star,
     const std::vector<std::vector<int32_t>>& regions, const std::vector<char>& free,
     const std::vector<char>& pinned, const std::vector<Vec3d>& x, double l,
-    const HoleCapOptions& options, int64_t& iterations, const CancelToken& cancel) {
+    const HoleCapOptions& options, int64_t& iterations, const CancelToken& cancel,
+    int threads) {
   std::vector<char> converges(regions.size(), 0);
   if (!options.converge_held) return converges;
   std::vector<size_t> held;
@@ -613,8 +641,9 @@ absl::StatusOr<std::vector<char>> HeldCapsToConverge(
   // The caps from their rims alone: surface-nets positions, the harmonic map, the spline.
   std::vector<Vec3d> kept(mesh.vertices.size());
   for (size_t v = 0; v < kept.size(); ++v) kept[v] = ToVec3d(mesh.vertices[v]);
-  const int harmonic_iterations = Solve(false, nb, trial, kept, options.harmonic_iterations,
-                                        options.tolerance * l, cancel);
+  const int harmonic_iterations =
+      Solve(false, nb, trial, kept, options.harmonic_iterations, options.tolerance * l, cancel,
+            threads, options.split_solve_vertices);
   if (harmonic_iterations < 0) return absl::CancelledError("hole caps cancelled");
   iterations += harmonic_iterations;
   std::vector<size_t> judged;
@@ -632,13 +661,14 @@ absl::StatusOr<std::vector<char>> HeldCapsToConverge(
   // The converged plate exactly; where the cap is too large for the factor, to `tolerance`
   // only: a bulge stands voxels off.
   std::vector<Vec3d> converged = kept;
-  const int kept_iterations = Solve(true, nb, judged_vertices, kept,
-                                    options.thin_plate_iterations, options.tolerance * l, cancel);
+  const int kept_iterations =
+      Solve(true, nb, judged_vertices, kept, options.thin_plate_iterations, options.tolerance * l,
+            cancel, threads, options.split_solve_vertices);
   const int converged_iterations =
-      kept_iterations < 0 ? -1
-                          : SolveConverged(nb, judged_vertices, converged,
-                                           options.wrapped_iterations, options.tolerance * l,
-                                           cancel);
+      kept_iterations < 0
+          ? -1
+          : SolveConverged(nb, judged_vertices, converged, options.wrapped_iterations,
+                           options.tolerance * l, cancel, threads, options.split_solve_vertices);
   if (converged_iterations < 0) return absl::CancelledError("hole caps cancelled");
   iterations += kept_iterations + converged_iterations;
   for (size_t r : judged) {
@@ -859,7 +889,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       o.corner_smoothing < 0 || o.corner_smoothing > 100 ||
       o.corner_normal_rings < 0 || o.corner_normal_rings > 8 || o.untangle_rounds < 0 ||
       o.untangle_rounds > 1000 || o.untangle_rings < 0 || o.untangle_rings > 16 ||
-      o.untangle_iterations < 1 || o.untangle_iterations > 100)
+      o.untangle_iterations < 1 || o.untangle_iterations > 100 || o.split_solve_vertices < 1)
     return absl::InvalidArgumentError(absl::StrCat(
         "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
         o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",
@@ -872,7 +902,8 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         ", sphere_band_fit ", o.sphere_band_fit,
         ", sphere_margin ", o.sphere_margin, ", converged_tolerance ", o.converged_tolerance,
         ", back_off_halvings ", o.back_off_halvings, ", settle_rounds ", o.settle_rounds,
-        ", settle_min_step ", o.settle_min_step,
+        ", settle_min_step ", o.settle_min_step, ", split_solve_vertices ",
+        o.split_solve_vertices,
         ", max_shell_share ", o.max_shell_share,
         ", min_median_points ", o.min_median_points, ", anchor_radius ", o.anchor_radius,
         ", held_margin ", o.held_margin, ", corner_angle ", o.corner_angle, ", corner_sectors ",
@@ -1044,7 +1075,7 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   int64_t trial_iterations = 0;
   if (absl::StatusOr<std::vector<char>> judged =
           HeldCapsToConverge(mesh, nb, star, regions, free, pinned, x, l, options,
-                             trial_iterations, cancel);
+                             trial_iterations, cancel, threads);
       judged.ok())
     held_converges = *std::move(judged);
   else
@@ -1052,8 +1083,8 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   std::vector<int32_t> solve_list;
   for (int32_t v : free_list)
     if (!pinned[v]) solve_list.push_back(v);
-  const int it = Solve(false, nb, solve_list, x, options.harmonic_iterations,
-                       options.tolerance * l, cancel);
+  const int it = Solve(false, nb, solve_list, x, options.harmonic_iterations, options.tolerance * l,
+                       cancel, threads, options.split_solve_vertices);
   if (it < 0) return absl::CancelledError("hole caps cancelled");
   st.iterations = it + trial_iterations;
   // The caps' vertices by their thin plate's iterations: the caps solved to convergence
@@ -1106,15 +1137,16 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   if (!candidates.empty()) {
     std::sort(candidates.begin(), candidates.end());
     converged = x;
-    const int ci = Solve(true, nb, candidates, converged, options.wrapped_iterations,
-                         options.converged_tolerance * l, cancel);
+    const int ci =
+        Solve(true, nb, candidates, converged, options.wrapped_iterations,
+              options.converged_tolerance * l, cancel, threads, options.split_solve_vertices);
     if (ci < 0) return absl::CancelledError("hole caps cancelled");
     st.iterations += ci;
   }
   if (options.thin_plate_iterations > 0 && !blended.empty()) {
     std::sort(blended.begin(), blended.end());
-    const int bi = Solve(true, nb, blended, x, options.thin_plate_iterations,
-                         options.tolerance * l, cancel);
+    const int bi = Solve(true, nb, blended, x, options.thin_plate_iterations, options.tolerance * l,
+                         cancel, threads, options.split_solve_vertices);
     if (bi < 0) return absl::CancelledError("hole caps cancelled");
     st.iterations += bi;
   }
@@ -1125,8 +1157,9 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   for (std::vector<int32_t>& region : converging) {
     if (options.wrapped_iterations == 0) break;
     std::sort(region.begin(), region.end());
-    const int ci = Solve(true, nb, region, x, options.wrapped_iterations,
-                         options.converged_tolerance * l, cancel);
+    const int ci =
+        Solve(true, nb, region, x, options.wrapped_iterations, options.converged_tolerance * l,
+              cancel, threads, options.split_solve_vertices);
     if (ci < 0) return absl::CancelledError("hole caps cancelled");
     st.iterations += ci;
   }
@@ -1223,7 +1256,7 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     std::vector<char> moved_faces = dirty, failed(regions.size(), 0);
     for (int round = 0;; ++round) {
       std::vector<int32_t> folded;
-      for (const auto& [a, b] : FindIntersectingFacesNear(mesh, moved_faces, 1, &blocks))
+      for (const auto& [a, b] : FindIntersectingFacesNear(mesh, moved_faces, threads, &blocks))
         if (capped(a) && capped(b))
           for (int32_t f : {a, b})
             for (int32_t v : mesh.faces[f])
@@ -1252,7 +1285,7 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   // Not cancelled: the caps are written, and only this loop makes them an embedded mesh.
   for (;;) {
     const std::vector<std::pair<int32_t, int32_t>> pairs =
-        FindIntersectingFacesNear(mesh, dirty, /*threads=*/1, &blocks);
+        FindIntersectingFacesNear(mesh, dirty, threads, &blocks);
     std::vector<int32_t> moved;
     for (const auto& [a, b] : pairs)
       for (int32_t f : {a, b})

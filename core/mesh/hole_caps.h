@@ -183,6 +183,11 @@ struct HoleCapOptions {
   // is not taken (a vertex that has settled costs no search).
   int settle_rounds = 16;
   double settle_min_step = 0.05;
+  // A cap's solve over at least this many vertices runs its products on the caps' threads (the
+  // same bits for any count); a smaller one stays on the calling thread, where an iteration's
+  // thread starts would cost more than its products (a 100k-point cloud's caps hold hundreds
+  // to thousands of vertices, a 10M-point scan's up to 654k). >= 1.
+  int64_t split_solve_vertices = int64_t{1} << 15;
 };
 
 struct HoleCapStats {
@@ -242,11 +247,11 @@ struct HoleCapStats {
 // nothing.
 // Faces are unchanged, so the mesh stays closed, manifold and oriented with its shells and
 // genus; crossings are those of the input or none.
-// The gap search and the settling's crossing searches run on `threads` (<= 1: the calling
-// thread), the rest on the calling thread; the result depends only on the input, not on
-// `threads`. `stats` may be null. `points_grid`, if not null, is the PointRowGrid of `points`
-// with cells of gap_radius voxels, which the gap search and the settling then read instead of
-// building it.
+// The gap search, the large caps' solves (products and updates; their sums stay in order) and
+// every crossing search run on `threads` (<= 1: the calling thread), the rest on the calling
+// thread; the result depends only on the input, not on `threads`. `stats` may be null.
+// `points_grid`, if not null, is the PointRowGrid of `points` with cells of gap_radius voxels,
+// which the gap search and the settling then read instead of building it.
 // Errors: InvalidArgument for a bad voxel size or options out of range; Cancelled when
 // `cancel` fired (the mesh is then as it came in).
 absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Point3f> points,

@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -13,6 +14,34 @@
 
 namespace membrane {
 namespace {
+
+// Whether any of flags[begin, end) is set, eight flags a read: the searches near moved faces
+// read a flag per face of the whole mesh each time (15M at 10M points), and few are set.
+bool AnyFlagged(const char* flags, int64_t begin, int64_t end) {
+  int64_t f = begin;
+  for (; f + 8 <= end; f += 8) {
+    uint64_t word;
+    std::memcpy(&word, flags + f, sizeof word);
+    if (word != 0) return true;
+  }
+  for (; f < end; ++f)
+    if (flags[f]) return true;
+  return false;
+}
+
+// The indices f < count with flags[f] set, in increasing order, read as AnyFlagged reads them.
+std::vector<int32_t> FlaggedIndices(const char* flags, int32_t count) {
+  std::vector<int32_t> out;
+  int32_t f = 0;
+  for (; f + 8 <= count; f += 8) {
+    if (!AnyFlagged(flags, f, f + 8)) continue;
+    for (int32_t k = f; k < f + 8; ++k)
+      if (flags[k]) out.push_back(k);
+  }
+  for (; f < count; ++f)
+    if (flags[f]) out.push_back(f);
+  return out;
+}
 
 // The search's big arrays, fresh on every call: plain pages (docs/engine-decisions.md "Plain
 // pages for big arrays"). Sized without being filled: every element is written before it is
@@ -485,12 +514,8 @@ void FaceBlockBoxes::Update(const TriangleMesh& mesh, const std::vector<char>& d
         Remake(mesh, b);
         continue;
       }
-      const int32_t end = std::min(nf, (b + 1) * kFaces);
-      for (int32_t f = b * kFaces; f < end; ++f)
-        if (dirty[f]) {
-          Remake(mesh, b);
-          break;
-        }
+      if (AnyFlagged(dirty.data(), int64_t{b} * kFaces, std::min(nf, (b + 1) * kFaces)))
+        Remake(mesh, b);
     }
   });
 }
@@ -522,8 +547,8 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
   if (blocks != nullptr) blocks->Update(mesh, dirty, threads);
   // Boxes of the dirty faces, and the coarse cells they touch (a face overlapping a dirty box
   // touches one of that box's cells, whatever the cells' size).
-  int64_t n_dirty = 0;
-  for (int32_t f = 0; f < nf; ++f) n_dirty += dirty[f] != 0;
+  const std::vector<int32_t> flagged = FlaggedIndices(dirty.data(), nf);
+  const int64_t n_dirty = static_cast<int64_t>(flagged.size());
   // Mostly dirty: selecting the neighbourhood would cost more than searching everything.
   if (4 * n_dirty > nf) {
     std::vector<std::pair<int32_t, int32_t>> pairs =
@@ -536,8 +561,8 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
   p.box.reserve(n_dirty);
   std::vector<float> extents;
   extents.reserve(n_dirty);
-  for (int32_t f = 0; f < nf; ++f) {
-    if (!dirty[f] || !ValidFace(mesh.faces[f], nv)) continue;
+  for (const int32_t f : flagged) {
+    if (!ValidFace(mesh.faces[f], nv)) continue;
     p.face.push_back(f);
     p.box.push_back(BoxOfFace(mesh, f));
     const Box& b = p.box.back();

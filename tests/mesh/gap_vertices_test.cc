@@ -145,11 +145,14 @@ TEST(HoleCapsThreads, TheCapsAreTheSameOnAnyThreadCount) {
   ASSERT_TRUE(CapHoles(one, nets.voxel_size, cloud.points, {}, &one_stats).ok());
   EXPECT_EQ(one_stats.regions, 1);
   EXPECT_NE(one.vertices, nets.mesh.vertices);
+  // Every solve split into ranges too (split_solve_vertices 1): its sums stay in order.
+  HoleCapOptions split;
+  split.split_solve_vertices = 1;
   for (const int threads : {2, 3}) {
     TriangleMesh many = nets.mesh;
     HoleCapStats stats;
-    ASSERT_TRUE(CapHoles(many, nets.voxel_size, cloud.points, {}, &stats, CancelToken::Never(),
-                         threads)
+    ASSERT_TRUE(CapHoles(many, nets.voxel_size, cloud.points, split, &stats,
+                         CancelToken::Never(), threads)
                     .ok());
     EXPECT_EQ(many.vertices, one.vertices) << threads;
     EXPECT_EQ(stats.regions, one_stats.regions) << threads;

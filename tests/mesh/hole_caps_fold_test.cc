@@ -132,11 +132,13 @@ TEST(HoleCapSettle, TheBackOffsCreaseIsSmoothedWhereNoPointsAreHeld) {
       testing::ShelvedHoleOverTheEdge(kShelf, kHoleRadius, kVoxel);
   ASSERT_TRUE(shelved.ok()) << shelved.status();
   const PointCloud& holed = shelved->holed;
-  auto cap = [&](int settle_rounds, int threads) {
+  auto cap = [&](int settle_rounds, int threads,
+                 int64_t split = HoleCapOptions{}.split_solve_vertices) {
     Capped c{shelved->nets, {}};
     HoleCapOptions options;
     options.untangle_rounds = 0;  // every crossing backs off
     options.settle_rounds = settle_rounds;
+    options.split_solve_vertices = split;
     EXPECT_TRUE(CapHoles(c.mesh, kVoxel, holed.points, options, &c.caps, CancelToken::Never(),
                          threads)
                     .ok());
@@ -144,8 +146,10 @@ TEST(HoleCapSettle, TheBackOffsCreaseIsSmoothedWhereNoPointsAreHeld) {
   };
   const Capped ragged = cap(0, 1);
   const Capped settled = cap(HoleCapOptions{}.settle_rounds, 1);
-  // The settling's searches run on the caps' threads: the same mesh on any count.
+  // The settling's searches run on the caps' threads: the same mesh on any count, with every
+  // solve split into ranges too.
   EXPECT_EQ(cap(HoleCapOptions{}.settle_rounds, 3).mesh.vertices, settled.mesh.vertices);
+  EXPECT_EQ(cap(HoleCapOptions{}.settle_rounds, 3, 1).mesh.vertices, settled.mesh.vertices);
   const double ragged_roughness = Roughness(ragged.mesh, shelved->nets);
   const double settled_roughness = Roughness(settled.mesh, shelved->nets);
   std::printf("box on a slab, every crossing backed off (%d vertices): roughness of the moved "

@@ -104,10 +104,14 @@ struct LocalSystem {
 
 LocalSystem Localize(const Rows& nb, const std::vector<int32_t>& free, bool two_rings) {
   LocalSystem s;
-  absl::flat_hash_map<int32_t, int32_t> local;
-  local.reserve(free.size() * 3);
+  // Local numbers by mesh vertex (-1: none yet): an array over the mesh, a pass of 4 bytes a
+  // vertex, against a hash map's insertions for the region's three rings (2M for a 10M-point
+  // scan's largest cap, called once per solve).
+  std::vector<int32_t> local(nb.start.size() - 1, -1);
   auto add = [&](int32_t v) {
-    if (local.try_emplace(v, static_cast<int32_t>(s.vertex.size())).second) s.vertex.push_back(v);
+    if (local[v] >= 0) return;
+    local[v] = static_cast<int32_t>(s.vertex.size());
+    s.vertex.push_back(v);
   };
   for (int32_t v : free) add(v);
   s.n = static_cast<int32_t>(s.vertex.size());
@@ -122,7 +126,7 @@ LocalSystem Localize(const Rows& nb, const std::vector<int32_t>& free, bool two_
   int32_t* out = s.nb.items.data();
   for (int32_t i = 0; i < s.m; ++i)
     for (const int32_t* u = nb.begin(s.vertex[i]); u != nb.end(s.vertex[i]); ++u)
-      *out++ = local.find(*u)->second;
+      *out++ = local[*u];
   return s;
 }
 

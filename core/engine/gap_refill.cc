@@ -11,7 +11,9 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "core/base/parallel_tasks.h"
+#include "core/engine/flat_bitset.h"
 #include "core/engine/local_topology.h"
+#include "core/engine/outside_blocks.h"
 #include "core/engine/state_planes.h"
 
 namespace membrane {
@@ -56,23 +58,15 @@ class HardRowExtremes {
       }
       const int z0 = static_cast<int>(nz * slab / slabs);
       const int z1 = static_cast<int>(nz * (slab + 1) / slabs);
-      // Every voxel of the grid is read, hard ones are few: eight at a time where none is.
+      // Every voxel of the grid is read, hard ones are few: a row is searched for the next.
       for (int z = z0; z < z1; ++z)
         for (int y = 0; y < ny; ++y) {
-          int64_t i = grid.Index(0, y, z);
-          for (int x = 0; x < nx;) {
-            if (x + 8 <= nx && NoHardOfEight(s + i)) {
-              x += 8;
-              i += 8;
-              continue;
-            }
-            if (IsHard(s[i])) {
-              Note(lo_[0].data(), hi_[0].data(), RowOf(0, x, y, z), x);
-              Note(lo_[1].data(), hi_[1].data(), RowOf(1, x, y, z), y);
-              Note(zl, zh, RowOf(2, x, y, z), z);
-            }
-            ++x;
-            ++i;
+          const VoxelState* row = s + grid.Index(0, y, z);
+          for (int x = static_cast<int>(FirstHardOf(row, nx)); x < nx;
+               x += 1 + static_cast<int>(FirstHardOf(row + x + 1, nx - x - 1))) {
+            Note(lo_[0].data(), hi_[0].data(), RowOf(0, x, y, z), x);
+            Note(lo_[1].data(), hi_[1].data(), RowOf(1, x, y, z), y);
+            Note(zl, zh, RowOf(2, x, y, z), z);
           }
         }
     });
@@ -113,35 +107,33 @@ class HardRowExtremes {
 // voxel on the ray and the one after it are both soft or frozen: the ray enters the solid where
 // it holds no data, and a hard voxel lies further on: the solid's far side), and those that
 // leave through the outside to the array's border (the way out). A ray that meets the data
-// first looks at a scanned wall from outside it.
-struct RayCounts {
-  int gap_walls = 0;
-  int open = 0;
-};
-
-RayCounts CountRays(const VoxelGrid& grid, const HardRowExtremes& rows, int64_t v) {
+// first looks at a scanned wall from outside it. True when at least `min_gap_walls` rays meet
+// gap walls and at most `max_open` leave. A ray through the open outside walks to the array's
+// border: the walks step over blocks of outside voxels, the rays along z (a plane a step) go
+// last, and the count stops once its answer is known.
+bool BehindGapWalls(const VoxelGrid& grid, const HardRowExtremes& rows,
+                    const OutsideBlocks& blocks, int64_t v, int min_gap_walls, int max_open) {
   const Coord c = grid.CoordOf(v);
   const int at[3] = {c.x, c.y, c.z};
   const auto st = grid.strides();
-  RayCounts count;
+  int gap_walls = 0, open = 0, left = 6;
   for (int d = 0; d < 3; ++d)
     for (int sign = -1; sign <= 1; sign += 2) {
-      int t = at[d] + sign;
-      int64_t u = v + sign * st[d];
-      while (t > 0 && t < grid.dim(d) - 1 && IsOutside(grid.at(u))) {
-        t += sign;
-        u += sign * st[d];
-      }
+      if (gap_walls + left < min_gap_walls || open > max_open) return false;
+      if (gap_walls >= min_gap_walls && open + left <= max_open) return true;
+      --left;
+      const int t = blocks.WalkOutside(grid, c, d, sign);
+      const int64_t u = v + (t - at[d]) * st[d];
       if (t <= 0 || t >= grid.dim(d) - 1 || IsOutside(grid.at(u))) {
-        ++count.open;
+        ++open;
         continue;
       }
       if (IsHard(grid.at(u))) continue;
       const VoxelState next = grid.at(u + sign * st[d]);
       if (IsOutside(next) || IsHard(next)) continue;
-      count.gap_walls += rows.HardPast(d, c, t + sign, sign);
+      gap_walls += rows.HardPast(d, c, t + sign, sign);
     }
-  return count;
+  return gap_walls >= min_gap_walls && open <= max_open;
 }
 
 // Of the 6 axis rays from an outside voxel, each walked at most `reach` voxels through
@@ -301,7 +293,7 @@ bool ClosesLoop(const VoxelGrid& grid, int64_t v) {
 void DropOpenPockets(const VoxelGrid& grid, double max_open_share,
                      const absl::flat_hash_set<int64_t>& open,
                      absl::flat_hash_set<int64_t>& pockets,
-                     absl::flat_hash_set<int64_t>& region) {
+                     FlatBitset& region) {
   const auto st = grid.strides();
   absl::flat_hash_set<int64_t> seen;
   std::vector<int64_t> component, stack;
@@ -328,7 +320,7 @@ void DropOpenPockets(const VoxelGrid& grid, double max_open_share,
   }
   for (int64_t v : dropped) {
     pockets.erase(v);
-    region.erase(v);
+    region.reset(v);
   }
 }
 
@@ -363,6 +355,7 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   GapRefillStats stats;
   if (!options.enabled) return stats;
   const HardRowExtremes rays(grid, threads);
+  const OutsideBlocks blocks(grid, threads);
   // The region to refill is read on the membrane as the shrink left it (the fill itself
   // changes what the rays meet): the outside voxels in a gap and behind gap walls, reached
   // from the membrane through such voxels. Reading a voxel writes nothing: the seeds below
@@ -370,10 +363,9 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   enum class Reading { kOut, kGap, kPocket, kOpenPocket };
   auto read = [&](int64_t v) {
     if (!IsOutside(grid.at(v)) || grid.OnArrayBorder(grid.CoordOf(v))) return Reading::kOut;
-    if (InGap(grid, grid.CoordOf(v), options.gap_radius)) {
-      const RayCounts count = CountRays(grid, rays, v);
-      if (count.gap_walls >= options.min_enclosed_rays && count.open <= options.max_open_rays)
-        return Reading::kGap;
+    if (InGap(grid, grid.CoordOf(v), options.gap_radius) &&
+        BehindGapWalls(grid, rays, blocks, v, options.min_enclosed_rays, options.max_open_rays)) {
+      return Reading::kGap;
     }
     if (options.pocket_backed_rays == 0 || GenerationLabel(grid.at(v)) == 0)
       return Reading::kOut;
@@ -384,29 +376,32 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
       return Reading::kOut;
     return count.open > 0 ? Reading::kOpenPocket : Reading::kPocket;
   };
-  absl::flat_hash_set<int64_t> region, rejected, pockets, open_pockets;
+  // The region and the voxels read out of it as bits over the grid (256 MB each on a 2e9-voxel
+  // grid, where hash sets of the 10M-point spot scan's 3.9M and 2.0M voxels cost a cache miss
+  // a look-up); the pockets are few.
+  FlatBitset region(grid.size(), nullptr, FlatBitset::Unset{});
+  FlatBitset rejected(grid.size(), nullptr, FlatBitset::Unset{});
+  region.set_threads(threads);
+  rejected.set_threads(threads);
+  region.clear_all();
+  rejected.clear_all();
+  absl::flat_hash_set<int64_t> pockets, open_pockets;
   std::vector<int64_t> frontier;
   // Notes a voxel read in the region; true when it is.
   auto note = [&](int64_t v, Reading reading) {
     if (reading == Reading::kOut) return false;
     if (reading == Reading::kOpenPocket) open_pockets.insert(v);
     if (reading != Reading::kGap) pockets.insert(v);
-    region.insert(v);
+    region.set(v);
     frontier.push_back(v);
     return true;
   };
   // Seeds in voxel order, off the array border, a z plane a task. This loop reads the whole
   // grid, mostly outside voxels by now: it walks rows (no division for the border test) and
-  // steps over eight voxels whose face neighbours are all outside with six word loads, and
-  // eight solid ones with one.
+  // finds the outside voxels beside the solid eight at a time, with seven word loads.
   const auto& dims = grid.dims();
   const auto st = grid.strides();
   const VoxelState* states = grid.states().data();
-  auto outside_around_eight = [&](int64_t v) {
-    return AllOutsideOfEight(states + v - 1) && AllOutsideOfEight(states + v + 1) &&
-           AllOutsideOfEight(states + v - st[1]) && AllOutsideOfEight(states + v + st[1]) &&
-           AllOutsideOfEight(states + v - st[2]) && AllOutsideOfEight(states + v + st[2]);
-  };
   std::vector<std::vector<std::pair<int64_t, Reading>>> seeds_of(
       static_cast<size_t>(std::max(dims[2] - 2, 0)));
   TaskCancel task_cancel(cancel, threads, 64);
@@ -417,18 +412,19 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
       if (task_cancel.Poll(worker)) return;
       const int64_t row = grid.Index(0, y, z);
       const int64_t end = row + dims[0] - 1;
-      for (int64_t v = row + 1; v < end;) {
-        // A seed is outside: eight solid voxels (the solid's interior) are stepped over too.
-        if (v + 8 <= end && (NoOutsideOfEight(states + v) || outside_around_eight(v))) {
-          v += 8;
-          continue;
+      int64_t v = row + 1;
+      for (; v + 8 <= end; v += 8)
+        for (uint64_t m = OutsideBesideSolidOfEight(states + v, st.data()); m != 0;
+             m &= m - 1) {
+          const int64_t u = v + __builtin_ctzll(m) / 8;
+          const Reading reading = read(u);
+          if (reading != Reading::kOut) out.emplace_back(u, reading);
         }
+      for (; v < end; ++v)
         if (IsOutside(states[v]) && HasSolidFaceNeighbour(grid, v)) {
           const Reading reading = read(v);
           if (reading != Reading::kOut) out.emplace_back(v, reading);
         }
-        ++v;
-      }
     }
   });
   if (task_cancel.fired()) return absl::CancelledError("gap refill cancelled");
@@ -449,7 +445,7 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
     for (int64_t v : frontier)
       for (int d = 0; d < 3; ++d)
         for (int64_t u : {v - st[d], v + st[d]})
-          if (!region.contains(u) && !rejected.contains(u)) layer.push_back(u);
+          if (IsOutside(grid.at(u)) && !region.test(u) && !rejected.test(u)) layer.push_back(u);
     frontier.clear();
     std::sort(layer.begin(), layer.end());
     layer.erase(std::unique(layer.begin(), layer.end()), layer.end());
@@ -460,13 +456,12 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
       for (int64_t i = ranges.begin(task); i < ranges.end(task); ++i) readings[i] = read(layer[i]);
     });
     for (size_t i = 0; i < layer.size(); ++i)
-      if (!note(layer[i], readings[i])) rejected.insert(layer[i]);
+      if (!note(layer[i], readings[i])) rejected.set(layer[i]);
   }
-  rejected.clear();
   DropOpenPockets(grid, options.max_open_pocket_share, open_pockets, pockets, region);
   std::vector<int64_t> seeds;
   for (int64_t v : first) {
-    if (region.contains(v)) seeds.push_back(v);
+    if (region.test(v)) seeds.push_back(v);
   }
   stats.pocket_voxels = static_cast<int64_t>(pockets.size());
   // Fill from the membrane inwards, each voxel when it is beside the solid and simple; a
@@ -482,7 +477,7 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
     ++stats.refilled_voxels;
     touched.push_back(v);
     for (int64_t off : grid.neighbour_offsets())
-      if (IsOutside(grid.at(v + off)) && region.contains(v + off)) queue.push_back(v + off);
+      if (IsOutside(grid.at(v + off)) && region.test(v + off)) queue.push_back(v + off);
   };
   for (;;) {
     while (!queue.empty()) {
@@ -513,11 +508,19 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
     }
     if (!closed) break;
   }
-  // Settle the positions of the refilled voxels and of the solid around them.
-  for (int64_t v : touched) {
+  // Settle the positions of the refilled voxels and of the solid around them, each once
+  // (`rejected` marks them now): settling changes no voxel's outside bit, so a voxel settles
+  // to the same state whenever it is settled, and again to the same.
+  rejected.clear_all();
+  auto settle = [&](int64_t v) {
+    if (rejected.test(v)) return;
+    rejected.set(v);
     grid.set(v, Settled(grid, v));
+  };
+  for (int64_t v : touched) {
+    settle(v);
     for (int64_t off : grid.neighbour_offsets())
-      if (!IsOutside(grid.at(v + off))) grid.set(v + off, Settled(grid, v + off));
+      if (!IsOutside(grid.at(v + off))) settle(v + off);
   }
   if (cancel.cancelled()) return absl::CancelledError("gap refill cancelled");
   return stats;

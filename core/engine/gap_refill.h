@@ -72,10 +72,12 @@ struct GapRefillStats {
 // neighbour becomes INSIDE: the membrane invariants still hold.
 // The region is read once, on the grid as it comes (the fill's own voxels would block the
 // rays). Memory: 8 bytes per grid row and axis (the hard voxels' extremes per row; those
-// along z once more per thread while they are read, up to 8 threads), and hash
-// sets of the region's voxels; each loop-closing trial searches at most 2^20 outside voxels.
-// The grid's rows and the seeds are read on `threads` (>= 1), a slab of z planes a task, and
-// the fill runs on the calling thread: the same grid for any count.
+// along z once more per thread while they are read, up to 8 threads), a bit per block of
+// 8^3 voxels (the all-outside blocks the rays step over), two bits a voxel (the region and
+// the voxels read out of it: 512 MB on a 2e9-voxel grid) and hash sets of the pocket voxels;
+// each loop-closing trial searches at most 2^20 outside voxels.
+// The grid's rows, its outside blocks and the seeds are read on `threads` (>= 1), a slab of z
+// planes a task, and the fill runs on the calling thread: the same grid for any count.
 // Errors: Cancelled when `cancel` fires (the grid is then a valid membrane, partly
 // refilled); InvalidArgument for options out of range.
 absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefillOptions& options,

@@ -262,4 +262,30 @@ bool NoOutsideOfEight(const VoxelState* states) {
   return Matches<StatePredicate::kOutside>(Load8(states)) == 0;
 }
 
+int64_t FirstHardOf(const VoxelState* states, int64_t count) {
+  int64_t i = 0;
+#if defined(__SSE2__)
+  for (; i + 64 <= count; i += 64) {
+    const VoxelState* p = states + i;
+    if ((Matches16<StatePredicate::kHard>(p) | Matches16<StatePredicate::kHard>(p + 16) |
+         Matches16<StatePredicate::kHard>(p + 32) | Matches16<StatePredicate::kHard>(p + 48)) != 0)
+      break;
+  }
+#endif
+  for (; i + 8 <= count; i += 8) {
+    const uint64_t m = Matches<StatePredicate::kHard>(Load8(states + i));
+    if (m != 0) return i + __builtin_ctzll(m) / 8;
+  }
+  for (; i < count; ++i)
+    if (IsHard(states[i])) return i;
+  return count;
+}
+
+uint64_t OutsideBesideSolidOfEight(const VoxelState* states, const int64_t strides[3]) {
+  const uint64_t around = Load8(states - strides[0]) & Load8(states + strides[0]) &
+                          Load8(states - strides[1]) & Load8(states + strides[1]) &
+                          Load8(states - strides[2]) & Load8(states + strides[2]);
+  return Load8(states) & ~around & kHigh;
+}
+
 }  // namespace membrane

@@ -62,6 +62,15 @@ bool NoHardOfEight(const VoxelState* states);
 bool AllOutsideOfEight(const VoxelState* states);
 bool NoOutsideOfEight(const VoxelState* states);
 
+// Index of the first hard state (IsHard) among states[0, count), or count when none is: a
+// scan for a grid's few hard voxels reads sixty-four states a step where none is.
+int64_t FirstHardOf(const VoxelState* states, int64_t count);
+
+// The top bit of byte k (k < 8) set when states[k] is outside and one of its six face
+// neighbours is not (an outside voxel beside the solid), the others clear. `strides` are the
+// grid's (1, nx, nx * ny); the face neighbours of all eight must lie in the array.
+uint64_t OutsideBesideSolidOfEight(const VoxelState* states, const int64_t strides[3]);
+
 }  // namespace membrane
 
 #endif  // MEMBRANE_CORE_ENGINE_STATE_PLANES_H_

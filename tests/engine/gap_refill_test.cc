@@ -6,8 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <functional>
+#include <random>
 #include <utility>
+#include <vector>
 
 #include "core/engine/membrane_invariants.h"
 #include "core/engine/voxel_topology.h"
@@ -286,6 +290,127 @@ TEST(RefillGapChannels, AnOpenContainerKeepsItsInside) {
   SetFinalMembraneStates(grid);
   ExpectValidMembrane(grid);
   EXPECT_EQ(ExpectNothingRefilled(grid, GapRefillOptions{}).pocket_voxels, 0);
+}
+
+// A random final membrane for the refill: a solid box at a random place in a grid of random
+// size (no side a multiple of 8), its skin hard but for random gaps, from each gap a channel
+// carved into the solid, behind some of them a hollow under the skin, and random notches in
+// the skin. Draws from std::mt19937 alone (its output is fixed by the standard), so a seed
+// gives the same grid everywhere.
+VoxelGrid RandomCarvedBox(uint32_t seed) {
+  std::mt19937 rng(seed);
+  auto pick = [&](int lo, int hi) { return lo + static_cast<int>(rng() % (hi - lo + 1)); };
+  std::array<int, 3> dims, at, side;
+  for (int d = 0; d < 3; ++d) {
+    side[d] = pick(18, 34);
+    do dims[d] = side[d] + pick(8, 40);
+    while (dims[d] % 8 == 0);
+    at[d] = pick(3, dims[d] - side[d] - 3);
+  }
+  struct Box3 {
+    std::array<int, 3> lo, hi;  // box coordinates, inclusive
+    bool Holds(const std::array<int, 3>& p) const {
+      for (int d = 0; d < 3; ++d)
+        if (p[d] < lo[d] || p[d] > hi[d]) return false;
+      return true;
+    }
+  };
+  std::vector<Box3> gaps, carved;
+  const int channels = pick(2, 5);
+  for (int k = 0; k < channels; ++k) {
+    const int a = pick(0, 2), far = pick(0, 1);
+    Box3 gap, channel;
+    for (int d = 0; d < 3; ++d) {
+      if (d == a) continue;
+      const int width = pick(2, side[d] / 2);
+      gap.lo[d] = pick(1, side[d] - width - 2);
+      gap.hi[d] = gap.lo[d] + width + 1;
+      channel.lo[d] = gap.lo[d] + 1;
+      channel.hi[d] = gap.hi[d] - 1;
+    }
+    const int depth = pick(2, side[a] - 4);
+    gap.lo[a] = gap.hi[a] = far ? side[a] - 1 : 0;
+    channel.lo[a] = far ? side[a] - depth : 0;
+    channel.hi[a] = far ? side[a] - 1 : depth - 1;
+    gaps.push_back(gap);
+    carved.push_back(channel);
+    if (pick(0, 2) == 0) {  // a hollow under the skin, entered through the channel
+      Box3 hollow = channel;
+      for (int d = 0; d < 3; ++d) {
+        if (d == a) continue;
+        hollow.lo[d] = std::max(1, channel.lo[d] - pick(1, 6));
+        hollow.hi[d] = std::min(side[d] - 2, channel.hi[d] + pick(1, 6));
+      }
+      hollow.lo[a] = far ? side[a] - 1 - pick(2, 6) : 1;
+      hollow.hi[a] = far ? side[a] - 2 : pick(2, 6);
+      carved.push_back(hollow);
+    }
+  }
+  const int notches = pick(0, 12);
+  for (int k = 0; k < notches; ++k) {
+    const int a = pick(0, 2), far = pick(0, 1);
+    Box3 notch;
+    for (int d = 0; d < 3; ++d) notch.lo[d] = notch.hi[d] = pick(1, side[d] - 2);
+    notch.lo[a] = notch.hi[a] = far ? side[a] - 1 : 0;
+    carved.push_back(notch);
+  }
+  VoxelGrid grid(dims, {0, 0, 0}, 1.0, OutsideState(1));
+  std::array<int, 3> p;
+  for (p[2] = 0; p[2] < side[2]; ++p[2])
+    for (p[1] = 0; p[1] < side[1]; ++p[1])
+      for (p[0] = 0; p[0] < side[0]; ++p[0]) {
+        const int64_t v = grid.Index(p[0] + at[0], p[1] + at[1], p[2] + at[2]);
+        const bool skin = std::min({p[0], p[1], p[2], side[0] - 1 - p[0], side[1] - 1 - p[1],
+                                    side[2] - 1 - p[2]}) == 0;
+        auto in = [&](const std::vector<Box3>& boxes) {
+          return std::any_of(boxes.begin(), boxes.end(), [&](const Box3& b) { return b.Holds(p); });
+        };
+        if (in(carved)) {
+          grid.set(v, OutsideState(9));
+        } else {
+          grid.set(v, skin && !in(gaps) ? kInsideHard : kInsideSoft);
+        }
+      }
+  SetFinalMembraneStates(grid);
+  return grid;
+}
+
+// FNV-1a of the grid's states: the refill's result in one number.
+uint64_t StatesHash(const VoxelGrid& grid) {
+  uint64_t h = 14695981039346656037ull;
+  for (VoxelState s : grid.states()) h = (h ^ s) * 1099511628211ull;
+  return h;
+}
+
+// On random carved boxes the refill gives, on 1 and 2 threads, the grids and counts that
+// main 4639d03's refill gave (hash sets for the region, a voxel walk for each ray, each byte
+// of the scans tested): the bitsets, the block walks and the word scans change no voxel.
+TEST(RefillGapChannels, RandomCarvedBoxesAsBefore) {
+  struct Expected {
+    uint32_t seed;
+    int64_t refilled, pockets;
+    int loops;
+    uint64_t hash;
+  };
+  const Expected expected[] = {
+      {1, 1748, 0, 0, 12164513874134307355ull}, {2, 1143, 0, 0, 11187835269516572331ull},
+      {3, 480, 56, 0, 14898563732693365589ull},  {4, 623, 0, 0, 15395231593075902084ull},
+      {5, 5, 0, 0, 2664934846284182520ull},      {6, 583, 0, 0, 6079270907103977274ull},
+      {7, 704, 0, 0, 13301417748171562950ull},   {8, 3149, 212, 0, 6463489895353110560ull},
+  };
+  for (const Expected& e : expected)
+    for (int threads : {1, 2}) {
+      VoxelGrid grid = RandomCarvedBox(e.seed);
+      ExpectValidMembrane(grid);
+      absl::StatusOr<GapRefillStats> stats =
+          RefillGapChannels(grid, GapRefillOptions{}, CancelToken::Never(), threads);
+      ASSERT_TRUE(stats.ok()) << stats.status();
+      EXPECT_EQ(stats->refilled_voxels, e.refilled) << "seed " << e.seed << ", " << threads;
+      EXPECT_EQ(stats->pocket_voxels, e.pockets) << "seed " << e.seed << ", " << threads;
+      EXPECT_EQ(stats->loops_closed, e.loops) << "seed " << e.seed << ", " << threads;
+      EXPECT_EQ(StatesHash(grid), e.hash) << "seed " << e.seed << ", " << threads;
+      ExpectValidMembrane(grid);
+    }
 }
 
 TEST(RefillGapChannels, DisabledChangesNothing) {

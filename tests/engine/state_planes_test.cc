@@ -143,5 +143,49 @@ TEST(StatePlanes, NoHardAndAllOutsideOfEightTestEachOfTheEight) {
   }
 }
 
+// Random states with rare hard ones (the grid's few data voxels among outside and soft ones),
+// searched from every start for every count across the 64- and 8-state steps.
+TEST(StatePlanes, FirstHardOfFindsTheFirstHardState) {
+  std::mt19937 rng(11);
+  const std::vector<VoxelState> all = AllStates();
+  std::vector<VoxelState> s(700);
+  for (VoxelState& v : s) {
+    v = all[rng() % all.size()];
+    if (IsHard(v) && rng() % 20 != 0) v = kInsideSoft;
+  }
+  for (int64_t begin = 0; begin < 80; ++begin)
+    for (int64_t count = 0; begin + count <= static_cast<int64_t>(s.size()); count += 1 + count / 8) {
+      int64_t expected = 0;
+      while (expected < count && !IsHard(s[static_cast<size_t>(begin + expected)])) ++expected;
+      EXPECT_EQ(FirstHardOf(s.data() + begin, count), expected) << begin << " " << count;
+    }
+}
+
+// On a random grid whose states are mostly outside, the eight bits are, voxel by voxel,
+// "outside with a face neighbour that is not".
+TEST(StatePlanes, OutsideBesideSolidOfEightIsTheFaceNeighbourTest) {
+  const int nx = 21, ny = 6, nz = 5;
+  std::mt19937 rng(5);
+  const std::vector<VoxelState> all = AllStates();
+  std::vector<VoxelState> s(static_cast<size_t>(nx * ny * nz));
+  for (VoxelState& v : s) v = rng() % 4 == 0 ? all[rng() % all.size()] : OutsideState(2);
+  const int64_t strides[3] = {1, nx, nx * ny};
+  for (int z = 1; z < nz - 1; ++z)
+    for (int y = 1; y < ny - 1; ++y)
+      for (int x = 1; x + 8 <= nx - 1; ++x) {
+        const int64_t v = x + strides[1] * y + strides[2] * z;
+        const uint64_t bits = OutsideBesideSolidOfEight(s.data() + v, strides);
+        for (int k = 0; k < 8; ++k) {
+          bool beside = false;
+          for (int64_t step : strides)
+            beside = beside || !IsOutside(s[static_cast<size_t>(v + k - step)]) ||
+                     !IsOutside(s[static_cast<size_t>(v + k + step)]);
+          const bool expected = IsOutside(s[static_cast<size_t>(v + k)]) && beside;
+          EXPECT_EQ(((bits >> (8 * k + 7)) & 1) != 0, expected) << x + k << " " << y << " " << z;
+          EXPECT_EQ(bits & ~0x8080808080808080ull, 0u);
+        }
+      }
+}
+
 }  // namespace
 }  // namespace membrane

@@ -250,18 +250,6 @@ int FirstBoundaryOfEight(const VoxelState* states) {
   return b == 0 ? 8 : __builtin_ctzll(b) / 8;  // little-endian load: byte k is bits 8k..
 }
 
-bool NoHardOfEight(const VoxelState* states) {
-  return Matches<StatePredicate::kHard>(Load8(states)) == 0;
-}
-
-bool AllOutsideOfEight(const VoxelState* states) {
-  return Matches<StatePredicate::kOutside>(Load8(states)) == kHigh;
-}
-
-bool NoOutsideOfEight(const VoxelState* states) {
-  return Matches<StatePredicate::kOutside>(Load8(states)) == 0;
-}
-
 int64_t FirstHardOf(const VoxelState* states, int64_t count) {
   int64_t i = 0;
 #if defined(__SSE2__)

@@ -55,13 +55,6 @@ StateCounts CountStates(absl::Span<const VoxelState> states, int threads = 1);
 // (IsBoundary), or 8 when none is: lets a scan for boundary voxels skip eight at a time.
 int FirstBoundaryOfEight(const VoxelState* states);
 
-// True when none of the eight states at `states` is hard (IsHard), resp. when all eight are
-// outside, resp. none is: lets a scan of the grid for hard voxels, for outside voxels beside
-// the solid, or for outside voxels at all step over eight voxels at a time.
-bool NoHardOfEight(const VoxelState* states);
-bool AllOutsideOfEight(const VoxelState* states);
-bool NoOutsideOfEight(const VoxelState* states);
-
 // Index of the first hard state (IsHard) among states[0, count), or count when none is: a
 // scan for a grid's few hard voxels reads sixty-four states a step where none is.
 int64_t FirstHardOf(const VoxelState* states, int64_t count);

@@ -129,20 +129,6 @@ TEST(StatePlanes, FirstBoundaryOfEightFindsTheFirstBoundaryState) {
   }
 }
 
-// Every state at every one of the eight places, the other seven set to a state that gives
-// the opposite answer on its own.
-TEST(StatePlanes, NoHardAndAllOutsideOfEightTestEachOfTheEight) {
-  for (VoxelState v : AllStates()) {
-    for (int at = 0; at < 8; ++at) {
-      VoxelState eight[8];
-      for (int k = 0; k < 8; ++k) eight[k] = k == at ? v : kInsideSoft;
-      EXPECT_EQ(NoHardOfEight(eight), !IsHard(v)) << "state " << int(v) << " at " << at;
-      for (int k = 0; k < 8; ++k) eight[k] = k == at ? v : OutsideState(3);
-      EXPECT_EQ(AllOutsideOfEight(eight), IsOutside(v)) << "state " << int(v) << " at " << at;
-    }
-  }
-}
-
 // Random states with rare hard ones (the grid's few data voxels among outside and soft ones),
 // searched from every start for every count across the 64- and 8-state steps.
 TEST(StatePlanes, FirstHardOfFindsTheFirstHardState) {

@@ -102,12 +102,20 @@ struct LocalSystem {
   Rows nb;                      // rows of the first m local vertices
 };
 
-LocalSystem Localize(const Rows& nb, const std::vector<int32_t>& free, bool two_rings) {
+// Local numbers by mesh vertex (-1: none yet), in an array over the mesh or a hash map.
+struct ArrayNumbers {
+  std::vector<int32_t> local;
+  int32_t& operator[](int32_t v) { return local[v]; }
+};
+struct HashNumbers {
+  absl::flat_hash_map<int32_t, int32_t> local;
+  int32_t& operator[](int32_t v) { return local.try_emplace(v, -1).first->second; }
+};
+
+template <typename Numbers>
+LocalSystem LocalizeWith(const Rows& nb, const std::vector<int32_t>& free, bool two_rings,
+                         Numbers& local) {
   LocalSystem s;
-  // Local numbers by mesh vertex (-1: none yet): an array over the mesh, a pass of 4 bytes a
-  // vertex, against a hash map's insertions for the region's three rings (2M for a 10M-point
-  // scan's largest cap, called once per solve).
-  std::vector<int32_t> local(nb.start.size() - 1, -1);
   auto add = [&](int32_t v) {
     if (local[v] >= 0) return;
     local[v] = static_cast<int32_t>(s.vertex.size());
@@ -128,6 +136,21 @@ LocalSystem Localize(const Rows& nb, const std::vector<int32_t>& free, bool two_
     for (const int32_t* u = nb.begin(s.vertex[i]); u != nb.end(s.vertex[i]); ++u)
       *out++ = local[*u];
   return s;
+}
+
+LocalSystem Localize(const Rows& nb, const std::vector<int32_t>& free, bool two_rings) {
+  // The same numbers either way. An array over the mesh is a pass of 4 bytes a vertex, a
+  // hash map an insertion for each vertex of the region's rings: the array for a large
+  // region (a 10M-point scan's largest cap: 2M insertions a solve), the map for a small one
+  // (that scan's mesh makes the array 28 MB, and its caps take a hundred small solves).
+  const size_t vertices = nb.start.size() - 1;
+  if (free.size() * 64 >= vertices) {
+    ArrayNumbers numbers{std::vector<int32_t>(vertices, -1)};
+    return LocalizeWith(nb, free, two_rings, numbers);
+  }
+  HashNumbers numbers;
+  numbers.local.reserve(free.size() * 3);
+  return LocalizeWith(nb, free, two_rings, numbers);
 }
 
 // Conjugate gradients over the free vertices, every other vertex fixed, for the graph
@@ -495,12 +518,15 @@ std::optional<Tube> FindTube(const TriangleMesh& mesh, const Rows& nb, const Row
 // region carries them to the cap's vertices, and the vertices k rings from the fixed ones
 // move by min(k / rim_rings, 1) of `length` along theirs: the first rim_rings rings stretch
 // along the walls, the rest of the cap moves whole (where the directions disagree, their
-// harmonic mean is shorter). False when `cancel` fired (x then unchanged).
+// harmonic mean is shorter). False when `cancel` fired (x then unchanged). `field` is
+// scratch of x.size() zero vectors, zero again on return: a sweep reads and writes only the
+// region and its ring, and a 10M-point scan's dozens of swept caps would otherwise each fill
+// 170 MB.
 bool SweepCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
               const std::vector<int32_t>& region, const std::vector<char>& free,
               const std::vector<char>& gap, double length, const std::optional<Vec3d>& axis,
               const HoleCapOptions& options, std::vector<Vec3d>& x,
-              const CancelToken& cancel) {
+              std::vector<Vec3d>& field, const CancelToken& cancel) {
   Vec3d middle{0, 0, 0};
   int inside = 0;
   for (int32_t v : region)
@@ -509,7 +535,12 @@ bool SweepCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
       ++inside;
     }
   middle = (1.0 / std::max(inside, 1)) * middle;
-  std::vector<Vec3d> field(x.size(), Vec3d{0, 0, 0});
+  auto clear_field = [&] {
+    for (int32_t v : region) {
+      field[v] = Vec3d{0, 0, 0};
+      for (const int32_t* u = nb.begin(v); u != nb.end(v); ++u) field[*u] = Vec3d{0, 0, 0};
+    }
+  };
   absl::flat_hash_map<int32_t, int> rings;
   std::vector<int32_t> frontier;
   for (int32_t v : region)
@@ -538,14 +569,17 @@ bool SweepCap(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
   std::vector<int32_t> sorted = region;
   std::sort(sorted.begin(), sorted.end());
   // Unit directions: `tolerance` read as a share of one.
-  if (Solve(false, nb, sorted, field, options.harmonic_iterations, options.tolerance, cancel) < 0)
+  if (Solve(false, nb, sorted, field, options.harmonic_iterations, options.tolerance, cancel) < 0) {
+    clear_field();
     return false;
+  }
   const double ramp = std::max(1, options.rim_rings);
   for (int32_t v : region) {
     const auto it = rings.find(v);
     if (it == rings.end()) continue;
     x[v] = x[v] + (length * std::min(1.0, it->second / ramp)) * field[v];
   }
+  clear_field();
   return true;
 }
 
@@ -1186,6 +1220,7 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   // Posts whose end the hole swallowed run on past the rim (HoleCapOptions::swept_length,
   // spline_swept_length), held caps where their points agree. A rim in its plane (the
   // harmonic start: an open flat base) is no post.
+  std::vector<Vec3d> sweep_field;  // SweepCap's scratch, made for the first swept cap
   for (size_t r = 0; r < regions.size(); ++r) {
     const double length = starts[r] == CapStart::kWrapped  ? options.swept_length
                           : starts[r] == CapStart::kSpline ? options.spline_swept_length
@@ -1206,8 +1241,9 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
     // the middle of the cap.
     const std::optional<Vec3d> along =
         starts[r] == CapStart::kSpline ? std::optional<Vec3d>(tube->axis) : std::nullopt;
+    if (sweep_field.empty()) sweep_field.assign(x.size(), Vec3d{0, 0, 0});
     if (!SweepCap(mesh, nb, star, regions[r], free, gap, length * tube->radius * l, along,
-                  options, x, cancel))
+                  options, x, sweep_field, cancel))
       return absl::CancelledError("hole caps cancelled");
     if (held) {
       std::vector<Vec3d> swept;

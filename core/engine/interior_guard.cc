@@ -139,6 +139,12 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
   VoxelGrid coarse = CoarseGrid(grid, k, threads);
   ShrinkOptions coarse_options = options;
   coarse_options.connect_inside_hard = false;
+  // No guard of its own: on a grid 16 times coarser a coarse voxel is hard when one of 4096
+  // fine ones is, the barely seen inner sides of close parts (a cow's four legs) join into
+  // walls, and the space they enclose is held as an interior down to the fine grid, where the
+  // membrane spans it as a web (docs/engine-decisions.md, "Interiors held by a coarser
+  // membrane").
+  coarse_options.interior_guard.enabled = false;
   absl::StatusOr<ShrinkResult> shrunk = ShrinkMembrane(coarse, {}, coarse_options, {}, cancel);
   if (!shrunk.ok()) return shrunk.status();
   stats.levels = 1 + shrunk->interior_guard.levels;

@@ -75,7 +75,7 @@ struct GuardedBand {
 };
 
 struct InteriorGuardStats {
-  int levels = 0;             // coarse membranes built, this one and the coarser ones
+  int levels = 0;             // coarse membranes built: 1 when the guard ran, else 0
   int64_t core_voxels = 0;    // coarse voxels of the solid with no hard voxel in their block
   int64_t frozen_voxels = 0;  // fine voxels frozen, the band's included
   int64_t band_frozen = 0;    // fine voxels of the band the core's wave reached first
@@ -85,9 +85,9 @@ struct InteriorGuardStats {
 
 // Input: a voxelized grid before its first generation (padding outside, the data region
 // inside soft or hard, its outer layer boundary). Builds the grid `factor` times coarser (a
-// coarse voxel hard when any of its fine voxels is) and shrinks it with `options` (its own
-// interior guard included, so coarser levels hold it in turn; without points: the thin-part
-// exception, the split and the hole opening are off there; no dents). Then it freezes:
+// coarse voxel hard when any of its fine voxels is) and shrinks it with `options` (without an
+// interior guard of its own, and without points: the thin-part exception, the split and the
+// hole opening are off there; no dents). Then it freezes:
 //   - the core: the fine INSIDE soft voxels of every coarse voxel of the coarse solid with no
 //     hard voxel in its 3x3x3 block and at most max_open_rays of its 6 axis rays reaching the
 //     coarse outside before a hard voxel (an interior seen through one data hole at most; a

@@ -1,7 +1,8 @@
 // The interior guard: a closed sphere's frozen voxels all lie inside it and hold its interior;
 // a sphere scanned with range noise and a wide hole keeps its interior through the generations
 // (the plates that get through the hole do not hollow it), a torus keeps its hole free of
-// frozen voxels, small grids are left alone, and so are data of two pieces when asked.
+// frozen voxels, the coarse membrane has no guard of its own, small grids are left alone, and
+// so are data of two pieces when asked.
 #include "core/engine/interior_guard.h"
 
 #include <gtest/gtest.h>
@@ -182,6 +183,19 @@ TEST(InteriorGuard, ReleasesTheBandOnce) {
   grid.set(fine, kInsideFrozen);
   EXPECT_EQ(ReleaseGuardedBand(grid, band), 0);
   EXPECT_EQ(grid.at(fine), kInsideFrozen);
+}
+
+// The coarse membrane runs no guard of its own, even where its grid is wide enough for one
+// (here 28 voxels a side against a min_coarse_axis of 4): a grid 16 times coarser joins the
+// barely seen inner sides of close parts into walls and holds the space between them.
+TEST(InteriorGuard, BuildsOneCoarseMembrane) {
+  VoxelGrid grid = GridOf(SphereScan(200000, 0));
+  ShrinkOptions o = GuardOn();
+  o.interior_guard.min_coarse_axis = 4;
+  absl::StatusOr<InteriorGuardStats> stats = GuardInteriors(grid, o, CancelToken::Never());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->levels, 1);
+  EXPECT_GT(stats->core_voxels, 0);
 }
 
 TEST(InteriorGuard, LeavesSmallGridsAlone) {

@@ -57,6 +57,26 @@ void ConvertToBoundary(const FlatBitset& adjacent, VoxelState* s, FlatBitset& co
                 });
 }
 
+// Undoes the planes' apply of a rejected (or cancelled) result: every voxel of `fresh` gets
+// back its soft state (boundary where `was_boundary_soft`, inside elsewhere) and every voxel
+// of `converted` loses the boundary bit. Blocks of words on `threads`: a voxel's bits are its
+// word's block's alone, and `fresh` (outside after the sweeps) and `converted` (not outside)
+// share no voxel, so the grid is the same for any count.
+void RestoreStates(const FlatBitset& fresh, const FlatBitset& was_boundary_soft,
+                   const FlatBitset& converted, VoxelState* s, int threads) {
+  ForWordBlocks(threads, static_cast<int64_t>(fresh.word_count()),
+                [&](int64_t, int64_t begin, int64_t end) {
+                  fresh.ForEachInWords(begin, end, [&](int64_t i) {
+                    s[i] = was_boundary_soft.test(i) ? kBoundarySoft : kInsideSoft;
+                    return true;
+                  });
+                  converted.ForEachInWords(begin, end, [&](int64_t i) {
+                    s[i] &= static_cast<VoxelState>(~kBoundaryBit);
+                    return true;
+                  });
+                });
+}
+
 // Spans the closed form's checks are split into: one on one thread or for fewer than 2^12
 // items (a grid of a few hundred thousand voxels, a short list), where starting threads costs
 // more than the checks; otherwise 64 a thread, so that a span after an early refusal stops
@@ -177,12 +197,11 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
 
   // Rejected or cancelled: restore, and (when rejected) let the chains run this generation.
   auto restore = [&] {
-    if (sparse) {
-      for (size_t k = 0; k < fresh_list.size(); ++k) s[fresh_list[k]] = fresh_before[k];
-    } else {
-      fresh.ForEach(
-          [&](int64_t i) { s[i] = was_boundary_soft.test(i) ? kBoundarySoft : kInsideSoft; });
+    if (!sparse) {
+      RestoreStates(fresh, was_boundary_soft, converted, s, planes.threads());
+      return;
     }
+    for (size_t k = 0; k < fresh_list.size(); ++k) s[fresh_list[k]] = fresh_before[k];
     converted.ForEach([&](int64_t i) { s[i] &= static_cast<VoxelState>(~kBoundaryBit); });
   };
   // Checks: the incursion test where the neighbourhood changed, and the guard on the new

@@ -21,10 +21,10 @@ namespace {
 using testing::ShrinkCloud;
 using testing::SynthCloud;
 
-// Shrinks `cloud` at `factor` on 1, 2 and 3 threads: the same states, the same generations.
+// Shrinks `cloud` at `factor` with `options` on 1, 2 and 3 threads: the same states, the same
+// generations.
 void ExpectSameShrinkForAnyThreadCount(const PointCloud& cloud, double factor,
-                                       const std::string& what) {
-  ShrinkOptions options;
+                                       const std::string& what, ShrinkOptions options = {}) {
   options.threads_min_voxels = 0;  // these grids are under the default
   auto one = ShrinkCloud(cloud, factor, options);
   ASSERT_TRUE(one.ok()) << what << ": " << one.status();
@@ -68,6 +68,21 @@ TEST(ShrinkThreads, TorusIsTheSameForAnyThreadCount) {
 TEST(ShrinkThreads, SparseTwoSpheresAreTheSameForAnyThreadCount) {
   // Half the formula-(1) voxel: gaps in the data, so the chains and the guard run too.
   ExpectSameShrinkForAnyThreadCount(SynthCloud("two-spheres", 40000), 0.5, "two-spheres");
+}
+
+TEST(ShrinkThreads, RejectedClosedFormsAreRestoredOnAnyThreadCount) {
+  // The capped sphere's checks refuse a closed form; applied by planes, its restore runs on
+  // blocks of words (250k points: a grid of several word blocks).
+  ShrinkOptions by_planes;
+  by_planes.closed_form_voxelwise_ratio = 0;
+  const PointCloud cloud = SynthCloud("capped-sphere", 250000);
+  auto one = ShrinkCloud(cloud, 1.0, by_planes);
+  ASSERT_TRUE(one.ok()) << one.status();
+  int rejected = 0;
+  for (const GenerationStats& g : one->result.generations)
+    rejected += !g.closed_form && g.closed_form_rounds > 0;
+  ASSERT_GT(rejected, 0);
+  ExpectSameShrinkForAnyThreadCount(cloud, 1.0, "capped-sphere by planes", by_planes);
 }
 
 TEST(ShrinkThreads, RealScanIsTheSameForAnyThreadCount) {

@@ -147,7 +147,7 @@ absl::StatusOr<InteriorGuardStats> GuardInteriors(VoxelGrid& grid, const ShrinkO
   coarse_options.interior_guard.enabled = false;
   absl::StatusOr<ShrinkResult> shrunk = ShrinkMembrane(coarse, {}, coarse_options, {}, cancel);
   if (!shrunk.ok()) return shrunk.status();
-  stats.levels = 1 + shrunk->interior_guard.levels;
+  stats.levels = 1;
 
   // Hard voxels and their 26 neighbours (the padding keeps every hard voxel off the array
   // border, so the dilation does not wrap).

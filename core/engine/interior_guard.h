@@ -49,9 +49,9 @@ struct InteriorGuardOptions {
 // is dense for its voxel whatever the grid's width: dense scans get grids 250-350 voxels wide
 // at 1M to 50M points, under the 4 x 96 at which min_coarse_axis lets the guard run, and their
 // plates hollow the interior through the unscanned base as formula (1)'s do at 700k points.
-// Such a grid is guarded from this coarse width (128 fine voxels). Not lower: the coarse
-// membrane of a 254-voxel grid would run a guard of its own on a grid 16 voxels wide, too
-// coarse to hold anything (the 1M bunny: genus [2] where 32 gives [0]).
+// Such a grid is guarded from this coarse width (128 fine voxels). Not lower: a width of 16,
+// measured with a second guard level on a coarse grid 16 voxels wide (docs/engine-decisions.md,
+// "Dense scans' interiors"), gave the 1M bunny genus [2] where 32 gives [0].
 inline constexpr int kDenseScanMinCoarseAxis = 32;
 // ... and its band is held through the plates of 3: a dense scan's skin is thick and fuzzy, and
 // the plates of 5 and 3 that meet its inner side from a hollow made through the base cut

@@ -106,7 +106,6 @@ int64_t FreezeCore(VoxelGrid& grid, const VoxelGrid& coarse, int k, const Marks&
 
 InteriorGuardOptions DenseScanGuard(InteriorGuardOptions options) {
   options.min_coarse_axis = std::min(options.min_coarse_axis, kDenseScanMinCoarseAxis);
-  options.band_release_below = std::min(options.band_release_below, kDenseScanBandReleaseBelow);
   options.one_piece_only = true;
   return options;
 }

@@ -36,8 +36,11 @@ struct InteriorGuardOptions {
   // outside before a hard voxel: one data hole seen, not a web or a plate left frozen.
   int max_open_rays = 1;
   // The band is released before the first generation whose plate is below this size
-  // (ReleaseGuardedBand); 0: kept to the end of the generations.
-  int band_release_below = 5;
+  // (ReleaseGuardedBand); 0: kept to the end of the generations. Through the plates of 3 and
+  // 4: a scan's skin at the voxel is porous (scan lines wider apart than a voxel, fuzz), and
+  // the plates of that size that meet its inner side from a hollow made through the base
+  // riddle it with handles (docs/engine-decisions.md, "Interiors held by a coarser membrane").
+  int band_release_below = 3;
   // The guard runs only where the data are one piece (FindDataPieces: fewer than two
   // 26-components of hard voxels holding ShrinkOptions::separation.min_piece_fraction of them
   // each). The coarse grid joins pieces fewer than `factor` voxels apart, and its membrane,
@@ -53,15 +56,10 @@ struct InteriorGuardOptions {
 // measured with a second guard level on a coarse grid 16 voxels wide (docs/engine-decisions.md,
 // "Dense scans' interiors"), gave the 1M bunny genus [2] where 32 gives [0].
 inline constexpr int kDenseScanMinCoarseAxis = 32;
-// ... and its band is held through the plates of 3: a dense scan's skin is thick and fuzzy, and
-// the plates of 5 and 3 that meet its inner side from a hollow made through the base cut
-// handles into it (the bunny's 1M and 3M scans, docs/engine-decisions.md).
-inline constexpr int kDenseScanBandReleaseBelow = 3;
 
 // `options` for a grid whose voxel the points' noise chose: min_coarse_axis at most
-// kDenseScanMinCoarseAxis, band_release_below at most kDenseScanBandReleaseBelow,
-// one_piece_only (objects 5 voxels apart, cow-spot-belt's, are held apart by 1.25 coarse
-// voxels), the rest (enabled included) as given.
+// kDenseScanMinCoarseAxis, one_piece_only (objects 5 voxels apart, cow-spot-belt's, are held
+// apart by 1.25 coarse voxels), the rest (enabled included) as given.
 InteriorGuardOptions DenseScanGuard(InteriorGuardOptions options);
 
 // The coarse voxels of the band GuardInteriors froze, to release them later.

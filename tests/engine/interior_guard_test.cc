@@ -1,6 +1,7 @@
 // The interior guard: a closed sphere's frozen voxels all lie inside it and hold its interior;
 // a sphere scanned with range noise and a wide hole keeps its interior through the generations
-// (the plates that get through the hole do not hollow it), a torus keeps its hole free of
+// (the plates that get through the hole do not hollow it), a sphere scanned in lines wider apart
+// than the plates of 4 keeps its skin (the band is held through them), a torus keeps its hole free of
 // frozen voxels, the coarse membrane has no guard of its own, small grids are left alone, and
 // so are data of two pieces when asked.
 #include "core/engine/interior_guard.h"
@@ -48,6 +49,25 @@ std::vector<Point3f> Torus(int nu, int nv, double tube) {
       points.push_back({static_cast<float>(w * std::cos(u)), static_cast<float>(w * std::sin(u)),
                         static_cast<float>(tube * std::sin(v))});
     }
+  return points;
+}
+
+// Points on the unit sphere along circles of latitude `spacing` apart (a scanner's lines, dense
+// along each line), those within `base_hole` radians of (0, 0, -1) left out (an unscanned base).
+std::vector<Point3f> ScanLineSphere(double spacing, double base_hole) {
+  std::vector<Point3f> points;
+  const int lines = static_cast<int>(M_PI / spacing);
+  for (int l = 0; l <= lines; ++l) {
+    const double polar = M_PI * l / lines;
+    if (polar > M_PI - base_hole) continue;
+    const double z = std::cos(polar), rho = std::sin(polar);
+    const int n = std::max(1, static_cast<int>(2 * M_PI * rho / (0.25 * kVoxel)));
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * M_PI * i / n;
+      points.push_back({static_cast<float>(rho * std::cos(a)),
+                        static_cast<float>(rho * std::sin(a)), static_cast<float>(z)});
+    }
+  }
   return points;
 }
 
@@ -136,6 +156,38 @@ TEST(InteriorGuard, KeepsTheGenerationsOutOfTheInteriorBehindADataHole) {
   EXPECT_GT(without, 1000);
   EXPECT_EQ(with, 0) << "without the guard: " << without;
   EXPECT_EQ(genus_on, 0);
+}
+
+// Scan lines 4.5 voxels apart leave gaps that a plate of 4 passes. Released before the plates
+// of 4, the band lets those that come in through the base crawl between core and skin and
+// hollow the skin from inside, 5 voxels deep and more, all over the sphere; held through them,
+// they stop at the band.
+TEST(InteriorGuard, HoldsTheBandThroughThePlatesOfFour) {
+  const std::vector<Point3f> points = ScanLineSphere(4.5 * kVoxel, 0.5);
+  auto hollowed_skin = [&](const ShrinkOptions& options) {
+    VoxelGrid grid = GridOf(points);
+    absl::StatusOr<ShrinkResult> result =
+        ShrinkMembrane(grid, points, options, {}, CancelToken::Never());
+    EXPECT_TRUE(result.ok()) << result.status();
+    EXPECT_TRUE(CheckMembraneInvariants(grid, InvariantOptions()).ok());
+    const VoxelTopology topology = ComputeVoxelTopology(grid);
+    EXPECT_EQ(topology.shells, 1);
+    EXPECT_EQ(TotalGenus(topology), 0);
+    // Outside voxels more than 5 voxels under the skin, away from the base hole.
+    int64_t hollow = 0;
+    for (int64_t i = 0; i < grid.size(); ++i) {
+      if (!IsOutside(grid.at(i))) continue;
+      const std::array<double, 3> p = CentreOf(grid, i);
+      hollow += p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 0.9 * 0.9 && p[2] > -0.6;
+    }
+    return hollow;
+  };
+  ShrinkOptions released_before_4 = GuardOn();
+  released_before_4.interior_guard.band_release_below = 5;
+  const int64_t released = hollowed_skin(released_before_4);
+  const int64_t held = hollowed_skin(GuardOn());
+  EXPECT_GT(released, 3000);
+  EXPECT_LT(held * 5, released) << "held through the plates of 4: " << held;
 }
 
 TEST(InteriorGuard, LeavesATorusHoleFree) {
@@ -246,3 +298,4 @@ TEST(InteriorGuard, RefusesAFactorOutOfRange) {
 
 }  // namespace
 }  // namespace membrane
+

@@ -39,16 +39,16 @@ ReconstructionReport Reconstruct(const PointCloud& cloud, double voxel_size,
   return r.value_or(ReconstructionReport{});
 }
 
-TEST(DenseScanGuard, LowersTheWidthAndHoldsTheBandLonger) {
+TEST(DenseScanGuard, LowersTheWidthAndGuardsOnePieceOnly) {
   const InteriorGuardOptions given;
   const InteriorGuardOptions dense = DenseScanGuard(given);
   EXPECT_EQ(dense.min_coarse_axis, kDenseScanMinCoarseAxis);
-  EXPECT_EQ(dense.band_release_below, kDenseScanBandReleaseBelow);
+  EXPECT_EQ(dense.band_release_below, given.band_release_below);
   EXPECT_TRUE(dense.one_piece_only);
   EXPECT_EQ(dense.enabled, given.enabled);
   EXPECT_EQ(dense.factor, given.factor);
   EXPECT_EQ(dense.max_open_rays, given.max_open_rays);
-  // Never a wider threshold or a later release than asked for.
+  // Never a wider threshold than asked for.
   InteriorGuardOptions narrow;
   narrow.min_coarse_axis = 8;
   narrow.band_release_below = 0;

@@ -20,9 +20,9 @@ VoxelGrid CoarseGrid(const VoxelGrid& fine, int k, int threads) {
     origin[d] = fine.origin()[d] + kPad * l - kPad * k * l;
   }
   VoxelGrid coarse(dims, origin, k * l, VoxelGrid::Unset{});
-  // Before the first generation a data voxel's state has bit 1 set exactly when it is hard:
-  // eight voxels at a time are skipped when none has.
-  constexpr uint64_t kHardBits = 0x0202020202020202ull;
+  // Before the first generation a data voxel's state has bit 1 set exactly when it is hard and
+  // bit 2 when the interior guard froze it: eight voxels at a time are skipped when none has.
+  constexpr uint64_t kHardOrFrozenBits = 0x0606060606060606ull;
   const int64_t row = fine.dim(0) - 2 * kPad;
   RunTasks(threads, dims[2], [&](int, int64_t task) {
     const int cz = static_cast<int>(task);
@@ -36,13 +36,21 @@ VoxelGrid CoarseGrid(const VoxelGrid& fine, int k, int threads) {
           if (x + 8 <= row) {
             uint64_t word;
             std::memcpy(&word, states + x, 8);
-            if ((word & kHardBits) == 0) continue;
+            if ((word & kHardOrFrozenBits) == 0) continue;
           }
           for (int64_t i = x; i < std::min(row, x + 8); ++i) {
-            if (!IsHard(states[i])) continue;
+            const bool hard = IsHard(states[i]);
+            if (!hard && !IsFrozen(states[i])) continue;
             const int64_t c = coarse.Index(static_cast<int>(i / k) + kPad, (y - kPad) / k + kPad,
                                            cz);
-            coarse.set(c, IsBoundary(coarse.at(c)) ? kBoundaryHard : kInsideHard);
+            const VoxelState now = coarse.at(c);
+            if (IsHard(now)) continue;
+            const bool boundary = IsBoundary(now);
+            if (hard) {
+              coarse.set(c, boundary ? kBoundaryHard : kInsideHard);
+            } else {
+              coarse.set(c, boundary ? kBoundaryFrozen : kInsideFrozen);
+            }
           }
         }
       }

@@ -9,9 +9,11 @@ namespace membrane {
 
 // The grid `k` times coarser over the same data region, as Voxelize() leaves a grid: padding
 // outside, the data region inside with its outer layer boundary, a voxel hard when any of its
-// fine voxels is. Coarse voxel kPadding + c of an axis covers the fine voxels kPadding + c k
-// up to k of them, the last one clipped at the data region's end. `fine` must be as Voxelize()
-// left it (no outside voxel in its data region). A coarse z plane a task on `threads`.
+// fine voxels is, else frozen when any of its fine voxels is (the interior guard's: the big
+// plates on the coarse grid stop at the interior it holds, as the fine plates do). Coarse
+// voxel kPadding + c of an axis covers the fine voxels kPadding + c k up to k of them, the last
+// one clipped at the data region's end. `fine` must be as Voxelize() left it (no outside voxel
+// in its data region), frozen voxels allowed. A coarse z plane a task on `threads`.
 VoxelGrid CoarseGrid(const VoxelGrid& fine, int k, int threads);
 
 }  // namespace membrane

@@ -1,9 +1,9 @@
 // The interior guard: a closed sphere's frozen voxels all lie inside it and hold its interior;
 // a sphere scanned with range noise and a wide hole keeps its interior through the generations
-// (the plates that get through the hole do not hollow it), a sphere scanned in lines wider apart
-// than the plates of 4 keeps its skin (the band is held through them), a torus keeps its hole free of
-// frozen voxels, the coarse membrane has no guard of its own, small grids are left alone, and
-// so are data of two pieces when asked.
+// (the plates that get through the hole do not hollow it, on the grid or on a coarser one), a
+// sphere scanned in lines wider apart than the plates of 4 keeps its skin (the band is held
+// through them), a torus keeps its hole free of frozen voxels, the coarse membrane has no guard
+// of its own, small grids are left alone, and so are data of two pieces when asked.
 #include "core/engine/interior_guard.h"
 
 #include <gtest/gtest.h>
@@ -188,6 +188,49 @@ TEST(InteriorGuard, HoldsTheBandThroughThePlatesOfFour) {
   const int64_t held = hollowed_skin(GuardOn());
   EXPECT_GT(released, 3000);
   EXPECT_LT(held * 5, released) << "held through the plates of 4: " << held;
+}
+
+// The big plates on a grid 4 times coarser (coarse_plates.h, forced here from plates of 8)
+// stop at the guard's frozen interior as the grid's own plates do: their coarse grid holds it
+// (a coarse voxel frozen when one of its fine voxels is), and their lift leaves it alone.
+// Through a hole 1.1 wide the guard holds only part of the interior, and the coarse plates
+// must not carve more than the grid's own plates: without the frozen coarse voxels they
+// carved as much as with no guard at all.
+TEST(InteriorGuard, KeepsTheCoarsePlatesOutOfTheInterior) {
+  const std::vector<Point3f> points = SphereScan(100000, 1.1, 0.04);
+  // The outside voxels in r < 0.7 after the last generation.
+  auto hollow_after_generations = [&](const ShrinkOptions& options) {
+    VoxelGrid grid = GridOf(points);
+    const int generations = static_cast<int>(
+        PlateSizes({grid.dim(0) - 4, grid.dim(1) - 4, grid.dim(2) - 4}, options.schedule, 0)
+            .size());
+    int64_t hollow = 0;
+    absl::StatusOr<ShrinkResult> result = ShrinkMembrane(
+        grid, points, options,
+        [&](const GenerationStats& g) {
+          if (g.generation != generations) return;
+          for (int64_t i = 0; i < grid.size(); ++i) {
+            if (!IsOutside(grid.at(i))) continue;
+            const std::array<double, 3> p = CentreOf(grid, i);
+            hollow += p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 0.7 * 0.7;
+          }
+        },
+        CancelToken::Never());
+    EXPECT_TRUE(result.ok()) << result.status();
+    EXPECT_TRUE(CheckMembraneInvariants(grid, InvariantOptions()).ok());
+    EXPECT_EQ(ComputeVoxelTopology(grid).shells, 1);
+    return hollow;
+  };
+  ShrinkOptions coarse = GuardOn();
+  coarse.coarse_plates.min_voxels = 1;
+  coarse.coarse_plates.min_plate = 8;
+  ShrinkOptions unguarded = coarse;
+  unguarded.interior_guard.enabled = false;
+  const int64_t fine_only = hollow_after_generations(GuardOn());
+  const int64_t with_coarse = hollow_after_generations(coarse);
+  const int64_t without_guard = hollow_after_generations(unguarded);
+  EXPECT_LE(with_coarse, fine_only);
+  EXPECT_LT(with_coarse * 2, without_guard) << "with the coarse plates: " << with_coarse;
 }
 
 TEST(InteriorGuard, LeavesATorusHoleFree) {

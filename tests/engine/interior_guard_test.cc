@@ -95,6 +95,36 @@ ShrinkOptions GuardOn() {
   return o;
 }
 
+// Shrinks the grid of `points` with `options` and returns the outside voxels inside r < 0.7
+// after the last generation, before the passes after it (the refill would put them back): the
+// hollow the plates carved through a data hole. The membrane invariants hold, and the grid's
+// topology at the end is one shell; `genus` (may be null) receives its genus.
+int64_t HollowAfterGenerations(const std::vector<Point3f>& points, const ShrinkOptions& options,
+                               int* genus = nullptr) {
+  VoxelGrid grid = GridOf(points);
+  int64_t hollow = 0;
+  const int generations = static_cast<int>(
+      PlateSizes({grid.dim(0) - 4, grid.dim(1) - 4, grid.dim(2) - 4}, options.schedule, 0)
+          .size());
+  absl::StatusOr<ShrinkResult> result = ShrinkMembrane(
+      grid, points, options,
+      [&](const GenerationStats& g) {
+        if (g.generation != generations) return;
+        for (int64_t i = 0; i < grid.size(); ++i) {
+          if (!IsOutside(grid.at(i))) continue;
+          const std::array<double, 3> p = CentreOf(grid, i);
+          hollow += p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 0.7 * 0.7;
+        }
+      },
+      CancelToken::Never());
+  EXPECT_TRUE(result.ok()) << result.status();
+  EXPECT_TRUE(CheckMembraneInvariants(grid, InvariantOptions()).ok());
+  const VoxelTopology topology = ComputeVoxelTopology(grid);
+  EXPECT_EQ(topology.shells, 1);
+  if (genus != nullptr) *genus = TotalGenus(topology);
+  return hollow;
+}
+
 TEST(InteriorGuard, FreezesOnlyTheInteriorOfAScannedSphere) {
   VoxelGrid grid = GridOf(SphereScan(200000, 0));
   absl::StatusOr<InteriorGuardStats> stats = GuardInteriors(grid, GuardOn(), CancelToken::Never());
@@ -120,37 +150,11 @@ TEST(InteriorGuard, FreezesOnlyTheInteriorOfAScannedSphere) {
 
 TEST(InteriorGuard, KeepsTheGenerationsOutOfTheInteriorBehindADataHole) {
   const std::vector<Point3f> points = SphereScan(100000, 0.5, 0.04);
-  // The outside voxels inside the sphere after the last generation, before the passes after
-  // them (the refill would put them back): the hollow the plates carved through the base.
-  auto hollow_after_generations = [&](const ShrinkOptions& options, int* genus) {
-    VoxelGrid grid = GridOf(points);
-    int64_t hollow = 0;
-    const int generations = static_cast<int>(
-        PlateSizes({grid.dim(0) - 4, grid.dim(1) - 4, grid.dim(2) - 4}, options.schedule, 0)
-            .size());
-    absl::StatusOr<ShrinkResult> result = ShrinkMembrane(
-        grid, points, options,
-        [&](const GenerationStats& g) {
-          if (g.generation != generations) return;
-          for (int64_t i = 0; i < grid.size(); ++i) {
-            if (!IsOutside(grid.at(i))) continue;
-            const std::array<double, 3> p = CentreOf(grid, i);
-            hollow += p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 0.7 * 0.7;
-          }
-        },
-        CancelToken::Never());
-    EXPECT_TRUE(result.ok()) << result.status();
-    EXPECT_TRUE(CheckMembraneInvariants(grid, InvariantOptions()).ok());
-    const VoxelTopology topology = ComputeVoxelTopology(grid);
-    EXPECT_EQ(topology.shells, 1);
-    *genus = TotalGenus(topology);
-    return hollow;
-  };
   ShrinkOptions off = GuardOn();
   off.interior_guard.enabled = false;
-  int genus_off = -1, genus_on = -1;
-  const int64_t without = hollow_after_generations(off, &genus_off);
-  const int64_t with = hollow_after_generations(GuardOn(), &genus_on);
+  int genus_on = -1;
+  const int64_t without = HollowAfterGenerations(points, off);
+  const int64_t with = HollowAfterGenerations(points, GuardOn(), &genus_on);
   // Without the guard the plates that fit through the base carve the interior out; with it
   // they stop at the frozen interior.
   EXPECT_GT(without, 1000);
@@ -198,37 +202,14 @@ TEST(InteriorGuard, HoldsTheBandThroughThePlatesOfFour) {
 // carved as much as with no guard at all.
 TEST(InteriorGuard, KeepsTheCoarsePlatesOutOfTheInterior) {
   const std::vector<Point3f> points = SphereScan(100000, 1.1, 0.04);
-  // The outside voxels in r < 0.7 after the last generation.
-  auto hollow_after_generations = [&](const ShrinkOptions& options) {
-    VoxelGrid grid = GridOf(points);
-    const int generations = static_cast<int>(
-        PlateSizes({grid.dim(0) - 4, grid.dim(1) - 4, grid.dim(2) - 4}, options.schedule, 0)
-            .size());
-    int64_t hollow = 0;
-    absl::StatusOr<ShrinkResult> result = ShrinkMembrane(
-        grid, points, options,
-        [&](const GenerationStats& g) {
-          if (g.generation != generations) return;
-          for (int64_t i = 0; i < grid.size(); ++i) {
-            if (!IsOutside(grid.at(i))) continue;
-            const std::array<double, 3> p = CentreOf(grid, i);
-            hollow += p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 0.7 * 0.7;
-          }
-        },
-        CancelToken::Never());
-    EXPECT_TRUE(result.ok()) << result.status();
-    EXPECT_TRUE(CheckMembraneInvariants(grid, InvariantOptions()).ok());
-    EXPECT_EQ(ComputeVoxelTopology(grid).shells, 1);
-    return hollow;
-  };
   ShrinkOptions coarse = GuardOn();
   coarse.coarse_plates.min_voxels = 1;
   coarse.coarse_plates.min_plate = 8;
   ShrinkOptions unguarded = coarse;
   unguarded.interior_guard.enabled = false;
-  const int64_t fine_only = hollow_after_generations(GuardOn());
-  const int64_t with_coarse = hollow_after_generations(coarse);
-  const int64_t without_guard = hollow_after_generations(unguarded);
+  const int64_t fine_only = HollowAfterGenerations(points, GuardOn());
+  const int64_t with_coarse = HollowAfterGenerations(points, coarse);
+  const int64_t without_guard = HollowAfterGenerations(points, unguarded);
   EXPECT_LE(with_coarse, fine_only);
   EXPECT_LT(with_coarse * 2, without_guard) << "with the coarse plates: " << with_coarse;
 }

@@ -945,9 +945,14 @@ TEST_F(ServiceTest, WatchJobReattachesToARunningJobAndGetsItsMesh) {
 }
 
 TEST_F(ServiceTest, ShutdownMakesHealthNotServingAndRefusesNewJobs) {
+  // A held job keeps the shutdown in its grace period, with the gRPC server still up, until
+  // the new job has its answer: the service itself refuses it. (With nothing running the
+  // server can be gone by the time the call arrives, and gRPC cancels it instead.)
+  HoldDecodes();
   StartServer();
   EXPECT_EQ(Health(), "SERVING");
-  std::thread stopper([this] { server_->Shutdown(absl::Seconds(1)); });
+  ASSERT_FALSE(StartHeldJob().empty());
+  std::thread stopper([this] { server_->Shutdown(absl::Seconds(60)); });
   std::string health;
   WaitFor(
       [&] {
@@ -955,7 +960,8 @@ TEST_F(ServiceTest, ShutdownMakesHealthNotServingAndRefusesNewJobs) {
         return health != "SERVING";
       },
       30);
-  const CallResult r = Reconstruct(DracoCloud("sphere", 1000), {}, {}, 5);
+  const CallResult r = Reconstruct(DracoCloud("sphere", 1000), {}, {}, 30);
+  gate_->Open();  // the held job ends, and the shutdown with it
   stopper.join();
   EXPECT_TRUE(health == "NOT_SERVING" || health.rfind("ERROR", 0) == 0) << health;
   EXPECT_EQ(r.status.error_code(), grpc::StatusCode::UNAVAILABLE);

@@ -106,6 +106,7 @@ int64_t FreezeCore(VoxelGrid& grid, const VoxelGrid& coarse, int k, const Marks&
 
 InteriorGuardOptions DenseScanGuard(InteriorGuardOptions options) {
   options.min_coarse_axis = std::min(options.min_coarse_axis, kDenseScanMinCoarseAxis);
+  options.max_open_rays = std::min(options.max_open_rays, kDenseScanMaxOpenRays);
   options.one_piece_only = true;
   return options;
 }

@@ -33,8 +33,9 @@ struct InteriorGuardOptions {
   // refill puts it back.
   int min_coarse_axis = 96;
   // A coarse voxel is interior when at most this many of its 6 axis rays reach the coarse
-  // outside before a hard voxel: one data hole seen, not a web or a plate left frozen.
-  int max_open_rays = 1;
+  // outside before a hard voxel: two data holes seen (an unscanned base and a sparse side),
+  // not a web or a plate left frozen in a corner, which sees the outside on more.
+  int max_open_rays = 2;
   // The band is released before the first generation whose plate is below this size
   // (ReleaseGuardedBand); 0: kept to the end of the generations. Through the plates of 3 and
   // 4: a scan's skin at the voxel is porous (scan lines wider apart than a voxel, fuzz), and
@@ -56,10 +57,15 @@ struct InteriorGuardOptions {
 // measured with a second guard level on a coarse grid 16 voxels wide (docs/engine-decisions.md,
 // "Dense scans' interiors"), gave the 1M bunny genus [2] where 32 gives [0].
 inline constexpr int kDenseScanMinCoarseAxis = 32;
+// ... and its core sees the outside on one ray at most: a dense scan's skin is fuzzy but seen
+// all round, and a second open ray gives its 1M-point scans a core that reaches further into
+// the skin (bunny Chamfer 0.0602 -> 0.0614, spot 0.0143 -> 0.0154).
+inline constexpr int kDenseScanMaxOpenRays = 1;
 
 // `options` for a grid whose voxel the points' noise chose: min_coarse_axis at most
-// kDenseScanMinCoarseAxis, one_piece_only (objects 5 voxels apart, cow-spot-belt's, are held
-// apart by 1.25 coarse voxels), the rest (enabled included) as given.
+// kDenseScanMinCoarseAxis, max_open_rays at most kDenseScanMaxOpenRays, one_piece_only
+// (objects 5 voxels apart, cow-spot-belt's, are held apart by 1.25 coarse voxels), the rest
+// (enabled included) as given.
 InteriorGuardOptions DenseScanGuard(InteriorGuardOptions options);
 
 // The coarse voxels of the band GuardInteriors froze, to release them later.
@@ -88,7 +94,7 @@ struct InteriorGuardStats {
 // hole opening are off there; no dents). Then it freezes:
 //   - the core: the fine INSIDE soft voxels of every coarse voxel of the coarse solid with no
 //     hard voxel in its 3x3x3 block and at most max_open_rays of its 6 axis rays reaching the
-//     coarse outside before a hard voxel (an interior seen through one data hole at most; a
+//     coarse outside before a hard voxel (an interior seen through a data hole or two; a
 //     web or a plate left frozen in a corner sees the outside on more);
 //   - the band: the fine INSIDE soft voxels of the other coarse solid voxels that a
 //     breadth-first wave from the core reaches through soft voxels before a wave from the

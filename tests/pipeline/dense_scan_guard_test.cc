@@ -39,7 +39,7 @@ ReconstructionReport Reconstruct(const PointCloud& cloud, double voxel_size,
   return r.value_or(ReconstructionReport{});
 }
 
-TEST(DenseScanGuard, LowersTheWidthAndGuardsOnePieceOnly) {
+TEST(DenseScanGuard, LowersTheWidthAndTheOpenRaysAndGuardsOnePieceOnly) {
   const InteriorGuardOptions given;
   const InteriorGuardOptions dense = DenseScanGuard(given);
   EXPECT_EQ(dense.min_coarse_axis, kDenseScanMinCoarseAxis);
@@ -47,7 +47,7 @@ TEST(DenseScanGuard, LowersTheWidthAndGuardsOnePieceOnly) {
   EXPECT_TRUE(dense.one_piece_only);
   EXPECT_EQ(dense.enabled, given.enabled);
   EXPECT_EQ(dense.factor, given.factor);
-  EXPECT_EQ(dense.max_open_rays, given.max_open_rays);
+  EXPECT_EQ(dense.max_open_rays, kDenseScanMaxOpenRays);
   // Never a wider threshold than asked for.
   InteriorGuardOptions narrow;
   narrow.min_coarse_axis = 8;

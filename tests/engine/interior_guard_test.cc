@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -96,12 +97,43 @@ ShrinkOptions GuardOn() {
   return o;
 }
 
-// Shrinks the grid of `points` with `options` and returns the outside voxels inside r < 0.7
-// after the last generation, before the passes after it (the refill would put them back): the
-// hollow the plates carved through a data hole. The membrane invariants hold, and the grid's
-// topology at the end is one shell; `genus` (may be null) receives its genus.
-int64_t HollowAfterGenerations(const std::vector<Point3f>& points, const ShrinkOptions& options,
-                               int* genus = nullptr) {
+// A region of model space, told by a voxel's centre.
+using Region = bool (*)(const std::array<double, 3>& centre);
+
+// The sphere's deep interior, r < 0.7: where the plates that get through a data hole carve.
+bool DeepInterior(const std::array<double, 3>& p) {
+  return p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 0.7 * 0.7;
+}
+
+// More than 5 voxels under the unit sphere's skin (r < 0.9), away from a base hole
+// (z > -0.6): where plates that crawl between core and skin hollow it from inside.
+bool UnderTheSkin(const std::array<double, 3>& p) {
+  return p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 0.9 * 0.9 && p[2] > -0.6;
+}
+
+// When the outside voxels are counted.
+enum class Moment {
+  // After the last generation, before the passes after it: the refill would put back the
+  // hollow the plates carved.
+  kAfterLastGeneration,
+  // After the whole shrink: the hollow the final membrane keeps.
+  kAfterShrink,
+};
+
+int64_t OutsideVoxelsIn(const VoxelGrid& grid, Region region) {
+  int64_t outside = 0;
+  for (int64_t i = 0; i < grid.size(); ++i) {
+    outside += IsOutside(grid.at(i)) && region(CentreOf(grid, i));
+  }
+  return outside;
+}
+
+// Shrinks the grid of `points` with `options` and returns the outside voxels whose centres
+// lie in `region` at `moment` (the last generation's count is that of its last report: a kept
+// handle retry reports it again). The membrane invariants hold, and the grid's topology at the
+// end is one shell; `genus` (may be null) receives its genus.
+int64_t HollowVoxels(const std::vector<Point3f>& points, const ShrinkOptions& options,
+                     Region region, Moment moment, int* genus = nullptr) {
   VoxelGrid grid = GridOf(points);
   int64_t hollow = 0;
   const int generations = static_cast<int>(
@@ -110,15 +142,13 @@ int64_t HollowAfterGenerations(const std::vector<Point3f>& points, const ShrinkO
   absl::StatusOr<ShrinkResult> result = ShrinkMembrane(
       grid, points, options,
       [&](const GenerationStats& g) {
-        if (g.generation != generations) return;
-        for (int64_t i = 0; i < grid.size(); ++i) {
-          if (!IsOutside(grid.at(i))) continue;
-          const std::array<double, 3> p = CentreOf(grid, i);
-          hollow += p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 0.7 * 0.7;
+        if (moment == Moment::kAfterLastGeneration && g.generation == generations) {
+          hollow = OutsideVoxelsIn(grid, region);
         }
       },
       CancelToken::Never());
   EXPECT_TRUE(result.ok()) << result.status();
+  if (moment == Moment::kAfterShrink) hollow = OutsideVoxelsIn(grid, region);
   EXPECT_TRUE(CheckMembraneInvariants(grid, InvariantOptions()).ok());
   const VoxelTopology topology = ComputeVoxelTopology(grid);
   EXPECT_EQ(topology.shells, 1);
@@ -154,8 +184,9 @@ TEST(InteriorGuard, KeepsTheGenerationsOutOfTheInteriorBehindADataHole) {
   ShrinkOptions off = GuardOn();
   off.interior_guard.enabled = false;
   int genus_on = -1;
-  const int64_t without = HollowAfterGenerations(points, off);
-  const int64_t with = HollowAfterGenerations(points, GuardOn(), &genus_on);
+  const int64_t without = HollowVoxels(points, off, DeepInterior, Moment::kAfterLastGeneration);
+  const int64_t with =
+      HollowVoxels(points, GuardOn(), DeepInterior, Moment::kAfterLastGeneration, &genus_on);
   // Without the guard the plates that fit through the base carve the interior out; with it
   // they stop at the frozen interior.
   EXPECT_GT(without, 1000);
@@ -169,30 +200,17 @@ TEST(InteriorGuard, KeepsTheGenerationsOutOfTheInteriorBehindADataHole) {
 // they stop at the band.
 TEST(InteriorGuard, HoldsTheBandThroughThePlatesOfFour) {
   const std::vector<Point3f> points = ScanLineSphere(4.5 * kVoxel, 0.5);
-  auto hollowed_skin = [&](const ShrinkOptions& options) {
-    VoxelGrid grid = GridOf(points);
-    absl::StatusOr<ShrinkResult> result =
-        ShrinkMembrane(grid, points, options, {}, CancelToken::Never());
-    EXPECT_TRUE(result.ok()) << result.status();
-    EXPECT_TRUE(CheckMembraneInvariants(grid, InvariantOptions()).ok());
-    const VoxelTopology topology = ComputeVoxelTopology(grid);
-    EXPECT_EQ(topology.shells, 1);
-    EXPECT_EQ(TotalGenus(topology), 0);
-    // Outside voxels more than 5 voxels under the skin, away from the base hole.
-    int64_t hollow = 0;
-    for (int64_t i = 0; i < grid.size(); ++i) {
-      if (!IsOutside(grid.at(i))) continue;
-      const std::array<double, 3> p = CentreOf(grid, i);
-      hollow += p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 0.9 * 0.9 && p[2] > -0.6;
-    }
-    return hollow;
-  };
   ShrinkOptions released_before_4 = GuardOn();
   released_before_4.interior_guard.band_release_below = 5;
-  const int64_t released = hollowed_skin(released_before_4);
-  const int64_t held = hollowed_skin(GuardOn());
+  int genus_released = -1, genus_held = -1;
+  const int64_t released =
+      HollowVoxels(points, released_before_4, UnderTheSkin, Moment::kAfterShrink, &genus_released);
+  const int64_t held =
+      HollowVoxels(points, GuardOn(), UnderTheSkin, Moment::kAfterShrink, &genus_held);
   EXPECT_GT(released, 3000);
   EXPECT_LT(held * 5, released) << "held through the plates of 4: " << held;
+  EXPECT_EQ(genus_released, 0);
+  EXPECT_EQ(genus_held, 0);
 }
 
 // The big plates on a grid 4 times coarser (coarse_plates.h, forced here from plates of 8)
@@ -208,9 +226,12 @@ TEST(InteriorGuard, KeepsTheCoarsePlatesOutOfTheInterior) {
   coarse.coarse_plates.min_plate = 8;
   ShrinkOptions unguarded = coarse;
   unguarded.interior_guard.enabled = false;
-  const int64_t fine_only = HollowAfterGenerations(points, GuardOn());
-  const int64_t with_coarse = HollowAfterGenerations(points, coarse);
-  const int64_t without_guard = HollowAfterGenerations(points, unguarded);
+  const int64_t fine_only =
+      HollowVoxels(points, GuardOn(), DeepInterior, Moment::kAfterLastGeneration);
+  const int64_t with_coarse =
+      HollowVoxels(points, coarse, DeepInterior, Moment::kAfterLastGeneration);
+  const int64_t without_guard =
+      HollowVoxels(points, unguarded, DeepInterior, Moment::kAfterLastGeneration);
   EXPECT_LE(with_coarse, fine_only);
   EXPECT_LT(with_coarse * 2, without_guard) << "with the coarse plates: " << with_coarse;
 }
@@ -226,8 +247,10 @@ TEST(InteriorGuard, HoldsAnInteriorSeenThroughTwoHoles) {
   }
   ShrinkOptions one_ray = GuardOn();
   one_ray.interior_guard.max_open_rays = 1;
-  const int64_t with_one = HollowAfterGenerations(points, one_ray);
-  const int64_t with_two = HollowAfterGenerations(points, GuardOn());
+  const int64_t with_one =
+      HollowVoxels(points, one_ray, DeepInterior, Moment::kAfterLastGeneration);
+  const int64_t with_two =
+      HollowVoxels(points, GuardOn(), DeepInterior, Moment::kAfterLastGeneration);
   EXPECT_GT(with_one, 50000);
   EXPECT_LT(with_two * 5, with_one) << "two rays: " << with_two;
 }
@@ -340,4 +363,3 @@ TEST(InteriorGuard, RefusesAFactorOutOfRange) {
 
 }  // namespace
 }  // namespace membrane
-

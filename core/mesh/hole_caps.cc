@@ -749,7 +749,7 @@ Vec3d RingNormal(const TriangleMesh& mesh, const Rows& nb, const Rows& star, int
 int64_t CreaseCorner(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
                      const std::vector<int32_t>& region, const std::vector<char>& free,
                      const std::vector<char>& gap, const std::vector<char>& pinned, double l,
-                     const HoleCapOptions& options, std::vector<Vec3d>& x) {
+                     const HoleCapOptions& options, int threads, std::vector<Vec3d>& x) {
   std::vector<int32_t> cap;
   std::vector<Vec3d> at;
   // The membrane's mean offset outside the cap, along its outward normals. Where it stayed
@@ -783,7 +783,9 @@ int64_t CreaseCorner(const TriangleMesh& mesh, const Rows& nb, const Rows& star,
   crease.min_angle = options.corner_angle;
   crease.flat_tolerance = options.corner_flat_tolerance;
   crease.max_move = options.corner_max_move;
-  const int moved = CreaseToCorner(positions, normals, Normalized(axis), crease, absl::MakeSpan(at));
+  crease.reach = options.corner_reach;
+  const int moved =
+      CreaseToCorner(positions, normals, Normalized(axis), crease, absl::MakeSpan(at), threads);
   if (moved == 0) return 0;
   // The moves spread over the cap: where a pair of sides stops qualifying the move jumps to
   // 0, and the faces across the jump fold (the back-off then sends them back toward the
@@ -923,7 +925,8 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       !(o.anchor_radius > 0 && o.anchor_radius <= 64) || !(o.held_margin >= 0) ||
       !(o.corner_angle >= 0) || o.corner_sectors < 2 || o.corner_sectors > 360 ||
       o.corner_neighbours < 1 || o.corner_neighbours > 64 || !(o.corner_flat_tolerance >= 0) ||
-      !(o.corner_max_move >= 0) || !(o.corner_membrane_margin >= 0) ||
+      !(o.corner_max_move >= 0) || !(o.corner_reach > 0) || !(o.corner_reach <= 1e6) ||
+      !(o.corner_membrane_margin >= 0) ||
       o.corner_smoothing < 0 || o.corner_smoothing > 100 ||
       o.corner_normal_rings < 0 || o.corner_normal_rings > 8 || o.untangle_rounds < 0 ||
       o.untangle_rounds > 1000 || o.untangle_rings < 0 || o.untangle_rings > 16 ||
@@ -947,7 +950,8 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         ", held_margin ", o.held_margin, ", corner_angle ", o.corner_angle, ", corner_sectors ",
         o.corner_sectors, ", corner_neighbours ", o.corner_neighbours,
         ", corner_flat_tolerance ", o.corner_flat_tolerance, ", corner_max_move ",
-        o.corner_max_move, ", corner_membrane_margin ", o.corner_membrane_margin,
+        o.corner_max_move, ", corner_reach ", o.corner_reach, ", corner_membrane_margin ",
+        o.corner_membrane_margin,
         ", corner_smoothing ", o.corner_smoothing,
         ", corner_normal_rings ", o.corner_normal_rings, ", untangle_rounds ",
         o.untangle_rounds, ", untangle_rings ", o.untangle_rings, ", untangle_iterations ",
@@ -1260,8 +1264,9 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   // Concave corners: a band of two surfaces carries each into the hole until they meet.
   if (options.corner_angle <= 180)
     for (size_t r = 0; r < regions.size(); ++r) {
+      if (cancel.cancelled()) return absl::CancelledError("hole caps cancelled");
       const int64_t moved = CreaseCorner(mesh, nb, star, regions[r], free, gap, pinned, l,
-                                         options, x);
+                                         options, threads, x);
       if (moved > 0) {
         ++st.creased;
         st.creased_vertices += moved;

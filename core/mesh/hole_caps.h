@@ -141,9 +141,10 @@ struct HoleCapOptions {
   // fillet outside it: where the membrane stayed outside the cap (its mean offset over the
   // cap's gap vertices, along their normals, over corner_membrane_margin voxels outward, three
   // times the surface nets' half-voxel offset from the data: the shrink's plates could not
-  // enter there), the band (the fixed vertices within sample_rings rings) is read around each gap
-  // vertex in corner_sectors sectors, each side the tangent plane of its corner_neighbours
-  // nearest band vertices carried into the hole. Where two opposite sides are flat or convex
+  // enter there), the band (the fixed vertices within sample_rings rings) is read around each
+  // gap vertex in corner_sectors sectors (beyond corner_reach voxels by cells,
+  // corner_crease.h), each side the tangent plane of its corner_neighbours nearest band
+  // vertices carried into the hole. Where two opposite sides are flat or convex
   // (their sector's band vertices at most corner_flat_tolerance voxels outside the plane on
   // average), lie at least corner_angle degrees apart, each outside the other's plane, and
   // the vertex lies outside both, it moves inward along their normals' mean to the first
@@ -159,6 +160,7 @@ struct HoleCapOptions {
   int corner_neighbours = 3;
   double corner_flat_tolerance = 1.0;
   double corner_max_move = 12.0;
+  double corner_reach = 64.0;
   double corner_membrane_margin = 1.5;
   int corner_normal_rings = 2;
   int corner_smoothing = 5;

@@ -138,9 +138,11 @@ class BandCells {
     int begin, end;  // its members in members_
   };
 
+  // Clamped to 4 box lengths either side (the occupied cells lie in [0, kMaxCellsPerAxis]): a
+  // position clamped is farther than a reach from every occupied cell, as it is unclamped.
   int64_t CellOf(double x, int k) const {
     const double c = std::floor((x - lo_[k]) / cell_);
-    return static_cast<int64_t>(std::clamp(c, -1.0, 4 * kMaxCellsPerAxis));
+    return static_cast<int64_t>(std::clamp(c, -4 * kMaxCellsPerAxis, 4 * kMaxCellsPerAxis));
   }
 
   int n_ = 0;

@@ -53,7 +53,11 @@ TEST(VoxelizationCancel, ACancelInAnyPhaseReturnsCancelledWithinATask) {
   // A run on a machine whose memory other processes are busy with can take 30% less CPU than
   // the two before it: a cancel meant for 0.7 of the work then lands after the end. A run that
   // returns Ok measures the whole again and the share is tried again, up to three times; a
-  // voxelization that ignored its token would return Ok every time.
+  // voxelization that ignored its token would return Ok every time. Another process's work
+  // on the memory also stretches the CPU time of the tasks after the cancel (a sanitizer build
+  // beside a 10M-point run: 0.209 CPU s against a bound of 0.156): a cancel over the bound is
+  // tried again too, up to three times; one that ignored the token for a phase would be over
+  // it every time.
   for (const double share : {0.1, 0.4, 0.7}) {
     SCOPED_TRACE(share);
     for (int attempt = 0;; ++attempt) {
@@ -70,6 +74,7 @@ TEST(VoxelizationCancel, ACancelInAnyPhaseReturnsCancelledWithinATask) {
       const double latency = end - canceller.cancelled_at();
       ASSERT_EQ(v.status().code(), absl::StatusCode::kCancelled)
           << v.status() << "; the whole voxelization took " << whole << " CPU s";
+      if (latency >= bound && attempt < 3) continue;
       EXPECT_LT(latency, bound) << "the whole voxelization took " << whole << " CPU s";
       break;
     }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/base/parallel_tasks.h"
+#include "core/mesh/angle_sectors.h"
 
 namespace membrane {
 namespace {
@@ -170,13 +171,14 @@ struct SectorScratch {
 int CreaseToCorner(absl::Span<const Vec3d> positions, absl::Span<const Vec3d> normals,
                    const Vec3d& axis, const CornerCreaseOptions& options,
                    absl::Span<Vec3d> cap, int threads) {
-  const int sectors = std::max(2, options.sectors - options.sectors % 2);
+  const int sectors = std::clamp(options.sectors - options.sectors % 2, 2, 360);
   const int keep = std::max(1, options.per_sector);
   const double max_cosine = std::cos(options.min_angle * kPi / 180.0);
   const Vec3d t1 = Normalized(std::abs(axis[0]) < 0.9 ? Cross(axis, Vec3d{1, 0, 0})
                                                       : Cross(axis, Vec3d{0, 1, 0}));
   const Vec3d t2 = Cross(axis, t1);
   const BandCells band(positions, normals, options.reach);
+  const AngleSectors sector_of(sectors);
   const int workers = std::max(threads, 1);
   std::vector<SectorScratch> scratch(static_cast<size_t>(workers), SectorScratch(sectors));
   // A few hundred positions a range: a 100k-point cloud's caps stay on the calling thread.
@@ -189,8 +191,7 @@ int CreaseToCorner(absl::Span<const Vec3d> positions, absl::Span<const Vec3d> no
       for (Sector& sector : s.near) sector.Clear();
       band.ForEach(p, [&](int i) {
         const Vec3d d = band.point(i) - p;
-        const double angle = std::atan2(Dot(d, t2), Dot(d, t1));
-        const int k = std::min(sectors - 1, static_cast<int>((angle + kPi) / (2 * kPi) * sectors));
+        const int k = sector_of(Dot(d, t2), Dot(d, t1));
         const int w = band.weight(i);
         s.near[k].Add(w == 1 ? band.point(i) : w * band.point(i), w, SquaredNorm(d), i, keep);
       });

@@ -15,7 +15,7 @@ namespace membrane {
 struct CornerCreaseOptions {
   // Directions around a cap position (in the plane square to the axis the hole is seen
   // along), an even count: the band on either side of the position is read in opposite
-  // sectors.
+  // sectors (at most 360).
   int sectors = 12;
   // Each sector's side: the plane through the mean of its this many band members nearest to
   // the position, square to the mean of their normals.

@@ -181,7 +181,8 @@ int CreaseToCorner(absl::Span<const Vec3d> positions, absl::Span<const Vec3d> no
   const AngleSectors sector_of(sectors);
   const int workers = std::max(threads, 1);
   std::vector<SectorScratch> scratch(static_cast<size_t>(workers), SectorScratch(sectors));
-  // A few hundred positions a range: a 100k-point cloud's caps stay on the calling thread.
+  // A cap of fewer than 512 positions stays on the calling thread, where the threads' start
+  // would cost more than its reading of the band.
   const TaskRanges ranges = TaskRanges::Split(static_cast<int64_t>(cap.size()), threads, 8, 512);
   std::vector<int> moved(static_cast<size_t>(ranges.tasks), 0);
   RunTasks(threads, ranges.tasks, [&](int worker, int64_t task) {
@@ -205,8 +206,9 @@ int CreaseToCorner(absl::Span<const Vec3d> positions, absl::Span<const Vec3d> no
         if (!sector.member.empty()) sum = (1.0 / static_cast<double>(sector.member.size())) * sum;
         s.centre[k] = sum;
         s.normal[k] = Normalized(n);
-        s.flat[k] = sector.count > 0 && Dot((1.0 / static_cast<double>(sector.count)) * sector.all - sum,
-                                            s.normal[k]) <= options.flat_tolerance;
+        const Vec3d mean = (1.0 / static_cast<double>(std::max<int64_t>(sector.count, 1))) *
+                           sector.all;
+        s.flat[k] = sector.count > 0 && Dot(mean - sum, s.normal[k]) <= options.flat_tolerance;
       }
       double best = 0;
       Vec3d along{0, 0, 0};

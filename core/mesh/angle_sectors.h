@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace membrane {
@@ -47,15 +48,14 @@ class AngleSectors {
           hi = mid - 1;
         }
       }
-      if (!near &&
-          std::abs(boundary_[lo].x * y - boundary_[lo].y * x) > kMargin * r)
+      if (!near && std::abs(boundary_[lo].x * y - boundary_[lo].y * x) > kMargin * r)
         return std::min(n_ - 1, lo);
     }
     return std::min(n_ - 1, static_cast<int>((std::atan2(y, x) + kPi) / (2 * kPi) * n_));
   }
 
  private:
-  static constexpr double kPi = 3.14159265358979323846;
+  static constexpr double kPi = std::numbers::pi;
   static constexpr double kMargin = 1e-12;
   struct Direction {
     double x, y;

@@ -85,13 +85,13 @@ class BandCells {
     for (size_t i = 0; i < positions.size(); ++i)
       of[i] = CellOf(positions[i][0], 0) +
               dims_[0] * (CellOf(positions[i][1], 1) + dims_[1] * CellOf(positions[i][2], 2));
-    std::vector<int> order(positions.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return of[a] < of[b]; });
-    members_ = order;
-    for (size_t j = 0; j < order.size(); ++j) {
-      if (j == 0 || of[order[j]] != of[order[j - 1]]) {
-        const int64_t c = of[order[j]];
+    members_.resize(positions.size());
+    for (size_t i = 0; i < members_.size(); ++i) members_[i] = static_cast<int>(i);
+    std::stable_sort(members_.begin(), members_.end(),
+                     [&](int a, int b) { return of[a] < of[b]; });
+    for (size_t j = 0; j < members_.size(); ++j) {
+      if (j == 0 || of[members_[j]] != of[members_[j - 1]]) {
+        const int64_t c = of[members_[j]];
         cells_.push_back({{c % dims_[0], (c / dims_[0]) % dims_[1], c / (dims_[0] * dims_[1])},
                           static_cast<int>(j), static_cast<int>(j)});
       }
@@ -194,7 +194,7 @@ int CreaseToCorner(absl::Span<const Vec3d> positions, absl::Span<const Vec3d> no
         const Vec3d d = band.point(i) - p;
         const int k = sector_of(Dot(d, t2), Dot(d, t1));
         const int w = band.weight(i);
-        s.near[k].Add(w == 1 ? band.point(i) : w * band.point(i), w, SquaredNorm(d), i, keep);
+        s.near[k].Add(w * band.point(i), w, SquaredNorm(d), i, keep);
       });
       for (int k = 0; k < sectors; ++k) {
         const Sector& sector = s.near[k];

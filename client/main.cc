@@ -12,7 +12,9 @@
 #include "core/io/decode_helper.h"
 
 int main(int argc, char** argv) {
-  // Freed memory stays with the process for the next stage.
+  // The heap on huge pages (the process starts again once for it), and freed memory stays
+  // with the process for the next stage.
+  membrane::RestartWithHugePageHeap("/proc/self/exe", argv);
   membrane::KeepFreedBlocksInOneHeap();
   // Run by ReadInputCloud on itself to decode a Draco file under resource limits.
   if (argc >= 2 && std::string(argv[1]) == membrane::client::kDecodeHelperFlag) {

@@ -20,6 +20,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_replace.h"
+#include "core/base/malloc_policy.h"
 #include "core/io/file_bytes.h"
 #include "core/pipeline/machine_memory.h"
 #include "core/pipeline/reconstruction_pipeline.h"
@@ -331,4 +332,8 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace membrane::server
 
-int main(int argc, char** argv) { return membrane::server::Main(argc, argv); }
+int main(int argc, char** argv) {
+  // The heap on huge pages: the process starts again once for it, before anything else runs.
+  membrane::RestartWithHugePageHeap("/proc/self/exe", argv);
+  return membrane::server::Main(argc, argv);
+}

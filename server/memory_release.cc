@@ -3,7 +3,7 @@
 #include <malloc.h>
 
 #include <cstdlib>
-#include <cstring>
+#include <string>
 
 #include "core/base/malloc_policy.h"
 
@@ -12,10 +12,11 @@ namespace membrane::server {
 void ReleaseFreedMemory() { malloc_trim(0); }
 
 bool UseMallocPolicyUnlessChosen() {
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  if (std::getenv("MALLOC_ARENA_MAX") != nullptr ||
-      (tunables != nullptr && std::strstr(tunables, "glibc.malloc.") != nullptr)) {
-    return false;
+  if (std::getenv("MALLOC_ARENA_MAX") != nullptr) return false;
+  // The huge pages' tunable says nothing of arenas, mapping or trimming; the process may have
+  // set it itself (RestartWithHugePageHeap).
+  for (const std::string& name : TunableNames(std::getenv("GLIBC_TUNABLES"))) {
+    if (name.rfind("glibc.malloc.", 0) == 0 && name != kHugePageTunable) return false;
   }
   KeepFreedBlocksInOneHeap();
   return true;

@@ -15,7 +15,8 @@ void ReleaseFreedMemory();
 
 // Sets the process's malloc policy (one arena that keeps what it frees, KeepFreedBlocksInOneHeap)
 // unless the operator chose malloc's settings in the environment: MALLOC_ARENA_MAX set, or
-// GLIBC_TUNABLES naming a glibc.malloc tunable. Those stand, on glibc's defaults otherwise.
+// GLIBC_TUNABLES naming a glibc.malloc tunable other than the huge pages' (kHugePageTunable).
+// Those stand, on glibc's defaults otherwise.
 // Returns whether the policy was set. Call before any thread starts.
 bool UseMallocPolicyUnlessChosen();
 

@@ -1,6 +1,11 @@
 #include "core/base/malloc_policy.h"
 
 #include <malloc.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 
 namespace membrane {
 
@@ -18,6 +23,50 @@ void KeepFreedBlocksInOneHeap() {
   // reports free pages to its host, faulted in by the host again.
   mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, -1);
+}
+
+bool KernelGivesHugePagesOnlyWhenAdvised() {
+  std::ifstream file("/sys/kernel/mm/transparent_hugepage/enabled");
+  const std::string modes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  return modes.find("[madvise]") != std::string::npos;
+}
+
+std::vector<std::string> TunableNames(const char* tunables) {
+  std::vector<std::string> names;
+  const std::string value = tunables == nullptr ? "" : tunables;
+  for (size_t start = 0; start < value.size();) {
+    size_t end = value.find(':', start);
+    if (end == std::string::npos) end = value.size();
+    const std::string item = value.substr(start, end - start);
+    if (!item.empty()) names.push_back(item.substr(0, item.find('=')));
+    start = end + 1;
+  }
+  return names;
+}
+
+std::optional<std::string> TunablesWithHugePageHeap(const char* current) {
+  for (const std::string& name : TunableNames(current)) {
+    if (name == kHugePageTunable) return std::nullopt;
+  }
+  const std::string tunables = current == nullptr ? "" : current;
+  return tunables.empty() ? std::string(kHugePageTunable) + "=1"
+                          : tunables + ":" + kHugePageTunable + "=1";
+}
+
+void RestartWithHugePageHeap(const char* executable, char** argv) {
+  if (!kGlibcMalloc || !KernelGivesHugePagesOnlyWhenAdvised()) return;
+  const char* current = std::getenv("GLIBC_TUNABLES");
+  const std::optional<std::string> tunables = TunablesWithHugePageHeap(current);
+  if (!tunables) return;
+  const std::optional<std::string> saved =
+      current == nullptr ? std::nullopt : std::optional<std::string>(current);
+  if (setenv("GLIBC_TUNABLES", tunables->c_str(), 1) != 0) return;
+  execv(executable, argv);
+  if (saved) {
+    setenv("GLIBC_TUNABLES", saved->c_str(), 1);
+  } else {
+    unsetenv("GLIBC_TUNABLES");
+  }
 }
 
 }  // namespace membrane

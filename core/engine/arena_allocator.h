@@ -1,9 +1,8 @@
 // An allocator for big arrays: blocks from a PlaneArena while it has room, else operator new.
 //
-// Plain 4 KB pages, no transparent-huge-page advice: on this VM (virtio_balloon with free
-// page reporting) memory the process has not written yet, or freed a few seconds ago, is
-// backed by the host on its first write, and a fresh 2 MB page faults at 0.25 GB/s against
-// 1.8 GB/s for 4 KB pages (tests/bench/2026-12-05-page-size.txt). Blocks of a page and more
+// No page advice of its own: its blocks take the pages of the process's heap, which the
+// executables have glibc advise for transparent huge pages (core/base/malloc_policy.h,
+// docs/engine-decisions.md "Big arrays take the heap's pages"). Blocks of a page and more
 // start on a cache line, as the arena's blocks do (PlaneArena::kBlockAlignment).
 #ifndef MEMBRANE_CORE_ENGINE_ARENA_ALLOCATOR_H_
 #define MEMBRANE_CORE_ENGINE_ARENA_ALLOCATOR_H_

@@ -25,6 +25,7 @@
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_split.h"
+#include "core/base/malloc_policy.h"
 #include "core/pipeline/draco_mesh_sink.h"
 #include "core/pipeline/in_memory_ends.h"
 #include "core/pipeline/pipeline_stage.h"
@@ -226,4 +227,9 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace membrane::bench
 
-int main(int argc, char** argv) { return membrane::bench::Main(argc, argv); }
+int main(int argc, char** argv) {
+  // The executables' malloc settings, so that each stage costs here what it costs in membrane.
+  membrane::RestartWithHugePageHeap("/proc/self/exe", argv);
+  membrane::KeepFreedBlocksInOneHeap();
+  return membrane::bench::Main(argc, argv);
+}

@@ -17,7 +17,9 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_split.h"
 #include "absl/time/clock.h"
+#include "core/base/malloc_policy.h"
 #include "core/io/file_bytes.h"
 #include "core/io/mesh_io.h"
 #include "core/io/point_cloud_io.h"
@@ -916,6 +918,25 @@ TEST_F(EndToEndTest, DefaultMemoryLimitsAreShareOfTheMachine) {
   EXPECT_NE(log.find("upload_memory_bytes=" + std::to_string(machine.total_bytes / 8)),
             std::string::npos)
       << log;
+}
+
+// membraned starts itself again once, its heap advised huge pages by glibc, where the kernel
+// gives them only to advised memory; that tunable is not the operator's choice of malloc's
+// settings, so the one-arena policy stands.
+TEST_F(EndToEndTest, ServerRunsOnHugePagesWithTheOneArenaPolicy) {
+  if (!kGlibcMalloc) GTEST_SKIP() << "glibc's malloc is replaced under the sanitizers";
+  if (std::getenv("GLIBC_TUNABLES") != nullptr || std::getenv("MALLOC_ARENA_MAX") != nullptr) {
+    GTEST_SKIP() << "malloc's settings are chosen in this test's environment";
+  }
+  StartServer();
+  // The environment the running image started with, its entries separated by NULs.
+  const std::vector<std::string> environment = absl::StrSplit(
+      ReadText("/proc/" + std::to_string(server_->pid()) + "/environ"), absl::ByChar('\0'));
+  const bool advised = std::find(environment.begin(), environment.end(),
+                                 "GLIBC_TUNABLES=glibc.malloc.hugetlb=1") != environment.end();
+  EXPECT_EQ(advised, KernelGivesHugePagesOnlyWhenAdvised());
+  const std::string log = ReadText(log_);
+  EXPECT_NE(log.find("malloc=one-arena"), std::string::npos) << log;
 }
 
 TEST_F(EndToEndTest, NegativeMemoryBudgetIsRefusedAtStart) {

@@ -42,6 +42,9 @@ TEST(ServerMallocPolicy, AJobsFreedBlocksStayUntilReleased) {
   // Tunables of another part of glibc leave malloc to the policy.
   EXPECT_EXIT(AllocateFreeAndExit("GLIBC_TUNABLES", "glibc.rtld.optional_static_tls=4096"),
               ::testing::ExitedWithCode(0), "");
+  // Nor does the huge pages' one, which the process sets itself (RestartWithHugePageHeap).
+  EXPECT_EXIT(AllocateFreeAndExit("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1"),
+              ::testing::ExitedWithCode(0), "");
 }
 
 TEST(ServerMallocPolicy, TheOperatorsSettingsStand) {
@@ -49,6 +52,9 @@ TEST(ServerMallocPolicy, TheOperatorsSettingsStand) {
   EXPECT_EXIT(AllocateFreeAndExit("MALLOC_ARENA_MAX", "2"), ::testing::ExitedWithCode(10), "");
   EXPECT_EXIT(AllocateFreeAndExit("GLIBC_TUNABLES", "glibc.malloc.arena_max=2"),
               ::testing::ExitedWithCode(10), "");
+  EXPECT_EXIT(
+      AllocateFreeAndExit("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1:glibc.malloc.mmap_max=0"),
+      ::testing::ExitedWithCode(10), "");
 }
 
 }  // namespace

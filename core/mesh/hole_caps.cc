@@ -161,9 +161,11 @@ LocalSystem Localize(const Rows& nb, const std::vector<int32_t>& free, bool two_
 // the free ones are updated). Stops after `max_iterations` or once no step moves a vertex by
 // more than `tolerance`. Returns the iterations run, or -1 when `cancel` fired. Works on the
 // region and its two rings renumbered (LocalSystem): memory and time in the region's size.
-// A region of `min_split` vertices or more has its products and updates on `threads` (<= 1:
-// the calling thread); its dot products are summed on the calling thread in vertex order, so
-// the result is the same bits for any count.
+// A region of `min_split` vertices or more has its products, updates and dot products on
+// `threads` (<= 1: the calling thread); its dot products are summed over blocks of min_split
+// free vertices, each in vertex order, then over the blocks in their order (a smaller region,
+// or min_split <= 1: in vertex order, which blocks of one vertex would give too), so the
+// result is the same bits for any count.
 int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free,
           std::vector<Vec3d>& x, int max_iterations, double tolerance, const CancelToken& cancel,
           int threads = 1, int64_t min_split = 0) {
@@ -212,8 +214,28 @@ int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free
     RunTasks(workers, ranges.tasks,
              [&](int, int64_t t) { body(t, ranges.begin(t), ranges.end(t)); });
   };
-  // out = K y, and dot += y . out over the free vertices, in their order.
-  auto apply = [&](const std::vector<Lanes>& y, std::vector<Lanes>& out, Lanes& dot) {
+  // The free vertices' blocks, a few to a task: sum_blocks(body) runs body(block, begin, end)
+  // on each block's vertices [begin, end) and returns the sum of what the calls return, in
+  // block order. A pass over the vectors then sums as it goes, on every thread, instead of
+  // being read again on the calling thread.
+  const int64_t block = static_cast<int64_t>(n) >= min_split && min_split > 1
+                            ? min_split
+                            : std::max<int64_t>(static_cast<int64_t>(n), 1);
+  const int64_t blocks = (static_cast<int64_t>(n) + block - 1) / block;
+  const TaskRanges block_ranges = TaskRanges::Split(blocks, workers, 2);
+  std::vector<Lanes> block_sums(static_cast<size_t>(blocks));
+  auto sum_blocks = [&](auto&& body) {
+    for_ranges(block_ranges, [&](int64_t, int64_t first, int64_t last) {
+      for (int64_t b = first; b < last; ++b) {
+        block_sums[b] = body(b, b * block, std::min<int64_t>((b + 1) * block, n));
+      }
+    });
+    Lanes sum{};
+    for (const Lanes& partial : block_sums) sum += partial;
+    return sum;
+  };
+  // out = K y over the free vertices; returns y . out.
+  auto apply = [&](const std::vector<Lanes>& y, std::vector<Lanes>& out) {
     const Lanes* in = y.data();
     if (thin_plate) {
       for_ranges(ring_ranges, [&](int64_t, int64_t begin, int64_t end) {
@@ -224,10 +246,14 @@ int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free
       });
       in = scaled.data();
     }
-    for_ranges(free_ranges, [&](int64_t, int64_t begin, int64_t end) {
-      for (int32_t i = static_cast<int32_t>(begin); i < end; ++i) laplacian(i, in, out[i]);
+    return sum_blocks([&](int64_t, int64_t begin, int64_t end) {
+      Lanes dot{};
+      for (int32_t i = static_cast<int32_t>(begin); i < end; ++i) {
+        laplacian(i, in, out[i]);
+        dot += y[i] * out[i];
+      }
+      return dot;
     });
-    for (size_t i = 0; i < n; ++i) dot += y[i] * out[i];
   };
   std::vector<double> inv_diag(n);
   for (size_t i = 0; i < n; ++i) {
@@ -245,41 +271,42 @@ int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free
   // The search direction per local vertex, zero off the free ones (the first n).
   std::vector<Lanes> p(size + 1, Lanes{});
   std::vector<Lanes> r(n), z(n), q(n);
-  Lanes unused{};
-  apply(y, r, unused);
-  Lanes rz{};
-  for (size_t i = 0; i < n; ++i) {
-    r[i] = -1.0 * r[i];
-    z[i] = inv_diag[i] * r[i];
-    p[i] = z[i];
-    rz += r[i] * z[i];
-  }
-  std::vector<Lanes> range_largest(static_cast<size_t>(free_ranges.tasks));
+  apply(y, r);
+  Lanes rz = sum_blocks([&](int64_t, int64_t begin, int64_t end) {
+    Lanes sum{};
+    for (int64_t i = begin; i < end; ++i) {
+      r[i] = -1.0 * r[i];
+      z[i] = inv_diag[i] * r[i];
+      p[i] = z[i];
+      sum += r[i] * z[i];
+    }
+    return sum;
+  });
+  std::vector<Lanes> block_largest(static_cast<size_t>(blocks));
   int it = 0;
   while (it < max_iterations) {
     if (cancel.cancelled()) return -1;
     ++it;
-    Lanes pq{};
-    apply(p, q, pq);
+    const Lanes pq = apply(p, q);
     double a[3];
     for (int k = 0; k < 3; ++k) a[k] = pq[k] > 0 ? rz[k] / pq[k] : 0.0;
     const Lanes alpha{Pair{a[0], a[1]}, a[2]};
-    // The largest step per range: a maximum, the same whatever the ranges.
-    for_ranges(free_ranges, [&](int64_t t, int64_t begin, int64_t end) {
-      Lanes largest{};
+    // The largest step per block: a maximum, the same whatever the blocks.
+    const Lanes rz_next = sum_blocks([&](int64_t b, int64_t begin, int64_t end) {
+      Lanes largest{}, sum{};
       for (int64_t i = begin; i < end; ++i) {
         const Lanes step = alpha * p[i];
         y[i] += step;
         largest = Max(largest, Abs(step));
         r[i] -= alpha * q[i];
         z[i] = r[i] * inv_diag[i];
+        sum += r[i] * z[i];
       }
-      range_largest[t] = largest;
+      block_largest[b] = largest;
+      return sum;
     });
     Lanes largest{};
-    for (const Lanes& l : range_largest) largest = Max(largest, l);
-    Lanes rz_next{};
-    for (size_t i = 0; i < n; ++i) rz_next += r[i] * z[i];
+    for (const Lanes& l : block_largest) largest = Max(largest, l);
     if (std::max({largest[0], largest[1], largest[2]}) <= tolerance) break;
     double b[3];
     for (int k = 0; k < 3; ++k) b[k] = rz[k] > 0 ? rz_next[k] / rz[k] : 0.0;

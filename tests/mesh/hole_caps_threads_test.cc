@@ -1,6 +1,7 @@
 // The caps on several threads (core/mesh/hole_caps.h, `threads`): every solve split into
 // ranges (split_solve_vertices 1) and every crossing search on 2 or 3 threads give the mesh
-// the calling thread alone gives, bit for bit. The case: a box whose base the scanner did not
+// the calling thread alone gives, bit for bit, and so do solves whose sums go by blocks
+// (split_solve_vertices 64). The case: a box whose base the scanner did not
 // see, with a one-voxel tunnel from the base up to the top face (hole_caps_tube_test.cc), so
 // that the cap wraps, its tube is solved apart and its rim's crossings back off. The points
 // are the box's outer surface-nets vertices off the base's hole: no shrink is needed, and the
@@ -32,26 +33,36 @@ Capped Cap(const TriangleMesh& nets, const std::vector<Point3f>& points, int thr
   return c;
 }
 
-TEST(HoleCapThreads, AWrappedCapIsTheSameOnAnyThreadCount) {
+struct BoxCase {
+  TriangleMesh nets;
+  std::vector<Point3f> points;
+};
+
+// The box with its tunnel, and the points of its outer faces but a disc of the base.
+BoxCase BoxWithUnseenBase() {
   VoxelGrid grid = testing::OutsideGrid(52);
   testing::MarkSolid(grid, [](int x, int y, int z) {
     return x >= 8 && x < 40 && z >= 8 && z < 40 && y >= 8 && y < 28 && !(x == 24 && z == 24);
   });
-  const TriangleMesh nets = SurfaceNets(grid);
+  BoxCase c{SurfaceNets(grid), {}};
   Vec3d lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
-  for (const Point3f& p : nets.vertices)
+  for (const Point3f& p : c.nets.vertices)
     for (int k = 0; k < 3; ++k) {
       lo[k] = std::min<double>(lo[k], p[k]);
       hi[k] = std::max<double>(hi[k], p[k]);
     }
   // The outer faces' vertices (the tunnel's walls hold none), but a disc of the base.
-  std::vector<Point3f> points;
-  for (const Point3f& p : nets.vertices) {
+  for (const Point3f& p : c.nets.vertices) {
     bool outer = false;
     for (int k = 0; k < 3; ++k) outer |= p[k] <= lo[k] + 0.5 || p[k] >= hi[k] - 0.5;
     const double dx = p[0] - 0.5 * (lo[0] + hi[0]), dz = p[2] - 0.5 * (lo[2] + hi[2]);
-    if (outer && !(p[1] <= lo[1] + 0.5 && dx * dx + dz * dz < 16 * 16)) points.push_back(p);
+    if (outer && !(p[1] <= lo[1] + 0.5 && dx * dx + dz * dz < 16 * 16)) c.points.push_back(p);
   }
+  return c;
+}
+
+TEST(HoleCapThreads, AWrappedCapIsTheSameOnAnyThreadCount) {
+  const auto [nets, points] = BoxWithUnseenBase();
   const Capped serial = Cap(nets, points, 1, HoleCapOptions{}.split_solve_vertices);
   ASSERT_EQ(serial.caps.regions, 1);
   EXPECT_EQ(serial.caps.wrapped, 1);
@@ -63,6 +74,21 @@ TEST(HoleCapThreads, AWrappedCapIsTheSameOnAnyThreadCount) {
     EXPECT_EQ(split.caps.iterations, serial.caps.iterations) << threads << " threads";
     EXPECT_EQ(split.caps.backed_off, serial.caps.backed_off) << threads << " threads";
     EXPECT_TRUE(split.mesh.vertices == serial.mesh.vertices) << threads << " threads";
+  }
+}
+
+// Split at 64 vertices, a solve's dot products are summed over blocks of 64 free vertices
+// (then over the blocks in order), which the threads share: the same bits on any count.
+TEST(HoleCapThreads, SumsOverBlocksAreTheSameOnAnyThreadCount) {
+  const auto [nets, points] = BoxWithUnseenBase();
+  const Capped one = Cap(nets, points, 1, 64);
+  ASSERT_EQ(one.caps.regions, 1);
+  EXPECT_GT(one.caps.vertices, 8 * 64);  // blocks enough for every thread
+  EXPECT_GT(one.caps.iterations, 0);
+  for (int threads : {2, 3}) {
+    const Capped split = Cap(nets, points, threads, 64);
+    EXPECT_EQ(split.caps.iterations, one.caps.iterations) << threads << " threads";
+    EXPECT_TRUE(split.mesh.vertices == one.mesh.vertices) << threads << " threads";
   }
 }
 

@@ -54,10 +54,12 @@ std::optional<std::string> TunablesWithHugePageHeap(const char* current) {
 }
 
 void RestartWithHugePageHeap(const char* executable, char** argv) {
-  if (!kGlibcMalloc || !KernelGivesHugePagesOnlyWhenAdvised()) return;
+  if (!kGlibcMalloc) return;
   const char* current = std::getenv("GLIBC_TUNABLES");
   const std::optional<std::string> tunables = TunablesWithHugePageHeap(current);
-  if (!tunables) return;
+  // The environment first: the restarted process (and every child it starts) stops there
+  // without reading the kernel's setting again.
+  if (!tunables || !KernelGivesHugePagesOnlyWhenAdvised()) return;
   const std::optional<std::string> saved =
       current == nullptr ? std::nullopt : std::optional<std::string>(current);
   if (setenv("GLIBC_TUNABLES", tunables->c_str(), 1) != 0) return;

@@ -164,8 +164,7 @@ LocalSystem Localize(const Rows& nb, const std::vector<int32_t>& free, bool two_
 // A region of `min_split` vertices or more has its products, updates and dot products on
 // `threads` (<= 1: the calling thread); its dot products are summed over blocks of min_split
 // free vertices, each in vertex order, then over the blocks in their order (a smaller region,
-// or min_split <= 1: in vertex order, which blocks of one vertex would give too), so the
-// result is the same bits for any count.
+// or min_split <= 1: in vertex order), so the result is the same bits for any count.
 int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free,
           std::vector<Vec3d>& x, int max_iterations, double tolerance, const CancelToken& cancel,
           int threads = 1, int64_t min_split = 0) {
@@ -217,11 +216,18 @@ int Solve(bool thin_plate, const Rows& mesh_nb, const std::vector<int32_t>& free
   // The free vertices' blocks, a few to a task: sum_blocks(body) runs body(block, begin, end)
   // on each block's vertices [begin, end) and returns the sum of what the calls return, in
   // block order. A pass over the vectors then sums as it goes, on every thread, instead of
-  // being read again on the calling thread.
-  const int64_t block = static_cast<int64_t>(n) >= min_split && min_split > 1
-                            ? min_split
-                            : std::max<int64_t>(static_cast<int64_t>(n), 1);
-  const int64_t blocks = (static_cast<int64_t>(n) + block - 1) / block;
+  // being read again on the calling thread. Blocks of min_split vertices where the solve
+  // splits at min_split > 1; otherwise the sums go in vertex order, which blocks of one vertex
+  // give as well as one block: a vertex a block where threads share the passes, one block
+  // where the calling thread runs them.
+  const int64_t count = static_cast<int64_t>(n);
+  int64_t block = std::max<int64_t>(count, 1);
+  if (count >= min_split && min_split > 1) {
+    block = min_split;
+  } else if (workers > 1) {
+    block = 1;
+  }
+  const int64_t blocks = (count + block - 1) / block;
   const TaskRanges block_ranges = TaskRanges::Split(blocks, workers, 2);
   std::vector<Lanes> block_sums(static_cast<size_t>(blocks));
   auto sum_blocks = [&](auto&& body) {

@@ -1,6 +1,7 @@
 #include "core/mesh/angle_sectors.h"
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <utility>
 #include <vector>
@@ -10,7 +11,7 @@
 namespace membrane {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 int LibrarySector(double y, double x, int n) {
   return std::min(n - 1, static_cast<int>((std::atan2(y, x) + kPi) / (2 * kPi) * n));

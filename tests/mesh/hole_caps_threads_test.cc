@@ -51,7 +51,7 @@ BoxCase BoxWithUnseenBase() {
       lo[k] = std::min<double>(lo[k], p[k]);
       hi[k] = std::max<double>(hi[k], p[k]);
     }
-  // The outer faces' vertices (the tunnel's walls hold none), but a disc of the base.
+  // The tunnel's walls hold no outer vertex.
   for (const Point3f& p : c.nets.vertices) {
     bool outer = false;
     for (int k = 0; k < 3; ++k) outer |= p[k] <= lo[k] + 0.5 || p[k] >= hi[k] - 0.5;

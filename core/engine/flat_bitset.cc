@@ -92,9 +92,15 @@ namespace {
 int64_t HaloSegmentWords(int64_t q) { return std::max<int64_t>(kWordBlock, 16 * (q + 2)); }
 
 // `halo` with room for `words` words: kept from pass to pass, since fresh pages for every pass
-// would cost more than the copy.
+// would cost more than the copy. One that must grow takes exactly `words`, its old buffer freed
+// first (the halo's contents are not kept): grown by resize, it could double.
 std::vector<uint64_t>& HaloOf(std::vector<uint64_t>& halo, int64_t words) {
-  if (static_cast<int64_t>(halo.size()) < words) halo.resize(static_cast<size_t>(words));
+  if (static_cast<int64_t>(halo.size()) >= words) return halo;
+  if (static_cast<size_t>(words) > halo.capacity()) {
+    std::vector<uint64_t>().swap(halo);
+    halo.reserve(static_cast<size_t>(words));
+  }
+  halo.resize(static_cast<size_t>(words));
   return halo;
 }
 
@@ -188,7 +194,7 @@ void FlatBitset::AndShiftedDown(int64_t k) {
   const int64_t q = k >> 6;
   const int r = static_cast<int>(k & 63);
   uint64_t* w = words_.data();
-  RunInHaloSegments(threads_, halo_, w, n, q, /*halo_after=*/true,
+  RunInHaloSegments(threads_, halo_store_ != nullptr ? *halo_store_ : halo_, w, n, q, /*halo_after=*/true,
                     [&](int64_t begin, int64_t end, const uint64_t* halo) {
                       AndShiftedDownRange(w, n, q, r, begin, end, halo);
                     });
@@ -199,7 +205,7 @@ void FlatBitset::OrShiftedUp(int64_t k) {
   const int64_t q = k >> 6;
   const int r = static_cast<int>(k & 63);
   uint64_t* w = words_.data();
-  RunInHaloSegments(threads_, halo_, w, n, q, /*halo_after=*/false,
+  RunInHaloSegments(threads_, halo_store_ != nullptr ? *halo_store_ : halo_, w, n, q, /*halo_after=*/false,
                     [&](int64_t begin, int64_t end, const uint64_t* halo) {
                       OrShiftedUpRange(w, q, r, begin, end, halo);
                     });

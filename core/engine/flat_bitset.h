@@ -51,6 +51,11 @@ class FlatBitset {
   // Threads the word passes that write this bitset run on (>= 1; default 1).
   int threads() const { return threads_; }
   void set_threads(int threads) { threads_ = threads < 1 ? 1 : threads; }
+  // Makes the passes that save a halo (below) save it in `store` instead of a buffer of
+  // their own, so that bitsets whose passes never run at the same time hold one between them
+  // (a work plane's halo is up to a sixteenth of its bytes). `store` must outlive the bitset;
+  // null gives the bitset its own buffer again. A copy of the bitset has its own.
+  void set_halo_store(std::vector<uint64_t>* store) { halo_store_ = store; }
   size_t word_count() const { return words_.size(); }
   uint64_t* words() { return words_.data(); }
   const uint64_t* words() const { return words_.data(); }
@@ -148,8 +153,9 @@ class FlatBitset {
   int threads_ = 1;
   std::vector<uint64_t, UnfilledAllocator<uint64_t>> words_;
   // The words the in-place shifted passes on threads save before they write (at most a
-  // sixteenth of the bitset; empty on one thread).
+  // sixteenth of the bitset; empty on one thread), unless halo_store_ holds them.
   std::vector<uint64_t> halo_;
+  std::vector<uint64_t>* halo_store_ = nullptr;
 };
 
 }  // namespace membrane

@@ -20,7 +20,8 @@ namespace membrane {
 class PackedPlane {
  public:
   // Becomes a copy of `plane`, reusing its buffers (they never shrink: a snapshot's copies are
-  // of similar sizes). Runs on plane.threads() threads, with the same result for any count.
+  // of similar sizes; a buffer that must grow holds the copy's words and a sixteenth more).
+  // Runs on plane.threads() threads, with the same result for any count.
   void Assign(const FlatBitset& plane);
 
   // Bit i of the plane copied; i < its bits().

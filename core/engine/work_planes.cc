@@ -19,6 +19,7 @@ bool WorkPlanes::Ensure(int count, const CancelToken& cancel) {
     // their page faults were a tenth of the calling thread's time in a 2-thread run.
     planes_.push_back(std::make_unique<FlatBitset>(nv, arena_.get(), FlatBitset::Unset{}));
     planes_.back()->set_threads(threads_);
+    planes_.back()->set_halo_store(&halo_);
     planes_.back()->clear_all();
   }
   return true;
@@ -27,6 +28,7 @@ bool WorkPlanes::Ensure(int count, const CancelToken& cancel) {
 void WorkPlanes::Release() {
   planes_.clear();  // before the arena they were cut from
   arena_.reset();
+  std::vector<uint64_t>().swap(halo_);
 }
 
 }  // namespace membrane

@@ -158,6 +158,25 @@ TEST(FlatBitsetThreads, RunsAreTheSameForAnyThreadCount) {
   }
 }
 
+TEST(FlatBitsetThreads, BitsetsSharingAHaloStoreGiveTheirOwnBits) {
+  // Two planes whose in-place passes save their halo in one store, taking turns along every
+  // axis (the store grows from x's small halo to z's), give the bits of one thread.
+  std::vector<uint64_t> store;
+  FlatBitset a = Plane(0.9, 31, true, 2), b = Plane(0.02, 32, true, 2);
+  FlatBitset a1 = Plane(0.9, 31, true, 1), b1 = Plane(0.02, 32, true, 1);
+  a.set_halo_store(&store);
+  b.set_halo_store(&store);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (FlatBitset* p : {&a, &a1}) p->ErodeRun(3, kStrides[axis]);
+    for (FlatBitset* p : {&b, &b1}) p->DilateRun(10, kStrides[axis]);
+    EXPECT_TRUE(SameWords(a, a1)) << "axis " << axis;
+    EXPECT_TRUE(SameWords(b, b1)) << "axis " << axis;
+  }
+  EXPECT_FALSE(store.empty());  // the passes used the store
+  ASSERT_GT(a.Count(), 0);
+  ASSERT_GT(b.Count(), 0);
+}
+
 TEST(FlatBitsetThreads, SpreadsAreTheSameForAnyThreadCount) {
   using B = FlatBitset;
   const int64_t dims[3] = {kNx, kNy, kNz};

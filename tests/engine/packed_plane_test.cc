@@ -47,6 +47,22 @@ TEST(PackedPlane, AssignedAgainHoldsTheNewPlane) {
   for (int64_t i = 0; i < second.bits(); ++i) ASSERT_EQ(packed.test(i), second.test(i)) << i;
 }
 
+TEST(PackedPlane, AGrowingCopyHoldsLittleMoreThanItsWords) {
+  // A plane of mixed words, then one with a few more: the second copy's bytes stay near its
+  // own words' (a buffer grown by doubling would hold twice them).
+  FlatBitset first(int64_t{64} * 100000), second(int64_t{64} * 100000);
+  for (int64_t w = 0; w < 100000; ++w) {
+    if (w < 90000) first.words()[w] = 0x5;
+    if (w < 90100) second.words()[w] = 0x5;
+  }
+  PackedPlane packed;
+  packed.Assign(first);
+  packed.Assign(second);
+  const int64_t flags = (100000 + 63) / 64 * 24;  // two flags and a rank per 64 words
+  EXPECT_LE(packed.bytes(), flags + 90100 * 8 * 17 / 16 + 64);
+  for (int64_t i = 0; i < second.bits(); i += 61) ASSERT_EQ(packed.test(i), second.test(i)) << i;
+}
+
 TEST(PackedPlane, SameCopyOnAnyThreadCount) {
   // Five blocks of words and a part (ForWordBlocks' 32k words), so that the ranks of every
   // block but the first are offset by the mixed words of the blocks before it.

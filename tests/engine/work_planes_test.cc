@@ -49,6 +49,31 @@ TEST(WorkPlanes, PlanesAreZeroedOnTheirThreads) {
   }
 }
 
+TEST(WorkPlanes, PlanesSharingTheirHaloGiveTheBitsOfPlanesOfTheirOwn) {
+  // In-place runs on two threads over a grid of several halo segments, on two planes in turn
+  // (their halo is one), against copies that keep their own.
+  const VoxelGrid grid({170, 170, 170}, {0, 0, 0}, 1.0);
+  WorkPlanes planes(grid, 2);
+  ASSERT_TRUE(planes.Ensure(2, CancelToken::Never()));
+  FlatBitset& a = planes.plane(0);
+  FlatBitset& b = planes.plane(1);
+  for (int64_t i = 0; i < grid.size(); i += 3) a.set(i);
+  for (int64_t i = 0; i < grid.size(); i += 1000) b.set(i);
+  FlatBitset own_a = a, own_b = b;  // copies: their own halos
+  own_a.set_threads(2);
+  own_b.set_threads(2);
+  for (const int64_t stride : {int64_t{1}, int64_t{170}, int64_t{170} * 170}) {
+    a.DilateRun(4, stride);
+    own_a.DilateRun(4, stride);
+    b.DilateRun(9, stride);
+    own_b.DilateRun(9, stride);
+  }
+  for (int64_t i = 0; i < grid.size(); ++i) {
+    ASSERT_EQ(a.test(i), own_a.test(i)) << i;
+    ASSERT_EQ(b.test(i), own_b.test(i)) << i;
+  }
+}
+
 TEST(ClearArrayBorder, LeavesTheBitsOfInteriorPlane) {
   // Odd sizes, so that rows and slabs straddle words; every bit set before.
   for (const std::array<int, 3> dims :

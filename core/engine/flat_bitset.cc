@@ -194,7 +194,7 @@ void FlatBitset::AndShiftedDown(int64_t k) {
   const int64_t q = k >> 6;
   const int r = static_cast<int>(k & 63);
   uint64_t* w = words_.data();
-  RunInHaloSegments(threads_, halo_store_ != nullptr ? *halo_store_ : halo_, w, n, q, /*halo_after=*/true,
+  RunInHaloSegments(threads_, halo(), w, n, q, /*halo_after=*/true,
                     [&](int64_t begin, int64_t end, const uint64_t* halo) {
                       AndShiftedDownRange(w, n, q, r, begin, end, halo);
                     });
@@ -205,7 +205,7 @@ void FlatBitset::OrShiftedUp(int64_t k) {
   const int64_t q = k >> 6;
   const int r = static_cast<int>(k & 63);
   uint64_t* w = words_.data();
-  RunInHaloSegments(threads_, halo_store_ != nullptr ? *halo_store_ : halo_, w, n, q, /*halo_after=*/false,
+  RunInHaloSegments(threads_, halo(), w, n, q, /*halo_after=*/false,
                     [&](int64_t begin, int64_t end, const uint64_t* halo) {
                       OrShiftedUpRange(w, q, r, begin, end, halo);
                     });

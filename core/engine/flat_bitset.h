@@ -146,6 +146,8 @@ class FlatBitset {
   // doubling passes from there on.
   void ErodeRunFromLength(int len, int n, int64_t stride);
   void DilateRunFromLength(int len, int n, int64_t stride);
+  // The buffer the in-place shifted passes save their halo in.
+  std::vector<uint64_t>& halo() { return halo_store_ != nullptr ? *halo_store_ : halo_; }
   // The 64 bits starting at bit position `pos` (may be negative or past the end: zeros).
   uint64_t WordAt(int64_t pos) const;
 

@@ -50,7 +50,7 @@ void PackedPlane::Assign(const FlatBitset& plane) {
   // A copy that needs more words than the buffer holds takes them with a sixteenth to spare,
   // the old buffer freed first: grown by resize, the buffer would double (a snapshot a few
   // words larger than the last held up to twice its words, 845 MB of copies instead of about
-  // 470 on the 10M-point bunny scan's first fine plate), and copied, it would be held twice.
+  // 520 on the 10M-point bunny scan's first fine plate), and copied, it would be held twice.
   if (static_cast<size_t>(total) > words_.capacity()) {
     std::vector<uint64_t>().swap(words_);
     words_.reserve(static_cast<size_t>(total + total / 16));

@@ -22,6 +22,9 @@ class WorkPlanes {
   // Keeps a reference to `grid`, which must outlive the planes. Allocates nothing yet. The
   // planes' word passes run on `threads` threads (FlatBitset::set_threads).
   explicit WorkPlanes(const VoxelGrid& grid, int threads = 1) : grid_(grid), threads_(threads) {}
+  // Not copied or moved: the planes point at the halo this object holds.
+  WorkPlanes(const WorkPlanes&) = delete;
+  WorkPlanes& operator=(const WorkPlanes&) = delete;
 
   // Makes planes 0 .. count-1 available, one bit per voxel of the grid, allocating the
   // missing ones (zeroed) and polling `cancel` between allocations: false when it fired. A

@@ -5,6 +5,7 @@
 
 #include "core/base/parallel_tasks.h"
 #include "core/engine/ivdep.h"
+#include "core/engine/rewritten_buffer.h"
 #include "core/engine/word_blocks.h"
 
 namespace membrane {
@@ -92,15 +93,9 @@ namespace {
 int64_t HaloSegmentWords(int64_t q) { return std::max<int64_t>(kWordBlock, 16 * (q + 2)); }
 
 // `halo` with room for `words` words: kept from pass to pass, since fresh pages for every pass
-// would cost more than the copy. One that must grow takes exactly `words`, its old buffer freed
-// first (the halo's contents are not kept): grown by resize, it could double.
+// would cost more than the copy; one that must grow takes exactly `words`.
 std::vector<uint64_t>& HaloOf(std::vector<uint64_t>& halo, int64_t words) {
-  if (static_cast<int64_t>(halo.size()) >= words) return halo;
-  if (static_cast<size_t>(words) > halo.capacity()) {
-    std::vector<uint64_t>().swap(halo);
-    halo.reserve(static_cast<size_t>(words));
-  }
-  halo.resize(static_cast<size_t>(words));
+  if (static_cast<int64_t>(halo.size()) < words) ResizeRewritten(halo, static_cast<size_t>(words));
   return halo;
 }
 

@@ -4,6 +4,7 @@
 #include <bit>
 #include <vector>
 
+#include "core/engine/rewritten_buffer.h"
 #include "core/engine/word_blocks.h"
 
 namespace membrane {
@@ -47,15 +48,11 @@ void PackedPlane::Assign(const FlatBitset& plane) {
     total += count;
     count = before;  // the block's first rank
   }
-  // A copy that needs more words than the buffer holds takes them with a sixteenth to spare,
-  // the old buffer freed first: grown by resize, the buffer would double (a snapshot a few
-  // words larger than the last held up to twice its words, 845 MB of copies instead of about
-  // 520 on the 10M-point bunny scan's first fine plate), and copied, it would be held twice.
-  if (static_cast<size_t>(total) > words_.capacity()) {
-    std::vector<uint64_t>().swap(words_);
-    words_.reserve(static_cast<size_t>(total + total / 16));
-  }
-  words_.resize(static_cast<size_t>(total));
+  // A copy that needs more words than the buffer holds takes them with a sixteenth to spare:
+  // grown by resize, the buffer doubled (a snapshot a few words larger than the last held up
+  // to twice its words, 845 MB of copies instead of about 520 on the 10M-point bunny scan's
+  // first fine plate).
+  ResizeRewritten(words_, static_cast<size_t>(total), static_cast<size_t>(total / 16));
   uint64_t* out = words_.data();
   ForWordBlocks(threads, words, [&](int64_t block, int64_t begin, int64_t end) {
     const int64_t offset = block_mixed[static_cast<size_t>(block)];

@@ -72,10 +72,10 @@ HttpResponse JsonResponse(std::string json) {
   return response;
 }
 
-HttpResponse BytesResponse(std::shared_ptr<const std::string> bytes, std::string content_type) {
+HttpResponse BytesResponse(SharedBytes bytes, std::string content_type) {
   HttpResponse response;
   response.content_type = std::move(content_type);
-  response.shared_body = std::move(bytes);
+  response.ShareBody(std::move(bytes));
   response.headers.push_back({"Cache-Control", "no-store"});
   return response;
 }
@@ -206,7 +206,7 @@ HttpResponse HttpApi::GetJob(const Job& job) const {
   return JsonResponse(absl::StrCat(
       "{\"job\":", ToJson(snapshot), ",\"statistics\":", statistics, ",\"mesh\":", mesh,
       ",\"has_preview\":", HasPreview(job) ? "true" : "false",
-      ",\"sample_points\":", job.point_sample()->size() / (3 * sizeof(float)), "}"));
+      ",\"sample_points\":", job.point_sample().size() / (3 * sizeof(float)), "}"));
 }
 
 HttpResponse HttpApi::Events(const Job& job, const std::string& query) const {
@@ -249,11 +249,11 @@ HttpResponse HttpApi::Cancel(Job& job, const Caller& caller, const HttpRequest& 
 }
 
 HttpResponse HttpApi::Download(Job& job, const std::string& file) const {
-  if (file == "preview.png" && job.preview_png()->empty()) {
+  if (file == "preview.png" && job.preview_png().empty()) {
     // A job restored from the store has its mesh but no preview: drawn once, then kept.
     if (std::optional<Job::Outcome> outcome = job.Closing();
-        outcome.has_value() && outcome->mesh != nullptr && !outcome->mesh->empty()) {
-      absl::StatusOr<TriangleMesh> mesh = ResultMesh(*outcome->mesh, job.parameters());
+        outcome.has_value() && !outcome->mesh.empty()) {
+      absl::StatusOr<TriangleMesh> mesh = ResultMesh(outcome->mesh.view(), job.parameters());
       if (!mesh.ok()) return ErrorResponse(absl::InternalError(mesh.status().message()));
       absl::StatusOr<std::string> png = PreviewPng(*mesh);
       if (!png.ok()) return ErrorResponse(png.status());
@@ -261,9 +261,8 @@ HttpResponse HttpApi::Download(Job& job, const std::string& file) const {
     }
   }
   if (file == "preview.png" || file == "points") {
-    std::shared_ptr<const std::string> bytes =
-        file == "points" ? job.point_sample() : job.preview_png();
-    if (bytes->empty()) {
+    SharedBytes bytes = file == "points" ? job.point_sample() : job.preview_png();
+    if (bytes.empty()) {
       return ErrorResponse(absl::FailedPreconditionError(
           absl::StrCat("job '", job.id(), "' has no ", file == "points" ? "point sample" : "preview",
                        " (", v1::JobState_Name(job.state()), ")")));
@@ -272,7 +271,7 @@ HttpResponse HttpApi::Download(Job& job, const std::string& file) const {
                          file == "points" ? "application/octet-stream" : "image/png");
   }
   std::optional<Job::Outcome> outcome = job.Closing();
-  if (!outcome.has_value() || outcome->mesh == nullptr) {
+  if (!outcome.has_value() || outcome->mesh.empty()) {
     return ErrorResponse(absl::FailedPreconditionError(absl::StrCat(
         "job '", job.id(), "' has no mesh (", v1::JobState_Name(job.state()), ")")));
   }
@@ -294,10 +293,11 @@ HttpResponse HttpApi::Download(Job& job, const std::string& file) const {
       return ErrorResponse(s);
     }
     absl::StatusOr<std::string> converted =
-        MeshInFormat(*outcome->mesh, job.parameters(), format);
+        MeshInFormat(outcome->mesh.view(), job.parameters(), format);
     if (!converted.ok()) return ErrorResponse(absl::InternalError(converted.status().message()));
-    response = BytesResponse(std::make_shared<const std::string>(*std::move(converted)),
-                             "application/octet-stream");
+    response.content_type = "application/octet-stream";
+    response.body = *std::move(converted);
+    response.headers.push_back({"Cache-Control", "no-store"});
   }
   response.headers.push_back(
       {"Content-Disposition",

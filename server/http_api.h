@@ -36,11 +36,13 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/strings/string_view.h"
 #include "server/caller.h"
 #include "server/clock.h"
 #include "server/job_store.h"
 #include "server/memory_budget.h"
 #include "server/server_options.h"
+#include "server/shared_bytes.h"
 
 namespace membrane::server {
 
@@ -58,11 +60,27 @@ struct HttpRequest {
 struct HttpResponse {
   int status = 200;
   std::string content_type = "application/json";
-  // The body: `shared_body` when set (a mesh, a preview: sent without a copy), else `body`.
+  // The body: the shared bytes when set (a mesh, a preview, an asset: sent without a copy,
+  // alive while the response is), else `body`.
   std::string body;
-  std::shared_ptr<const std::string> shared_body;
   std::vector<std::pair<std::string, std::string>> headers;  // beside Content-Type and -Length
-  const std::string& Body() const { return shared_body != nullptr ? *shared_body : body; }
+  void ShareBody(std::shared_ptr<const std::string> bytes) {
+    shared_bytes_ = *bytes;
+    shared_owner_ = std::move(bytes);
+    shared_set_ = true;
+  }
+  void ShareBody(SharedBytes bytes) {
+    shared_bytes_ = bytes.view();
+    kept_owner_ = std::move(bytes);
+    shared_set_ = true;
+  }
+  absl::string_view Body() const { return shared_set_ ? shared_bytes_ : body; }
+
+ private:
+  bool shared_set_ = false;
+  absl::string_view shared_bytes_;
+  std::shared_ptr<const void> shared_owner_;
+  SharedBytes kept_owner_;
 };
 
 // The JSON error response of `status` (its HTTP status from its code).

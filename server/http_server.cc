@@ -58,7 +58,7 @@ int HttpServer::Serve(mg_connection* connection, void* self) {
   }
   request.peer = absl::StrCat(info->remote_addr, ":", info->remote_port);
   const HttpResponse response = static_cast<HttpServer*>(self)->handler_(request);
-  const std::string& body = response.Body();
+  const absl::string_view body = response.Body();
   std::string head = absl::StrCat("HTTP/1.1 ", response.status, " ",
                                   mg_get_response_code_text(connection, response.status),
                                   "\r\nContent-Type: ", response.content_type,

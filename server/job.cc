@@ -17,10 +17,7 @@ Job::Job(std::string id, std::string peer, v1::Parameters parameters, std::strin
       created_at_(absl::Now()),
       on_finish_(std::move(on_finish)),
       upload_(std::move(upload)),
-      upload_hold_(std::move(upload_hold)),
-      mesh_(std::make_shared<const std::string>()),
-      preview_png_(std::make_shared<const std::string>()),
-      point_sample_(std::make_shared<const std::string>()) {}
+      upload_hold_(std::move(upload_hold)) {}
 
 std::shared_ptr<Job> Job::Restore(const v1::Job& snapshot, std::vector<v1::JobEvent> events,
                                   std::string statistics_json, v1::MeshSummary summary,
@@ -34,11 +31,11 @@ std::shared_ptr<Job> Job::Restore(const v1::Job& snapshot, std::vector<v1::JobEv
   job->created_at_ = at(snapshot.created_unix_seconds());
   job->upload_bytes_ = snapshot.upload_bytes();
   absl::MutexLock lock(&job->mutex_);
-  job->events_ = std::move(events);
-  job->statistics_json_ = std::move(statistics_json);
+  for (const v1::JobEvent& event : events) job->events_.Append(event);
+  job->statistics_json_ = SharedBytes::Copy(statistics_json);
   job->mesh_summary_ = std::move(summary);
-  job->mesh_ = std::make_shared<const std::string>(std::move(mesh));
-  job->mesh_crc32c_ = Crc32c(*job->mesh_);
+  job->mesh_ = SharedBytes::Copy(mesh);
+  job->mesh_crc32c_ = Crc32c(job->mesh_.view());
   job->state_ = snapshot.state();
   job->status_ = FromRpcStatus(snapshot.error());
   job->finished_at_ = at(snapshot.finished_unix_seconds());
@@ -60,8 +57,10 @@ void Job::ReadUpload(const std::function<void(absl::string_view)>& read) const {
 }
 
 std::vector<v1::JobEvent> Job::Events() const {
+  std::vector<v1::JobEvent> events;
   absl::MutexLock lock(&mutex_);
-  return events_;
+  events_.CopyFrom(0, events);
+  return events;
 }
 
 std::string Job::TakeUpload() {
@@ -97,7 +96,7 @@ v1::Job Job::SnapshotLocked(bool as_closed) const {
   job.set_peer(peer_);
   job.set_client(client_);
   job.set_upload_bytes(upload_bytes_);
-  if (ended) job.set_mesh_bytes(mesh_->size());
+  if (ended) job.set_mesh_bytes(mesh_.size());
   job.set_created_unix_seconds(absl::ToDoubleSeconds(created_at_ - absl::UnixEpoch()));
   if (ended) {
     job.set_finished_unix_seconds(absl::ToDoubleSeconds(finished_at_ - absl::UnixEpoch()));
@@ -151,21 +150,21 @@ bool Job::Start() {
   return true;
 }
 
-void Job::AddEvent(v1::JobEvent event) {
+void Job::AddEvent(const v1::JobEvent& event) {
   absl::MutexLock lock(&mutex_);
   if (event.has_stage() && event.stage().phase() == v1::StageEvent::STARTED) {
     stage_ = event.stage().stage();
   }
-  events_.push_back(std::move(event));
+  events_.Append(event);
 }
 
 void Job::Succeed(std::string statistics_json, v1::MeshSummary summary, std::string mesh) {
   absl::MutexLock lock(&mutex_);
   if (DoneLocked()) return;
-  statistics_json_ = std::move(statistics_json);
+  statistics_json_ = SharedBytes::Copy(statistics_json);
   mesh_summary_ = std::move(summary);
-  mesh_ = std::make_shared<const std::string>(std::move(mesh));
-  mesh_crc32c_ = Crc32c(*mesh_);
+  mesh_ = SharedBytes::Copy(mesh);
+  mesh_crc32c_ = Crc32c(mesh_.view());
   FinishLocked(v1::SUCCEEDED, absl::OkStatus());
 }
 
@@ -217,7 +216,7 @@ void Job::FinishLocked(v1::JobState state, const absl::Status& status) {
   upload_.shrink_to_fit();
   upload_hold_.Release();
   finished_at_ = absl::Now();
-  if (on_finish_) on_finish_(state, status, finished_at_ - created_at_, mesh_->size(), ran);
+  if (on_finish_) on_finish_(state, status, finished_at_ - created_at_, mesh_.size(), ran);
 }
 
 size_t Job::WaitForEvents(size_t next, absl::Duration timeout,
@@ -227,7 +226,7 @@ size_t Job::WaitForEvents(size_t next, absl::Duration timeout,
     return events_.size() > next || ClosedLocked();
   };
   mutex_.AwaitWithTimeout(absl::Condition(&ready), timeout);
-  for (size_t i = next; i < events_.size(); ++i) out.push_back(events_[i]);
+  events_.CopyFrom(next, out);
   return std::max(next, events_.size());
 }
 
@@ -241,8 +240,8 @@ Job::Outcome Job::OutcomeLocked() const {
   Outcome outcome;
   if (state_ == v1::SUCCEEDED) {
     v1::ResultHeader* result = outcome.result.emplace().mutable_result();
-    result->set_statistics_json(statistics_json_);
-    result->set_mesh_bytes(mesh_->size());
+    result->set_statistics_json(std::string(statistics_json_.view()));
+    result->set_mesh_bytes(mesh_.size());
     result->set_mesh_crc32c(mesh_crc32c_);
     *result->mutable_mesh() = mesh_summary_;
     outcome.mesh = mesh_;
@@ -263,15 +262,15 @@ std::vector<v1::JobEvent> Job::ClosingEvents(size_t chunk_bytes) const {
   }
   if (outcome->result.has_value()) {
     events.push_back(std::move(*outcome->result));
-    for (size_t at = 0; at < outcome->mesh->size(); at += chunk_bytes) {
-      events.push_back(MeshChunkEvent(*outcome->mesh, at, chunk_bytes));
+    for (size_t at = 0; at < outcome->mesh.size(); at += chunk_bytes) {
+      events.push_back(MeshChunkEvent(outcome->mesh.view(), at, chunk_bytes));
     }
   }
   events.push_back(std::move(outcome->done));
   return events;
 }
 
-v1::JobEvent MeshChunkEvent(const std::string& mesh, size_t at, size_t chunk_bytes) {
+v1::JobEvent MeshChunkEvent(absl::string_view mesh, size_t at, size_t chunk_bytes) {
   v1::JobEvent event;
   event.set_mesh_chunk(mesh.data() + at, std::min(chunk_bytes, mesh.size() - at));
   return event;
@@ -282,24 +281,24 @@ absl::Time Job::finished_at() const {
   return finished_at_;
 }
 
-void Job::SetPreview(std::string png) {
-  auto shared = std::make_shared<const std::string>(std::move(png));
+void Job::SetPreview(absl::string_view png) {
+  SharedBytes shared = SharedBytes::Copy(png);
   absl::MutexLock lock(&mutex_);
   preview_png_ = std::move(shared);
 }
 
-void Job::SetPointSample(std::string xyz) {
-  auto shared = std::make_shared<const std::string>(std::move(xyz));
+void Job::SetPointSample(absl::string_view xyz) {
+  SharedBytes shared = SharedBytes::Copy(xyz);
   absl::MutexLock lock(&mutex_);
   point_sample_ = std::move(shared);
 }
 
-std::shared_ptr<const std::string> Job::preview_png() const {
+SharedBytes Job::preview_png() const {
   absl::MutexLock lock(&mutex_);
   return preview_png_;
 }
 
-std::shared_ptr<const std::string> Job::point_sample() const {
+SharedBytes Job::point_sample() const {
   absl::MutexLock lock(&mutex_);
   return point_sample_;
 }

@@ -19,6 +19,8 @@
 #include "absl/time/time.h"
 #include "core/base/cancel_token.h"
 #include "membrane/v1/reconstruction.pb.h"
+#include "server/event_log.h"
+#include "server/shared_bytes.h"
 #include "server/upload_memory.h"
 
 namespace membrane::server {
@@ -109,7 +111,7 @@ class Job {
   bool Start() ABSL_LOCKS_EXCLUDED(mutex_);
   // Appends a stage, progress or generation event for every watcher; a StageEvent STARTED also
   // sets the job's current stage.
-  void AddEvent(v1::JobEvent event) ABSL_LOCKS_EXCLUDED(mutex_);
+  void AddEvent(const v1::JobEvent& event) ABSL_LOCKS_EXCLUDED(mutex_);
   // Ends the job: SUCCEEDED with `statistics_json`, the mesh check and the Draco `mesh`, or
   // FAILED/CANCELLED
   // with `status`. A second call is ignored (the first outcome stands).
@@ -145,7 +147,7 @@ class Job {
   // and the JobDone event.
   struct Outcome {
     std::optional<v1::JobEvent> result;
-    std::shared_ptr<const std::string> mesh;
+    SharedBytes mesh;
     v1::JobEvent done;
   };
   // The outcome of a closed job; nullopt until the job is closed.
@@ -166,11 +168,11 @@ class Job {
   // What the web console shows beside a SUCCEEDED job's mesh: a PNG preview of the mesh
   // (core/render) and a sample of the input points (float32 x y z, little-endian, in the
   // mesh's coordinates). The worker sets them before the job ends; a store may set the preview
-  // of a restored job. Never null: empty when none was set.
-  void SetPreview(std::string png) ABSL_LOCKS_EXCLUDED(mutex_);
-  void SetPointSample(std::string xyz) ABSL_LOCKS_EXCLUDED(mutex_);
-  std::shared_ptr<const std::string> preview_png() const ABSL_LOCKS_EXCLUDED(mutex_);
-  std::shared_ptr<const std::string> point_sample() const ABSL_LOCKS_EXCLUDED(mutex_);
+  // of a restored job. Empty when none was set.
+  void SetPreview(absl::string_view png) ABSL_LOCKS_EXCLUDED(mutex_);
+  void SetPointSample(absl::string_view xyz) ABSL_LOCKS_EXCLUDED(mutex_);
+  SharedBytes preview_png() const ABSL_LOCKS_EXCLUDED(mutex_);
+  SharedBytes point_sample() const ABSL_LOCKS_EXCLUDED(mutex_);
 
  private:
   bool DoneLocked() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
@@ -198,17 +200,20 @@ class Job {
   v1::JobState state_ ABSL_GUARDED_BY(mutex_) = v1::QUEUED;
   int queue_position_ ABSL_GUARDED_BY(mutex_) = 0;
   std::string stage_ ABSL_GUARDED_BY(mutex_);
-  std::vector<v1::JobEvent> events_ ABSL_GUARDED_BY(mutex_);
+  // What the job keeps after its run (events, statistics, mesh, preview, point sample) lies in
+  // pages of its own (MappedBytes): most of it is made while the run's freed arrays are
+  // what the heap has free, where it would split them for the next job.
+  EventLog events_ ABSL_GUARDED_BY(mutex_);
   absl::Status status_ ABSL_GUARDED_BY(mutex_);
-  std::string statistics_json_ ABSL_GUARDED_BY(mutex_);
+  SharedBytes statistics_json_ ABSL_GUARDED_BY(mutex_);
   v1::MeshSummary mesh_summary_ ABSL_GUARDED_BY(mutex_);
-  // Never null; shared with the followers streaming it (Closing), so never changed in place.
-  std::shared_ptr<const std::string> mesh_ ABSL_GUARDED_BY(mutex_);
-  uint32_t mesh_crc32c_ ABSL_GUARDED_BY(mutex_) = 0;  // of *mesh_, once, not per follower
+  // Shared with the followers streaming it (Closing).
+  SharedBytes mesh_ ABSL_GUARDED_BY(mutex_);
+  uint32_t mesh_crc32c_ ABSL_GUARDED_BY(mutex_) = 0;  // of mesh_, once, not per follower
   absl::Time finished_at_ ABSL_GUARDED_BY(mutex_) = absl::InfinitePast();
-  // Never null, never changed in place: handed to HTTP handlers without a copy.
-  std::shared_ptr<const std::string> preview_png_ ABSL_GUARDED_BY(mutex_);
-  std::shared_ptr<const std::string> point_sample_ ABSL_GUARDED_BY(mutex_);
+  // Handed to HTTP handlers without a copy.
+  SharedBytes preview_png_ ABSL_GUARDED_BY(mutex_);
+  SharedBytes point_sample_ ABSL_GUARDED_BY(mutex_);
   absl::Status cancel_status_ ABSL_GUARDED_BY(mutex_);
   bool end_record_required_ ABSL_GUARDED_BY(mutex_) = false;
   bool end_recorded_ ABSL_GUARDED_BY(mutex_) = false;
@@ -216,7 +221,7 @@ class Job {
 };
 
 // The MeshChunk event of the bytes [at, at + chunk_bytes) of `mesh` (fewer at its end).
-v1::JobEvent MeshChunkEvent(const std::string& mesh, size_t at, size_t chunk_bytes);
+v1::JobEvent MeshChunkEvent(absl::string_view mesh, size_t at, size_t chunk_bytes);
 
 }  // namespace membrane::server
 

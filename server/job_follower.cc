@@ -56,8 +56,8 @@ grpc::Status FollowJob(Job& job, grpc::ServerContext& context, const std::string
     const std::optional<Job::Outcome> outcome = job.Closing();
     if (outcome->result.has_value()) {
       if (!write(*outcome->result)) return CallEnded(job, context, peer, policy);
-      for (size_t at = 0; at < outcome->mesh->size(); at += kMeshChunkBytes) {
-        if (!write(MeshChunkEvent(*outcome->mesh, at, kMeshChunkBytes))) {
+      for (size_t at = 0; at < outcome->mesh.size(); at += kMeshChunkBytes) {
+        if (!write(MeshChunkEvent(outcome->mesh.view(), at, kMeshChunkBytes))) {
           return CallEnded(job, context, peer, policy);
         }
       }

@@ -23,7 +23,7 @@ Origin3d OriginOf(const v1::Parameters& parameters) {
 
 }  // namespace
 
-absl::StatusOr<TriangleMesh> ResultMesh(const std::string& mesh_bytes,
+absl::StatusOr<TriangleMesh> ResultMesh(absl::string_view mesh_bytes,
                                         const v1::Parameters& parameters) {
   if (!IsPly(parameters.mesh_format())) return DecodeDracoMesh(mesh_bytes);
   absl::StatusOr<TriangleMesh> mesh =
@@ -45,10 +45,10 @@ int64_t MeshConversionBytes(int64_t vertices, int64_t faces) {
   return kConversionBytesPerVertex * vertices + kConversionBytesPerFace * faces;
 }
 
-absl::StatusOr<std::string> MeshInFormat(const std::string& mesh_bytes,
+absl::StatusOr<std::string> MeshInFormat(absl::string_view mesh_bytes,
                                          const v1::Parameters& parameters,
                                          v1::MeshFormat format) {
-  if (IsPly(format) == IsPly(parameters.mesh_format())) return mesh_bytes;
+  if (IsPly(format) == IsPly(parameters.mesh_format())) return std::string(mesh_bytes);
   absl::StatusOr<TriangleMesh> mesh = ResultMesh(mesh_bytes, parameters);
   if (!mesh.ok()) return mesh.status();
   if (IsPly(format)) {

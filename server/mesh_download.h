@@ -6,6 +6,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "core/geometry/triangle_mesh.h"
 #include "membrane/v1/reconstruction.pb.h"
 
@@ -14,7 +15,7 @@ namespace membrane::server {
 // The mesh of a result: `mesh_bytes` as the job with `parameters` encoded them (Draco or PLY),
 // in the job's positions (the cloud's, without Parameters.origin). InvalidArgument when the
 // bytes do not decode (a result is the server's own: a bug).
-absl::StatusOr<TriangleMesh> ResultMesh(const std::string& mesh_bytes,
+absl::StatusOr<TriangleMesh> ResultMesh(absl::string_view mesh_bytes,
                                         const v1::Parameters& parameters);
 
 // `mesh_bytes` (as ResultMesh) in `format`: the bytes themselves when the job produced that
@@ -26,7 +27,7 @@ absl::StatusOr<TriangleMesh> ResultMesh(const std::string& mesh_bytes,
 // and its structures, the mesh, and the converted bytes (tests/bench/bench_download_memory.cc).
 int64_t MeshConversionBytes(int64_t vertices, int64_t faces);
 
-absl::StatusOr<std::string> MeshInFormat(const std::string& mesh_bytes,
+absl::StatusOr<std::string> MeshInFormat(absl::string_view mesh_bytes,
                                          const v1::Parameters& parameters, v1::MeshFormat format);
 
 }  // namespace membrane::server

@@ -80,10 +80,17 @@ ServerMetrics::ServerMetrics()
     stage_seconds_[static_cast<size_t>(stage)] =
         &stages.Add({{"stage", PipelineStageName(stage)}}, StageBuckets());
   }
-  // Present from the start, so that rates and alerts see a zero rather than no series.
-  for (const char* state : {"SUCCEEDED", "FAILED", "CANCELLED"}) {
-    job_seconds_.Add({{"state", state}}, JobBuckets());
+  // Present from the start, so that rates and alerts see a zero rather than no series. Naming
+  // the states through JobState_Name also builds protobuf's descriptors of the API now: built
+  // at the first job's end, their blocks would stay for good among that job's freed arrays,
+  // and split the space the next job's arrays would take whole (server/mapped_bytes.h).
+  for (v1::JobState state : {v1::SUCCEEDED, v1::FAILED, v1::CANCELLED}) {
+    job_seconds_.Add({{"state", v1::JobState_Name(state)}}, JobBuckets());
   }
+  finished_.Add({{"state", v1::JobState_Name(v1::SUCCEEDED)},
+                 {"code", absl::StatusCodeToString(absl::StatusCode::kOk)}});
+  finished_.Add({{"state", v1::JobState_Name(v1::CANCELLED)},
+                 {"code", absl::StatusCodeToString(absl::StatusCode::kCancelled)}});
 }
 
 void ServerMetrics::ReconstructRefused(absl::StatusCode code) {

@@ -88,7 +88,7 @@ HttpResponse WebAssets::Serve(const HttpRequest& request) const {
   }
   HttpResponse response;
   response.content_type = found->second.content_type;
-  response.shared_body = found->second.bytes;
+  response.ShareBody(found->second.bytes);
   // The page and three.js change only with membraned: a reload checks, a tab keeps its copy.
   response.headers.push_back({"Cache-Control", "no-cache"});
   // Every script, style and request is membraned's own; previews are blob URLs. A page that

@@ -365,8 +365,7 @@ TEST(DiskJobStoreTest, RecordOfTheLargestResultIsWrittenAndLoaded) {
   ASSERT_NE(loaded, nullptr);
   const std::optional<Job::Outcome> outcome = loaded->Closing();
   ASSERT_TRUE(outcome.has_value());
-  ASSERT_NE(outcome->mesh, nullptr);
-  EXPECT_TRUE(*outcome->mesh == mesh);
+  EXPECT_TRUE(outcome->mesh.view() == mesh);
 }
 
 // Followers deliver a job's end only once its record is on disk: a crash in between cannot

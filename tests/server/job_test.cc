@@ -27,8 +27,8 @@ TEST(Job, FollowersShareOneMeshBufferInsteadOfCopyingIt) {
   const std::optional<Job::Outcome> second = job->Closing();
   ASSERT_TRUE(first.has_value() && second.has_value());
   ASSERT_TRUE(first->result.has_value());
-  EXPECT_EQ(first->mesh.get(), second->mesh.get());
-  EXPECT_TRUE(*first->mesh == mesh);
+  EXPECT_EQ(first->mesh.view().data(), second->mesh.view().data());  // one buffer, shared
+  EXPECT_TRUE(first->mesh.view() == mesh);
   EXPECT_EQ(first->result->result().mesh_bytes(), mesh.size());
   EXPECT_EQ(first->result->result().mesh_crc32c(), Crc32c(mesh));
   EXPECT_EQ(first->done.done().state(), v1::SUCCEEDED);
@@ -55,7 +55,7 @@ TEST(Job, RunningJobHasNoOutcomeAndAFailedOneNoMesh) {
   const std::optional<Job::Outcome> outcome = job->Closing();
   ASSERT_TRUE(outcome.has_value());
   EXPECT_FALSE(outcome->result.has_value());
-  EXPECT_EQ(outcome->mesh, nullptr);
+  EXPECT_TRUE(outcome->mesh.empty());
   EXPECT_EQ(outcome->done.done().state(), v1::FAILED);
   EXPECT_EQ(outcome->done.done().status().message(), "a degenerate cloud");
 }

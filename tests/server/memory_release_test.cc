@@ -6,7 +6,11 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <vector>
+
+#include "absl/strings/str_cat.h"
 #include "core/base/malloc_policy.h"
+#include "server/job.h"
 #include "gtest/gtest.h"
 
 namespace membrane::server {
@@ -55,6 +59,46 @@ TEST(ServerMallocPolicy, TheOperatorsSettingsStand) {
   EXPECT_EXIT(
       AllocateFreeAndExit("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1:glibc.malloc.mmap_max=0"),
       ::testing::ExitedWithCode(10), "");
+}
+
+// In a child process under the policy: a job's run frees a 256 MB array, then the job records
+// the events of its late stages and ends with its statistics, mesh, preview and point sample.
+// Exits 0 when the next 256 MB array takes the freed one's place (what the job keeps did not
+// split it), 1 when it had to go elsewhere.
+[[noreturn]] void KeepAJobsResultAfterAFreedArrayAndExit() {
+  unsetenv("MALLOC_ARENA_MAX");
+  unsetenv("GLIBC_TUNABLES");
+  if (!UseMallocPolicyUnlessChosen()) std::_Exit(3);
+  Job job("job-1", "peer", v1::Parameters(), std::string());
+  if (!job.Start()) std::_Exit(5);
+  // Made before the array is freed: the observer's messages and the run's result are
+  // transient, what the job makes of them is what it keeps.
+  std::vector<v1::JobEvent> events(2000);
+  for (size_t i = 0; i < events.size(); ++i) {
+    v1::StageProgress* p = events[i].mutable_progress();
+    p->set_stage("surface");
+    p->set_line(absl::StrCat("surface: ", i, " of ", events.size(), " parts fitted so far"));
+  }
+  const std::string statistics(3000, '{');
+  const std::string mesh(16 << 20, 'm');
+  const std::string preview(60000, 'p');
+  const std::string sample(240000, 's');
+  char* array = static_cast<char*>(std::malloc(kBytes));
+  if (array == nullptr) std::_Exit(4);
+  std::memset(array, 1, 4096);
+  std::free(array);
+  for (const v1::JobEvent& event : events) job.AddEvent(event);
+  job.SetPointSample(sample);
+  job.SetPreview(preview);
+  job.Succeed(statistics, v1::MeshSummary(), mesh);
+  char* next = static_cast<char*>(std::malloc(kBytes));
+  if (job.Closing()->mesh.view() != mesh || job.Events().size() != events.size()) std::_Exit(6);
+  std::_Exit(next == array ? 0 : 1);
+}
+
+TEST(ServerMallocPolicy, WhatAJobKeepsLeavesTheSpaceItsRunFreedWhole) {
+  if (!kGlibcMalloc) GTEST_SKIP() << "glibc's malloc is replaced under the sanitizers";
+  EXPECT_EXIT(KeepAJobsResultAfterAFreedArrayAndExit(), ::testing::ExitedWithCode(0), "");
 }
 
 }  // namespace

@@ -19,9 +19,9 @@ namespace membrane::server {
 
 class JobScheduler {
  public:
-  // Runs each job on one of `workers` threads with `run`, which must end the job (Succeed or
-  // Fail). At most `queue_capacity` jobs wait beyond those running (with 0, a job is accepted
-  // only when a worker is idle).
+  // Runs each job with `run`, which must end the job (Succeed or Fail), on a thread started
+  // for it by one of `workers` workers. At most `queue_capacity` jobs wait beyond those
+  // running (with 0, a job is accepted only when a worker is idle).
   using RunFn = std::function<void(const std::shared_ptr<Job>&)>;
   JobScheduler(int workers, int queue_capacity, RunFn run);
   // Shutdown(absl::ZeroDuration()) unless it was called.

@@ -4,7 +4,7 @@
 // (core/base/malloc_policy.h). A block allocated while a run's arrays are freed and kept after
 // the run (an event of its late stages, its result) lands in the middle of that freed space
 // and splits it, so that the next job's arrays, which would have fitted whole, take fresh
-// pages beside the freed ones: a job after another peaked 1.6-2.7 GB higher than alone
+// pages beside the freed ones: a job after another peaked 1.4-3.1 GB higher than alone
 // (docs/memory-decisions.md, "What a job keeps lives outside the heap").
 #ifndef MEMBRANE_SERVER_MAPPED_BYTES_H_
 #define MEMBRANE_SERVER_MAPPED_BYTES_H_

@@ -201,8 +201,8 @@ class Job {
   int queue_position_ ABSL_GUARDED_BY(mutex_) = 0;
   std::string stage_ ABSL_GUARDED_BY(mutex_);
   // What the job keeps after its run (events, statistics, mesh, preview, point sample) lies in
-  // pages of its own (MappedBytes): most of it is made while the run's freed arrays are
-  // what the heap has free, where it would split them for the next job.
+  // pages of its own (EventLog, SharedBytes): most of it is made while the run's freed arrays
+  // are what the heap has free, where it would split them for the next job.
   EventLog events_ ABSL_GUARDED_BY(mutex_);
   absl::Status status_ ABSL_GUARDED_BY(mutex_);
   SharedBytes statistics_json_ ABSL_GUARDED_BY(mutex_);

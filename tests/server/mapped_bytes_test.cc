@@ -77,9 +77,9 @@ TEST(MappedBytes, AMoveTakesTheBytes) {
 }
 
 // In a child process: takes every mapping the kernel allows (vm.max_map_count), then appends
-// to a new MappedBytes and to one that had one page mapped (and no room to grow it in place). Exits 0 when both hold their
-// bytes in the heap, 1 when one kept a mapping, 2 when the contents differ, 3 when the limit
-// was not reached.
+// to a new MappedBytes and to one that had one page mapped (and no room to grow it in place).
+// Exits 0 when both hold their bytes in the heap, 1 when one kept a mapping, 2 when the
+// contents differ, 3 when the limit was not reached.
 [[noreturn]] void AppendWithNoMappingLeftAndExit() {
   MappedBytes grown;
   grown.Append("before the limit;");

@@ -212,7 +212,8 @@ absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
   // The closed form needs the chains' tunnel rule to be the same everywhere (n >= the guard's
   // tunnel size): then only tunnels next to hard voxels are refused, and it checks those.
   if (options_.closed_form_min_plate > 0 && sizes_[g] >= options_.closed_form_min_plate &&
-      sizes_[g] >= chain.guard.sizes.tunnel_min_plate) {
+      sizes_[g] >= chain.guard.sizes.tunnel_min_plate &&
+      (options_.closed_form_after_refusal || !closed_form_refused_)) {
     const int64_t voxelwise_max = options_.closed_form_voxelwise_ratio > 0
                                       ? grid_.size() / options_.closed_form_voxelwise_ratio
                                       : -1;
@@ -220,6 +221,7 @@ absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
         RunClosedFormGeneration(grid_, chain, voxelwise_max, cancel_, planes_);
     if (!closed.ok()) return CancelledIn(stats);
     done = stats.closed_form = closed->applied;
+    closed_form_refused_ = closed_form_refused_ || !closed->applied;
     stats.closed_form_rounds = closed->rounds;
     stats.closed_form_checks = closed->checks;
     stats.closed_form_voxelwise = closed->voxelwise;

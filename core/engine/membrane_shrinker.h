@@ -209,6 +209,9 @@ class MembraneShrinker {
   // generation (on a 70 M voxel grid each pass costs as much as a small generation).
   StateCounts counts_;
   GuardedBand guarded_band_;  // the band GuardInteriors froze, released by plate size
+  // A generation's closed form was refused by its checks (ShrinkOptions::
+  // closed_form_after_refusal).
+  bool closed_form_refused_ = false;
   // Made beside the guard on a grid with threaded word passes (PlanesAhead), else at the
   // first snapshot or closed form.
   WorkPlanes planes_;

@@ -57,6 +57,12 @@ struct ShrinkOptions {
   // A closed form adding at most one voxel per this many of the grid applies and checks its
   // result voxel by voxel, others by whole-grid planes (the same result); 0 = always by planes.
   int64_t closed_form_voxelwise_ratio = 256;
+  // Whether a generation still tries the closed form after an earlier generation's checks
+  // refused one. Off: once the checks refuse, the rest of the shrink runs chains straight
+  // away, the same voxels (an accepted closed form is the chains' result) without sweeps that
+  // the membrane at the data's incursions has always refused again (docs/engine-decisions.md,
+  // "Closed-form generations").
+  bool closed_form_after_refusal = false;
   // A chain generation's passes after its first take their snapshot near the voxels the pass
   // before wrote (place_finder.h, SnapshotAfter: the same candidates and places).
   LocalSnapshotOptions local_snapshots;

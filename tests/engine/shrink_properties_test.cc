@@ -16,6 +16,7 @@
 #include "core/synth/cube_pinholes.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/support/shared_data.h"
 #include "tests/support/shrink_fixture.h"
 
 namespace membrane {
@@ -402,6 +403,73 @@ TEST(ClosedFormGeneration, AppliesVoxelByVoxelOrByPlanesToTheSameMembrane) {
   }
   EXPECT_GT(accepted_by_voxels, 0);
   EXPECT_GT(rejected_by_voxels, 0);  // the capped sphere's checks refuse its result
+}
+
+}  // namespace
+}  // namespace membrane
+
+namespace membrane {
+namespace {
+
+// Generations whose closed form the checks refused, and those that tried none although their
+// plate was big enough for one.
+struct ClosedFormTries {
+  int refused = 0;
+  int untried = 0;
+};
+
+ClosedFormTries CountTries(const ShrinkResult& result, const ShrinkOptions& options) {
+  ClosedFormTries tries;
+  for (const GenerationStats& g : result.generations) {
+    if (g.level > 1 || g.plate_size < options.closed_form_min_plate ||
+        g.plate_size < options.guard.tunnel_min_plate) {
+      continue;  // the coarse plates', and those too small for a closed form
+    }
+    if (g.closed_form_rounds == 0) {
+      ++tries.untried;
+    } else if (!g.closed_form) {
+      ++tries.refused;
+    }
+  }
+  return tries;
+}
+
+// Once a generation's checks refuse its closed form, the later generations run their chains
+// without trying one: the same membrane as trying each (an accepted closed form is the chains'
+// result), with one refusal instead of several.
+void ExpectChainsRightAfterARefusal(const PointCloud& cloud, const std::string& name) {
+  SCOPED_TRACE(name);
+  const ShrinkOptions once;
+  ShrinkOptions every;
+  every.closed_form_after_refusal = true;
+  auto straight = testing::ShrinkCloud(cloud, 1.0, once);
+  auto tried = testing::ShrinkCloud(cloud, 1.0, every);
+  ASSERT_TRUE(straight.ok() && tried.ok());
+  const ClosedFormTries a = CountTries(straight->result, once);
+  const ClosedFormTries b = CountTries(tried->result, every);
+  EXPECT_EQ(a.refused, 1);
+  EXPECT_GE(a.untried, 1);
+  EXPECT_GE(b.refused, 2);
+  EXPECT_EQ(b.untried, 0);
+  ASSERT_EQ(straight->result.generations.size(), tried->result.generations.size());
+  for (size_t g = 0; g < tried->result.generations.size(); ++g) {
+    EXPECT_EQ(straight->result.generations[g].new_outside,
+              tried->result.generations[g].new_outside)
+        << "plate " << tried->result.generations[g].plate_size;
+  }
+  EXPECT_TRUE(straight->voxels.grid.states() == tried->voxels.grid.states());
+  EXPECT_EQ(straight->Describe(), tried->Describe());
+}
+
+TEST(ClosedFormGeneration, AfterARefusalTheChainsRunStraightAway) {
+  ExpectChainsRightAfterARefusal(testing::SynthCloud("capped-sphere", 60000), "capped sphere");
+}
+
+TEST(ClosedFormGeneration, AfterARefusalOnARealScanTheChainsRunStraightAway) {
+  MEMBRANE_REQUIRE_SHARED_DATA(data_dir);
+  absl::StatusOr<PointCloud> cloud = testing::ReadSharedCloud(data_dir, "stanford-bunny-scan");
+  ASSERT_TRUE(cloud.ok()) << cloud.status();
+  ExpectChainsRightAfterARefusal(*cloud, "stanford-bunny-scan");
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ namespace membrane {
 struct LocalSnapshotOptions {
   // Largest share of the grid's voxels the bricks' boxes may hold; above it, and at 0, the
   // snapshot is dense.
-  double max_share = 0.5;
+  double max_share = 1.0;
   int brick = 32;  // least side of the bricks (voxels), >= 1
   // Bricks are at least this many plates wide (>= 0): a brick's box has n voxels of margin
   // on each side, which a narrower brick would spend most of the box on.

@@ -27,7 +27,8 @@ are those of the run that filled the cache). Membrane meshes are written to a te
       [--no-poisson] [--split] [--out tests/bench/accuracy-YYYY-MM-DD.txt]
 
 --split adds a line per mesh: the Chamfer parts on the data and in the cloud's gaps, the deepest
-point off the reference, in voxels (tests/bench/gap_split.py; Poisson's at the membrane's voxel);
+point off the reference, in voxels, with its distance from the nearest input point
+(tests/bench/gap_split.py; Poisson's at the membrane's voxel);
 on the holes protocol a second line per hole: the deepest mesh sample near it and its side (in:
 inside the reference's solid), the cut-off, and the share of its mesh samples farther than 2
 voxels from the reference.
@@ -188,8 +189,16 @@ def fmt_split(split):
     return (f"on data {split['data_pct']:.4f} + gap {split['gap_pct']:.4f} "
             f"(gap {100 * split['gap_mesh_share']:.1f}% of the mesh, "
             f"{100 * split['gap_gt_share']:.1f}% of the reference), "
-            f"deepest {split['deepest']:.1f} voxels, cut-off {split['cut_off']:.1f}, "
-            f"gap signed {split['signed_gap']:+.2f}")
+            f"deepest {split['deepest']:.1f} voxels{deepest_where(split)}, "
+            f"cut-off {split['cut_off']:.1f}, gap signed {split['signed_gap']:+.2f}")
+
+
+def deepest_where(split):
+    """How far the deepest mesh sample lies from the input points (rows cached before
+    gap_split.py measured it: empty)."""
+    if 'deepest_from_data' not in split:
+        return ''
+    return f" ({split['deepest_from_data']:.1f} from the nearest point)"
 
 
 def fmt_holes(split):

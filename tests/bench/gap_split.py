@@ -11,7 +11,10 @@ caps' gap radius), "data" otherwise. Chamfer-L1 = (mean accuracy + mean complete
 the sum of the two parts' shares; each is printed in % of the reference's diagonal with the share
 of the samples it covers. `deepest` is the largest distance of a mesh sample to the reference in
 voxels (a crater, a channel, a cap off the surface); `cut_off` the largest of a reference
-sample to the mesh (a bump the mesh cuts off), also in voxels. `signed_gap` is the mean signed
+sample to the mesh (a bump the mesh cuts off), also in voxels. `deepest_from_data` is the
+distance, in voxels, from the deepest mesh sample to its nearest input point: a surface spanning
+a part of the reference that no point shows lies about as far from every point as from the
+reference, where a channel carved beside the data lies within a few voxels of it. `signed_gap` is the mean signed
 distance of the gap mesh samples (positive: outside the reference, along its closest normal),
 in voxels: a cap that sinks into the solid is negative.
 
@@ -52,6 +55,7 @@ def split(mesh, gt, points, voxel, samples, eval_dir):
     tree = cKDTree(P)
     radius = 2.0 * voxel
     gap_m = np.isinf(tree.query(Pm, k=1, distance_upper_bound=radius)[0])
+    deepest_at = int(np.argmax(d_acc))
     gap_g = np.isinf(tree.query(Pg, k=1, distance_upper_bound=radius)[0])
     # The signed distance of the gap mesh samples: along the reference's face normal at the
     # closest point (outward for a closed, outward reference).
@@ -99,6 +103,7 @@ def split(mesh, gt, points, voxel, samples, eval_dir):
         'gap_mesh_share': float(gap_m.mean()),
         'gap_gt_share': float(gap_g.mean()),
         'deepest': float(d_acc.max() / voxel),
+        'deepest_from_data': float(tree.query(Pm[deepest_at], k=1)[0] / voxel),
         'cut_off': float(d_comp.max() / voxel),
         'signed_gap': float(np.mean(signed) / voxel) if len(signed) else 0.0,
     }

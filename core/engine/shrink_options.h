@@ -59,9 +59,9 @@ struct ShrinkOptions {
   int64_t closed_form_voxelwise_ratio = 256;
   // Whether a generation still tries the closed form after an earlier generation's checks
   // refused one. Off: once the checks refuse, the rest of the shrink runs chains straight
-  // away, the same voxels (an accepted closed form is the chains' result) without sweeps that
-  // the membrane at the data's incursions has always refused again (docs/engine-decisions.md,
-  // "Closed-form generations").
+  // away. The voxels are the same (an accepted closed form is the chains' result), without
+  // the sweeps of closed forms that, on every cloud measured, the checks refused again
+  // (docs/engine-decisions.md, "Closed-form generations").
   bool closed_form_after_refusal = false;
   // A chain generation's passes after its first take their snapshot near the voxels the pass
   // before wrote (place_finder.h, SnapshotAfter: the same candidates and places).

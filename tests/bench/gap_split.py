@@ -14,9 +14,9 @@ voxels (a crater, a channel, a cap off the surface); `cut_off` the largest of a 
 sample to the mesh (a bump the mesh cuts off), also in voxels. `deepest_from_data` is the
 distance, in voxels, from the deepest mesh sample to its nearest input point: a surface spanning
 a part of the reference that no point shows lies about as far from every point as from the
-reference, where a channel carved beside the data lies within a few voxels of it. `signed_gap` is the mean signed
-distance of the gap mesh samples (positive: outside the reference, along its closest normal),
-in voxels: a cap that sinks into the solid is negative.
+reference, where a channel carved beside the data lies within a few voxels of it.
+`signed_gap` is the mean signed distance of the gap mesh samples (positive: outside the
+reference, along its closest normal), in voxels: a cap that sinks into the solid is negative.
 
 When the cloud has the eval tools' metadata beside it (CLOUD.json with `hole_centres` and
 `hole_radius_abs`: the holes protocol), `holes` lists per hole, over the samples within 1.3 hole

@@ -1,6 +1,7 @@
 #include "server/job_scheduler.h"
 
 #include <algorithm>
+#include <system_error>
 #include <thread>
 #include <utility>
 
@@ -80,7 +81,13 @@ void JobScheduler::WorkerLoop() {
     // run's late stages, they lie among the run's freed arrays; on a worker that lives on they
     // would stay there and split the space the next job's arrays would take whole
     // (docs/memory-decisions.md, "What a job keeps lives outside the heap").
-    std::thread([this, &job] { run_(job); }).join();
+    // A process out of threads (RLIMIT_NPROC, memory) runs the job on the worker itself, as
+    // the core's threads fall back: the same job, the worker's cache kept.
+    try {
+      std::thread([this, &job] { run_(job); }).join();
+    } catch (const std::system_error&) {
+      run_(job);
+    }
     absl::MutexLock lock(&mutex_);
     running_.erase(std::find(running_.begin(), running_.end(), job));
   }

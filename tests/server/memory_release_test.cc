@@ -22,9 +22,6 @@ namespace {
 
 constexpr size_t kBytes = size_t{256} << 20;
 
-// Whether an array of kBytes allocated at `next` took the place of one freed at `freed`: at
-// the same address, or a little below where blocks freed beside it merged with it. Where the
-// freed space was split, it lies above, at the heap's top.
 // A run's array: kBytes allocated, a page of them written, then freed. Returns where it lay
 // (exits 4 when it cannot be had).
 uintptr_t AllocateAndFreeAnArray() {
@@ -37,6 +34,9 @@ uintptr_t AllocateAndFreeAnArray() {
   return at;
 }
 
+// Whether an array of kBytes allocated at `next` took the place of one freed at `freed`: at
+// the same address, or a little below where blocks freed beside it merged with it. Where the
+// freed space was split, it lies above, at the heap's top.
 bool TookTheFreedPlace(uintptr_t freed, const char* next) {
   const auto at = reinterpret_cast<uintptr_t>(next);
   return at <= freed && freed - at < (1 << 20);

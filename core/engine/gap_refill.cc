@@ -4,6 +4,7 @@
 #include <array>
 #include <deque>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
@@ -14,6 +15,7 @@
 #include "core/engine/flat_bitset.h"
 #include "core/engine/local_topology.h"
 #include "core/engine/outside_blocks.h"
+#include "core/engine/outside_runs.h"
 #include "core/engine/state_planes.h"
 
 namespace membrane {
@@ -103,16 +105,34 @@ class HardRowExtremes {
   std::array<std::vector<int32_t>, 3> lo_, hi_;
 };
 
+// The walks through the outside along an axis: by the grid's runs (a binary search a walk)
+// where they take at most an eighth of a byte a voxel, else by blocks of 8^3. The same stops.
+class OutsideWalks {
+ public:
+  OutsideWalks(const VoxelGrid& grid, int threads)
+      : runs_(OutsideRuns::Read(grid, threads, grid.size() / 8)) {
+    if (!runs_) blocks_.emplace(grid, threads);
+  }
+  // OutsideRuns::WalkOutside's contract.
+  int Walk(const VoxelGrid& grid, const Coord& c, int d, int sign) const {
+    return runs_ ? runs_->WalkOutside(c, d, sign) : blocks_->WalkOutside(grid, c, d, sign);
+  }
+
+ private:
+  std::optional<OutsideRuns> runs_;
+  std::optional<OutsideBlocks> blocks_;
+};
+
 // Of the 6 axis rays from an outside voxel: those that meet a gap wall (the first non-outside
 // voxel on the ray and the one after it are both soft or frozen: the ray enters the solid where
 // it holds no data, and a hard voxel lies further on: the solid's far side), and those that
 // leave through the outside to the array's border (the way out). A ray that meets the data
 // first looks at a scanned wall from outside it. True when at least `min_gap_walls` rays meet
-// gap walls and at most `max_open` leave. A ray through the open outside walks to the array's
-// border: the walks step over blocks of outside voxels, the rays along z (a plane a step) go
-// last, and the count stops once its answer is known.
+// gap walls and at most `max_open` leave. Each walk is a search of its row (OutsideWalks); the
+// rays along z, whose stops read voxels a plane apart, go last, and the count stops once its
+// answer is known.
 bool BehindGapWalls(const VoxelGrid& grid, const HardRowExtremes& rows,
-                    const OutsideBlocks& blocks, int64_t v, int min_gap_walls, int max_open) {
+                    const OutsideWalks& walks, int64_t v, int min_gap_walls, int max_open) {
   const Coord c = grid.CoordOf(v);
   const int at[3] = {c.x, c.y, c.z};
   const auto st = grid.strides();
@@ -122,7 +142,7 @@ bool BehindGapWalls(const VoxelGrid& grid, const HardRowExtremes& rows,
       if (gap_walls + left < min_gap_walls || open > max_open) return false;
       if (gap_walls >= min_gap_walls && open + left <= max_open) return true;
       --left;
-      const int t = blocks.WalkOutside(grid, c, d, sign);
+      const int t = walks.Walk(grid, c, d, sign);
       const int64_t u = v + (t - at[d]) * st[d];
       if (t <= 0 || t >= grid.dim(d) - 1 || IsOutside(grid.at(u))) {
         ++open;
@@ -355,7 +375,7 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   GapRefillStats stats;
   if (!options.enabled) return stats;
   const HardRowExtremes rays(grid, threads);
-  const OutsideBlocks blocks(grid, threads);
+  const OutsideWalks walks(grid, threads);
   // The region to refill is read on the membrane as the shrink left it (the fill itself
   // changes what the rays meet): the outside voxels in a gap and behind gap walls, reached
   // from the membrane through such voxels. Reading a voxel writes nothing: the seeds below
@@ -364,7 +384,7 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   auto read = [&](int64_t v) {
     if (!IsOutside(grid.at(v)) || grid.OnArrayBorder(grid.CoordOf(v))) return Reading::kOut;
     if (InGap(grid, grid.CoordOf(v), options.gap_radius) &&
-        BehindGapWalls(grid, rays, blocks, v, options.min_enclosed_rays, options.max_open_rays)) {
+        BehindGapWalls(grid, rays, walks, v, options.min_enclosed_rays, options.max_open_rays)) {
       return Reading::kGap;
     }
     if (options.pocket_backed_rays == 0 || GenerationLabel(grid.at(v)) == 0)

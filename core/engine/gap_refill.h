@@ -72,11 +72,13 @@ struct GapRefillStats {
 // neighbour becomes INSIDE: the membrane invariants still hold.
 // The region is read once, on the grid as it comes (the fill's own voxels would block the
 // rays). Memory: 8 bytes per grid row and axis (the hard voxels' extremes per row; those
-// along z once more per thread while they are read, up to 8 threads), a bit per block of
-// 8^3 voxels (the all-outside blocks the rays step over), two bits a voxel (the region and
-// the voxels read out of it: 512 MB on a 2e9-voxel grid) and hash sets of the pocket voxels;
-// each loop-closing trial searches at most 2^20 outside voxels.
-// The grid's rows, its outside blocks and the seeds are read on `threads` (>= 1), a slab of z
+// along z once more per thread while they are read, up to 8 threads), the runs of non-outside
+// voxels the rays search (outside_runs.h: 4 bytes per grid row and axis and 8 a run, at most
+// an eighth of a byte a voxel; past that, a bit per block of 8^3 voxels that the rays step
+// over, outside_blocks.h), two bits a voxel (the region and the voxels read out of it: 512 MB
+// on a 2e9-voxel grid) and hash sets of the pocket voxels; each loop-closing trial searches
+// at most 2^20 outside voxels.
+// The grid's rows, its runs (or blocks) and the seeds are read on `threads` (>= 1), a slab of z
 // planes a task, and the fill runs on the calling thread: the same grid for any count.
 // Errors: Cancelled when `cancel` fires (the grid is then a valid membrane, partly
 // refilled); InvalidArgument for options out of range.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <deque>
 #include <limits>
 #include <optional>
@@ -27,14 +28,17 @@ constexpr int64_t kCancelPoll = 1 << 16;
 // thread tens of microseconds.
 constexpr int64_t kMinLayerToSplit = 256;
 
-// Per axis, per grid row along it: the lowest and highest coordinate of a hard voxel on the
-// row (lowest > highest when none). Row of voxel (x, y, z): axis 0 y + ny z, axis 1 x + nx z,
-// axis 2 x + nx y.
-class HardRowExtremes {
+// Where the hard voxels are. Per axis, per grid row along it: the lowest and highest
+// coordinate of a hard voxel on the row (lowest > highest when none). Row of voxel (x, y, z):
+// axis 0 y + ny z, axis 1 x + nx z, axis 2 x + nx y. And per block of 4 x 4 x 4 voxels, a bit
+// set when the block holds a hard voxel: most voxels the region's growth reads are in a gap,
+// where the whole box of the gap test would be read voxel by voxel across its planes.
+class HardVoxelMap {
  public:
   // Read on `threads`, a slab of z planes a task: the rows along x and y lie in one plane and
-  // belong to its task; those along z cross every slab and are met per task, then merged.
-  HardRowExtremes(const VoxelGrid& grid, int threads) : dims_(grid.dims()) {
+  // belong to its task; those along z cross every slab and are met per task, then merged; a
+  // block's bit is set by whichever task meets a hard voxel in it.
+  HardVoxelMap(const VoxelGrid& grid, int threads) : dims_(grid.dims()) {
     const int nx = dims_[0], ny = dims_[1], nz = dims_[2];
     rows_[0] = static_cast<size_t>(ny) * nz;
     rows_[1] = static_cast<size_t>(nx) * nz;
@@ -42,7 +46,11 @@ class HardRowExtremes {
     for (int d = 0; d < 3; ++d) {
       lo_[d].assign(rows_[d], kNoneLo);
       hi_[d].assign(rows_[d], kNoneHi);
+      blocks_[d] = (dims_[d] + kBlock - 1) / kBlock;
     }
+    block_bits_.assign(static_cast<size_t>(
+                           (static_cast<int64_t>(blocks_[0]) * blocks_[1] * blocks_[2] + 63) / 64),
+                       0);
     // At most kMaxSlabs: each slab past the first holds 8 bytes a z row of its own.
     const int slabs = std::clamp(std::min(threads, kMaxSlabs), 1, std::max(nz, 1));
     // Slab 0 writes the z rows' own arrays, the others theirs, merged below.
@@ -69,6 +77,9 @@ class HardRowExtremes {
             Note(lo_[0].data(), hi_[0].data(), RowOf(0, x, y, z), x);
             Note(lo_[1].data(), hi_[1].data(), RowOf(1, x, y, z), y);
             Note(zl, zh, RowOf(2, x, y, z), z);
+            const int64_t b = BlockOf(x / kBlock, y / kBlock, z / kBlock);
+            std::atomic_ref<uint64_t>(block_bits_[static_cast<size_t>(b >> 6)])
+                .fetch_or(uint64_t{1} << (b & 63), std::memory_order_relaxed);
           }
         }
     });
@@ -86,11 +97,31 @@ class HardRowExtremes {
     return sign > 0 ? hi_[d][row] > t : lo_[d][row] < t;
   }
 
+  // True when no block meeting the box of Chebyshev radius r around c (clipped to the array)
+  // holds a hard voxel: then no voxel of the box is hard. False tells nothing.
+  bool NoneNear(const Coord& c, int r) const {
+    int lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::max(c[d] - r, 0) / kBlock;
+      hi[d] = std::min(c[d] + r, dims_[d] - 1) / kBlock;
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          const int64_t b = BlockOf(x, y, z);
+          if ((block_bits_[static_cast<size_t>(b >> 6)] >> (b & 63)) & 1) return false;
+        }
+    return true;
+  }
+
  private:
   size_t RowOf(int d, int x, int y, int z) const {
     if (d == 0) return y + static_cast<size_t>(dims_[1]) * z;
     if (d == 1) return x + static_cast<size_t>(dims_[0]) * z;
     return x + static_cast<size_t>(dims_[0]) * y;
+  }
+  int64_t BlockOf(int bx, int by, int bz) const {
+    return bx + static_cast<int64_t>(blocks_[0]) * (by + static_cast<int64_t>(blocks_[1]) * bz);
   }
   static void Note(int32_t* lo, int32_t* hi, size_t row, int t) {
     lo[row] = std::min(lo[row], t);
@@ -99,10 +130,13 @@ class HardRowExtremes {
 
   static constexpr int32_t kNoneLo = std::numeric_limits<int32_t>::max(), kNoneHi = -1;
   static constexpr int kMaxSlabs = 8;
+  static constexpr int kBlock = 4;
 
   std::array<int, 3> dims_;
   std::array<size_t, 3> rows_;
   std::array<std::vector<int32_t>, 3> lo_, hi_;
+  std::array<int, 3> blocks_{};
+  std::vector<uint64_t> block_bits_;
 };
 
 // The walks through the outside along an axis: by the grid's runs (a binary search a walk)
@@ -131,7 +165,7 @@ class OutsideWalks {
 // gap walls and at most `max_open` leave. Each walk is a search of its row (OutsideWalks); the
 // rays along z, whose stops read voxels a plane apart, go last, and the count stops once its
 // answer is known.
-bool BehindGapWalls(const VoxelGrid& grid, const HardRowExtremes& rows,
+bool BehindGapWalls(const VoxelGrid& grid, const HardVoxelMap& rows,
                     const OutsideWalks& walks, int64_t v, int min_gap_walls, int max_open) {
   const Coord c = grid.CoordOf(v);
   const int at[3] = {c.x, c.y, c.z};
@@ -204,7 +238,8 @@ PocketRays CountPocketRays(const VoxelGrid& grid, int64_t v, int reach, int dept
 }
 
 // No hard voxel within Chebyshev distance r of c (voxels past the array count as none).
-bool InGap(const VoxelGrid& grid, const Coord& c, int r) {
+bool InGap(const VoxelGrid& grid, const HardVoxelMap& hard, const Coord& c, int r) {
+  if (hard.NoneNear(c, r)) return true;
   const auto& d = grid.dims();
   for (int z = std::max(c.z - r, 0); z <= std::min(c.z + r, d[2] - 1); ++z)
     for (int y = std::max(c.y - r, 0); y <= std::min(c.y + r, d[1] - 1); ++y) {
@@ -374,7 +409,7 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   }
   GapRefillStats stats;
   if (!options.enabled) return stats;
-  const HardRowExtremes rays(grid, threads);
+  const HardVoxelMap hard(grid, threads);
   const OutsideWalks walks(grid, threads);
   // The region to refill is read on the membrane as the shrink left it (the fill itself
   // changes what the rays meet): the outside voxels in a gap and behind gap walls, reached
@@ -383,8 +418,8 @@ absl::StatusOr<GapRefillStats> RefillGapChannels(VoxelGrid& grid, const GapRefil
   enum class Reading { kOut, kGap, kPocket, kOpenPocket };
   auto read = [&](int64_t v) {
     if (!IsOutside(grid.at(v)) || grid.OnArrayBorder(grid.CoordOf(v))) return Reading::kOut;
-    if (InGap(grid, grid.CoordOf(v), options.gap_radius) &&
-        BehindGapWalls(grid, rays, walks, v, options.min_enclosed_rays, options.max_open_rays)) {
+    if (InGap(grid, hard, grid.CoordOf(v), options.gap_radius) &&
+        BehindGapWalls(grid, hard, walks, v, options.min_enclosed_rays, options.max_open_rays)) {
       return Reading::kGap;
     }
     if (options.pocket_backed_rays == 0 || GenerationLabel(grid.at(v)) == 0)

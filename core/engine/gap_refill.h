@@ -72,7 +72,8 @@ struct GapRefillStats {
 // neighbour becomes INSIDE: the membrane invariants still hold.
 // The region is read once, on the grid as it comes (the fill's own voxels would block the
 // rays). Memory: 8 bytes per grid row and axis (the hard voxels' extremes per row; those
-// along z once more per thread while they are read, up to 8 threads), the runs of non-outside
+// along z once more per thread while they are read, up to 8 threads), a bit per block of 4^3
+// voxels (whether it holds a hard voxel: the gap test's shortcut), the runs of non-outside
 // voxels the rays search (outside_runs.h: 4 bytes per grid row and axis and 8 a run, at most
 // an eighth of a byte a voxel; past that, a bit per block of 8^3 voxels that the rays step
 // over, outside_blocks.h), two bits a voxel (the region and the voxels read out of it: 512 MB

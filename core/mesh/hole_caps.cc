@@ -332,11 +332,13 @@ constexpr int64_t kMaxFactorEntries = int64_t{4} << 20;
 
 // The thin plate over the free vertices solved exactly, every other vertex fixed: K_ff x_f =
 // -K_fc x_c (Solve's system) by a sparse Cholesky factor (sparse_cholesky.h), the positions in
-// `x` updated. false, with `x` unchanged, when the factor would be too large or fails.
-bool SolveExactly(const Rows& mesh_nb, const std::vector<int32_t>& free, std::vector<Vec3d>& x) {
+// `x` updated. false, with `x` unchanged, when the factor would hold more than `max_entries`
+// or fails.
+bool SolveExactly(const Rows& mesh_nb, const std::vector<int32_t>& free, std::vector<Vec3d>& x,
+                  int64_t max_entries = kMaxFactorEntries) {
   // The factor's entries a row grow with the cap (24 at 1,726 unknowns, 84 at 11,214): past
-  // kMaxFactorEntries / 32 unknowns it cannot fit, and is not built.
-  if (static_cast<int64_t>(free.size()) * 32 > kMaxFactorEntries) return false;
+  // max_entries / 32 unknowns it cannot fit, and is not built.
+  if (static_cast<int64_t>(free.size()) * 32 > max_entries) return false;
   const LocalSystem sys = Localize(mesh_nb, free, /*two_rings=*/true);
   const Rows& nb = sys.nb;
   const int32_t n = sys.n;
@@ -361,7 +363,7 @@ bool SolveExactly(const Rows& mesh_nb, const std::vector<int32_t>& free, std::ve
   }
   std::vector<Vec3d> positions(n);
   for (int32_t i = 0; i < n; ++i) positions[i] = x[sys.vertex[i]];
-  const auto factor = SparseCholesky::Factor(n, positions, entries, kMaxFactorEntries);
+  const auto factor = SparseCholesky::Factor(n, positions, entries, max_entries);
   if (!factor) return false;
   const std::vector<Vec3d> solved = factor->Solve(b);
   for (int32_t i = 0; i < n; ++i)
@@ -372,15 +374,118 @@ bool SolveExactly(const Rows& mesh_nb, const std::vector<int32_t>& free, std::ve
   return true;
 }
 
+// A start near the converged thin plate for a region too large for the factor: the region's
+// vertices and the fixed ones within 4 s + 2 rings of it clustered by cells of s voxels (edge
+// `l`; s the least whole number with at most `max_clusters` cells' worth of free vertices,
+// s^2 of them a cell), a cell's free vertices one cluster and its fixed ones another, the
+// clusters joined where a mesh edge joins their vertices, each at the mean of its vertices,
+// and the thin plate of that graph over the free clusters solved exactly (SolveExactly). Each
+// free vertex then moves by its cluster's move.
+// Conjugate gradients on the bi-Laplacian need iterations growing with the square of the
+// region's width: from this start they have left only the clusters' steps to smooth, a few
+// cells wide. False, with `x` unchanged, where the coarse plate cannot be solved.
+bool CoarsePlateStart(const Rows& nb, const std::vector<int32_t>& free, double l,
+                      int64_t max_clusters, std::vector<Vec3d>& x) {
+  const int s = static_cast<int>(std::ceil(
+      std::sqrt(static_cast<double>(free.size()) / static_cast<double>(max_clusters))));
+  // The region, then the fixed vertices ring by ring: the coarse plate reads two rings of
+  // clusters around its free ones, and a cluster is at most about 2 s edges across.
+  absl::flat_hash_map<int32_t, int32_t> local;  // mesh vertex -> index in `vertex`
+  std::vector<int32_t> vertex(free.begin(), free.end());
+  local.reserve(free.size() * 2);
+  for (size_t i = 0; i < free.size(); ++i) local.emplace(free[i], static_cast<int32_t>(i));
+  const size_t n_free = free.size();
+  size_t ring_begin = 0;
+  for (int ring = 0; ring < 4 * s + 2; ++ring) {
+    const size_t ring_end = vertex.size();
+    for (size_t i = ring_begin; i < ring_end; ++i)
+      for (const int32_t* u = nb.begin(vertex[i]); u != nb.end(vertex[i]); ++u)
+        if (local.try_emplace(*u, static_cast<int32_t>(vertex.size())).second)
+          vertex.push_back(*u);
+    ring_begin = ring_end;
+  }
+  // Clusters by cell, the free vertices of a cell apart from its fixed ones: a fixed vertex
+  // (the rim's, or one a seen point holds) then fixes its cluster without holding the free
+  // vertices beside it.
+  struct Cluster {
+    Vec3d sum{0, 0, 0};
+    int32_t count = 0;
+    bool free = false;
+  };
+  absl::flat_hash_map<std::array<int64_t, 4>, int32_t> by_cell;
+  std::vector<Cluster> clusters;
+  std::vector<int32_t> cluster_of(vertex.size());
+  const double cell = s * l;
+  for (size_t i = 0; i < vertex.size(); ++i) {
+    const Vec3d& p = x[vertex[i]];
+    const bool is_free = i < n_free;
+    const std::array<int64_t, 4> key = {static_cast<int64_t>(std::floor(p[0] / cell)),
+                                        static_cast<int64_t>(std::floor(p[1] / cell)),
+                                        static_cast<int64_t>(std::floor(p[2] / cell)), is_free};
+    const auto [it, fresh] = by_cell.try_emplace(key, static_cast<int32_t>(clusters.size()));
+    if (fresh) clusters.push_back(Cluster{.free = is_free});
+    Cluster& c = clusters[it->second];
+    cluster_of[i] = it->second;
+    c.sum = c.sum + p;
+    ++c.count;
+  }
+  // The clusters' graph, free clusters first (the coarse system's unknowns).
+  const int32_t nc = static_cast<int32_t>(clusters.size());
+  std::vector<int32_t> order(nc), coarse_of(nc);
+  for (int32_t c = 0; c < nc; ++c) order[c] = c;
+  std::stable_partition(order.begin(), order.end(),
+                        [&](int32_t c) { return clusters[c].free; });
+  for (int32_t k = 0; k < nc; ++k) coarse_of[order[k]] = k;
+  std::vector<std::pair<int32_t, int32_t>> edges;
+  for (size_t i = 0; i < vertex.size(); ++i)
+    for (const int32_t* u = nb.begin(vertex[i]); u != nb.end(vertex[i]); ++u) {
+      const auto it = local.find(*u);
+      if (it == local.end()) continue;
+      const int32_t a = coarse_of[cluster_of[i]], b = coarse_of[cluster_of[it->second]];
+      if (a != b) edges.emplace_back(a, b);
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  Rows coarse;
+  coarse.start.assign(nc + 1, 0);
+  for (const auto& [a, b] : edges) ++coarse.start[a + 1];
+  for (int32_t c = 0; c < nc; ++c) coarse.start[c + 1] += coarse.start[c];
+  coarse.items.resize(edges.size());
+  for (size_t e = 0; e < edges.size(); ++e) coarse.items[e] = edges[e].second;
+  std::vector<Vec3d> positions(nc);
+  std::vector<int32_t> unknowns;
+  for (int32_t k = 0; k < nc; ++k) {
+    const Cluster& c = clusters[order[k]];
+    positions[k] = (1.0 / c.count) * c.sum;
+    if (c.free) unknowns.push_back(k);
+  }
+  // A graph the rings did not close (a free cluster with a missing neighbour) cannot hold: its
+  // border clusters would read as fixed with fewer neighbours than they have, which the plate
+  // tolerates (the border lies two rings of clusters out), so only the solve's answer counts.
+  if (unknowns.empty()) return false;
+  const std::vector<Vec3d> start = positions;
+  // 128 entries a cluster: the factor of 38,020 clusters held 75 a row.
+  if (!SolveExactly(coarse, unknowns, positions, 128 * max_clusters)) return false;
+  for (size_t i = 0; i < n_free; ++i) {
+    const int32_t k = coarse_of[cluster_of[i]];
+    x[vertex[i]] = x[vertex[i]] + (positions[k] - start[k]);
+  }
+  return true;
+}
+
 // The thin plate over the free vertices to convergence: exactly (SolveExactly) where the
-// factor fits, else by Solve to `tolerance` in at most `max_iterations`. Returns the
-// conjugate-gradient iterations run (0 when solved exactly), or -1 when `cancel` fired.
-// `threads` and `min_split` as Solve's.
+// factor fits, else by Solve to `tolerance` in at most `max_iterations`, or at most
+// `coarse_iterations` from the coarse plate (CoarsePlateStart: voxels of edge `l`, at most
+// `coarse_clusters` clusters) where that one is solved. Returns the conjugate-gradient iterations run (0 when solved exactly), or -1
+// when `cancel` fired. `threads` and `min_split` as Solve's.
 int SolveConverged(const Rows& nb, const std::vector<int32_t>& free, std::vector<Vec3d>& x,
                    int max_iterations, double tolerance, const CancelToken& cancel,
-                   int threads, int64_t min_split) {
+                   int threads, int64_t min_split, double l, int64_t coarse_clusters,
+                   int coarse_iterations) {
   if (cancel.cancelled()) return -1;
   if (max_iterations > 0 && SolveExactly(nb, free, x)) return 0;
+  if (max_iterations > 0 && CoarsePlateStart(nb, free, l, coarse_clusters, x))
+    max_iterations = std::min(max_iterations, coarse_iterations);
   return Solve(true, nb, free, x, max_iterations, tolerance, cancel, threads, min_split);
 }
 
@@ -739,7 +844,8 @@ absl::StatusOr<std::vector<char>> HeldCapsToConverge(
       kept_iterations < 0
           ? -1
           : SolveConverged(nb, judged_vertices, converged, options.wrapped_iterations,
-                           options.tolerance * l, cancel, threads, options.split_solve_vertices);
+                           options.tolerance * l, cancel, threads, options.split_solve_vertices,
+                           l, options.coarse_plate_clusters, options.coarse_plate_iterations);
   if (converged_iterations < 0) return absl::CancelledError("hole caps cancelled");
   iterations += kept_iterations + converged_iterations;
   for (size_t r : judged) {
@@ -963,7 +1069,9 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       o.corner_smoothing < 0 || o.corner_smoothing > 100 ||
       o.corner_normal_rings < 0 || o.corner_normal_rings > 8 || o.untangle_rounds < 0 ||
       o.untangle_rounds > 1000 || o.untangle_rings < 0 || o.untangle_rings > 16 ||
-      o.untangle_iterations < 1 || o.untangle_iterations > 100 || o.split_solve_vertices < 1)
+      o.untangle_iterations < 1 || o.untangle_iterations > 100 || o.split_solve_vertices < 1 ||
+      o.coarse_plate_vertices < 1 || o.coarse_plate_clusters < 1 ||
+      o.coarse_plate_iterations < 0)
     return absl::InvalidArgumentError(absl::StrCat(
         "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
         o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",
@@ -988,7 +1096,9 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
         ", corner_smoothing ", o.corner_smoothing,
         ", corner_normal_rings ", o.corner_normal_rings, ", untangle_rounds ",
         o.untangle_rounds, ", untangle_rings ", o.untangle_rings, ", untangle_iterations ",
-        o.untangle_iterations));
+        o.untangle_iterations, ", coarse_plate_vertices ", o.coarse_plate_vertices,
+        ", coarse_plate_clusters ", o.coarse_plate_clusters, ", coarse_plate_iterations ",
+        o.coarse_plate_iterations));
   return absl::OkStatus();
 }
 
@@ -1232,9 +1342,16 @@ absl::Status CapHoles(TriangleMesh& mesh, double voxel_size, absl::Span<const Po
   for (std::vector<int32_t>& region : converging) {
     if (options.wrapped_iterations == 0) break;
     std::sort(region.begin(), region.end());
-    const int ci =
-        Solve(true, nb, region, x, options.wrapped_iterations, options.converged_tolerance * l,
-              cancel, threads, options.split_solve_vertices);
+    // Past the factor's size, from the coarse plate (HoleCapOptions::coarse_plate_iterations).
+    const bool coarse =
+        static_cast<int64_t>(region.size()) > options.coarse_plate_vertices &&
+        CoarsePlateStart(nb, region, l, options.coarse_plate_clusters, x);
+    const int ci = Solve(true, nb, region, x,
+                         coarse ? std::min(options.wrapped_iterations,
+                                           options.coarse_plate_iterations)
+                                : options.wrapped_iterations,
+                         options.converged_tolerance * l, cancel, threads,
+                         options.split_solve_vertices);
     if (ci < 0) return absl::CancelledError("hole caps cancelled");
     st.iterations += ci;
   }

@@ -89,6 +89,18 @@ struct HoleCapOptions {
   // stopping test are its own, whatever other caps the mesh has.
   double wrap_rms = 3.0;
   int wrapped_iterations = 1000;
+  // A cap solved to convergence with more than coarse_plate_vertices vertices (past the sparse
+  // factor's size: a 10M-point scan's open base) would take the conjugate gradients hundreds
+  // of thousands of iterations, their count growing with the square of its width: its 1000
+  // leave it near its start, where a 100k-point cloud's cap of the same part converges. It
+  // starts from the plate of its vertices clustered by cells of the fewest whole voxels that
+  // leave at most coarse_plate_clusters clusters, solved exactly (the coarse plate), then
+  // takes at most coarse_plate_iterations steps toward converged_tolerance (within
+  // wrapped_iterations), which smooth the cells' steps. The held caps' trial plate takes the
+  // coarse plate where the factor cannot hold it.
+  int64_t coarse_plate_vertices = int64_t{1} << 17;
+  int64_t coarse_plate_clusters = int64_t{1} << 16;
+  int coarse_plate_iterations = 200;
   // A wrapped rim around a post or the edge of a thin part whose end the hole swallowed runs
   // on past the rim: its band of sample_rings rings is square to the axis from the band's
   // centroid toward the middle of the cap (the mean of (normal . axis)^2 over the band at most
@@ -231,7 +243,9 @@ struct HoleCapStats {
 // field and leaves its plane by more than wrap_rms, or where the rim is a height field and the
 // band's algebraic sphere prefers the converged plate (sphere_band_fit, sphere_margin), or
 // where the cap has held vertices and its rim alone does not make the converged plate bulge
-// away from them (converge_held, held_margin). Regions with no fixed neighbour are left.
+// away from them (converge_held, held_margin); such a cap past coarse_plate_vertices starts
+// from the plate of its vertices clustered by cells of a few voxels and takes at most
+// coarse_plate_iterations. Regions with no fixed neighbour are left.
 // A converged cap whose rim wraps around a post or a thin part's edge is then swept on along
 // the part's walls (tube_flatness, tube_lead, swept_length), and so is a spline cap around a
 // post, along the post's axis (spline_swept_length), unless points seen inside its gap hold

@@ -59,6 +59,13 @@ PointCloud Ball(int per_unit_area) {
   return cloud;
 }
 
+// The surface nets of the whole ball at kCutBallVoxel, uncapped and unfitted: the caps' input.
+absl::StatusOr<testing::CloudSurface> UncappedBall() {
+  SmoothSurfaceOptions surface;
+  surface.fit = false;
+  return testing::SmoothSurfaceOfCloud(Ball(4000), surface, kCutBallVoxel);
+}
+
 struct Top {
   double max_error = 0, mean_error = 0;  // voxels from the flat top's plane
   int vertices = 0;
@@ -68,10 +75,7 @@ struct Top {
 
 // The caps are given the surface nets of the whole ball and the cut ball's cloud.
 TEST(HoleCapHeld, SeenPatchesCarryTheConvergedCapToTheFlatTop) {
-  SmoothSurfaceOptions surface;
-  surface.fit = false;  // the surface nets, uncapped
-  absl::StatusOr<testing::CloudSurface> ball =
-      testing::SmoothSurfaceOfCloud(Ball(4000), surface, kCutBallVoxel);
+  const absl::StatusOr<testing::CloudSurface> ball = UncappedBall();
   ASSERT_TRUE(ball.ok()) << ball.status();
   const PointCloud cloud = CutBallSeenInPatches(4000);
   auto cap = [&](bool converge_held) {
@@ -133,10 +137,7 @@ PointCloud CutTwiceSeenInPatches(int per_unit_area) {
 // hole capped on the same mesh (a solve over both caps shares one step length and one
 // stopping test between them).
 TEST(HoleCapHeld, AConvergedCapDoesNotDependOnAnotherCap) {
-  SmoothSurfaceOptions surface;
-  surface.fit = false;
-  absl::StatusOr<testing::CloudSurface> ball =
-      testing::SmoothSurfaceOfCloud(Ball(4000), surface, kCutBallVoxel);
+  const absl::StatusOr<testing::CloudSurface> ball = UncappedBall();
   ASSERT_TRUE(ball.ok()) << ball.status();
   auto cap = [&](const PointCloud& cloud, HoleCapStats& stats) {
     TriangleMesh mesh = ball->mesh;
@@ -177,10 +178,7 @@ TEST(HoleCapHeld, AConvergedCapDoesNotDependOnAnotherCap) {
 // the flat top as the converged cap does (a 10M-point scan's open base, 609,518 vertices, in
 // miniature: here cells of 5 voxels, about 40 clusters).
 TEST(HoleCapHeld, ALargeCapConvergesFromTheCoarsePlate) {
-  SmoothSurfaceOptions surface;
-  surface.fit = false;
-  absl::StatusOr<testing::CloudSurface> ball =
-      testing::SmoothSurfaceOfCloud(Ball(4000), surface, kCutBallVoxel);
+  const absl::StatusOr<testing::CloudSurface> ball = UncappedBall();
   ASSERT_TRUE(ball.ok()) << ball.status();
   const PointCloud cloud = CutBallSeenInPatches(4000);
   auto cap = [&](int iterations, int64_t coarse_vertices) {

@@ -459,9 +459,8 @@ bool CoarsePlateStart(const Rows& nb, const std::vector<int32_t>& free, double l
     positions[k] = (1.0 / c.count) * c.sum;
     if (c.free) unknowns.push_back(k);
   }
-  // A graph the rings did not close (a free cluster with a missing neighbour) cannot hold: its
-  // border clusters would read as fixed with fewer neighbours than they have, which the plate
-  // tolerates (the border lies two rings of clusters out), so only the solve's answer counts.
+  // Free clusters with no fixed cluster joined to them make a singular plate, which the factor
+  // refuses (false): the caller then solves from the start it had.
   if (unknowns.empty()) return false;
   const std::vector<Vec3d> start = positions;
   // 128 entries a cluster: the factor of 38,020 clusters held 75 a row.
@@ -476,8 +475,9 @@ bool CoarsePlateStart(const Rows& nb, const std::vector<int32_t>& free, double l
 // The thin plate over the free vertices to convergence: exactly (SolveExactly) where the
 // factor fits, else by Solve to `tolerance` in at most `max_iterations`, or at most
 // `coarse_iterations` from the coarse plate (CoarsePlateStart: voxels of edge `l`, at most
-// `coarse_clusters` clusters) where that one is solved. Returns the conjugate-gradient iterations run (0 when solved exactly), or -1
-// when `cancel` fired. `threads` and `min_split` as Solve's.
+// `coarse_clusters` clusters) where that one is solved. Returns the conjugate-gradient
+// iterations run (0 when solved exactly), or -1 when `cancel` fired. `threads` and
+// `min_split` as Solve's.
 int SolveConverged(const Rows& nb, const std::vector<int32_t>& free, std::vector<Vec3d>& x,
                    int max_iterations, double tolerance, const CancelToken& cancel,
                    int threads, int64_t min_split, double l, int64_t coarse_clusters,
@@ -1071,7 +1071,7 @@ absl::Status Validate(double voxel_size, const HoleCapOptions& o) {
       o.untangle_rounds > 1000 || o.untangle_rings < 0 || o.untangle_rings > 16 ||
       o.untangle_iterations < 1 || o.untangle_iterations > 100 || o.split_solve_vertices < 1 ||
       o.coarse_plate_vertices < 1 || o.coarse_plate_clusters < 1 ||
-      o.coarse_plate_iterations < 0)
+      o.coarse_plate_clusters > (int64_t{1} << 24) || o.coarse_plate_iterations < 0)
     return absl::InvalidArgumentError(absl::StrCat(
         "hole cap options out of range: gap_radius ", o.gap_radius, ", min_gap_vertices ",
         o.min_gap_vertices, ", rim_rings ", o.rim_rings, ", harmonic_iterations ",

@@ -97,7 +97,7 @@ struct HoleCapOptions {
   // leave at most coarse_plate_clusters clusters, solved exactly (the coarse plate), then
   // takes at most coarse_plate_iterations steps toward converged_tolerance (within
   // wrapped_iterations), which smooth the cells' steps. The held caps' trial plate takes the
-  // coarse plate where the factor cannot hold it.
+  // coarse plate where the factor cannot hold it. coarse_plate_clusters: 1 to 2^24.
   int64_t coarse_plate_vertices = int64_t{1} << 17;
   int64_t coarse_plate_clusters = int64_t{1} << 16;
   int coarse_plate_iterations = 200;

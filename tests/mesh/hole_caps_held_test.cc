@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string_view>
 #include <vector>
 
 #include "core/mesh/hole_caps.h"
@@ -218,6 +219,21 @@ TEST(HoleCapHeld, RefusesANegativeMargin) {
     options.held_margin = margin;
     EXPECT_EQ(CapHoles(mesh, 1.0, {}, options).code(), absl::StatusCode::kInvalidArgument)
         << margin;
+  }
+}
+
+// The coarse plate's options out of range are refused, each named in the message.
+TEST(HoleCapHeld, RefusesCoarsePlateOptionsOutOfRange) {
+  TriangleMesh mesh;
+  for (int k = 0; k < 4; ++k) {
+    HoleCapOptions options;
+    if (k == 0) options.coarse_plate_vertices = 0;
+    if (k == 1) options.coarse_plate_clusters = 0;
+    if (k == 2) options.coarse_plate_clusters = (int64_t{1} << 24) + 1;
+    if (k == 3) options.coarse_plate_iterations = -1;
+    const absl::Status status = CapHoles(mesh, 1.0, {}, options);
+    EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << k;
+    EXPECT_NE(status.message().find("coarse_plate_"), std::string_view::npos) << status;
   }
 }
 

@@ -74,9 +74,9 @@ class HardVoxelMap {
           const VoxelState* row = s + grid.Index(0, y, z);
           for (int x = static_cast<int>(FirstHardOf(row, nx)); x < nx;
                x += 1 + static_cast<int>(FirstHardOf(row + x + 1, nx - x - 1))) {
-            Note(lo_[0].data(), hi_[0].data(), RowOf(0, x, y, z), x);
-            Note(lo_[1].data(), hi_[1].data(), RowOf(1, x, y, z), y);
-            Note(zl, zh, RowOf(2, x, y, z), z);
+            Note(lo_[0].data(), hi_[0].data(), AxisRowOf(dims_, 0, {x, y, z}), x);
+            Note(lo_[1].data(), hi_[1].data(), AxisRowOf(dims_, 1, {x, y, z}), y);
+            Note(zl, zh, AxisRowOf(dims_, 2, {x, y, z}), z);
             const int64_t b = BlockOf(x / kBlock, y / kBlock, z / kBlock);
             std::atomic_ref<uint64_t>(block_bits_[static_cast<size_t>(b >> 6)])
                 .fetch_or(uint64_t{1} << (b & 63), std::memory_order_relaxed);
@@ -93,7 +93,7 @@ class HardVoxelMap {
   // True when the row of voxel c along axis d holds a hard voxel past coordinate t on the
   // side `sign`.
   bool HardPast(int d, const Coord& c, int t, int sign) const {
-    const size_t row = RowOf(d, c.x, c.y, c.z);
+    const size_t row = AxisRowOf(dims_, d, c);
     return sign > 0 ? hi_[d][row] > t : lo_[d][row] < t;
   }
 
@@ -115,11 +115,6 @@ class HardVoxelMap {
   }
 
  private:
-  size_t RowOf(int d, int x, int y, int z) const {
-    if (d == 0) return y + static_cast<size_t>(dims_[1]) * z;
-    if (d == 1) return x + static_cast<size_t>(dims_[0]) * z;
-    return x + static_cast<size_t>(dims_[0]) * y;
-  }
   int64_t BlockOf(int bx, int by, int bz) const {
     return bx + static_cast<int64_t>(blocks_[0]) * (by + static_cast<int64_t>(blocks_[1]) * bz);
   }

@@ -59,7 +59,7 @@ OutsideBlocks::OutsideBlocks(const VoxelGrid& grid, int threads) {
       for (b.x = 0; b.x < blocks_[0]; ++b.x) {
         if (AllOutside(b)) continue;
         for (int d = 0; d < 3; ++d) {
-          const size_t row = RowOf(d, b);
+          const size_t row = AxisRowOf(blocks_, d, b);
           solid_lo_[d][row] = std::min(solid_lo_[d][row], b[d]);
           solid_hi_[d][row] = std::max(solid_hi_[d][row], b[d]);
         }
@@ -70,7 +70,7 @@ int OutsideBlocks::WalkOutside(const VoxelGrid& grid, const Coord& c, int d, int
   const int last = grid.dim(d) - 1;
   const int64_t step = sign * grid.strides()[d];
   Coord b{c.x / kBlock, c.y / kBlock, c.z / kBlock};
-  const size_t row = RowOf(d, b);
+  const size_t row = AxisRowOf(blocks_, d, b);
   int t = c[d] + sign;
   int64_t u = grid.Index(c) + step;
   while (t > 0 && t < last) {

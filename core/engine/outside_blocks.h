@@ -33,12 +33,6 @@ class OutsideBlocks {
     const int64_t bit = b.z * plane_bits_ + b.x + static_cast<int64_t>(blocks_[0]) * b.y;
     return (bits_[static_cast<size_t>(bit >> 6)] >> (bit & 63)) & 1;
   }
-  // The row of blocks through block b along axis d: b's other two coordinates.
-  size_t RowOf(int d, const Coord& b) const {
-    if (d == 0) return b.y + static_cast<size_t>(blocks_[1]) * b.z;
-    if (d == 1) return b.x + static_cast<size_t>(blocks_[0]) * b.z;
-    return b.x + static_cast<size_t>(blocks_[0]) * b.y;
-  }
 
   std::array<int, 3> blocks_{};  // blocks along x, y, z
   int64_t plane_bits_ = 0;       // bits of a plane of blocks, a whole number of words

@@ -195,7 +195,7 @@ int OutsideRuns::WalkOutside(const Coord& c, int d, int sign) const {
   const int last = dims_[d] - 1;
   const int t = c[d] + sign;
   if (t <= 0 || t >= last) return t;
-  const size_t row = RowOf(d, c.x, c.y, c.z);
+  const size_t row = AxisRowOf(dims_, d, c);
   const int32_t* lo = lo_[d].data();
   const int32_t* hi = hi_[d].data();
   const uint32_t begin = first_[d][row], end = first_[d][row + 1];

@@ -39,13 +39,6 @@ class OutsideRuns {
  private:
   OutsideRuns() = default;
 
-  // The row of voxel (x, y, z) along axis d: its other two coordinates.
-  size_t RowOf(int d, int x, int y, int z) const {
-    if (d == 0) return y + static_cast<size_t>(dims_[1]) * z;
-    if (d == 1) return x + static_cast<size_t>(dims_[0]) * z;
-    return x + static_cast<size_t>(dims_[0]) * y;
-  }
-
   std::array<int, 3> dims_{};
   // Per axis: row r's runs are [first_[d][r], first_[d][r + 1]) of lo_[d] and hi_[d], the
   // first and last coordinate of each, rising.

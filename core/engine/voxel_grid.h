@@ -28,6 +28,15 @@ struct Coord {
   friend bool operator==(const Coord&, const Coord&) = default;
 };
 
+// The row through `c` along axis d of an array of `dims`, numbered over the two other axes:
+// y + ny z along x, x + nx z along y, x + nx y along z. Tables of a value per row and axis
+// (the runs of a row, its extreme hard voxels) index by it.
+inline size_t AxisRowOf(const std::array<int, 3>& dims, int d, const Coord& c) {
+  if (d == 0) return c.y + static_cast<size_t>(dims[1]) * c.z;
+  if (d == 1) return c.x + static_cast<size_t>(dims[0]) * c.z;
+  return c.x + static_cast<size_t>(dims[0]) * c.y;
+}
+
 // The 3x3x3 block around a voxel as 27 steps (dx, dy, dz) in {-1, 0, 1}^3, x fastest: step k
 // is (k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1), and bit k of the block masks of local_topology.h.
 // Step kBlockCentre is the voxel itself, the other 26 are its neighbours.

@@ -32,11 +32,11 @@ absl::Status CancelledIn(const GenerationStats& g) {
       "reconstruction cancelled in generation %d (plate size %d)", g.generation, g.plate_size));
 }
 
-// The plate sizes of the grid's data box (the grid without its padding).
-std::vector<int> PlateSizesOf(const VoxelGrid& grid, const ShrinkOptions& options) {
+// The grid's data box: the grid without its padding.
+std::array<int, 3> DataDims(const VoxelGrid& grid) {
   std::array<int, 3> data_dims;
   for (int d = 0; d < 3; ++d) data_dims[d] = grid.dim(d) - 2 * VoxelGrid::kPadding;
-  return PlateSizes(data_dims, options.schedule, options.initial_plate);
+  return data_dims;
 }
 
 // The first generation whose plate is below the strict tunnel size; sizes.size() when none
@@ -56,8 +56,9 @@ MembraneShrinker::MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options
     : grid_(grid),
       options_(options),
       cancel_(cancel),
-      strict_(StrictGuardSizes(options)),
-      sizes_(PlateSizesOf(grid, options)),
+      guard_(GridGuardSizes(options, DataDims(grid))),
+      strict_(StrictGuardSizes(options, guard_)),
+      sizes_(PlateSizes(DataDims(grid), options.schedule, options.initial_plate)),
       labels_(GenerationLabels(static_cast<int>(sizes_.size()))),
       retry_from_(RetryFrom(sizes_, options, strict_)),
       word_threads_(grid.size() >= options.threads_min_voxels ? options.threads : 1),
@@ -190,7 +191,7 @@ ChainOptions MembraneShrinker::ChainOptionsFor(size_t g, TunnelRules rules) cons
   chain.generation_label = labels_[g];
   chain.rules = options_.chain;
   chain.guard.plate_size = sizes_[g];
-  chain.guard.sizes = rules == TunnelRules::kStrict ? strict_ : options_.guard;
+  chain.guard.sizes = rules == TunnelRules::kStrict ? strict_ : guard_;
   chain.guard.classify_strict = rules == TunnelRules::kDefault && g >= retry_from_;
   chain.guard.strict = strict_;
   chain.points = points_ ? &*points_ : nullptr;
@@ -210,9 +211,11 @@ absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
   const ChainOptions chain = ChainOptionsFor(g, rules);
   bool done = false;
   // The closed form needs the chains' tunnel rule to be the same everywhere (n >= the guard's
-  // tunnel size): then only tunnels next to hard voxels are refused, and it checks those.
+  // tunnel sizes, the object's among them): then only tunnels next to hard voxels are refused,
+  // and it checks those.
   if (options_.closed_form_min_plate > 0 && sizes_[g] >= options_.closed_form_min_plate &&
       sizes_[g] >= chain.guard.sizes.tunnel_min_plate &&
+      sizes_[g] >= chain.guard.sizes.object_tunnel_plate &&
       (options_.closed_form_after_refusal || !closed_form_refused_)) {
     const int64_t voxelwise_max = options_.closed_form_voxelwise_ratio > 0
                                       ? grid_.size() / options_.closed_form_voxelwise_ratio

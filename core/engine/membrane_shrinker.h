@@ -131,8 +131,8 @@ struct ShrinkCheckpoint {
   bool band_held = false;  // the interior guard's band frozen in `states`
 };
 
-// The guard sizes a generation runs with: the options' or the handle retry's strict ones
-// (StrictGuardSizes).
+// The guard sizes a generation runs with: the grid's (GridGuardSizes) or the handle retry's
+// strict ones over them (StrictGuardSizes).
 enum class TunnelRules { kDefault, kStrict };
 
 // The state of one shrink, and its steps in the paper's order: Run calls them. It holds the
@@ -195,7 +195,8 @@ class MembraneShrinker {
   VoxelGrid& grid_;
   const ShrinkOptions& options_;
   const CancelToken& cancel_;
-  const GuardSizes strict_;       // the handle retry's sizes
+  const GuardSizes guard_;        // the guard's sizes on this grid (GridGuardSizes)
+  const GuardSizes strict_;       // the handle retry's sizes over them
   const std::vector<int> sizes_;  // plate size of each generation
   const std::vector<int> labels_;  // generation label of each generation
   // The first generation whose plate is below the strict tunnel size: from there on the

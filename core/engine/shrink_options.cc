@@ -80,6 +80,18 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "guard_short_loop_steps %d is out of range [1, 64]", o.guard.short_loop_steps));
   }
+  if (o.guard.object_tunnel_plate < 0) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "guard_object_tunnel_plate %d must be >= 0 (0 = none)", o.guard.object_tunnel_plate));
+  }
+  if (!(o.guard.dense_rim >= 0 && o.guard.dense_rim <= 8)) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("guard_dense_rim %g is out of range [0, 8]", o.guard.dense_rim));
+  }
+  if (o.tunnel_axis_ratio < 0) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("tunnel_axis_ratio %d must be >= 0 (0 = off)", o.tunnel_axis_ratio));
+  }
   if (o.retry.tunnel_min_plate < 1) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "retry_tunnel_min_plate %d must be >= 1", o.retry.tunnel_min_plate));
@@ -133,17 +145,26 @@ absl::Status ValidateShrinkOptions(const ShrinkOptions& o) {
   return absl::OkStatus();
 }
 
-GuardSizes StrictGuardSizes(const ShrinkOptions& o) {
-  GuardSizes strict = o.guard;
-  strict.tunnel_min_plate = std::max(o.guard.tunnel_min_plate, o.retry.tunnel_min_plate);
+GuardSizes GridGuardSizes(const ShrinkOptions& o, const std::array<int, 3>& data_dims) {
+  GuardSizes sizes = o.guard;
+  if (o.tunnel_axis_ratio > 0) {
+    sizes.object_tunnel_plate =
+        std::max({data_dims[0], data_dims[1], data_dims[2]}) / o.tunnel_axis_ratio;
+  }
+  return sizes;
+}
+
+GuardSizes StrictGuardSizes(const ShrinkOptions& o, const GuardSizes& guard) {
+  GuardSizes strict = guard;
+  strict.tunnel_min_plate = std::max(guard.tunnel_min_plate, o.retry.tunnel_min_plate);
   // 0 turns a kind of tunnel off, in the guard or in the retry.
-  auto stricter = [](int guard, int retry) {
-    return guard > 0 && retry > 0 ? std::max(guard, retry) : 0;
+  auto stricter = [](int own, int retry) {
+    return own > 0 && retry > 0 ? std::max(own, retry) : 0;
   };
   strict.short_loop_min_plate =
-      stricter(o.guard.short_loop_min_plate, o.retry.short_loop_min_plate);
+      stricter(guard.short_loop_min_plate, o.retry.short_loop_min_plate);
   strict.wall_notch_min_plate =
-      stricter(o.guard.wall_notch_min_plate, o.retry.wall_notch_min_plate);
+      stricter(guard.wall_notch_min_plate, o.retry.wall_notch_min_plate);
   return strict;
 }
 

@@ -4,6 +4,7 @@
 #ifndef MEMBRANE_CORE_ENGINE_SHRINK_OPTIONS_H_
 #define MEMBRANE_CORE_ENGINE_SHRINK_OPTIONS_H_
 
+#include <array>
 #include <cstdint>
 
 #include "absl/status/status.h"
@@ -53,6 +54,13 @@ struct ShrinkOptions {
   int initial_plate = 0;            // 0: from the grid (Algorithm 1)
   ChainRules chain;                 // depth bound, thick-wall run, guard on or off
   GuardSizes guard;                 // algorithm-notes 12
+  // The guard's object_tunnel_plate on a grid: its data box's longest axis over this (0:
+  // guard.object_tunnel_plate as given, by default none). A scan's unseen patches and the
+  // gaps of its sparse parts grow with the grid, and at 10M points plates of 22 and 11 cut
+  // the bunny scan's inside, seen through its base's holes, into 55 handles; below a
+  // twenty-fourth of the object a tunnel needs data around it (docs/engine-decisions.md,
+  // "Tunnels small for the object need data around them").
+  int tunnel_axis_ratio = 24;
   int closed_form_min_plate = 8;    // generations with n >= this try the closed form; 0 = never
   // A closed form adding at most one voxel per this many of the grid applies and checks its
   // result voxel by voxel, others by whole-grid planes (the same result); 0 = always by planes.
@@ -87,10 +95,16 @@ struct ShrinkOptions {
 // Validates options: InvalidArgument naming the field and its allowed range.
 absl::Status ValidateShrinkOptions(const ShrinkOptions& options);
 
-// The guard sizes of the handle retry: tunnels away from the data only from the larger of the
-// two tunnel sizes, short-loop tunnels and wall notches each only from the larger of the two
-// sizes (off when either is 0); the rest as options.guard.
-GuardSizes StrictGuardSizes(const ShrinkOptions& options);
+// The guard sizes on a grid whose data box (the grid without its padding) is `data_dims`:
+// options.guard, with object_tunnel_plate the longest axis / tunnel_axis_ratio (rounded down)
+// when tunnel_axis_ratio > 0.
+GuardSizes GridGuardSizes(const ShrinkOptions& options, const std::array<int, 3>& data_dims);
+
+// The guard sizes of the handle retry over the guard's sizes `guard` (options.guard or a
+// grid's GridGuardSizes): tunnels away from the data only from the larger of the two tunnel
+// sizes, short-loop tunnels and wall notches each only from the larger of the two sizes (off
+// when either is 0); the rest as `guard`.
+GuardSizes StrictGuardSizes(const ShrinkOptions& options, const GuardSizes& guard);
 
 }  // namespace membrane
 

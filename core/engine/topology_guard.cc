@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <vector>
 
 #include "core/engine/local_topology.h"
@@ -41,6 +42,26 @@ bool CutsOffSmallComponent(const VoxelGrid& grid, int64_t index, uint32_t outsid
     }
     if (static_cast<int>(seen.size()) <= min_shell_voxels) return true;
   }
+  return false;
+}
+
+// True when at least `need` hard voxels lie within Chebyshev radius r of `index` (the box
+// clipped to the array). Stops reading once it has counted them.
+bool HardVoxelsNear(const VoxelGrid& grid, int64_t index, int r, int64_t need) {
+  const Coord c = grid.CoordOf(index);
+  int lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::max(c[d] - r, 0);
+    hi[d] = std::min(c[d] + r, grid.dim(d) - 1);
+  }
+  const VoxelState* s = grid.states().data();
+  int64_t count = 0;
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y) {
+      const VoxelState* row = s + grid.Index(0, y, z);
+      for (int x = lo[0]; x <= hi[0]; ++x) count += IsHard(row[x]);
+      if (count >= need) return true;
+    }
   return false;
 }
 
@@ -96,8 +117,13 @@ GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOp
            (options.strict.short_loop_min_plate > 0 && n >= options.strict.short_loop_min_plate &&
             short_loop());
   };
-  // Away from the data, a big plate may open any tunnel...
-  if (n >= sizes.tunnel_min_plate) {
+  // Away from the data, a big plate may open any tunnel: one large for the object, or one
+  // with data all around it, a real hole's rim and not a gap between sparse samples (both grow
+  // with the grid, the samples' spacing in voxels does not)...
+  const auto dense_rim = [&] {
+    return HardVoxelsNear(grid, index, n, static_cast<int64_t>(std::ceil(sizes.dense_rim * n * n)));
+  };
+  if (n >= sizes.tunnel_min_plate && (n >= sizes.object_tunnel_plate || dense_rim())) {
     return !options.classify_strict || strict_allows() ? kAllowed : GuardVerdict::kAllowedLoosely;
   }
   // ...or where the loop it closes through the outside is short: it then notches a soft bridge

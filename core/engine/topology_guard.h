@@ -17,6 +17,11 @@ struct GuardSizes {
   int short_loop_steps = 6;      // ...whose two sides are joined within this many outside steps
   int wall_notch_min_plate = 2;  // short-loop tunnels beside a wall from this n; 0 = off
   int min_shell_voxels = 32;     // a split may not cut off a component this small
+  // Below this plate (0: no such plate) a tunnel away from hard voxels opened by a plate of n
+  // also needs data all around it: at least dense_rim * n^2 hard voxels within Chebyshev
+  // radius n (ShrinkOptions::tunnel_axis_ratio sets it from the grid's width).
+  int object_tunnel_plate = 0;
+  double dense_rim = 2.0;
 };
 
 struct GuardOptions {
@@ -40,7 +45,8 @@ enum class GuardVerdict : uint8_t {
 // (T6 of the outside, T26 of the rest), with the sizes of options.sizes: true when it is
 // simple; or a local split whose every part is a 26-component of more than min_shell_voxels
 // voxels (mitosis); or a tunnel opened by a plate of at least tunnel_min_plate with no HARD
-// voxel (frozen ones do not count) among its 26 neighbours; or such a tunnel (no hard
+// voxel (frozen ones do not count) among its 26 neighbours, and below object_tunnel_plate
+// with at least dense_rim * n^2 hard voxels within Chebyshev radius n; or such a tunnel (no hard
 // neighbour) opened by a plate of at least short_loop_min_plate (when > 0) whose two sides are
 // joined by an outside path of at most short_loop_steps voxels (TunnelClosesShortLoop): the
 // notch that starts the split of a bridge about one voxel thick; or, with hard neighbours,

@@ -220,7 +220,7 @@ bool ParseArgs(int argc, char** argv, Options& o) {
     } else if (arg == "--passage-sectors" && has_value) {
       if (!absl::SimpleAtoi(argv[++i], &o.shrink.holes.passage_sectors)) return false;
     } else if (arg == "--strict-only") {
-      o.shrink.guard = StrictGuardSizes(o.shrink);
+      o.shrink.guard = StrictGuardSizes(o.shrink, o.shrink.guard);
       o.shrink.retry.enabled = false;
     } else if (arg == "--no-close-cut-loops") {
       o.shrink.separation.close_cut_loops = false;

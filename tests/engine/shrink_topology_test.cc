@@ -82,6 +82,24 @@ TEST(CubePinholesSeparation, SliversCutLooseAreNoSeparation) {
   EXPECT_EQ(run->topology.genus, std::vector<int>{0}) << run->Describe();
 }
 
+// A voxel half formula (1)'s on a sphere whose sparse cap is 30 times thinner than the rest
+// (grid 208 voxels wide): the gaps between the cap's samples are twice as many voxels wide,
+// and plates of 5 to 8 cut them into 28 handles. Tunnels under a twenty-fourth of the object
+// (8 voxels) need data around them, and the cap's gaps have too little.
+TEST(TunnelsSmallForTheObject, NeedDataAroundThemOnASparseCapAtAFinerVoxel) {
+  const PointCloud cloud = SynthCloud("capped-sphere", kTopologyPoints, 30.0);
+  ShrinkOptions fixed;
+  fixed.tunnel_axis_ratio = 0;
+  auto cut = ShrinkCloud(cloud, 0.5, fixed);
+  ASSERT_TRUE(cut.ok()) << cut.status();
+  EXPECT_GT(cut->topology.genus.at(0), 0) << cut->Describe();
+  auto run = ShrinkCloud(cloud, 0.5);
+  ASSERT_TRUE(run.ok()) << run.status();
+  EXPECT_TRUE(run->invariants.ok()) << run->Describe();
+  EXPECT_EQ(run->topology.shells, 1) << run->Describe();
+  EXPECT_EQ(run->topology.genus, std::vector<int>{0}) << run->Describe();
+}
+
 INSTANTIATE_TEST_SUITE_P(VoxelSizes, CubePinholesTest, ::testing::Values(1.0, 1.25, 1.5, 2.0),
                          [](const auto& info) {
                            return absl::StrReplaceAll(absl::StrCat("x", info.param), {{".", "p"}});

@@ -3,6 +3,9 @@
 // wall is not.
 #include "core/engine/tunnel_loop.h"
 
+#include <algorithm>
+#include <cstdlib>
+
 #include "core/engine/local_topology.h"
 #include "core/engine/topology_guard.h"
 #include "gtest/gtest.h"
@@ -71,6 +74,35 @@ TEST(TunnelLoop, GuardAllowsTheNotchFromItsPlateSizeAwayFromHardVoxels) {
   EXPECT_FALSE(GuardAllowsRemoval(wide, wide.Index(kMid, kMid, kMid), o));
   o.plate_size = 5;
   EXPECT_TRUE(GuardAllowsRemoval(wide, wide.Index(kMid, kMid, kMid), o));
+}
+
+// Below the object's tunnel plate a tunnel away from hard voxels needs data around it: the
+// hole in the middle of the wide sheet (a long loop) is refused to a plate of 5 with no hard
+// voxel near, allowed once the sheet within 5 voxels, outside the tunnel's own block, is hard
+// (112 hard voxels, 2 * 5^2 needed), and refused again when only every third of them is.
+// A plate of the object's size needs none.
+TEST(TunnelLoop, ATunnelSmallForTheObjectNeedsDataAroundIt) {
+  VoxelGrid g = Sheet(3, 17);
+  const int64_t v = g.Index(kMid, kMid, kMid);
+  GuardOptions o;
+  o.plate_size = 5;
+  EXPECT_TRUE(GuardAllowsRemoval(g, v, o));
+  o.sizes.object_tunnel_plate = 6;
+  EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
+  auto paint = [&g](int every) {
+    for (int y = 3; y <= 17; ++y)
+      for (int x = 3; x <= 17; ++x) {
+        const bool near = std::max(std::abs(x - kMid), std::abs(y - kMid)) <= 1;
+        const bool hard = !near && (x + y) % every == 0;
+        g.set(Coord{x, y, kMid}, hard ? kBoundaryHard : kBoundarySoft);
+      }
+  };
+  paint(1);
+  EXPECT_TRUE(GuardAllowsRemoval(g, v, o));
+  paint(3);
+  EXPECT_FALSE(GuardAllowsRemoval(g, v, o));
+  o.plate_size = 6;
+  EXPECT_TRUE(GuardAllowsRemoval(g, v, o));
 }
 
 TEST(TunnelLoop, InOneFaceLayer) {

@@ -205,9 +205,11 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
     converted.ForEach([&](int64_t i) { s[i] &= static_cast<VoxelState>(~kBoundaryBit); });
   };
   // Checks: the incursion test where the neighbourhood changed, and the guard on the new
-  // outside voxels next to hard ones, each as if it were the last removal, in increasing
-  // voxel order up to the first refusal. They only read the grid: spans of the candidates run
-  // on the planes' threads, with the counts of the scan in order (first_failure.h).
+  // outside voxels next to hard ones (on every new outside voxel below the object's tunnel
+  // plate, where tunnels away from the data need data around them), each as if it were the
+  // last removal, in increasing voxel order up to the first refusal. They only read the grid:
+  // spans of the candidates run on the planes' threads, with the counts of the scan in order
+  // (first_failure.h).
   const int threads = planes.threads();
   const int64_t word_spans = CheckSpans(static_cast<int64_t>(adjacent.word_count()), threads);
   const FirstFailure incursion = FindFirstFailure(
@@ -225,9 +227,11 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
   if (!cancelled && outcome.incursions == 0 && options.rules.topology_guard) {
     const GuardOptions& guard = options.guard;
     auto refused = [&](int64_t i) { return !GuardAllowsRemoval(grid, i, guard); };
+    const bool every_voxel = guard.plate_size < guard.sizes.object_tunnel_plate;
     FirstFailure refusal;
     if (sparse) {
-      // The new outside voxels with a hard 26-neighbour, in the list's (increasing) order.
+      // The new outside voxels with a hard 26-neighbour (every one below the object's tunnel
+      // plate), in the list's (increasing) order.
       const int64_t items = static_cast<int64_t>(fresh_list.size());
       const int64_t spans = CheckSpans(items, threads);
       refusal = FindFirstFailure(
@@ -237,18 +241,22 @@ absl::StatusOr<ClosedFormOutcome> RunClosedFormGeneration(VoxelGrid& grid,
               const int64_t i = fresh_list[static_cast<size_t>(k)];
               const bool near_hard = std::any_of(neighbours.begin(), neighbours.end(),
                                                  [&](int64_t o) { return IsHard(s[i + o]); });
-              if (near_hard && !visit(i)) return;
+              if ((every_voxel || near_hard) && !visit(i)) return;
             }
           },
           refused);
     } else {
-      FlatBitset& near_hard = ws.near_hard;
-      FillStatePlane(grid.states(), StatePredicate::kHard, near_hard);
-      near_hard.Dilate26(strides, ws.scratch);
-      near_hard.And(fresh);
+      FlatBitset& checked = ws.near_hard;
+      if (every_voxel) {
+        checked = fresh;
+      } else {
+        FillStatePlane(grid.states(), StatePredicate::kHard, checked);
+        checked.Dilate26(strides, ws.scratch);
+        checked.And(fresh);
+      }
       refusal = FindFirstFailure(
           word_spans, threads, cancel,
-          [&](int64_t span, auto visit) { ForBitsOfSpan(near_hard, span, word_spans, visit); },
+          [&](int64_t span, auto visit) { ForBitsOfSpan(checked, span, word_spans, visit); },
           refused);
     }
     outcome.checks += refusal.tested;

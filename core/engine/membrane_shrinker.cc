@@ -211,11 +211,11 @@ absl::Status MembraneShrinker::RunGeneration(size_t g, TunnelRules rules,
   const ChainOptions chain = ChainOptionsFor(g, rules);
   bool done = false;
   // The closed form needs the chains' tunnel rule to be the same everywhere (n >= the guard's
-  // tunnel sizes, the object's among them): then only tunnels next to hard voxels are refused,
-  // and it checks those.
+  // tunnel size): then only tunnels next to hard voxels are refused, and it checks those (and
+  // below the object's tunnel plate every new outside voxel: tunnels away from the data then
+  // need data around them).
   if (options_.closed_form_min_plate > 0 && sizes_[g] >= options_.closed_form_min_plate &&
       sizes_[g] >= chain.guard.sizes.tunnel_min_plate &&
-      sizes_[g] >= chain.guard.sizes.object_tunnel_plate &&
       (options_.closed_form_after_refusal || !closed_form_refused_)) {
     const int64_t voxelwise_max = options_.closed_form_voxelwise_ratio > 0
                                       ? grid_.size() / options_.closed_form_voxelwise_ratio

@@ -56,8 +56,8 @@ struct ShrinkOptions {
   GuardSizes guard;                 // algorithm-notes 12
   // The guard's object_tunnel_plate on a grid: its data box's longest axis over this (0:
   // guard.object_tunnel_plate as given, by default none). A scan's unseen patches and the
-  // gaps of its sparse parts grow with the grid, and at 10M points plates of 22 and 11 cut
-  // the bunny scan's inside, seen through its base's holes, into 55 handles; below a
+  // gaps of its sparse parts grow with the grid: at 3M points plates of 25, 13 and 7 cut the
+  // bunny scan's inside, seen through its base's holes, into handles (55 at 10M). Below a
   // twenty-fourth of the object a tunnel needs data around it (docs/engine-decisions.md,
   // "Tunnels small for the object need data around them").
   int tunnel_axis_ratio = 24;

@@ -84,8 +84,9 @@ TEST(CubePinholesSeparation, SliversCutLooseAreNoSeparation) {
 
 // A voxel half formula (1)'s on a sphere whose sparse cap is 30 times thinner than the rest
 // (grid 208 voxels wide): the gaps between the cap's samples are twice as many voxels wide,
-// and plates of 5 to 8 cut them into 28 handles. Tunnels under a twenty-fourth of the object
-// (8 voxels) need data around them, and the cap's gaps have too little.
+// and plates from the guard's tunnel size (5) up to 8 cut them into 28 handles. Tunnels
+// under a twenty-fourth of the object (8 voxels) need data around them, and the cap's gaps
+// have too little.
 TEST(TunnelsSmallForTheObject, NeedDataAroundThemOnASparseCapAtAFinerVoxel) {
   const PointCloud cloud = SynthCloud("capped-sphere", kTopologyPoints, 30.0);
   ShrinkOptions fixed;

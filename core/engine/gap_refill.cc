@@ -29,10 +29,10 @@ constexpr int64_t kCancelPoll = 1 << 16;
 constexpr int64_t kMinLayerToSplit = 256;
 
 // Where the hard voxels are. Per axis, per grid row along it: the lowest and highest
-// coordinate of a hard voxel on the row (lowest > highest when none). Row of voxel (x, y, z):
-// axis 0 y + ny z, axis 1 x + nx z, axis 2 x + nx y. And per block of 4 x 4 x 4 voxels, a bit
-// set when the block holds a hard voxel: most voxels the region's growth reads are in a gap,
-// where the whole box of the gap test would be read voxel by voxel across its planes.
+// coordinate of a hard voxel on the row (lowest > highest when none; rows numbered by
+// AxisRowOf). And per block of 4 x 4 x 4 voxels, a bit set when the block holds a hard voxel:
+// most voxels the region's growth reads are in a gap, where the whole box of the gap test
+// would be read voxel by voxel across its planes.
 class HardVoxelMap {
  public:
   // Read on `threads`, a slab of z planes a task: the rows along x and y lie in one plane and
@@ -234,15 +234,7 @@ PocketRays CountPocketRays(const VoxelGrid& grid, int64_t v, int reach, int dept
 
 // No hard voxel within Chebyshev distance r of c (voxels past the array count as none).
 bool InGap(const VoxelGrid& grid, const HardVoxelMap& hard, const Coord& c, int r) {
-  if (hard.NoneNear(c, r)) return true;
-  const auto& d = grid.dims();
-  for (int z = std::max(c.z - r, 0); z <= std::min(c.z + r, d[2] - 1); ++z)
-    for (int y = std::max(c.y - r, 0); y <= std::min(c.y + r, d[1] - 1); ++y) {
-      const int64_t row = grid.Index(0, y, z);
-      for (int x = std::max(c.x - r, 0); x <= std::min(c.x + r, d[0] - 1); ++x)
-        if (IsHard(grid.at(row + x))) return false;
-    }
-  return true;
+  return hard.NoneNear(c, r) || !HardVoxelsWithin(grid, c, r, 1);
 }
 
 bool HasOutsideNeighbour(const VoxelGrid& grid, int64_t v) {

@@ -45,26 +45,6 @@ bool CutsOffSmallComponent(const VoxelGrid& grid, int64_t index, uint32_t outsid
   return false;
 }
 
-// True when at least `need` hard voxels lie within Chebyshev radius r of `index` (the box
-// clipped to the array). Stops reading once it has counted them.
-bool HardVoxelsNear(const VoxelGrid& grid, int64_t index, int r, int64_t need) {
-  const Coord c = grid.CoordOf(index);
-  int lo[3], hi[3];
-  for (int d = 0; d < 3; ++d) {
-    lo[d] = std::max(c[d] - r, 0);
-    hi[d] = std::min(c[d] + r, grid.dim(d) - 1);
-  }
-  const VoxelState* s = grid.states().data();
-  int64_t count = 0;
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y) {
-      const VoxelState* row = s + grid.Index(0, y, z);
-      for (int x = lo[0]; x <= hi[0]; ++x) count += IsHard(row[x]);
-      if (count >= need) return true;
-    }
-  return false;
-}
-
 }  // namespace
 
 GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOptions& options) {
@@ -121,7 +101,8 @@ GuardVerdict ClassifyRemoval(const VoxelGrid& grid, int64_t index, const GuardOp
   // with data all around it, a real hole's rim and not a gap between sparse samples (both grow
   // with the grid, the samples' spacing in voxels does not)...
   const auto dense_rim = [&] {
-    return HardVoxelsNear(grid, index, n, static_cast<int64_t>(std::ceil(sizes.dense_rim * n * n)));
+    return HardVoxelsWithin(grid, grid.CoordOf(index), n,
+                            static_cast<int64_t>(std::ceil(sizes.dense_rim * n * n)));
   };
   if (n >= sizes.tunnel_min_plate && (n >= sizes.object_tunnel_plate || dense_rim())) {
     return !options.classify_strict || strict_allows() ? kAllowed : GuardVerdict::kAllowedLoosely;

@@ -6,6 +6,7 @@
 #ifndef MEMBRANE_CORE_ENGINE_VOXEL_GRID_H_
 #define MEMBRANE_CORE_ENGINE_VOXEL_GRID_H_
 
+#include <algorithm>
 #include <array>
 #include <cassert>
 #include <cstddef>
@@ -168,6 +169,20 @@ class VoxelGrid {
   std::array<int64_t, 27> block_offsets_{};
   std::array<int64_t, 26> neighbour_offsets_{};
 };
+
+// True when at least `need` of the voxels within Chebyshev distance r of c are hard (the cube
+// clipped to the array; voxels past it count as none). Stops reading at the hard voxel that
+// makes `need`: the gap test asks for one, the guard for a rim of data.
+inline bool HardVoxelsWithin(const VoxelGrid& grid, const Coord& c, int r, int64_t need) {
+  int64_t count = 0;
+  for (int z = std::max(c.z - r, 0); z <= std::min(c.z + r, grid.dim(2) - 1); ++z)
+    for (int y = std::max(c.y - r, 0); y <= std::min(c.y + r, grid.dim(1) - 1); ++y) {
+      const int64_t row = grid.Index(0, y, z);
+      for (int x = std::max(c.x - r, 0); x <= std::min(c.x + r, grid.dim(0) - 1); ++x)
+        if (IsHard(grid.at(row + x)) && ++count >= need) return true;
+    }
+  return false;
+}
 
 }  // namespace membrane
 

@@ -325,6 +325,164 @@ class SortedFaceCells {
   BigVector<uint64_t> entries_;
 };
 
+// A cell's member as the pair filter reads it: its face's box and a flags byte (SearchPairs).
+struct Filtered {
+  Box box;
+  uint8_t flags;
+};
+
+// Whether the pair filter passes a and b: their flags or'ed are 15 (the pair counts, and this
+// is the lowest cell their boxes share) and their boxes overlap. BoxesOverlap's comparisons,
+// with & for && (every one evaluated, no branch).
+inline bool Passes(const Filtered& a, const Filtered& f) {
+  return ((a.flags | f.flags) == 15) & !(a.box.hi[0] < f.box.lo[0]) &
+         !(f.box.hi[0] < a.box.lo[0]) & !(a.box.hi[1] < f.box.lo[1]) &
+         !(f.box.hi[1] < a.box.lo[1]) & !(a.box.hi[2] < f.box.lo[2]) &
+         !(f.box.hi[2] < a.box.lo[2]);
+}
+
+// A cell with more members than this has its pairs found by WalkCrowdedCell, not by trying
+// each pair.
+constexpr size_t kCrowdedCell = 512;
+
+float Extent(const Box& b) {
+  return std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
+}
+
+struct CrowdedScratch {
+  std::vector<float> extent, sorted;
+  std::vector<int8_t> level;      // a member's width class; -1: wider than every class
+  std::vector<uint32_t> huge;
+  std::vector<uint64_t> entries;  // (sub-cell key, guest bit, lowest-sub-cell bits, member)
+};
+
+// The width classes of a crowded cell: class 0 holds the members no wider than twice the
+// cell's median width, class j + 1 those no wider than twice the median of the ones left.
+constexpr int kCrowdedClasses = 6;
+// Members left after the classes, or a class that would hold fewer than this, are tried
+// against every member.
+constexpr size_t kCrowdedMinClass = 64;
+
+// The pairs of a crowded cell's m members that pass the filter (Passes), each once, handed to
+// test(a, n) as SearchPairs' loop hands them: member a and the n members written to `passed`.
+// A cell fills up where the faces are much smaller than the mean that sized the cells (a cap
+// folded into a patch a few hundredths of a voxel wide: 28,000 faces in one cell) or where
+// many huge faces (a cap's, stretched over a hole) lie among small ones; trying every pair
+// there costs m^2 / 2 (1e9 pairs a search in the caps' back-off of a 3M-point scan). Here the
+// members are split into width classes; class j's members (the owners) go to sub-cells of
+// its width together with the narrower classes' (the guests), each member spanning at most
+// two a side, and each owner is tried against the owners after it and every guest of its
+// sub-cell, a pair only in the lowest sub-cell the two share (as the cells do). A pair is
+// tried in its wider member's class. The few members wider than every class are tried
+// against every member.
+template <typename Test>
+void WalkCrowdedCell(const Filtered* members, size_t m, CrowdedScratch& s, uint32_t* passed,
+                     Test&& test) {
+  s.extent.resize(m);
+  for (size_t i = 0; i < m; ++i) s.extent[i] = Extent(members[i].box);
+  s.level.assign(m, -1);
+  std::array<double, kCrowdedClasses> side{};
+  int classes = 0;
+  s.sorted.clear();
+  for (size_t i = 0; i < m; ++i) s.sorted.push_back(s.extent[i]);
+  while (classes < kCrowdedClasses && s.sorted.size() >= kCrowdedMinClass) {
+    const size_t middle = s.sorted.size() / 2;
+    std::nth_element(s.sorted.begin(), s.sorted.begin() + middle, s.sorted.end());
+    const double width = 2.0 * s.sorted[middle];
+    if (!(width >= 0)) break;  // NaN widths: no class
+    side[classes] = width;
+    std::erase_if(s.sorted, [&](float e) { return e <= width; });
+    ++classes;
+  }
+  s.huge.clear();
+  for (size_t i = 0; i < m; ++i) {
+    int j = 0;
+    while (j < classes && !(s.extent[i] <= side[j])) ++j;
+    if (j < classes) {
+      s.level[i] = static_cast<int8_t>(j);
+    } else {
+      s.huge.push_back(static_cast<uint32_t>(i));
+    }
+  }
+  // The widest: against every member of a class, and against the widest after them.
+  for (size_t h = 0; h < s.huge.size(); ++h) {
+    const uint32_t a = s.huge[h];
+    size_t n = 0;
+    for (size_t b = 0; b < m; ++b) {
+      passed[n] = static_cast<uint32_t>(b);
+      n += (s.level[b] >= 0) & Passes(members[a], members[b]);
+    }
+    for (size_t k = h + 1; k < s.huge.size(); ++k) {
+      passed[n] = s.huge[k];
+      n += Passes(members[a], members[s.huge[k]]);
+    }
+    test(a, n);
+  }
+  constexpr int kKeyShift = 36, kGuestShift = 35;
+  for (int j = 0; j < classes; ++j) {
+    Box region{};
+    bool any = false;
+    for (size_t i = 0; i < m; ++i) {
+      if (s.level[i] < 0 || s.level[i] > j) continue;
+      const Box& b = members[i].box;
+      if (!any) region = b;
+      any = true;
+      for (int k = 0; k < 3; ++k) {
+        region.lo[k] = std::min(region.lo[k], b.lo[k]);
+        region.hi[k] = std::max(region.hi[k], b.hi[k]);
+      }
+    }
+    // Sub-cells no narrower than 1/512 of the region (keys below 2^28; faces of no width at
+    // one point share one sub-cell, their pairs all tried).
+    const double width = std::max(side[j], static_cast<double>(Extent(region)) / 512);
+    std::array<int64_t, 3> dims{1, 1, 1};
+    if (width > 0)
+      for (int k = 0; k < 3; ++k)
+        dims[k] = static_cast<int64_t>((region.hi[k] - region.lo[k]) / width) + 1;
+    auto sub = [&](float v, int k) {
+      if (!(width > 0)) return int64_t{0};
+      return std::clamp<int64_t>(static_cast<int64_t>((v - region.lo[k]) / width), 0,
+                                 dims[k] - 1);
+    };
+    s.entries.clear();
+    for (size_t i = 0; i < m; ++i) {
+      if (s.level[i] < 0 || s.level[i] > j) continue;
+      const uint64_t guest = s.level[i] < j ? 1 : 0;
+      const Box& b = members[i].box;
+      const std::array<int64_t, 3> lo{sub(b.lo[0], 0), sub(b.lo[1], 1), sub(b.lo[2], 2)};
+      const std::array<int64_t, 3> hi{sub(b.hi[0], 0), sub(b.hi[1], 1), sub(b.hi[2], 2)};
+      for (int64_t z = lo[2]; z <= hi[2]; ++z)
+        for (int64_t y = lo[1]; y <= hi[1]; ++y)
+          for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+            const uint64_t key = static_cast<uint64_t>(x + dims[0] * (y + dims[1] * z));
+            const uint64_t low =
+                (x == lo[0] ? 1 : 0) | (y == lo[1] ? 2 : 0) | (z == lo[2] ? 4 : 0);
+            s.entries.push_back(key << kKeyShift | guest << kGuestShift | low << 32 | i);
+          }
+    }
+    // By sub-cell, its owners first.
+    std::sort(s.entries.begin(), s.entries.end());
+    for (size_t begin = 0; begin < s.entries.size();) {
+      size_t end = begin + 1;
+      while (end < s.entries.size() &&
+             s.entries[end] >> kKeyShift == s.entries[begin] >> kKeyShift)
+        ++end;
+      for (size_t e = begin; e < end && !(s.entries[e] >> kGuestShift & 1); ++e) {
+        const uint32_t a = static_cast<uint32_t>(s.entries[e]);
+        const uint64_t low_a = s.entries[e] >> 32 & 7;
+        size_t n = 0;
+        for (size_t f = e + 1; f < end; ++f) {
+          const uint32_t b = static_cast<uint32_t>(s.entries[f]);
+          passed[n] = b;
+          n += ((low_a | (s.entries[f] >> 32 & 7)) == 7) & Passes(members[a], members[b]);
+        }
+        test(a, n);
+      }
+      begin = end;
+    }
+  }
+}
+
 std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
                                                      const Participants& p, int threads,
                                                      const CancelToken& cancel,
@@ -352,10 +510,6 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
   // lowest cell is this one exactly when every axis has a face at this coordinate:
   // (at_low_a | at_low_b) == 7, so each pair is tested once, in that cell. Bit 3: the face is
   // dirty (every pair with a dirty face counts). A pair passes when its flags or'ed are 15.
-  struct Filtered {
-    Box box;
-    uint8_t flags;
-  };
   // A face's triangle and plane are made in its member at the first pair that tests it, not
   // once per face into arrays of the participants: such arrays (84 bytes a face, 1.3 GB on
   // the 15M faces of a 10M-point torus) would be the process's peak on smaller clouds, each
@@ -368,6 +522,7 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
     FacePlane plane;
   };
   struct Scratch {
+    CrowdedScratch crowded;
     std::vector<Filtered> filtered;
     std::vector<Tested> tested;
     std::vector<uint32_t> passed;  // the members that pass the filter with the current one
@@ -421,21 +576,9 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
         t.plane = MakeFacePlane(t.triangle);
         t.made = true;
       };
-      for (size_t a = 0; a < m; ++a) {
-        const Box box = filtered[a].box;
-        const uint8_t flags = filtered[a].flags;
-        size_t n = 0;
-        for (size_t b = a + 1; b < m; ++b) {
-          const Filtered& f = filtered[b];
-          // BoxesOverlap's comparisons, with & for && (every one evaluated, no branch).
-          const bool pass = ((flags | f.flags) == 15) & !(box.hi[0] < f.box.lo[0]) &
-                            !(f.box.hi[0] < box.lo[0]) & !(box.hi[1] < f.box.lo[1]) &
-                            !(f.box.hi[1] < box.lo[1]) & !(box.hi[2] < f.box.lo[2]) &
-                            !(f.box.hi[2] < box.lo[2]);
-          passed[n] = static_cast<uint32_t>(b);
-          n += pass;
-        }
-        if (n == 0) continue;
+      // Tests member a against the n members listed in `passed`.
+      auto test = [&](size_t a, size_t n) {
+        if (n == 0) return;
         Tested& ti = tested[a];
         make(ti);
         const int32_t fi = p.face[ti.position];
@@ -447,6 +590,19 @@ std::vector<std::pair<int32_t, int32_t>> SearchPairs(const TriangleMesh& mesh,
                                      tj.triangle, tj.plane))
             out.emplace_back(std::min(fi, fj), std::max(fi, fj));
         }
+      };
+      if (m <= kCrowdedCell) {
+        for (size_t a = 0; a < m; ++a) {
+          const Filtered fa = filtered[a];
+          size_t n = 0;
+          for (size_t b = a + 1; b < m; ++b) {
+            passed[n] = static_cast<uint32_t>(b);
+            n += Passes(fa, filtered[b]);
+          }
+          test(a, n);
+        }
+      } else {
+        WalkCrowdedCell(filtered.data(), m, scratch[worker].crowded, passed.data(), test);
       }
       begin = end;
     }

@@ -21,7 +21,10 @@ namespace membrane {
 // overlaps between faces that share a vertex or an edge). Faces with an index out of range are
 // skipped. Sorted by (i, j). Each pair is reported once.
 // Cost: O(F) cells and entries; the cell size follows the mean face size, and the cell count is
-// bounded by a few times F, so huge faces cost more entries, never quadratic memory.
+// bounded by a few times F, so huge faces cost more entries, never quadratic memory. A cell
+// of more than 512 faces (faces far smaller than the mean crowded together) is split into
+// width classes and sub-cells, so its pairs tried follow the faces that overlap, not the
+// square of its count.
 // `cancel` is polled every few thousand cells, on the calling thread only; once it fires the
 // pairs found so far are returned. `threads` (<= 1: the calling thread alone) share the cells;
 // the result does not depend on it. `progress` counts the cells' entries as they are walked

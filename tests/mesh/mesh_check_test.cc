@@ -137,6 +137,79 @@ TEST(MeshCheck, SearchFindsThePairsThatTestingEveryPairFinds) {
         << threads << " threads";
 }
 
+TEST(MeshCheck, SearchFindsEveryPairInCellsCrowdedWithSmallFaces) {
+  // The cells are twice the mean face wide. Where much smaller faces crowd into one (a cap
+  // folded into a patch), the search splits the cell's faces into width classes; the faces
+  // wider than every class are tried against all. Here two crossing tori of faces about
+  // 0.0014 wide, a torus of faces about 0.004 wide through them and a cube of 0.05 around
+  // them sit on a torus of faces about 0.2 wide: the mean (0.019) makes cells of 0.039, and
+  // the 7,200 small faces (and the 1,600 smaller ones below) lie within a cube of 0.03, so
+  // some cell holds over 1,100 of them.
+  auto moved = [](TriangleMesh m, float dx, float dy, float dz) {
+    for (auto& v : m.vertices) v[0] += dx, v[1] += dy, v[2] += dz;
+    return m;
+  };
+  const float x = 1.3f;
+  TriangleMesh all = TorusMesh(40, 20, 1.0f, 0.3f);
+  all = Concat(all, moved(TorusMesh(60, 30, 0.01f, 0.003f), x, 0, 0));
+  all = Concat(all, moved(TorusMesh(60, 30, 0.01f, 0.003f), x + 0.003f, 0, 0.002f));
+  all = Concat(all, moved(TorusMesh(40, 20, 0.02f, 0.006f), x, 0.004f, 0));
+  all = Concat(all, CubeMesh({x - 0.025f, -0.025f, -0.025f}, 0.05f));
+  // Two crossing tori of 800 faces about 0.00005 wide across the first small one's outer
+  // edge: in the cells beside them the smallest width class's sub-cells (about 0.0024 wide)
+  // hold them among the small faces, over 512 members each.
+  all = Concat(all, moved(TorusMesh(40, 20, 0.0002f, 0.00006f), x + 0.013f, 0, 0));
+  all = Concat(all, moved(TorusMesh(40, 20, 0.0002f, 0.00006f), x + 0.01306f, 0, 0.00004f));
+  const int32_t nf = static_cast<int32_t>(all.faces.size());
+  auto box = [&](int32_t f) {
+    std::array<float, 3> lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+    for (int32_t v : all.faces[f])
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], all.vertices[v][k]);
+        hi[k] = std::max(hi[k], all.vertices[v][k]);
+      }
+    return std::pair{lo, hi};
+  };
+  double extent_sum = 0;
+  int crowded = 0;
+  for (int32_t f = 0; f < nf; ++f) {
+    const auto [lo, hi] = box(f);
+    extent_sum += std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    const float xc = x + 0.0015f, h = 0.015f;
+    crowded += lo[0] >= xc - h && hi[0] <= xc + h && std::abs(lo[1]) <= h &&
+               std::abs(hi[1]) <= h && std::abs(lo[2]) <= h && std::abs(hi[2]) <= h;
+  }
+  ASSERT_LE(0.03, 2 * extent_sum / nf);  // a cube of 0.03 spans at most 8 cells
+  ASSERT_GE(crowded, 8 * 513);
+  auto triangle = [&](int32_t f) {
+    const auto& idx = all.faces[f];
+    return Triangle3d{ToVec3d(all.vertices[idx[0]]), ToVec3d(all.vertices[idx[1]]),
+                      ToVec3d(all.vertices[idx[2]])};
+  };
+  std::vector<std::pair<int32_t, int32_t>> every;
+  for (int32_t i = 0; i < nf; ++i) {
+    const auto [lo_i, hi_i] = box(i);
+    for (int32_t j = i + 1; j < nf; ++j) {
+      const auto [lo_j, hi_j] = box(j);
+      bool overlap = true;
+      for (int k = 0; k < 3; ++k) overlap &= lo_i[k] <= hi_j[k] && lo_j[k] <= hi_i[k];
+      if (overlap && MeshTrianglesIntersect(all.faces[i], triangle(i), all.faces[j], triangle(j)))
+        every.emplace_back(i, j);
+    }
+  }
+  ASSERT_GT(every.size(), 1000u);
+  for (int threads : {1, 3})
+    EXPECT_EQ(FindIntersectingFaces(all, CancelToken::Never(), threads), every)
+        << threads << " threads";
+  // Around every seventh face, as the caps' back-off searches.
+  std::vector<char> dirty(all.faces.size(), 0);
+  for (size_t f = 0; f < dirty.size(); f += 7) dirty[f] = 1;
+  std::vector<std::pair<int32_t, int32_t>> near;
+  for (const auto& [a, b] : every)
+    if (dirty[a] || dirty[b]) near.emplace_back(a, b);
+  EXPECT_EQ(FindIntersectingFacesNear(all, dirty, 2), near);
+}
+
 TEST(MeshCheck, SearchNearDirtyFacesSkipsFarRunsWithoutMissingPairs) {
   // The run boxes kept between searches, as the fit keeps them while it moves vertices: each
   // search must find what the search without them finds. Two tori, one above the other with a

@@ -80,6 +80,7 @@ MembraneShrinker::MembraneShrinker(VoxelGrid& grid, const ShrinkOptions& options
 absl::StatusOr<ShrinkResult> MembraneShrinker::Run(const GenerationCallback& on_generation) {
   const Clock::time_point start = Clock::now();
   ShrinkResult result;
+  result.guard = guard_;
   if (options_.silhouette_preshrink) result.preshrink_outside_voxels = SilhouettePreshrink(grid_);
   // On a grid big enough for the word passes' threads, the planes' first writes run beside the
   // guard and the coarse plates, which use none of them (planes_ahead.h).

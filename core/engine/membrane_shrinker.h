@@ -27,6 +27,7 @@
 #include "core/engine/post_process.h"
 #include "core/engine/shrink_options.h"
 #include "core/engine/state_planes.h"
+#include "core/engine/topology_guard.h"
 #include "core/engine/voxel_grid.h"
 #include "core/engine/work_planes.h"
 
@@ -83,6 +84,9 @@ struct CoarsePlatesStats {
 };
 
 struct ShrinkResult {
+  // The topology guard's sizes on this grid (GridGuardSizes): the plates from which a tunnel
+  // away from the data opens, and the object's tunnel plate below which it needs data around.
+  GuardSizes guard;
   std::vector<GenerationStats> generations;
   int64_t preshrink_outside_voxels = 0;
   InteriorGuardStats interior_guard;

@@ -63,6 +63,7 @@ absl::Status ShrinkStage(const ReconstructionOptions& options, const CancelToken
   if (!result.ok()) return result.status();
   report.interior_guard = result->interior_guard;
   report.coarse_plates = result->coarse_plates;
+  report.topology_guard = result->guard;
   report.generations = std::move(result->generations);
   report.post_process = result->post_process;
   report.handle_retry = result->handle_retry;

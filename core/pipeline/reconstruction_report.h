@@ -14,6 +14,7 @@
 #include "core/engine/membrane_shrinker.h"
 #include "core/engine/piece_separation.h"
 #include "core/engine/post_process.h"
+#include "core/engine/topology_guard.h"
 #include "core/mesh/hole_caps.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_decimation.h"
@@ -82,6 +83,7 @@ struct ReconstructionReport {
   int planned_generations = 0;               // plate sizes of the schedule, known before shrinking
   InteriorGuardStats interior_guard;  // ShrinkResult::interior_guard, before the generations
   CoarsePlatesStats coarse_plates;    // ShrinkResult::coarse_plates, the first generations
+  GuardSizes topology_guard;          // ShrinkResult::guard
   std::vector<GenerationStats> generations;  // one per plate size, the last has plate size 1
   PostProcessStats post_process;
   HandleRetry handle_retry;    // ShrinkResult::handle_retry

@@ -99,6 +99,12 @@ std::string CoarsePlatesJson(const CoarsePlatesStats& c) {
                       ", \"seconds\": ", JsonNumber(c.seconds), "}");
 }
 
+std::string TopologyGuardJson(const GuardSizes& g) {
+  return absl::StrCat("{\"tunnel_min_plate\": ", g.tunnel_min_plate,
+                      ", \"object_tunnel_plate\": ", g.object_tunnel_plate,
+                      ", \"dense_rim\": ", JsonNumber(g.dense_rim), "}");
+}
+
 std::string RelaxationJson(const RelaxationStats& r) {
   return absl::StrCat("{\"phase1_moves\": ", r.phase1_moves, ", \"phase1_added\": ", r.phase1_added,
                       ", \"phase2_moves\": ", r.phase2_moves,
@@ -220,6 +226,7 @@ std::string StatsJson(const ReconstructionReport& r) {
       ",\n  \"gap_refill\": ", GapRefillJson(r.gap_refill),
       ",\n  \"interior_guard\": ", InteriorGuardJson(r.interior_guard),
       ",\n  \"coarse_plates\": ", CoarsePlatesJson(r.coarse_plates),
+      ",\n  \"topology_guard\": ", TopologyGuardJson(r.topology_guard),
       ",\n  \"relaxation\": ", RelaxationJson(r.relaxation),
       ",\n  \"hole_caps\": ", HoleCapsJson(r.hole_caps),
       ",\n  \"fit\": ", FitJson(r.fit),

@@ -36,6 +36,9 @@ namespace membrane {
 // (InteriorGuardStats; levels 0: no coarse membrane was built);
 // coarse_plates {factor, generations, lifted_voxels, seconds} (CoarsePlatesStats; factor 0:
 // every generation ran on the grid);
+// topology_guard {tunnel_min_plate, object_tunnel_plate, dense_rim} (GuardSizes on the grid:
+// a tunnel away from the data opens from a plate of tunnel_min_plate voxels, and below
+// object_tunnel_plate (0: none) only with dense_rim n^2 hard voxels within n of it);
 // relaxation {phase1_moves, phase1_added, phase2_moves, phase2_uncovered, not_simple};
 // membrane.inside_frozen_voxels and membrane.genus; mesh.self_intersections and
 // mesh.positive_volume; seconds.check. Non-finite reals are written as null.

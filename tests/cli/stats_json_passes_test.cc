@@ -79,6 +79,18 @@ TEST(StatsJsonPassesTest, EveryPassReportsOnASingleSphere) {
   EXPECT_GE(Count(refill, "refilled_voxels"), 0);
   EXPECT_GE(Count(refill, "pocket_voxels"), 0);
   EXPECT_EQ(Count(refill, "loops_closed"), 0);
+  // The guard's sizes on this grid: the object's tunnel plate is its data box's longest axis
+  // over 24 (ShrinkOptions::tunnel_axis_ratio).
+  const JsonValue& guard = Pass(s, "topology_guard");
+  EXPECT_EQ(Count(guard, "tunnel_min_plate"), 5);
+  const JsonValue* data_grid = s.Find("data_grid");
+  ASSERT_NE(data_grid, nullptr);
+  ASSERT_EQ(data_grid->array.size(), 3u);
+  double longest = 0;
+  for (const JsonValue& axis : data_grid->array) longest = std::max(longest, axis.number);
+  ASSERT_GE(longest, 24);
+  EXPECT_EQ(Count(guard, "object_tunnel_plate"), static_cast<int64_t>(longest) / 24);
+  EXPECT_EQ(guard.Find("dense_rim")->number, 2);
 }
 
 // Two unit spheres 0.3 apart at a voxel of 0.092 (3.3 voxels between them): the shrink leaves

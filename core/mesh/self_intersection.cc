@@ -359,8 +359,8 @@ struct CrowdedScratch {
 // The width classes of a crowded cell: class 0 holds the members no wider than twice the
 // cell's median width, class j + 1 those no wider than twice the median of the ones left.
 constexpr int kCrowdedClasses = 6;
-// Members left after the classes, or a class that would hold fewer than this, are tried
-// against every member.
+// Classes are made while at least this many members are left; the members left after them
+// are tried against every member.
 constexpr size_t kCrowdedMinClass = 64;
 
 // The pairs of a crowded cell's m members that pass the filter (Passes), each once, handed to

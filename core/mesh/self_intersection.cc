@@ -345,6 +345,7 @@ inline bool Passes(const Filtered& a, const Filtered& f) {
 // each pair.
 constexpr size_t kCrowdedCell = 512;
 
+// A box's largest side.
 float Extent(const Box& b) {
   return std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
 }
@@ -383,8 +384,7 @@ void WalkCrowdedCell(const Filtered* members, size_t m, CrowdedScratch& s, uint3
   s.level.assign(m, -1);
   std::array<double, kCrowdedClasses> side{};
   int classes = 0;
-  s.sorted.clear();
-  for (size_t i = 0; i < m; ++i) s.sorted.push_back(s.extent[i]);
+  s.sorted.assign(s.extent.begin(), s.extent.end());
   while (classes < kCrowdedClasses && s.sorted.size() >= kCrowdedMinClass) {
     const size_t middle = s.sorted.size() / 2;
     std::nth_element(s.sorted.begin(), s.sorted.begin() + middle, s.sorted.end());
@@ -722,7 +722,7 @@ std::vector<std::pair<int32_t, int32_t>> FindIntersectingFacesNear(const Triangl
     p.face.push_back(f);
     p.box.push_back(BoxOfFace(mesh, f));
     const Box& b = p.box.back();
-    extents.push_back(std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]}));
+    extents.push_back(Extent(b));
   }
   if (p.face.empty()) return {};
   const size_t middle = extents.size() / 2;
